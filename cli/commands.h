@@ -1,0 +1,35 @@
+#pragma once
+// The `cover` subcommands (CONTRACT.md "Commands"). Each returns the process exit status and
+// throws InputError / NotComputable for bad input (exit 2, handled in main.cpp).
+
+#include <string>
+
+namespace cover::cli {
+
+struct CommonOptions {
+  bool json = false;   ///< print exactly one JSON object on stdout
+  bool quiet = false;  ///< no progress bars
+  int threads = 0;     ///< 0: all cores
+};
+
+struct InfoOptions {
+  std::string input;
+  bool check_self_intersection = true;  ///< --no-self-intersection skips the (exact) check
+};
+
+struct VolumeCommandOptions {
+  std::string input;
+  bool exact = false;  ///< --exact
+  long rays = 0;       ///< --rays N (ray-integration resolution; 0 = default)
+};
+
+struct ClassifyCommandOptions {
+  std::string input;
+  std::string points;  ///< file or "-"
+};
+
+int run_info(const InfoOptions& o, const CommonOptions& common);
+int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
+int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
+
+}  // namespace cover::cli

@@ -1,0 +1,82 @@
+// `cover`: command-line front end (CONTRACT.md). Exit status: 0 success, 2 bad input or usage
+// (one line "cover: error: ..." on stderr), 1 internal failure.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include "cli/commands.h"
+#include "solid/errors.h"
+#include "solid/parallel.h"
+
+namespace {
+
+int fail(int status, const std::string& what) {
+  std::fprintf(stderr, "cover: error: %s\n", what.c_str());
+  return status;
+}
+
+void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
+  cmd->add_flag("--json", common.json, "Print exactly one JSON object on stdout");
+  cmd->add_flag("--quiet", common.quiet, "No progress bars");
+  cmd->add_option("--threads", common.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cover: CSG solids by simplicial coverings (exact volume, classification)"};
+  app.set_version_flag("--version", "cover " COVER_VERSION);
+  app.require_subcommand(1);
+
+  cover::cli::CommonOptions common;
+
+  cover::cli::InfoOptions info;
+  CLI::App* info_cmd = app.add_subcommand("info", "Validate and describe a mesh or scene");
+  info_cmd->add_option("INPUT", info.input, "Mesh (.obj .off .stl .ply) or scene (.json)")->required();
+  info_cmd->add_flag("!--no-self-intersection", info.check_self_intersection,
+                     "Skip the exact self-intersection check");
+  add_common(info_cmd, common);
+
+  cover::cli::VolumeCommandOptions vol;
+  CLI::App* vol_cmd = app.add_subcommand("volume", "Volume (and area where exact) of the solid");
+  vol_cmd->add_option("INPUT", vol.input, "Mesh or scene")->required();
+  vol_cmd->add_flag("--exact", vol.exact, "Require an exact method (B-rep evaluation)");
+  vol_cmd->add_option("--rays", vol.rays, "Rays per axis for ray integration")->check(CLI::PositiveNumber);
+  add_common(vol_cmd, common);
+
+  cover::cli::ClassifyCommandOptions cls;
+  CLI::App* cls_cmd = app.add_subcommand("classify", "Classify points: inside/outside/face/edge/vertex");
+  cls_cmd->add_option("INPUT", cls.input, "Mesh or scene")->required();
+  cls_cmd->add_option("--points", cls.points, "Points file (x y z per line; - for stdin)")->required();
+  add_common(cls_cmd, common);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return fail(2, e.what());
+  }
+
+  try {
+    cover::ThreadLimit limit(common.threads);
+    if (info_cmd->parsed()) return cover::cli::run_info(info, common);
+    if (vol_cmd->parsed()) return cover::cli::run_volume(vol, common);
+    if (cls_cmd->parsed()) return cover::cli::run_classify(cls, common);
+    return fail(2, "no command given (try --help)");
+  } catch (const cover::InputError& e) {
+    return fail(2, e.what());
+  } catch (const cover::NotComputable& e) {
+    return fail(2, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(1, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(1, std::string("internal error: ") + e.what());
+  }
+}

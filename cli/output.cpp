@@ -1,0 +1,39 @@
+#include "cli/output.h"
+
+#include <cstdio>
+#include <unistd.h>
+
+namespace cover::cli {
+
+Progress::Progress(std::string label, bool quiet)
+    : label_(std::move(label)),
+      enabled_(!quiet && isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+Progress::~Progress() {
+  if (shown_) std::fprintf(stderr, "\r\033[K");
+}
+
+void Progress::update(size_t done, size_t total) {
+  if (!enabled_ || total == 0 || seconds_since(start_) < 1.0) return;
+  shown_ = true;
+  const int width = 40;
+  const int filled = static_cast<int>(width * done / total);
+  std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", label_.c_str(), filled,
+               "########################################", width - filled, "",
+               static_cast<int>(100 * done / total));
+  std::fflush(stderr);
+}
+
+nlohmann::json to_json(const Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+nlohmann::json to_json(const Bbox& b) {
+  if (b.empty()) return nullptr;
+  return nlohmann::json::array({to_json(b.min), to_json(b.max)});
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace cover::cli

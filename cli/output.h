@@ -1,0 +1,33 @@
+#pragma once
+// Small helpers for the CLI's outputs: progress on a terminal, and JSON of shared types.
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "solid/types.h"
+
+namespace cover::cli {
+
+/// A progress bar on stderr, shown only when stderr is a terminal, not quiet, and the work has
+/// already taken more than a second. update() is called from the coordinating thread only.
+class Progress {
+ public:
+  Progress(std::string label, bool quiet);
+  ~Progress();
+  void update(size_t done, size_t total);
+
+ private:
+  std::string label_;
+  bool enabled_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+nlohmann::json to_json(const Vec3& v);
+nlohmann::json to_json(const Bbox& b);
+
+/// Seconds since `start` as a double.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+}  // namespace cover::cli

@@ -1,0 +1,42 @@
+#pragma once
+// Exact point classification against a CSG solid (paper Theorem 2, DESIGN.md §1–§2).
+//
+// Per leaf, the covering sum at Q with the covering origin O pushed to infinity along −x equals
+// the signed count of covering triangles crossed by the ray Q + t·(1,0,0), t > 0: the leaf's
+// winding number (nonzero rule: inside iff w ≠ 0). Ties (ray through a triangle's edge or vertex)
+// are broken by symbolic perturbation of Q by (0, ε, ε²) in the projection — consistent for
+// every triangle, hence the count of a genuinely perturbed point, with no epsilon.
+// Points exactly on a leaf's surface are found exactly (orient3d = 0 and closed containment) and
+// classified at the RESULT level from the arrangement of the face planes through the point
+// (covering/detail/local.h): inside / outside when the result is locally full / empty (a face of A
+// buried in B for A∪B is inside), otherwise face / edge / vertex of the result's boundary.
+// This is the O(faces)-per-point brute-force path; it stays the reference for faster ones.
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "solid/solid.h"
+
+namespace cover {
+
+enum class PointClass : uint8_t { kOutside, kInside, kFace, kEdge, kVertex };
+
+/// "outside", "inside", "face", "edge", "vertex".
+std::string_view to_string(PointClass c);
+
+struct ClassifyOptions {
+  size_t grain = 64;  ///< points per parallel chunk (results never depend on it)
+};
+
+/// Classifies every point. Preconditions: leaves are closed. Thread-count independent.
+std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
+                                 const ClassifyOptions& options = {});
+
+/// Winding number of each leaf at q (exact), for q on no leaf's surface; on_surface[l] is set
+/// for the leaves whose surface contains q (their winding is then meaningless).
+void leaf_windings(const Solid& solid, const Vec3& q, std::vector<int>& winding,
+                   std::vector<uint8_t>& on_surface);
+
+}  // namespace cover

@@ -1,0 +1,147 @@
+#include "covering/volume.h"
+
+#include <numeric>
+
+#include "covering/classify.h"
+#include "solid/errors.h"
+#include "solid/measure.h"
+#include "solid/parallel.h"
+#include "solid/validate.h"
+
+namespace cover {
+namespace {
+
+constexpr size_t kFaceGrain = 4096;  // faces per chunk: fixed, so sums are thread-independent
+
+/// Why the leaf's winding number can exceed 1 (empty when it cannot).
+std::optional<std::string> leaf_not_simple(const Solid& solid, uint32_t l) {
+  const PolygonMesh mesh = leaf_mesh(solid, l);
+  const std::string name = solid.leaves[l].name;
+  if (self_intersects(mesh)) return name + " is self-intersecting";
+  ValidateOptions vo;
+  vo.check_self_intersection = false;
+  const MeshReport report = validate_mesh(mesh, vo);
+  if (report.components > 1)
+    return name + " has " + std::to_string(report.components) +
+           " shells (nesting not analysed for the covering volume)";
+  return std::nullopt;
+}
+
+Bbox node_box(const Solid& s, uint32_t node) {
+  const CsgNode& n = s.tree.nodes[node];
+  if (n.op == CsgOp::kLeaf) return s.leaves[n.leaf].bbox;
+  Bbox box;
+  for (uint32_t c : n.children) box.add(node_box(s, c));
+  return box;
+}
+
+/// Collects the leaves whose covering volumes add up to the node's volume; returns why there
+/// are none when the covering is not exact for this node (rules in volume.h).
+std::optional<std::string> collect(const Solid& s, uint32_t node, std::vector<uint32_t>& leaves) {
+  const CsgNode& n = s.tree.nodes[node];
+  switch (n.op) {
+    case CsgOp::kLeaf:
+      if (auto why = leaf_not_simple(s, n.leaf)) return why;
+      leaves.push_back(n.leaf);
+      return std::nullopt;
+    case CsgOp::kComplement:
+      return std::string("a complement is unbounded");
+    case CsgOp::kUnion:
+      for (size_t i = 0; i < n.children.size(); ++i) {
+        for (size_t j = 0; j < i; ++j)
+          if (node_box(s, n.children[i]).interiors_overlap(node_box(s, n.children[j])))
+            return std::string("union operands overlap");
+        if (auto why = collect(s, n.children[i], leaves)) return why;
+      }
+      return std::nullopt;
+    case CsgOp::kDifference:
+      for (size_t i = 1; i < n.children.size(); ++i)
+        if (node_box(s, n.children[i]).interiors_overlap(node_box(s, n.children[0])))
+          return std::string("a subtracted operand overlaps the first");
+      return collect(s, n.children[0], leaves);
+    case CsgOp::kIntersection:
+      if (n.children.size() == 1) return collect(s, n.children[0], leaves);
+      return std::string("intersection of overlapping operands");
+  }
+  return std::string("unknown node");
+}
+
+/// True when the intersection node is empty because two operand boxes share no interior.
+bool empty_intersection(const Solid& s, uint32_t node) {
+  const CsgNode& n = s.tree.nodes[node];
+  if (n.op != CsgOp::kIntersection || n.children.size() < 2) return false;
+  for (size_t i = 0; i < n.children.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (!node_box(s, n.children[i]).interiors_overlap(node_box(s, n.children[j]))) return true;
+  return false;
+}
+
+/// Sum over faces of one covering measure, chunked for determinism.
+template <typename PerFace>
+double face_sum(const Solid& s, PerFace per_face) {
+  const size_t faces = s.face_count();
+  const size_t chunks = (faces + kFaceGrain - 1) / kFaceGrain;
+  std::vector<NeumaierSum> partial(chunks);
+  parallel_for(faces, kFaceGrain, [&](size_t begin, size_t end) {
+    NeumaierSum& sum = partial[begin / kFaceGrain];
+    for (size_t f = begin; f < end; ++f) per_face(f, sum);
+  });
+  NeumaierSum total;
+  for (const NeumaierSum& p : partial) total.add(p);
+  return total.value();
+}
+
+}  // namespace
+
+double covering_volume(const Solid& s) {
+  const Bbox box = s.bbox();
+  const Vec3 o = box.empty() ? Vec3{} : 0.5 * (box.min + box.max);
+  return face_sum(s, [&](size_t f, NeumaierSum& sum) {
+    auto face = s.face(f);
+    if (face.size() < 3) return;
+    const Vec3 a = s.vertices[face[0]] - o;
+    for (size_t i = 1; i + 1 < face.size(); ++i)
+      sum.add(dot(a, cross(s.vertices[face[i]] - o, s.vertices[face[i + 1]] - o)) / 6.0);
+  });
+}
+
+std::optional<std::string> covering_inexact_reason(const Solid& s) {
+  std::vector<uint32_t> leaves;
+  if (empty_intersection(s, s.tree.root)) return std::nullopt;
+  return collect(s, s.tree.root, leaves);
+}
+
+VolumeResult volume(const Solid& s, const VolumeOptions& options) {
+  if (options.exact && s.tree.nodes[s.tree.root].op != CsgOp::kLeaf)
+    throw NotComputable("--exact needs B-rep evaluation of the expression, not available yet");
+  VolumeResult r;
+  r.method = "covering";
+  if (empty_intersection(s, s.tree.root)) {
+    r.volume = 0;
+    r.area = 0;
+    return r;
+  }
+  std::vector<uint32_t> leaves;
+  if (auto why = collect(s, s.tree.root, leaves))
+    throw NotComputable("the covering volume is not exact for this expression (" + *why +
+                        ") and the ray-integration method is not available yet");
+  // Σ of the contributing leaves' covering volumes (each in its own, outward orientation).
+  NeumaierSum vol, area;
+  bool additive = true;  // area adds up when no two contributing leaves' closed boxes touch
+  for (size_t i = 0; i < leaves.size(); ++i) {
+    const PolygonMesh mesh = leaf_mesh(s, leaves[i]);
+    vol.add(signed_volume(mesh));
+    area.add(surface_area(mesh));
+    const Bbox& a = s.leaves[leaves[i]].bbox;
+    for (size_t j = 0; j < i; ++j) {
+      const Bbox& b = s.leaves[leaves[j]].bbox;
+      additive = additive && (a.max.x < b.min.x || b.max.x < a.min.x || a.max.y < b.min.y ||
+                              b.max.y < a.min.y || a.max.z < b.min.z || b.max.z < a.min.z);
+    }
+  }
+  r.volume = vol.value();
+  if (additive) r.area = area.value();
+  return r;
+}
+
+}  // namespace cover

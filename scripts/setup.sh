@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs Cover's build and test dependencies from Debian packages.
+# Does nothing (no apt call at all) when everything is already present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libtbb-dev
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libgtest-dev libgmock-dev
+  nlohmann-json3-dev libcli11-dev
+  libcgal-demo assimp-testmodels
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}" >&2
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

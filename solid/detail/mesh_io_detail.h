@@ -1,0 +1,165 @@
+#pragma once
+// Internals shared by the mesh readers (mesh_io.cpp, read_*.cpp); not part of the public API.
+// Notation:
+//   file   the path as the caller gave it, used verbatim as the prefix of every error message
+//   data   the whole file contents (read once, parsed in place)
+//   line   1-based line number (text formats); byte: 0-based offset (binary formats)
+// Every error is a cover::InputError with a one-line what(): tokens copied from the file go
+// through quote(), which escapes control and non-ASCII bytes and truncates long tokens.
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <system_error>
+
+#include "solid/polygon_mesh.h"
+
+namespace cover::detail {
+
+/// Largest vertex count / face-vertex count a PolygonMesh can index (uint32 offsets).
+inline constexpr uint64_t kMaxIndexCount = 0xFFFFFFFFull;
+
+/// Lower-case extension with its dot (".off"), or empty.
+std::string lower_extension(const std::filesystem::path& path);
+
+/// The unsupported-extension message: "unsupported mesh format '.3ds' (expected ...)".
+std::string unsupported_format(const std::filesystem::path& path);
+
+/// Reads the whole file. Throws InputError "FILE: cannot open: reason" / "cannot read: reason".
+std::string load_file(const std::filesystem::path& path);
+
+/// Printable, single-line, length-limited rendering of a token, in single quotes.
+std::string quote(std::string_view token);
+
+/// Throws InputError "FILE:LINE: message".
+[[noreturn]] void fail_line(const std::string& file, uint64_t line, const std::string& message);
+/// Throws InputError "FILE: byte N: message".
+[[noreturn]] void fail_byte(const std::string& file, uint64_t byte, const std::string& message);
+/// Throws InputError "FILE: message" (whole-file problems: empty file, no faces).
+[[noreturn]] void fail_file(const std::string& file, const std::string& message);
+
+/// True when count * unit <= available (no overflow).
+inline bool fits(uint64_t count, uint64_t unit, uint64_t available) {
+  return unit == 0 || count <= available / unit;
+}
+
+/// Splits a text buffer into lines ("\n" or "\r\n" terminated; the last may be unterminated).
+class LineReader {
+ public:
+  explicit LineReader(std::string_view text) : text_(text) {}
+
+  /// Next line without its terminator; false at the end of the text.
+  bool next(std::string_view& line) {
+    if (pos_ >= text_.size()) return false;
+    const char* begin = text_.data() + pos_;
+    size_t left = text_.size() - pos_;
+    const void* newline = std::memchr(begin, '\n', left);
+    size_t length = newline ? static_cast<size_t>(static_cast<const char*>(newline) - begin) : left;
+    pos_ += newline ? length + 1 : length;
+    ++line_;
+    if (length > 0 && begin[length - 1] == '\r') --length;
+    line = {begin, length};
+    return true;
+  }
+  /// 1-based number of the line last returned (0 before the first).
+  uint64_t line_number() const { return line_; }
+  /// Bytes not yet returned.
+  uint64_t bytes_left() const { return text_.size() - pos_; }
+
+ private:
+  std::string_view text_;
+  size_t pos_ = 0;
+  uint64_t line_ = 0;
+};
+
+inline bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/// Removes a '#' comment and everything after it.
+inline std::string_view strip_comment(std::string_view line) {
+  size_t hash = line.find('#');
+  return hash == std::string_view::npos ? line : line.substr(0, hash);
+}
+
+/// Pops the next blank-separated token from `line`; empty when none is left.
+inline std::string_view next_token(std::string_view& line) {
+  size_t i = 0;
+  while (i < line.size() && is_blank(line[i])) ++i;
+  size_t start = i;
+  while (i < line.size() && !is_blank(line[i])) ++i;
+  std::string_view token = line.substr(start, i - start);
+  line.remove_prefix(i);
+  return token;
+}
+
+/// True when only blanks are left.
+inline bool only_blanks(std::string_view line) {
+  for (char c : line)
+    if (!is_blank(c)) return false;
+  return true;
+}
+
+/// Parses a whole token as a number (a leading '+' is allowed). False on syntax error or
+/// overflow; inf/nan are parsed (callers reject them with a specific message).
+inline bool parse_double(std::string_view token, double& value) {
+  if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+  const char* end = token.data() + token.size();
+  auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return ec == std::errc() && ptr == end && !token.empty();
+}
+
+/// Parses a whole token as an integer (a leading '+' is allowed).
+template <typename Int>
+inline bool parse_integer(std::string_view token, Int& value) {
+  if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+  const char* end = token.data() + token.size();
+  auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return ec == std::errc() && ptr == end && !token.empty();
+}
+
+/// Throws "FILE:LINE: ..." for a coordinate token that is missing, not a number or not finite;
+/// `axis` ('x', 'y', 'z') names it in the message.
+[[noreturn]] void fail_coordinate(std::string_view token, const std::string& file, uint64_t line,
+                                  char axis);
+
+/// Parses a finite coordinate; throws through fail_coordinate() otherwise.
+inline double parse_coordinate(std::string_view token, const std::string& file, uint64_t line,
+                               char axis) {
+  double value;
+  if (!parse_double(token, value) || !std::isfinite(value))
+    fail_coordinate(token, file, line, axis);
+  return value;
+}
+
+/// Throws "FILE:LINE: unexpected token ..." unless only blanks or numbers are left (trailing
+/// colours, normals, texture coordinates).
+void check_numeric_tail(std::string_view rest, const std::string& file, uint64_t line);
+
+/// Exact-equality vertex welding for STL (−0 and +0 are the same point).
+struct Vec3Hash {
+  size_t operator()(const Vec3& p) const {
+    auto bits = [](double d) {
+      uint64_t b;
+      d += 0.0;  // −0 → +0
+      std::memcpy(&b, &d, sizeof b);
+      return b;
+    };
+    uint64_t h = bits(p.x) * 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 29) ^ bits(p.y)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 31) ^ bits(p.z)) * 0x94D049BB133111EBull;
+    return static_cast<size_t>(h ^ (h >> 32));
+  }
+};
+
+/// Reader entry points; `data` is the whole file, `file` the path for messages.
+PolygonMesh read_off(const std::string& file, std::string_view data);
+PolygonMesh read_obj(const std::string& file, std::string_view data);
+PolygonMesh read_stl(const std::string& file, std::string_view data);
+PolygonMesh read_ply(const std::string& file, std::string_view data);
+
+}  // namespace cover::detail

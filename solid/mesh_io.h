@@ -1,0 +1,29 @@
+#pragma once
+// Mesh file reading and writing. Format is chosen by the file extension (case-insensitive):
+//   read:  .obj, .off, .stl (ASCII or binary, detected from content), .ply (ascii,
+//          binary_little_endian, binary_big_endian)
+//   write: .off, .obj, .stl (binary), .ply (binary_little_endian)
+// Readers are hand-written (see mesh_io.cpp for why and the measurement).
+
+#include <filesystem>
+
+#include "solid/polygon_mesh.h"
+
+namespace cover {
+
+/// Reads a polygon mesh. Faces keep their vertex order; polygons are not triangulated.
+/// STL triangles are welded by exact coordinate equality.
+/// Throws InputError "FILE:LINE: message" (binary formats: "FILE: byte N: ..." or "record N")
+/// for any malformed input: empty, truncated, wrong counts, indices out of range, NaN/inf
+/// coordinates, absurd sizes (counts that cannot fit the file are refused before allocating),
+/// binary garbage, unsupported extension.
+PolygonMesh read_mesh(const std::filesystem::path& path);
+
+/// Writes a mesh atomically (temporary file in the same folder, then rename).
+/// Polygons are fan-triangulated for STL. Throws InputError on unsupported extension or I/O failure.
+void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh);
+
+/// True if the extension names a mesh format read_mesh understands.
+bool is_mesh_extension(const std::filesystem::path& path);
+
+}  // namespace cover

@@ -1,0 +1,36 @@
+#include "solid/parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+namespace cover {
+
+void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_t)>& body) {
+  if (grain == 0) grain = 1;
+  if (n <= grain) {
+    if (n > 0) body(0, n);
+    return;
+  }
+  const size_t chunks = (n + grain - 1) / grain;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t c = r.begin(); c != r.end(); ++c)
+                        body(c * grain, std::min(n, (c + 1) * grain));
+                    },
+                    tbb::simple_partitioner());
+}
+
+struct ThreadLimit::Impl {
+  std::unique_ptr<tbb::global_control> control;
+};
+
+ThreadLimit::ThreadLimit(int n) : impl_(std::make_unique<Impl>()) {
+  if (n > 0)
+    impl_->control = std::make_unique<tbb::global_control>(
+        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(n));
+}
+
+ThreadLimit::~ThreadLimit() = default;
+
+}  // namespace cover

@@ -1,0 +1,28 @@
+#pragma once
+// The one parallelism wrapper (STYLE.md §8). TBB stays behind this header.
+// parallel_for splits [0, n) into fixed chunks of `grain` items (the chunking does not depend on
+// the thread count), so any per-chunk reduction combined in chunk order is deterministic.
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+
+namespace cover {
+
+/// Calls body(begin, end) over consecutive chunks of [0, n); serial when n <= grain.
+void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_t)>& body);
+
+/// Limits the worker threads of every parallel_for while alive (n <= 0: all cores).
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int n);
+  ~ThreadLimit();
+  ThreadLimit(const ThreadLimit&) = delete;
+  ThreadLimit& operator=(const ThreadLimit&) = delete;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cover

@@ -1,0 +1,19 @@
+#pragma once
+// Primitive leaves as closed, outward-oriented polygon meshes (CONTRACT.md scene leaves).
+
+#include "solid/polygon_mesh.h"
+
+namespace cover {
+
+/// Axis-aligned box [min, max] as 6 quads. Precondition: min < max componentwise.
+PolygonMesh make_box(Vec3 min, Vec3 max);
+
+/// UV sphere with `segments` longitudes (>= 3) and max(2, segments/2) latitude bands; the
+/// vertices lie exactly on the sphere (up to rounding), so the polyhedron is inscribed.
+PolygonMesh make_sphere(Vec3 center, double radius, int segments);
+
+/// Cylinder from `base` to `top` with a regular `segments`-gon (>= 3) cross-section inscribed in
+/// the circle of `radius`; two polygonal caps and quad sides. Precondition: base != top.
+PolygonMesh make_cylinder(Vec3 base, Vec3 top, double radius, int segments);
+
+}  // namespace cover

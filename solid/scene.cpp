@@ -1,0 +1,269 @@
+#include "solid/scene.h"
+
+#include <cmath>
+#include <fstream>
+#include <Eigen/LU>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "solid/errors.h"
+#include "solid/measure.h"
+#include "solid/mesh_io.h"
+#include "solid/primitives.h"
+#include "solid/transform.h"
+#include "solid/validate.h"
+
+namespace cover {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMaxDepth = 256;              // nesting of operations
+constexpr int kMaxSphereSegments = 4096;    // ~8M faces
+constexpr int kMaxCylinderSegments = 1 << 20;
+
+/// Walks the scene JSON, keeping the JSON-pointer path of the current node for messages.
+class SceneReader {
+ public:
+  SceneReader(std::filesystem::path scene, LoadOptions options, std::vector<std::string>& warnings)
+      : scene_(std::move(scene)), options_(options), warnings_(warnings) {}
+
+  Solid node(const json& j, const std::string& path, const Affine& parent, int depth) {
+    if (depth > kMaxDepth) fail(path, "scene nested deeper than " + std::to_string(kMaxDepth));
+    if (!j.is_object()) fail(path, "expected an object (a leaf or an operation)");
+    Affine world = parent;
+    std::string kind;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (it.key() == "transform") {
+        world = parent * transform(it.value(), path + "/transform");
+      } else if (kind.empty()) {
+        kind = it.key();
+      } else {
+        fail(path, "more than one of leaf/operation keys ('" + kind + "', '" + it.key() + "')");
+      }
+    }
+    if (kind.empty()) fail(path, "expected one of mesh, box, sphere, cylinder, union, "
+                                 "intersection, difference, complement");
+    const json& v = j.at(kind);
+    const std::string sub = path + "/" + kind;
+    if (kind == "mesh") return mesh_leaf(v, sub, world);
+    if (kind == "box" || kind == "sphere" || kind == "cylinder") {
+      PolygonMesh m = primitive(kind, v, sub);
+      apply_transform(world, m);
+      return leaf(std::move(m), kind, sub);
+    }
+    if (kind == "complement") return complement(node(v, sub, world, depth + 1));
+    if (kind == "union" || kind == "intersection" || kind == "difference") {
+      if (!v.is_array() || v.empty()) fail(sub, "expected an array of one or more nodes");
+      if (kind == "difference" && v.size() < 2) fail(sub, "expected two or more nodes");
+      std::vector<Solid> parts;
+      for (size_t i = 0; i < v.size(); ++i)
+        parts.push_back(node(v[i], sub + "/" + std::to_string(i), world, depth + 1));
+      if (kind == "union") return unite(std::move(parts));
+      if (kind == "intersection") return intersect(std::move(parts));
+      return subtract(std::move(parts));
+    }
+    fail(path, "unknown key '" + kind + "'");
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InputError(scene_.string() + ": " + (path.empty() ? "/" : path) + ": " + what);
+  }
+
+  double number(const json& j, const std::string& path) const {
+    if (!j.is_number()) fail(path, "expected a number");
+    const double d = j.get<double>();
+    if (!std::isfinite(d)) fail(path, "expected a finite number");
+    return d;
+  }
+
+  Vec3 vec3(const json& j, const std::string& path) const {
+    if (!j.is_array() || j.size() != 3) fail(path, "expected 3 numbers");
+    return {number(j[0], path + "/0"), number(j[1], path + "/1"), number(j[2], path + "/2")};
+  }
+
+  /// Checks that `j` is an object whose keys are all in `allowed`.
+  void keys(const json& j, const std::string& path, std::initializer_list<const char*> allowed) const {
+    if (!j.is_object()) fail(path, "expected an object");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      bool ok = false;
+      for (const char* a : allowed) ok = ok || it.key() == a;
+      if (!ok) fail(path + "/" + it.key(), "unknown key");
+    }
+  }
+
+  const json& required(const json& j, const std::string& path, const char* key) const {
+    if (!j.contains(key)) fail(path, std::string("missing key '") + key + "'");
+    return j.at(key);
+  }
+
+  int segments(const json& j, const std::string& path, int max) const {
+    if (!j.contains("segments")) return 32;
+    const json& s = j.at("segments");
+    if (!s.is_number_integer() || s.get<int64_t>() < 3 || s.get<int64_t>() > max)
+      fail(path + "/segments", "expected an integer from 3 to " + std::to_string(max));
+    return static_cast<int>(s.get<int64_t>());
+  }
+
+  double positive(const json& j, const std::string& path) const {
+    const double d = number(j, path);
+    if (!(d > 0)) fail(path, "expected a positive number");
+    return d;
+  }
+
+  PolygonMesh primitive(const std::string& kind, const json& v, const std::string& path) const {
+    if (kind == "box") {
+      keys(v, path, {"min", "max"});
+      const Vec3 lo = vec3(required(v, path, "min"), path + "/min");
+      const Vec3 hi = vec3(required(v, path, "max"), path + "/max");
+      if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) fail(path, "expected min < max on every axis");
+      return make_box(lo, hi);
+    }
+    if (kind == "sphere") {
+      keys(v, path, {"center", "radius", "segments"});
+      const Vec3 c = vec3(required(v, path, "center"), path + "/center");
+      const double r = positive(required(v, path, "radius"), path + "/radius");
+      return make_sphere(c, r, segments(v, path, kMaxSphereSegments));
+    }
+    keys(v, path, {"base", "top", "radius", "segments"});
+    const Vec3 b = vec3(required(v, path, "base"), path + "/base");
+    const Vec3 t = vec3(required(v, path, "top"), path + "/top");
+    const double r = positive(required(v, path, "radius"), path + "/radius");
+    if (b == t) fail(path, "base and top coincide");
+    return make_cylinder(b, t, r, segments(v, path, kMaxCylinderSegments));
+  }
+
+  Affine transform(const json& t, const std::string& path) const {
+    if (!t.is_object()) fail(path, "expected an object");
+    Affine m;
+    if (t.contains("matrix")) {
+      keys(t, path, {"matrix"});
+      const json& a = t.at("matrix");
+      if (!a.is_array() || a.size() != 16) fail(path + "/matrix", "expected 16 numbers (row-major)");
+      for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = number(a[i], path + "/matrix/" + std::to_string(i));
+      if (m(3, 0) != 0 || m(3, 1) != 0 || m(3, 2) != 0 || m(3, 3) != 1)
+        fail(path + "/matrix", "last row must be 0 0 0 1");
+    } else {
+      keys(t, path, {"scale", "rotate", "translate"});
+      Eigen::Vector3d scale(1, 1, 1), axis(0, 0, 1), translate(0, 0, 0);
+      double degrees = 0;
+      if (t.contains("scale")) {
+        const json& s = t.at("scale");
+        if (s.is_number()) {
+          scale.setConstant(number(s, path + "/scale"));
+        } else if (s.is_array() && s.size() == 3) {
+          const Vec3 v = vec3(s, path + "/scale");
+          scale = {v.x, v.y, v.z};
+        } else {
+          fail(path + "/scale", "expected a number or 3 numbers");
+        }
+      }
+      if (t.contains("rotate")) {
+        const std::string rp = path + "/rotate";
+        const json& r = t.at("rotate");
+        keys(r, rp, {"axis", "degrees"});
+        const Vec3 a = vec3(required(r, rp, "axis"), rp + "/axis");
+        if (a == Vec3{}) fail(rp + "/axis", "axis must be non-zero");
+        axis = {a.x, a.y, a.z};
+        degrees = number(required(r, rp, "degrees"), rp + "/degrees");
+      }
+      if (t.contains("translate")) {
+        const Vec3 v = vec3(t.at("translate"), path + "/translate");
+        translate = {v.x, v.y, v.z};
+      }
+      m = make_trs(scale, axis, degrees, translate);
+    }
+    const double det = m.topLeftCorner<3, 3>().determinant();
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) fail(path, "transform is singular");
+    return m;
+  }
+
+  Solid mesh_leaf(const json& v, const std::string& path, const Affine& world) {
+    if (!v.is_string()) fail(path, "expected a file path string");
+    std::filesystem::path file = v.get<std::string>();
+    if (file.is_relative()) file = scene_.parent_path() / file;
+    if (file.extension() == ".json") fail(path, "a mesh leaf must be a mesh file, not a scene");
+    PolygonMesh m = read_mesh(file);
+    apply_transform(world, m);
+    return leaf(std::move(m), file.string(), path);
+  }
+
+  Solid leaf(PolygonMesh m, std::string name, const std::string& path) {
+    return prepare_leaf(std::move(m), std::move(name), path, options_, warnings_);
+  }
+
+ public:
+  /// Checks closedness and orientation of one leaf; reverses an inside-out leaf.
+  static Solid prepare_leaf(PolygonMesh m, std::string name, const std::string& origin,
+                            const LoadOptions& options, std::vector<std::string>& warnings) {
+    const std::string where = origin.empty() ? name : name + " (" + origin + ")";
+    if (options.require_closed) {
+      ValidateOptions vo;
+      vo.check_self_intersection = false;
+      const MeshReport r = validate_mesh(m, vo);
+      if (r.boundary_edges > 0)
+        throw InputError(where + ": open mesh: " + std::to_string(r.boundary_edges) +
+                         " boundary edges (a leaf must be a closed solid)");
+    }
+    bool flipped = false;
+    if (options.orient_outward && signed_volume(m) < 0) {
+      for (size_t f = 0; f < m.face_count(); ++f)
+        std::reverse(m.face_vertices.begin() + m.face_start[f],
+                     m.face_vertices.begin() + m.face_start[f + 1]);
+      flipped = true;
+      warnings.push_back(where + ": inside-out leaf (negative volume), faces reversed");
+    }
+    Solid s = make_leaf(std::move(m), std::move(name), origin);
+    s.leaves[0].flipped = flipped;
+    return s;
+  }
+
+ private:
+  std::filesystem::path scene_;
+  LoadOptions options_;
+  std::vector<std::string>& warnings_;
+};
+
+std::string line_of(const std::string& text, size_t byte) {
+  size_t line = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) line += text[i] == '\n';
+  return std::to_string(line);
+}
+
+}  // namespace
+
+LoadedInput parse_scene(const std::string& text, const std::filesystem::path& scene_path,
+                        const LoadOptions& options) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    // nlohmann: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+    const auto colon = what.find("] ");
+    throw InputError(scene_path.string() + ":" + line_of(text, e.byte == 0 ? 0 : e.byte - 1) +
+                     ": invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
+  }
+  LoadedInput out;
+  SceneReader reader(scene_path, options, out.warnings);
+  out.solid = reader.node(j, "", Affine::Identity(), 0);
+  return out;
+}
+
+LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".json") {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string() + ": cannot open file");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return parse_scene(ss.str(), path, options);
+  }
+  LoadedInput out;
+  out.solid = SceneReader::prepare_leaf(read_mesh(path), path.string(), "", options, out.warnings);
+  return out;
+}
+
+}  // namespace cover

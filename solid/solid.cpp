@@ -1,0 +1,136 @@
+#include "solid/solid.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace cover {
+
+bool CsgTree::evaluate(uint32_t node, std::span<const uint8_t> inside) const {
+  const CsgNode& n = nodes[node];
+  switch (n.op) {
+    case CsgOp::kLeaf:
+      return inside[n.leaf] != 0;
+    case CsgOp::kComplement:
+      return !evaluate(n.children[0], inside);
+    case CsgOp::kUnion:
+      return std::any_of(n.children.begin(), n.children.end(),
+                         [&](uint32_t c) { return evaluate(c, inside); });
+    case CsgOp::kIntersection:
+      return std::all_of(n.children.begin(), n.children.end(),
+                         [&](uint32_t c) { return evaluate(c, inside); });
+    case CsgOp::kDifference:
+      if (!evaluate(n.children[0], inside)) return false;
+      return std::none_of(n.children.begin() + 1, n.children.end(),
+                          [&](uint32_t c) { return evaluate(c, inside); });
+  }
+  return false;
+}
+
+Bbox Solid::bbox() const {
+  Bbox box;
+  for (const Leaf& leaf : leaves) box.add(leaf.bbox);
+  return box;
+}
+
+Solid make_leaf(PolygonMesh mesh, std::string name, std::string origin) {
+  Solid s;
+  Leaf leaf;
+  leaf.name = std::move(name);
+  leaf.origin = std::move(origin);
+  leaf.face_count = static_cast<uint32_t>(mesh.face_count());
+  leaf.vertex_count = static_cast<uint32_t>(mesh.vertices.size());
+  leaf.bbox = face_bbox(mesh);
+  s.vertices = std::move(mesh.vertices);
+  s.face_start = std::move(mesh.face_start);
+  s.face_vertices = std::move(mesh.face_vertices);
+  s.face_leaf.assign(leaf.face_count, 0);
+  s.face_sign.assign(leaf.face_count, 1);
+  s.leaves.push_back(std::move(leaf));
+  s.tree.nodes.push_back(CsgNode{CsgOp::kLeaf, 0, {}});
+  s.tree.root = 0;
+  return s;
+}
+
+PolygonMesh leaf_mesh(const Solid& solid, uint32_t leaf_id) {
+  const Leaf& leaf = solid.leaves.at(leaf_id);
+  PolygonMesh m;
+  m.vertices.assign(solid.vertices.begin() + leaf.first_vertex,
+                    solid.vertices.begin() + leaf.first_vertex + leaf.vertex_count);
+  std::vector<uint32_t> loop;
+  for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f) {
+    auto face = solid.face(f);
+    loop.assign(face.begin(), face.end());
+    for (uint32_t& v : loop) v -= leaf.first_vertex;
+    if (solid.face_sign[f] < 0) std::reverse(loop.begin(), loop.end());
+    m.add_face(loop);
+  }
+  return m;
+}
+
+Solid complement(Solid a) {
+  for (size_t f = 0; f < a.face_count(); ++f) {
+    std::reverse(a.face_vertices.begin() + a.face_start[f],
+                 a.face_vertices.begin() + a.face_start[f + 1]);
+    a.face_sign[f] = static_cast<int8_t>(-a.face_sign[f]);
+  }
+  CsgNode node{CsgOp::kComplement, 0, {a.tree.root}};
+  a.tree.nodes.push_back(std::move(node));
+  a.tree.root = static_cast<uint32_t>(a.tree.nodes.size() - 1);
+  return a;
+}
+
+namespace {
+
+/// Concatenates parts (paper §4 union) and roots them under a new node of kind `op`.
+/// Reverses the faces of parts[1..] when `flip_rest` (difference).
+Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
+  if (parts.empty()) throw std::invalid_argument("CSG operation without operands");
+  Solid out = std::move(parts[0]);
+  std::vector<uint32_t> roots{out.tree.root};
+  for (size_t p = 1; p < parts.size(); ++p) {
+    Solid& s = parts[p];
+    if (flip_rest) {
+      for (size_t f = 0; f < s.face_count(); ++f) {
+        std::reverse(s.face_vertices.begin() + s.face_start[f],
+                     s.face_vertices.begin() + s.face_start[f + 1]);
+        s.face_sign[f] = static_cast<int8_t>(-s.face_sign[f]);
+      }
+    }
+    const auto v_off = static_cast<uint32_t>(out.vertices.size());
+    const auto f_off = static_cast<uint32_t>(out.face_count());
+    const auto l_off = static_cast<uint32_t>(out.leaves.size());
+    const auto n_off = static_cast<uint32_t>(out.tree.nodes.size());
+    const auto i_off = static_cast<uint32_t>(out.face_vertices.size());
+    out.vertices.insert(out.vertices.end(), s.vertices.begin(), s.vertices.end());
+    for (uint32_t v : s.face_vertices) out.face_vertices.push_back(v + v_off);
+    for (size_t f = 1; f < s.face_start.size(); ++f) out.face_start.push_back(s.face_start[f] + i_off);
+    for (uint32_t l : s.face_leaf) out.face_leaf.push_back(l + l_off);
+    out.face_sign.insert(out.face_sign.end(), s.face_sign.begin(), s.face_sign.end());
+    for (Leaf leaf : s.leaves) {
+      leaf.first_face += f_off;
+      leaf.first_vertex += v_off;
+      out.leaves.push_back(std::move(leaf));
+    }
+    for (CsgNode node : s.tree.nodes) {
+      if (node.op == CsgOp::kLeaf) node.leaf += l_off;
+      for (uint32_t& c : node.children) c += n_off;
+      out.tree.nodes.push_back(std::move(node));
+    }
+    roots.push_back(s.tree.root + n_off);
+  }
+  out.tree.nodes.push_back(CsgNode{op, 0, std::move(roots)});
+  out.tree.root = static_cast<uint32_t>(out.tree.nodes.size() - 1);
+  return out;
+}
+
+}  // namespace
+
+Solid unite(std::vector<Solid> parts) { return concatenate(std::move(parts), CsgOp::kUnion, false); }
+Solid intersect(std::vector<Solid> parts) {
+  return concatenate(std::move(parts), CsgOp::kIntersection, false);
+}
+Solid subtract(std::vector<Solid> parts) {
+  return concatenate(std::move(parts), CsgOp::kDifference, true);
+}
+
+}  // namespace cover

@@ -1,0 +1,91 @@
+#pragma once
+// The non-evaluated solid (paper §3–§4, DESIGN.md §1).
+//
+// Notation
+//   V        vertex array shared by every leaf (doubles, transforms already applied)
+//   face f   signed index list; face_sign[f] = +1 when the list is in its leaf's own orientation,
+//            −1 when complement/difference reversed it. The stored order is always the
+//            orientation of the *combined* covering, so Σ over stored faces of the covering
+//            tetrahedra = Σ_leaves c_L · w_L (c_L = ±1, w_L = winding number of leaf L).
+//   leaf L   one closed mesh or primitive; faces [first_face, first_face + face_count) and
+//            vertices [first_vertex, first_vertex + vertex_count) are contiguous.
+//   tree     the CSG expression over leaf ids. Classification evaluates the tree on per-leaf
+//            memberships (nonzero winding), which is right for any nesting; the paper's single
+//            threshold on the summed covering value is right only for one operation.
+//
+// Union / difference / intersection / complement only concatenate faces and flip signs (§4).
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "solid/polygon_mesh.h"
+
+namespace cover {
+
+enum class CsgOp : uint8_t { kLeaf, kUnion, kIntersection, kDifference, kComplement };
+
+/// One node of the CSG tree. kLeaf nodes carry `leaf`; others carry `children` (node indices).
+/// kDifference: first child minus all the others. kComplement: exactly one child.
+struct CsgNode {
+  CsgOp op = CsgOp::kLeaf;
+  uint32_t leaf = 0;
+  std::vector<uint32_t> children;
+};
+
+/// Expression tree stored as a node array; `root` indexes `nodes`.
+struct CsgTree {
+  std::vector<CsgNode> nodes;
+  uint32_t root = 0;
+
+  /// Evaluates membership given each leaf's membership (inside[leaf]).
+  bool evaluate(std::span<const uint8_t> inside) const { return evaluate(root, inside); }
+  bool evaluate(uint32_t node, std::span<const uint8_t> inside) const;
+};
+
+/// Per-leaf bookkeeping. `name` is the mesh path or primitive kind, `origin` the scene JSON
+/// path of the leaf (empty for a plain mesh input).
+struct Leaf {
+  std::string name;
+  std::string origin;
+  uint32_t first_face = 0, face_count = 0;
+  uint32_t first_vertex = 0, vertex_count = 0;
+  Bbox bbox;
+  bool flipped = false;  ///< the input was inside-out and its faces were reversed on load
+};
+
+/// A CSG solid with linear storage: vertices + signed faces tagged by leaf, and the tree.
+/// A value type, cheap to move.
+struct Solid {
+  std::vector<Vec3> vertices;
+  std::vector<uint32_t> face_start{0};   ///< #F+1 offsets into face_vertices
+  std::vector<uint32_t> face_vertices;   ///< concatenated index lists (combined orientation)
+  std::vector<uint32_t> face_leaf;       ///< #F leaf id per face
+  std::vector<int8_t> face_sign;         ///< #F ±1 (see notation above)
+  std::vector<Leaf> leaves;
+  CsgTree tree;
+
+  size_t face_count() const { return face_leaf.size(); }
+  std::span<const uint32_t> face(size_t f) const {
+    return {face_vertices.data() + face_start[f], face_start[f + 1] - face_start[f]};
+  }
+  Bbox bbox() const;
+};
+
+/// A solid with one leaf. Precondition: the mesh is closed and outward (callers validate).
+Solid make_leaf(PolygonMesh mesh, std::string name, std::string origin = {});
+
+/// The leaf's faces in the leaf's OWN orientation, with its own vertex numbering (0-based).
+PolygonMesh leaf_mesh(const Solid& solid, uint32_t leaf);
+
+/// Complement (paper §4): every face reversed, every sign negated.
+Solid complement(Solid a);
+/// Union of one or more solids (concatenation).
+Solid unite(std::vector<Solid> parts);
+/// Intersection of one or more solids (concatenation; De Morgan keeps the signs).
+Solid intersect(std::vector<Solid> parts);
+/// parts[0] minus parts[1..] (concatenation with the subtrahends reversed).
+Solid subtract(std::vector<Solid> parts);
+
+}  // namespace cover

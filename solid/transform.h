@@ -1,0 +1,23 @@
+#pragma once
+// Affine transforms of leaves (CONTRACT.md "transform"). Applied once to the vertices, rounded
+// to doubles; everything after that is exact on those doubles (DESIGN.md §2).
+
+#include <Eigen/Core>
+
+#include "solid/polygon_mesh.h"
+
+namespace cover {
+
+/// 4×4 affine matrix acting on column vectors (p' = M·[p;1]); last row is 0 0 0 1.
+using Affine = Eigen::Matrix4d;
+
+/// M = T·R·S: scale (per axis) first, then rotation about `axis` (unit length not required,
+/// must be non-zero) by `degrees` (right-hand rule), then translation.
+Affine make_trs(Eigen::Vector3d scale, Eigen::Vector3d axis, double degrees,
+                Eigen::Vector3d translate);
+
+/// Applies `m` to every vertex; when det(m) < 0 every face is reversed so that a closed,
+/// outward mesh stays outward (mirroring keeps solids solid).
+void apply_transform(const Affine& m, PolygonMesh& mesh);
+
+}  // namespace cover

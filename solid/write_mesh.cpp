@@ -1,0 +1,211 @@
+// Mesh writers. The file is written to a temporary sibling "<name>.tmp-<pid>" and renamed over
+// the target, so no reader ever sees a half-written mesh; on failure the temporary is removed.
+//   .off  ASCII "OFF", V F 0, one vertex / face per line
+//   .obj  ASCII v / f lines (1-based indices)
+//   .ply  binary_little_endian, double x y z, "list uchar int vertex_indices" (uint count when a
+//         face has more than 255 vertices, uint items when there are more than 2^31-1 vertices)
+//   .stl  binary; polygons are fan-triangulated (v0, vi, vi+1) and coordinates rounded to float,
+//         so an STL round trip is exact only for float-representable coordinates
+// Numbers are written with std::to_chars' shortest round-trip form, so .off/.obj/.ply round trips
+// reproduce every double exactly.
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <string>
+
+#include "solid/detail/mesh_io_detail.h"
+#include "solid/errors.h"
+#include "solid/mesh_io.h"
+
+namespace cover {
+namespace {
+
+/// Buffered writer to a FILE*; throws InputError naming the target on a failed write.
+class Output {
+ public:
+  Output(std::FILE* stream, const std::string& file) : stream_(stream), file_(file) {}
+
+  void text(std::string_view s) {
+    buffer_.append(s);
+    if (buffer_.size() >= kFlushBytes) flush();
+  }
+  void number(double value) {
+    char digits[32];
+    auto result = std::to_chars(digits, digits + sizeof digits, value);
+    text({digits, static_cast<size_t>(result.ptr - digits)});
+  }
+  void number(uint64_t value) {
+    char digits[24];
+    auto result = std::to_chars(digits, digits + sizeof digits, value);
+    text({digits, static_cast<size_t>(result.ptr - digits)});
+  }
+  /// Appends the little-endian bytes of an integer or floating-point value.
+  template <typename T>
+  void binary(T value) {
+    using Bits = std::conditional_t<sizeof(T) == 1, uint8_t,
+                 std::conditional_t<sizeof(T) == 2, uint16_t,
+                 std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>>>;
+    auto bits = std::bit_cast<Bits>(value);
+    char bytes[sizeof bits];
+    for (size_t i = 0; i < sizeof bits; ++i) bytes[i] = static_cast<char>(bits >> (8 * i));
+    text({bytes, sizeof bytes});
+  }
+  void flush() {
+    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), stream_) != buffer_.size())
+      detail::fail_file(file_, std::string("cannot write: ") + std::strerror(errno));
+    buffer_.clear();
+  }
+
+ private:
+  static constexpr size_t kFlushBytes = size_t{1} << 20;
+  std::FILE* stream_;
+  const std::string& file_;
+  std::string buffer_;
+};
+
+/// Throws unless every face has >= 3 in-range indices and every vertex is finite.
+void check_mesh(const std::string& file, const PolygonMesh& mesh) {
+  if (mesh.face_start.empty() || mesh.face_start.front() != 0 ||
+      mesh.face_start.back() != mesh.face_vertices.size())
+    detail::fail_file(file, "cannot write: inconsistent face offsets");
+  if (mesh.vertices.size() > detail::kMaxIndexCount)
+    detail::fail_file(file, "cannot write: more than 2^32-1 vertices");
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Vec3& p = mesh.vertices[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      detail::fail_file(file, "cannot write: vertex " + std::to_string(v) + " is not finite");
+  }
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    if (mesh.face_start[f + 1] < mesh.face_start[f] + 3)
+      detail::fail_file(file, "cannot write: face " + std::to_string(f) + " has fewer than 3 vertices");
+    for (uint32_t v : mesh.face(f))
+      if (v >= mesh.vertices.size())
+        detail::fail_file(file, "cannot write: face " + std::to_string(f) + " references vertex " +
+                                    std::to_string(v) + " of " + std::to_string(mesh.vertices.size()));
+  }
+}
+
+void write_off(Output& out, const PolygonMesh& mesh) {
+  out.text("OFF\n");
+  out.number(uint64_t{mesh.vertices.size()});
+  out.text(" ");
+  out.number(uint64_t{mesh.face_count()});
+  out.text(" 0\n");
+  for (const Vec3& p : mesh.vertices) {
+    out.number(p.x), out.text(" "), out.number(p.y), out.text(" "), out.number(p.z);
+    out.text("\n");
+  }
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    out.number(uint64_t{mesh.face(f).size()});
+    for (uint32_t v : mesh.face(f)) out.text(" "), out.number(uint64_t{v});
+    out.text("\n");
+  }
+}
+
+void write_obj(Output& out, const PolygonMesh& mesh) {
+  out.text("# written by Cover\n");
+  for (const Vec3& p : mesh.vertices) {
+    out.text("v "), out.number(p.x), out.text(" "), out.number(p.y), out.text(" "), out.number(p.z);
+    out.text("\n");
+  }
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    out.text("f");
+    for (uint32_t v : mesh.face(f)) out.text(" "), out.number(uint64_t{v} + 1);
+    out.text("\n");
+  }
+}
+
+void write_ply(Output& out, const PolygonMesh& mesh) {
+  size_t largest = 0;
+  for (size_t f = 0; f < mesh.face_count(); ++f) largest = std::max(largest, mesh.face(f).size());
+  const bool wide_count = largest > 255;
+  const bool wide_index = mesh.vertices.size() > 0x7FFFFFFFu;
+  out.text("ply\nformat binary_little_endian 1.0\ncomment written by Cover\nelement vertex ");
+  out.number(uint64_t{mesh.vertices.size()});
+  out.text("\nproperty double x\nproperty double y\nproperty double z\nelement face ");
+  out.number(uint64_t{mesh.face_count()});
+  out.text(wide_count ? "\nproperty list uint " : "\nproperty list uchar ");
+  out.text(wide_index ? "uint vertex_indices\nend_header\n" : "int vertex_indices\nend_header\n");
+  for (const Vec3& p : mesh.vertices) out.binary(p.x), out.binary(p.y), out.binary(p.z);
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto face = mesh.face(f);
+    if (wide_count)
+      out.binary(static_cast<uint32_t>(face.size()));
+    else
+      out.binary(static_cast<uint8_t>(face.size()));
+    for (uint32_t v : face) out.binary(v);  // same bytes for int and uint (v < 2^31 for int)
+  }
+}
+
+void write_stl(Output& out, const PolygonMesh& mesh, const std::string& file) {
+  uint64_t triangles = 0;
+  for (size_t f = 0; f < mesh.face_count(); ++f) triangles += mesh.face(f).size() - 2;
+  if (triangles > 0xFFFFFFFFull) detail::fail_file(file, "cannot write: more than 2^32-1 STL triangles");
+  std::string header = "binary STL written by Cover";
+  header.resize(80, ' ');
+  out.text(header);
+  out.binary(static_cast<uint32_t>(triangles));
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto face = mesh.face(f);
+    const Vec3 a = mesh.vertices[face[0]];
+    for (size_t i = 1; i + 1 < face.size(); ++i) {
+      const Vec3 b = mesh.vertices[face[i]], c = mesh.vertices[face[i + 1]];
+      Vec3 normal = cross(b - a, c - a);
+      const double length = std::sqrt(dot(normal, normal));
+      normal = length > 0 ? (1 / length) * normal : Vec3{};
+      for (const Vec3& p : {normal, a, b, c})
+        out.binary(static_cast<float>(p.x)), out.binary(static_cast<float>(p.y)),
+            out.binary(static_cast<float>(p.z));
+      out.binary(uint16_t{0});
+    }
+  }
+}
+
+}  // namespace
+
+void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh) {
+  const std::string file = path.string();
+  const std::string ext = detail::lower_extension(path);
+  if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
+  check_mesh(file, mesh);
+  std::filesystem::path temp = path;
+  temp += ".tmp-" + std::to_string(::getpid());
+  std::FILE* stream = std::fopen(temp.c_str(), "wb");
+  if (stream == nullptr) detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
+  try {
+    Output out(stream, file);
+    if (ext == ".off")
+      write_off(out, mesh);
+    else if (ext == ".obj")
+      write_obj(out, mesh);
+    else if (ext == ".ply")
+      write_ply(out, mesh);
+    else
+      write_stl(out, mesh, file);
+    out.flush();
+  } catch (...) {
+    std::fclose(stream);
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    throw;
+  }
+  std::error_code error;
+  if (std::fclose(stream) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::filesystem::remove(temp, error);
+    detail::fail_file(file, "cannot write: " + reason);
+  }
+  std::filesystem::rename(temp, path, error);
+  if (error) {
+    const std::string reason = error.message();
+    std::filesystem::remove(temp, error);
+    detail::fail_file(file, "cannot replace the file: " + reason);
+  }
+}
+
+}  // namespace cover

@@ -1,0 +1,227 @@
+// The `cover` program end to end (CONTRACT.md): commands, JSON keys, exit codes, errors.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "helpers.h"
+#include "solid/mesh_io.h"
+#include "solid/primitives.h"
+
+namespace cover {
+namespace {
+
+using nlohmann::json;
+using test::run_cover;
+
+std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+/// The 27 points of the box's corner/edge/face/centre lattice and the expected words.
+std::pair<std::string, std::vector<std::string>> box_lattice(Vec3 lo, Vec3 hi) {
+  std::string pts;
+  std::vector<std::string> words;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) {
+        auto c = [](int t, double a, double b) { return t == 0 ? a : t == 2 ? b : 0.5 * (a + b); };
+        pts += std::to_string(c(i, lo.x, hi.x)) + " " + std::to_string(c(j, lo.y, hi.y)) + ", " +
+               std::to_string(c(k, lo.z, hi.z)) + "  # lattice\n";
+        const int e = (i != 1) + (j != 1) + (k != 1);
+        words.push_back(e == 3 ? "vertex" : e == 2 ? "edge" : e == 1 ? "face" : "inside");
+      }
+  return {pts, words};
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string l; std::getline(ss, l);) out.push_back(l);
+  return out;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test::temp_dir("cli"); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(Cli, VersionAndHelp) {
+  auto r = run_cover("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(lines(r.out).size(), 1u);
+  r = run_cover("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* cmd : {"info", "volume", "classify"}) EXPECT_NE(r.out.find(cmd), std::string::npos);
+  r = run_cover("classify --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("--points"), std::string::npos);
+  EXPECT_NE(r.out.find("--threads"), std::string::npos);
+  r = run_cover("frobnicate");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("cover: error: ", 0), 0u);
+}
+
+TEST_F(Cli, ClassifyBoxLatticeThreeWays) {
+  const Vec3 lo{-1, 0, 2}, hi{3, 1, 4};
+  const auto [pts, words] = box_lattice(lo, hi);
+  test::write_file(dir_ / "pts.txt", pts);
+  test::write_file(dir_ / "box.json", R"({"box": {"min": [-1,0,2], "max": [3,1,4]}})");
+  write_mesh(dir_ / "box.off", test::triangulate(make_box(lo, hi)));
+  test::write_file(dir_ / "union.json", R"({"union": [{"mesh": "box.off"},
+      {"sphere": {"center": [10,10,10], "radius": 2}}]})");
+  for (const char* input : {"box.json", "box.off", "union.json"}) {
+    const auto r = run_cover("classify " + q(dir_ / input) + " --points " + q(dir_ / "pts.txt"));
+    ASSERT_EQ(r.status, 0) << input << r.err;
+    EXPECT_EQ(lines(r.out), words) << input;
+  }
+  // stdin and --json
+  const auto r = run_cover("classify " + q(dir_ / "box.json") + " --points - --json", pts);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["classes"].size(), 27u);
+  EXPECT_EQ(j["counts"]["vertex"], 8);
+  EXPECT_EQ(j["counts"]["edge"], 12);
+  EXPECT_EQ(j["counts"]["face"], 6);
+  EXPECT_EQ(j["counts"]["inside"], 1);
+  EXPECT_EQ(j["counts"]["outside"], 0);
+  EXPECT_TRUE(j["seconds"].is_number());
+}
+
+TEST_F(Cli, ClassifyNestedSceneSameForOneAndTwoThreads) {
+  test::write_file(dir_ / "nested.json", R"({"union": [
+      {"difference": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
+                      {"sphere": {"center": [2,2,2], "radius": 1.3, "segments": 24}}]},
+      {"cylinder": {"base": [0,0,-1], "top": [0,0,3], "radius": 0.6}}]})");
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> g(-4, 12);
+  std::string pts;
+  for (int i = 0; i < 2000; ++i)
+    pts += std::to_string(g(rng) * 0.25) + " " + std::to_string(g(rng) * 0.25) + " " +
+           std::to_string(g(rng) * 0.25) + "\n";
+  test::write_file(dir_ / "p.txt", pts);
+  const auto a = run_cover("classify " + q(dir_ / "nested.json") + " --points " + q(dir_ / "p.txt") + " --threads 1");
+  const auto b = run_cover("classify " + q(dir_ / "nested.json") + " --points " + q(dir_ / "p.txt") + " --threads 2");
+  ASSERT_EQ(a.status, 0) << a.err;
+  EXPECT_EQ(a.out, b.out);
+  EXPECT_EQ(lines(a.out).size(), 2000u);
+}
+
+TEST_F(Cli, InfoAndVolumeJson) {
+  write_mesh(dir_ / "box.off", make_box({0, 0, 0}, {1, 2, 3}));
+  auto r = run_cover("info --json " + q(dir_ / "box.off"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  json j = json::parse(r.out);
+  EXPECT_EQ(j["vertices"], 8);
+  EXPECT_EQ(j["faces"], 6);
+  EXPECT_EQ(j["leaves"], 1);
+  EXPECT_EQ(j["bbox"], json::parse("[[0,0,0],[1,2,3]]"));
+  const json& leaf = j["leaves_info"][0];
+  for (const char* k : {"closed", "manifold", "oriented", "outward"}) EXPECT_EQ(leaf[k], true) << k;
+  EXPECT_EQ(leaf["boundary_edges"], 0);
+  EXPECT_EQ(leaf["nonmanifold_edges"], 0);
+  EXPECT_EQ(leaf["components"], 1);
+  EXPECT_EQ(leaf["genus"], 0);
+  EXPECT_EQ(leaf["degenerate_faces"], 0);
+  EXPECT_EQ(leaf["self_intersecting"], false);
+
+  r = run_cover("volume --json " + q(dir_ / "box.off"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = json::parse(r.out);
+  EXPECT_EQ(j["volume"], 6.0);
+  EXPECT_EQ(j["area"], 22.0);
+  EXPECT_EQ(j["method"], "covering");
+  EXPECT_EQ(j["error_bound"], 0.0);
+
+  // Not computable exactly yet: exit 2 with a reason, never a wrong number.
+  test::write_file(dir_ / "overlap.json", R"({"union": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
+      {"box": {"min": [1,1,1], "max": [3,3,3]}}]})");
+  r = run_cover("volume --json " + q(dir_ / "overlap.json"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(lines(r.err).size(), 1u);
+}
+
+TEST_F(Cli, OpenAndInsideOutLeaves) {
+  PolygonMesh open = make_box({0, 0, 0}, {1, 1, 1});
+  open.face_start.pop_back();
+  open.face_vertices.resize(open.face_start.back());
+  write_mesh(dir_ / "open.off", open);
+  auto r = run_cover("volume " + q(dir_ / "open.off"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("4 boundary edges"), std::string::npos);
+  r = run_cover("info --json " + q(dir_ / "open.off"));
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(json::parse(r.out)["leaves_info"][0]["boundary_edges"], 4);
+  EXPECT_EQ(json::parse(r.out)["leaves_info"][0]["closed"], false);
+
+  PolygonMesh inv = make_box({0, 0, 0}, {1, 1, 1});
+  std::reverse(inv.face_vertices.begin(), inv.face_vertices.end());
+  std::reverse(inv.face_start.begin(), inv.face_start.end());
+  for (uint32_t& s : inv.face_start) s = static_cast<uint32_t>(inv.face_vertices.size()) - s;
+  write_mesh(dir_ / "inv.off", inv);
+  r = run_cover("volume --json " + q(dir_ / "inv.off"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["volume"], 1.0);
+  EXPECT_NE(r.err.find("cover: warning:"), std::string::npos);
+}
+
+TEST_F(Cli, BadInputIsOneLineExitTwo) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"empty.off", ""},
+      {"bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"},
+      {"huge.off", "OFF\n1000000000 1000000000 0\n"},
+      {"nan.obj", "v 0 0 nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"},
+      {"bad.json", "{\"box\": {\"min\": [0,0,0], \"max\": [1,1,\"x\"]}}"},
+      {"trunc.json", "{\"union\": [{\"box\": "},
+      {"garbage.stl", std::string("\x01\x02\x03\xff\xfe", 5)},
+      {"model.3ds", "whatever"}};
+  for (const auto& [name, bytes] : cases) {
+    test::write_file(dir_ / name, bytes);
+    for (const char* cmd : {"info", "volume"}) {
+      const auto r = run_cover(std::string(cmd) + " " + q(dir_ / name));
+      EXPECT_EQ(r.status, 2) << name << " " << r.err;
+      EXPECT_EQ(lines(r.err).size(), 1u) << name << " " << r.err;
+      EXPECT_EQ(r.err.rfind("cover: error: ", 0), 0u) << r.err;
+      EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    }
+  }
+  test::write_file(dir_ / "box.json", R"({"box": {"min": [0,0,0], "max": [1,1,1]}})");
+  test::write_file(dir_ / "p.txt", "0 0 0\n1 2\n");
+  auto r = run_cover("classify " + q(dir_ / "box.json") + " --points " + q(dir_ / "p.txt"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("p.txt:2: expected 3 numbers"), std::string::npos) << r.err;
+  r = run_cover("classify " + q(dir_ / "box.json"));  // missing --points
+  EXPECT_EQ(r.status, 2);
+  r = run_cover("info " + q(dir_ / "missing.off"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("missing.off"), std::string::npos);
+}
+
+TEST_F(Cli, AssimpInvalidModelsExitTwo) {
+  const auto dir = test::assimp_models() / "invalid";
+  ASSERT_TRUE(std::filesystem::exists(dir)) << dir;
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    ++files;
+    const auto r = run_cover("info " + q(e.path()));
+    // readme.txt and foreign formats are refused as unsupported; the rest as malformed.
+    EXPECT_EQ(r.status, 2) << e.path() << " " << r.err;
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(e.path().filename().string()), std::string::npos) << r.err;
+  }
+  EXPECT_GE(files, 10);
+}
+
+TEST_F(Cli, DefaultSceneInfoAndVolume) {
+  const auto scene = test::source_dir() / "models" / "default.json";
+  auto r = run_cover("info " + q(scene));
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run_cover("volume --json " + q(scene));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(json::parse(r.out)["volume"].get<double>(), 0);
+}
+
+}  // namespace
+}  // namespace cover

@@ -1,0 +1,115 @@
+// Covering volume (covering/volume.h): analytic volumes, transforms, exactness decisions.
+#include "covering/volume.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "helpers.h"
+#include "solid/errors.h"
+#include "solid/parallel.h"
+#include "solid/primitives.h"
+#include "solid/transform.h"
+
+namespace cover {
+namespace {
+
+Solid leaf(PolygonMesh m) { return make_leaf(std::move(m), "leaf"); }
+
+TEST(Volume, BoxAndTetrahedron) {
+  EXPECT_DOUBLE_EQ(volume(leaf(make_box({0, 0, 0}, {1, 2, 3}))).volume, 6.0);
+  EXPECT_DOUBLE_EQ(*volume(leaf(make_box({0, 0, 0}, {1, 2, 3}))).area, 22.0);
+  PolygonMesh t;
+  t.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  t.add_face({0, 2, 1});
+  t.add_face({0, 1, 3});
+  t.add_face({0, 3, 2});
+  t.add_face({1, 2, 3});
+  EXPECT_DOUBLE_EQ(volume(leaf(t)).volume, 1.0 / 6.0);
+}
+
+TEST(Volume, FrameBoxWithFalseEdges) {
+  // 4³ minus the 2×2×4 hole = 48; area: 2·(16 − 4) outer caps + 4·16 sides + 4·8 hole walls.
+  const VolumeResult r = volume(leaf(test::frame_box(0, 4, 1, 3)));
+  EXPECT_DOUBLE_EQ(r.volume, 48.0);
+  EXPECT_DOUBLE_EQ(*r.area, 2 * 12.0 + 64.0 + 32.0);
+}
+
+TEST(Volume, CylinderMatchesPrismFormula) {
+  const int n = 17;
+  const double r = 0.75, h = 2.5;
+  const double expected = 0.5 * n * r * r * std::sin(2 * std::numbers::pi / n) * h;
+  EXPECT_NEAR(volume(leaf(make_cylinder({1, 2, 3}, {1, 2, 3 + h}, r, n))).volume, expected,
+              1e-13 * expected);
+}
+
+TEST(Volume, TransformsScaleByDeterminantAndMirrorsStaySolid) {
+  PolygonMesh m = make_sphere({0.3, -0.2, 0.1}, 1.0, 20);
+  const double base = volume(leaf(m)).volume;
+  ASSERT_GT(base, 0);
+  PolygonMesh scaled = m;
+  apply_transform(make_trs({2, 3, 0.5}, {1, 1, 0}, 33, {5, 6, 7}), scaled);
+  EXPECT_NEAR(volume(leaf(scaled)).volume, 3.0 * base, 1e-12 * base);
+  PolygonMesh mirrored = m;
+  apply_transform(make_trs({-1, 1, 1}, {0, 0, 1}, 0, {0, 0, 0}), mirrored);
+  EXPECT_NEAR(volume(leaf(mirrored)).volume, base, 1e-13 * base);
+}
+
+TEST(Volume, ExactnessDecisions) {
+  const Solid a = leaf(make_box({0, 0, 0}, {1, 1, 1}));
+  const Solid far = leaf(make_box({5, 5, 5}, {6, 7, 8}));
+  const Solid touching = leaf(make_box({1, 0, 0}, {2, 1, 1}));
+  const Solid overlapping = leaf(make_box({0.5, 0.5, 0.5}, {2, 2, 2}));
+  // Disjoint union: volumes and areas add; the summed covering value is the volume too.
+  const Solid u = unite({a, far});
+  EXPECT_DOUBLE_EQ(volume(u).volume, 7.0);
+  EXPECT_DOUBLE_EQ(*volume(u).area, 6.0 + 2 * (2 + 3 + 6));
+  EXPECT_DOUBLE_EQ(covering_volume(u), 7.0);
+  // Touching union: volume adds, area does not (shared face).
+  EXPECT_DOUBLE_EQ(volume(unite({a, touching})).volume, 2.0);
+  EXPECT_FALSE(volume(unite({a, touching})).area.has_value());
+  // A difference that removes nothing.
+  EXPECT_DOUBLE_EQ(volume(subtract({a, far})).volume, 1.0);
+  // An intersection of disjoint operands is empty.
+  EXPECT_DOUBLE_EQ(volume(intersect({a, far})).volume, 0.0);
+  // Everything else is refused rather than wrong.
+  EXPECT_THROW(volume(unite({a, overlapping})), NotComputable);
+  EXPECT_THROW(volume(subtract({a, overlapping})), NotComputable);
+  EXPECT_THROW(volume(intersect({a, overlapping})), NotComputable);
+  EXPECT_THROW(volume(complement(a)), NotComputable);
+  EXPECT_TRUE(covering_inexact_reason(unite({a, overlapping})).has_value());
+  VolumeOptions exact;
+  exact.exact = true;
+  EXPECT_THROW(volume(u, exact), NotComputable);
+  EXPECT_DOUBLE_EQ(volume(a, exact).volume, 1.0);
+}
+
+TEST(Volume, SelfIntersectingLeafIsRefused) {
+  PolygonMesh m = make_box({0, 0, 0}, {2, 2, 2});
+  const PolygonMesh b = make_box({1, 1, 1}, {3, 3, 3});
+  for (Vec3 v : b.vertices) m.vertices.push_back(v);
+  for (size_t f = 0; f < b.face_count(); ++f) {
+    std::vector<uint32_t> loop(b.face(f).begin(), b.face(f).end());
+    for (uint32_t& v : loop) v += 8;
+    m.add_face(loop);
+  }
+  EXPECT_THROW(volume(leaf(m)), NotComputable);
+}
+
+TEST(Volume, SameWithOneAndTwoThreads) {
+  Solid s = leaf(make_sphere({0.1, 0.2, 0.3}, 2.0, 300));
+  double v1, v2;
+  {
+    ThreadLimit limit(1);
+    v1 = covering_volume(s);
+  }
+  {
+    ThreadLimit limit(2);
+    v2 = covering_volume(s);
+  }
+  EXPECT_EQ(v1, v2);
+}
+
+}  // namespace
+}  // namespace cover

@@ -1,0 +1,574 @@
+// Tests for solid/mesh_io.h: round trips, real models (libcgal-demo, assimp-testmodels), and a
+// corpus of malformed files that must raise a one-line InputError naming the file.
+
+#include "solid/mesh_io.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "solid/errors.h"
+#include "tests/helpers.h"
+
+namespace {
+
+using cover::InputError;
+using cover::PolygonMesh;
+using cover::Vec3;
+namespace fs = std::filesystem;
+namespace test = cover::test;
+
+/// A cube whose top face has a square hole joined to the outer loop by the false edge 4–8.
+/// Coordinates are chosen to have no short decimal form.
+PolygonMesh holed_cube() {
+  const double lo = -1.0 / 3, hi = 0.1 + 2.0 / 3, a = 0.1, b = 0.2 + 1e-13;
+  PolygonMesh mesh;
+  mesh.vertices = {{lo, lo, lo}, {hi, lo, lo}, {hi, hi, lo}, {lo, hi, lo}, {lo, lo, hi},
+                   {hi, lo, hi}, {hi, hi, hi}, {lo, hi, hi}, {a, a, hi},   {a, b, hi},
+                   {b, b, hi},   {b, a, hi},   {1e300, 5e-324, -0.0}};
+  mesh.add_face({0, 3, 2, 1});
+  mesh.add_face({0, 1, 5, 4});
+  mesh.add_face({1, 2, 6, 5});
+  mesh.add_face({2, 3, 7, 6});
+  mesh.add_face({3, 0, 4, 7});
+  mesh.add_face({4, 5, 6, 7, 4, 8, 9, 10, 11, 8});
+  return mesh;
+}
+
+bool same_bits(const Vec3& p, const Vec3& q) {
+  return std::bit_cast<uint64_t>(p.x) == std::bit_cast<uint64_t>(q.x) &&
+         std::bit_cast<uint64_t>(p.y) == std::bit_cast<uint64_t>(q.y) &&
+         std::bit_cast<uint64_t>(p.z) == std::bit_cast<uint64_t>(q.z);
+}
+
+/// Structural invariants every mesh returned by read_mesh must satisfy.
+void expect_consistent(const PolygonMesh& mesh) {
+  ASSERT_FALSE(mesh.face_start.empty());
+  EXPECT_EQ(mesh.face_start.front(), 0u);
+  EXPECT_EQ(mesh.face_start.back(), mesh.face_vertices.size());
+  EXPECT_GT(mesh.face_count(), 0u);
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    ASSERT_GE(mesh.face_start[f + 1], mesh.face_start[f] + 3) << "face " << f;
+    for (uint32_t v : mesh.face(f)) ASSERT_LT(v, mesh.vertices.size()) << "face " << f;
+  }
+  for (const Vec3& p : mesh.vertices)
+    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+}
+
+/// Checks an InputError message: one line that names the file.
+void expect_good_message(const std::string& message, const fs::path& path) {
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_EQ(message.find('\r'), std::string::npos) << message;
+  EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+}
+
+/// read_mesh must throw InputError; returns its message.
+std::string expect_input_error(const fs::path& path) {
+  try {
+    PolygonMesh mesh = cover::read_mesh(path);
+    ADD_FAILURE() << path << " was accepted (" << mesh.vertices.size() << " vertices, "
+                  << mesh.face_count() << " faces)";
+  } catch (const InputError& e) {
+    expect_good_message(e.what(), path);
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << path << ": not an InputError: " << e.what();
+  }
+  return "";
+}
+
+/// read_mesh either returns a consistent mesh or throws a well-formed InputError.
+void expect_parses_or_throws(const fs::path& path) {
+  try {
+    expect_consistent(cover::read_mesh(path));
+  } catch (const InputError& e) {
+    expect_good_message(e.what(), path);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << path << ": not an InputError: " << e.what();
+  }
+}
+
+/// Writes `bytes` to dir/name and expects read_mesh to fail; returns the message.
+std::string bad_file(const fs::path& dir, const std::string& name, const std::string& bytes) {
+  SCOPED_TRACE(name);
+  test::write_file(dir / name, bytes);
+  return expect_input_error(dir / name);
+}
+
+PolygonMesh read_text(const fs::path& dir, const std::string& name, const std::string& bytes) {
+  test::write_file(dir / name, bytes);
+  return cover::read_mesh(dir / name);
+}
+
+/// Vertex and face counts from an OFF header ("OFF" then "V F E", '#' comments allowed).
+std::pair<size_t, size_t> off_header_counts(const fs::path& path) {
+  std::istringstream in(test::read_file(path));
+  std::string line, keyword;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') break;
+  std::istringstream words(line);
+  words >> keyword;
+  if (keyword.find("OFF") == std::string::npos) words = std::istringstream(line);
+  size_t v = 0, f = 0;
+  if (!(words >> v >> f)) {
+    while (std::getline(in, line) && (line.empty() || line[0] == '#')) {
+    }
+    std::istringstream(line) >> v >> f;
+  }
+  return {v, f};
+}
+
+std::string little_endian(const void* value, size_t size) {
+  std::string bytes(static_cast<const char*>(value), size);
+  if constexpr (std::endian::native == std::endian::big) std::reverse(bytes.begin(), bytes.end());
+  return bytes;
+}
+template <typename T>
+std::string le(T value) {
+  return little_endian(&value, sizeof value);
+}
+template <typename T>
+std::string be(T value) {
+  std::string bytes = le(value);
+  std::reverse(bytes.begin(), bytes.end());
+  return bytes;
+}
+
+/// A binary STL with the given triangles (9 floats each).
+std::string binary_stl(const std::vector<std::array<float, 9>>& triangles, const std::string& header) {
+  std::string bytes = header;
+  bytes.resize(80, '\0');
+  bytes += le(static_cast<uint32_t>(triangles.size()));
+  for (const auto& t : triangles) {
+    for (int i = 0; i < 3; ++i) bytes += le(0.0f);
+    for (float c : t) bytes += le(c);
+    bytes += le(uint16_t{0});
+  }
+  return bytes;
+}
+
+// ---- round trips ---------------------------------------------------------------------------
+
+TEST(MeshIoTest, RoundTripIsExactForOffObjPly) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const PolygonMesh mesh = holed_cube();
+  for (const char* name : {"m.off", "m.obj", "m.ply", "M.OFF", "m.Ply"}) {
+    SCOPED_TRACE(name);
+    cover::write_mesh(dir / name, mesh);
+    const PolygonMesh back = cover::read_mesh(dir / name);
+    ASSERT_EQ(back.vertices.size(), mesh.vertices.size());
+    for (size_t v = 0; v < mesh.vertices.size(); ++v)
+      EXPECT_TRUE(same_bits(back.vertices[v], mesh.vertices[v])) << "vertex " << v;
+    EXPECT_EQ(back.face_start, mesh.face_start);
+    EXPECT_EQ(back.face_vertices, mesh.face_vertices);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, StlRoundTripFanTriangulatesAndWelds) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const PolygonMesh mesh = holed_cube();
+  cover::write_mesh(dir / "m.stl", mesh);
+  const PolygonMesh back = cover::read_mesh(dir / "m.stl");
+  expect_consistent(back);
+  auto as_float = [](Vec3 p) {
+    return Vec3{static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+  };
+  size_t t = 0;
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto face = mesh.face(f);
+    for (size_t i = 1; i + 1 < face.size(); ++i, ++t) {
+      ASSERT_LT(t, back.face_count());
+      ASSERT_EQ(back.face(t).size(), 3u);
+      const uint32_t corners[3] = {face[0], face[i], face[i + 1]};
+      for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(back.vertices[back.face(t)[k]] == as_float(mesh.vertices[corners[k]]));
+    }
+  }
+  EXPECT_EQ(back.face_count(), t);
+  EXPECT_EQ(back.vertices.size(), 12u);  // the unreferenced vertex is not written
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, WriteIsAtomicAndReportsFailures) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  test::write_file(dir / "m.off", "old contents");
+  cover::write_mesh(dir / "m.off", holed_cube());
+  EXPECT_EQ(cover::read_mesh(dir / "m.off").face_count(), 6u);
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 1u);  // no temporary left behind
+
+  auto expect_write_error = [&](const fs::path& path, const PolygonMesh& mesh) {
+    try {
+      cover::write_mesh(path, mesh);
+      ADD_FAILURE() << path << " was written";
+    } catch (const InputError& e) {
+      expect_good_message(e.what(), path);
+    }
+  };
+  expect_write_error(dir / "missing-folder" / "m.off", holed_cube());
+  expect_write_error(dir / "m.3ds", holed_cube());
+  PolygonMesh bad = holed_cube();
+  bad.face_vertices[3] = 99;
+  expect_write_error(dir / "bad.obj", bad);
+  EXPECT_FALSE(fs::exists(dir / "bad.obj"));
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, PlyWriterWidensTheListCountForLargeFaces) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  PolygonMesh mesh;
+  std::vector<uint32_t> loop;
+  for (uint32_t i = 0; i < 300; ++i) {
+    const double angle = 2 * std::numbers::pi * i / 300;
+    mesh.vertices.push_back({std::cos(angle), std::sin(angle), 0});
+    loop.push_back(i);
+  }
+  mesh.add_face(loop);
+  cover::write_mesh(dir / "disk.ply", mesh);
+  EXPECT_NE(test::read_file(dir / "disk.ply").find("property list uint int vertex_indices"),
+            std::string::npos);
+  const PolygonMesh back = cover::read_mesh(dir / "disk.ply");
+  EXPECT_EQ(back.face_vertices, mesh.face_vertices);
+  fs::remove_all(dir);
+}
+
+// ---- real models ---------------------------------------------------------------------------
+
+TEST(MeshIoTest, CgalModelsMatchTheirOffHeaders) {
+  for (const char* name : {"elephant.off", "knot1.off", "armadillo.off", "bunny00.off", "fandisk.off"}) {
+    SCOPED_TRACE(name);
+    const fs::path path = test::cgal_mesh(name);
+    const auto [v, f] = off_header_counts(path);
+    const PolygonMesh mesh = cover::read_mesh(path);
+    EXPECT_EQ(mesh.vertices.size(), v);
+    EXPECT_EQ(mesh.face_count(), f);
+    EXPECT_GT(f, 0u);
+    expect_consistent(mesh);
+  }
+}
+
+TEST(MeshIoTest, AssimpValidModels) {
+  const fs::path models = test::assimp_models();
+  struct Case {
+    const char* file;
+    size_t vertices, faces;
+  };
+  for (const Case& c : {Case{"OFF/Cube.off", 8, 6}, Case{"PLY/cube.ply", 8, 6},
+                        Case{"PLY/cube_binary.ply", 8, 12}, Case{"OBJ/box.obj", 8, 6},
+                        Case{"STL/Spider_binary.stl", 722, 1368}}) {
+    SCOPED_TRACE(c.file);
+    const PolygonMesh mesh = cover::read_mesh(models / c.file);
+    EXPECT_EQ(mesh.vertices.size(), c.vertices);
+    EXPECT_EQ(mesh.face_count(), c.faces);
+    expect_consistent(mesh);
+  }
+  const PolygonMesh ascii = cover::read_mesh(models / "STL/Spider_ascii.stl");
+  const PolygonMesh binary = cover::read_mesh(models / "STL/Spider_binary.stl");
+  EXPECT_EQ(ascii.vertices.size(), binary.vertices.size());
+  EXPECT_EQ(ascii.face_count(), binary.face_count());
+  EXPECT_EQ(ascii.face_vertices.size(), binary.face_vertices.size());
+  expect_consistent(ascii);
+}
+
+TEST(MeshIoTest, EveryAssimpInvalidFileIsRefused) {
+  size_t count = 0;
+  for (const auto& entry : fs::directory_iterator(test::assimp_models() / "invalid")) {
+    SCOPED_TRACE(entry.path().string());
+    expect_input_error(entry.path());
+    ++count;
+  }
+  EXPECT_GE(count, 10u);
+}
+
+// ---- format details ------------------------------------------------------------------------
+
+TEST(MeshIoTest, OffVariants) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const PolygonMesh colored = read_text(dir, "c.off",
+                                        "# comment\nCOFF\n3 1 0\n0 0 0 1 0 0 1\n1 0 0 1 0 0 1\n"
+                                        "0 1 0 1 0 0 1 # red\n\n3 0 1 2 255 0 0\n");
+  EXPECT_EQ(colored.vertices.size(), 3u);
+  EXPECT_EQ(colored.face_vertices, (std::vector<uint32_t>{0, 1, 2}));
+  const PolygonMesh inline_counts = read_text(dir, "i.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 2 1 0");
+  EXPECT_EQ(inline_counts.face_vertices, (std::vector<uint32_t>{2, 1, 0}));
+  const PolygonMesh headless = read_text(dir, "h.off", "3 1\r\n0 0 0\r\n1 0 0\r\n+0 1 0\r\n3 0 1 2\r\n");
+  EXPECT_EQ(headless.vertices[2].y, 1.0);
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, ObjReferencesAndIgnoredStatements) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const PolygonMesh mesh = read_text(dir, "m.obj",
+                                     "mtllib a.mtl\no thing\ng group\ns off\nusemtl red\n"
+                                     "v 0 0 0\nv 1 0 0 1\nv 1 1 0 0.5 0.5 0.5\nv 0 1 0\n"
+                                     "vt 0 0\nvn 0 0 1\nl 1 2\np 1\n# comment\n"
+                                     "f 1/1 2/1/1 3//1 4\nf -4 -2 -1\nf 1 5 2\nv 2 2 2\n");
+  EXPECT_EQ(mesh.vertices.size(), 5u);  // the forward reference to vertex 5 is fine
+  EXPECT_EQ(mesh.face_vertices, (std::vector<uint32_t>{0, 1, 2, 3, 0, 2, 3, 0, 4, 1}));
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, PlyTypesListsAndSkippedElements) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::string header_tail =
+      "element vertex 3\nproperty uchar red\nproperty int x\nproperty double y\n"
+      "property list uchar float texture\nproperty short z\n"
+      "element edge 1\nproperty list int int ends\nproperty float weight\n"
+      "element face 1\nproperty uchar flags\nproperty list int uint vertex_index\n"
+      "element material 2\nproperty float shine\nend_header\n";
+  const PolygonMesh ascii = read_text(dir, "a.ply",
+                                      "ply\nformat ascii 1.0\ncomment x\n" + header_tail +
+                                          "7 0 0 2 0.5 0.5 0\n7 1 0 0 0\n7 0 1.5 1 9 -3\n"
+                                          "2 0 1 1.0\n0 3 2 1 0\n1\n2\n");
+  EXPECT_EQ(ascii.vertices.size(), 3u);
+  EXPECT_TRUE(ascii.vertices[2] == (Vec3{0, 1.5, -3}));
+  EXPECT_EQ(ascii.face_vertices, (std::vector<uint32_t>{2, 1, 0}));
+
+  for (bool big : {false, true}) {
+    auto v = [&](auto value) { return big ? be(value) : le(value); };
+    std::string body;
+    const int xs[] = {0, 1, 0};
+    const double ys[] = {0, 0, 1.5};
+    const int16_t zs[] = {0, 0, -3};
+    for (int i = 0; i < 3; ++i)
+      body += v(uint8_t{7}) + v(xs[i]) + v(ys[i]) + v(uint8_t{1}) + v(0.5f) + v(zs[i]);
+    body += v(2) + v(0) + v(1) + v(1.0f);
+    body += v(uint8_t{0}) + v(3) + v(2u) + v(1u) + v(0u);
+    body += v(1.0f) + v(2.0f);
+    const std::string format = big ? "binary_big_endian" : "binary_little_endian";
+    const PolygonMesh binary =
+        read_text(dir, "b.ply", "ply\nformat " + format + " 1.0\n" + header_tail + body);
+    EXPECT_TRUE(binary.vertices[2] == (Vec3{0, 1.5, -3}));
+    EXPECT_EQ(binary.face_vertices, ascii.face_vertices);
+    // The same bytes under the other byte order are garbage and must be refused.
+    const std::string other = big ? "binary_little_endian" : "binary_big_endian";
+    bad_file(dir, "swapped.ply", "ply\nformat " + other + " 1.0\n" + header_tail + body);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, StlDetectionAndWelding) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::vector<std::array<float, 9>> two = {{0, 0, 0, 1, 0, 0, 0, 1, 0},
+                                                 {1, 0, 0, 1, 1, 0, -0.0f, 1, 0}};
+  // A binary file whose header starts with "solid" is still binary.
+  const PolygonMesh binary = read_text(dir, "b.stl", binary_stl(two, "solid but binary"));
+  EXPECT_EQ(binary.vertices.size(), 4u);
+  EXPECT_EQ(binary.face_vertices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));
+  const PolygonMesh ascii = read_text(dir, "a.stl",
+                                      "solid t\n facet normal 0 0 1\n  outer loop\n"
+                                      "   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+                                      "  endloop\n endfacet\nendsolid t\n"
+                                      "SOLID u\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 1 0 0\n"
+                                      "VERTEX 1 1 0\nVERTEX -0 1 0\nENDLOOP\nENDFACET\nENDSOLID\n");
+  EXPECT_EQ(ascii.face_vertices, binary.face_vertices);
+  fs::remove_all(dir);
+}
+
+// ---- malformed files -----------------------------------------------------------------------
+
+TEST(MeshIoTest, MessagesNameFileAndPlace) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::string off = (dir / "a.off").string();
+  EXPECT_EQ(bad_file(dir, "a.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 x\n3 0 1 2\n"),
+            off + ":5: expected a number for the z coordinate, found 'x'");
+  EXPECT_EQ(bad_file(dir, "a.3ds", "x"),
+            (dir / "a.3ds").string() + ": unsupported mesh format '.3ds' (expected .obj, .off, .stl, .ply)");
+  EXPECT_EQ(bad_file(dir, "e.obj", ""), (dir / "e.obj").string() + ": empty file");
+  EXPECT_NE(bad_file(dir, "n.obj", "v 0 0 0\n"), "");
+  const std::string stl = bad_file(dir, "nan.stl", binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0},
+                                                                {0, 0, 0, 1, 0, 0, NAN, 1, 0}}, ""));
+  EXPECT_NE(stl.find(": triangle 2 (byte "), std::string::npos) << stl;
+  const std::string ply = bad_file(dir, "p.ply",
+                                   "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                                   "property float x\nproperty float y\nproperty float z\n"
+                                   "element face 1\nproperty list uchar int vertex_indices\n"
+                                   "end_header\n" + std::string(36, '\0') + le(uint8_t{3}) +
+                                   le(0) + le(1) + le(7));
+  EXPECT_NE(ply.find(": byte "), std::string::npos) << ply;
+  expect_input_error(dir / "does-not-exist.off");
+  fs::create_directories(dir / "folder.off");
+  expect_input_error(dir / "folder.off");
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, MalformedTextCorpus) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::string v3 = "0 0 0\n1 0 0\n0 1 0\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"huge.off", "OFF\n1000000000 1000000000 0\n"},
+      {"huge2.off", "OFF\n3 99999999999999999999999 0\n" + v3 + "3 0 1 2\n"},
+      {"overflow.off", "OFF\n18446744073709551615 18446744073709551615 0\n"},
+      {"nofaces.off", "OFF\n3 0 0\n" + v3},
+      {"onlyheader.off", "OFF\n"},
+      {"comment.off", "# nothing\n"},
+      {"range.off", "OFF\n3 1 0\n" + v3 + "3 0 1 3\n"},
+      {"negative.off", "OFF\n3 1 0\n" + v3 + "3 0 -1 2\n"},
+      {"bigindex.off", "OFF\n3 1 0\n" + v3 + "3 0 1 4294967296\n"},
+      {"nan.off", "OFF\n3 1 0\n0 0 nan\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"inf.off", "OFF\n3 1 0\n0 0 0\n1 -inf 0\n0 1 0\n3 0 1 2\n"},
+      {"e999.off", "OFF\n3 1 0\n0 0 1e999\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"missing.off", "OFF\n3 1 0\n0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"hex.off", "OFF\n3 1 0\n0x1 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"twogon.off", "OFF\n3 1 0\n" + v3 + "2 0 1\n"},
+      {"shortface.off", "OFF\n3 1 0\n" + v3 + "4 0 1 2\n"},
+      {"fewfaces.off", "OFF\n3 2 0\n" + v3 + "3 0 1 2\n"},
+      {"extraface.off", "OFF\n3 1 0\n" + v3 + "3 0 1 2\n3 2 1 0\n"},
+      {"word.off", "OFF\n3 1 0\n" + v3 + "3 0 1 2 red\n"},
+      {"4off.off", "4OFF\n3 1 0\n" + v3 + "3 0 1 2\n"},
+      {"binary.off", "OFF BINARY\n3 1 0\n"},
+      {"nolines.obj", "# only a comment\n"},
+      {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n"},
+      {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"},
+      {"before.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n"},
+      {"huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4294967297\n"},
+      {"twogon.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"},
+      {"emptyf.obj", "v 0 0 0\nf\n"},
+      {"nan.obj", "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n"},
+      {"inf.obj", "v 0 0 0\nv 1 0 infinity\nv 0 1 0\nf 1 2 3\n"},
+      {"missing.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"},
+      {"word.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n"},
+      {"ref.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3x\n"},
+      {"unknown.obj", "v 0 0 0\nbogus 1 2\n"},
+      {"nofaces.stl", "solid x\nendsolid x\n"},
+      {"unterminated.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"},
+      {"twovertex.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                        "endloop\nendfacet\nendsolid\n"},
+      {"nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\nvertex 1 0 0\n"
+                  "vertex 0 1 0\nendloop\nendfacet\nendsolid\n"},
+      {"notstl.stl", "hello world\n"},
+      {"noply.ply", "plx\nformat ascii 1.0\nend_header\n"},
+      {"noheaderend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"},
+      {"format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"},
+      {"type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n0\n"},
+      {"noz.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                  "0 0\n1 0\n0 1\n3 0 1 2\n"},
+      {"floatindex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                         "property float z\nelement face 1\nproperty list uchar float vertex_indices\n"
+                         "end_header\n" + v3 + "3 0 1 2\n"},
+      {"hugecount.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n"
+                        "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                        "property list uchar int vertex_indices\nend_header\n"},
+      {"hugeother.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                        "property float z\nelement junk 1000000000000\nproperty int a\nelement face 1\n"
+                        "property list uchar int vertex_indices\nend_header\n" + v3 + "3 0 1 2\n"},
+  };
+  auto ply_ascii = [&](const std::string& vertices, const std::string& faces) {
+    return "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+           "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+           vertices + faces;
+  };
+  std::vector<std::pair<std::string, std::string>> more = {
+      {"range.ply", ply_ascii(v3, "3 0 1 3\n")},
+      {"negative.ply", ply_ascii(v3, "3 0 -1 2\n")},
+      {"twogon.ply", ply_ascii(v3, "2 0 1\n")},
+      {"nan.ply", ply_ascii("0 0 0\n1 0 0\n0 nan 0\n", "3 0 1 2\n")},
+      {"short.ply", ply_ascii(v3, "3 0 1\n")},
+      {"extra.ply", ply_ascii(v3, "3 0 1 2\n7\n")},
+      {"word.ply", ply_ascii("0 0 0\n1 0 0\n0 one 0\n", "3 0 1 2\n")},
+  };
+  for (const auto& [name, bytes] : cases) bad_file(dir, name, bytes);
+  for (const auto& [name, bytes] : more) bad_file(dir, name, bytes);
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, MalformedBinaryCorpus) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::array<float, 9> tri = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::string stl = binary_stl({tri, tri}, "");
+  std::string lying = stl;
+  lying.replace(80, 4, le(uint32_t{0xFFFFFFFFu}));
+  bad_file(dir, "count.stl", lying);
+  bad_file(dir, "zero.stl", binary_stl({}, ""));
+  bad_file(dir, "inf.stl", binary_stl({tri, {0, 0, 0, 1, 0, 0, 0, INFINITY, 0}}, ""));
+  bad_file(dir, "extra.stl", stl + "x");
+  bad_file(dir, "short.stl", std::string(83, '\0'));
+
+  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\n"
+                             "property list uchar int vertex_indices\nend_header\n";
+  std::string vertices;
+  for (float c : tri) vertices += le(c);
+  const std::string face = le(uint8_t{3}) + le(0) + le(1) + le(2);
+  EXPECT_EQ(read_text(dir, "ok.ply", header + vertices + face).face_count(), 1u);
+  bad_file(dir, "trailing.ply", header + vertices + face + "\n");
+  bad_file(dir, "range.ply", header + vertices + le(uint8_t{3}) + le(0) + le(1) + le(3));
+  bad_file(dir, "negative.ply", header + vertices + le(uint8_t{3}) + le(0) + le(-1) + le(2));
+  bad_file(dir, "twogon.ply", header + vertices + le(uint8_t{2}) + le(0) + le(1) + le(2));
+  std::string nan_vertices = vertices;
+  nan_vertices.replace(4, 4, le(NAN));
+  bad_file(dir, "nan.ply", header + nan_vertices + face);
+  fs::remove_all(dir);
+}
+
+/// Every prefix (in steps) of each valid file either fails or parses to a consistent mesh;
+/// prefixes that cut a required part off must fail.
+TEST(MeshIoTest, TruncatedFiles) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const PolygonMesh mesh = holed_cube();
+  for (const char* name : {"v.off", "v.obj", "v.ply", "v.stl"}) {
+    SCOPED_TRACE(name);
+    cover::write_mesh(dir / name, mesh);
+    const std::string bytes = test::read_file(dir / name);
+    const std::string ext = fs::path(name).extension().string();
+    const bool binary = ext == ".ply" || ext == ".stl";
+    const size_t last_line = bytes.rfind('\n', bytes.size() - 2) + 1;
+    for (size_t length = 0; length < bytes.size(); ++length) {
+      const fs::path cut = dir / ("cut" + ext);
+      test::write_file(cut, bytes.substr(0, length));
+      if (binary || (ext == ".off" && length < last_line))
+        expect_input_error(cut);
+      else
+        expect_parses_or_throws(cut);
+    }
+  }
+  const std::string elephant = test::read_file(test::cgal_mesh("elephant.off"));
+  const size_t elephant_last_line = elephant.rfind('\n', elephant.size() - 2) + 1;
+  for (size_t length = 0; length < elephant_last_line; length += 997) {
+    test::write_file(dir / "elephant.off", elephant.substr(0, length));
+    expect_input_error(dir / "elephant.off");
+  }
+  fs::remove_all(dir);
+}
+
+/// Random bytes, and valid files with random bytes overwritten, never crash the readers.
+TEST(MeshIoTest, GarbageAndMutations) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  const PolygonMesh mesh = holed_cube();
+  std::mt19937 rng(12345);
+  for (const char* ext : {".off", ".obj", ".ply", ".stl"}) {
+    SCOPED_TRACE(ext);
+    const fs::path path = dir / (std::string("g") + ext);
+    for (int round = 0; round < 50; ++round) {
+      std::string bytes(1 + rng() % 3000, '\0');
+      for (char& c : bytes) c = static_cast<char>(rng());
+      if (std::string(ext) == ".stl" && bytes.size() >= 84)  // no size matches this count
+        bytes.replace(80, 4, le(uint32_t{0xFFFFFFFFu}));
+      test::write_file(path, bytes);
+      expect_input_error(path);
+    }
+    cover::write_mesh(dir / (std::string("valid") + ext), mesh);
+    const std::string valid = test::read_file(dir / (std::string("valid") + ext));
+    for (int round = 0; round < 300; ++round) {
+      std::string bytes = valid;
+      for (int k = 0, n = 1 + rng() % 4; k < n; ++k) bytes[rng() % bytes.size()] = static_cast<char>(rng());
+      test::write_file(path, bytes);
+      expect_parses_or_throws(path);
+    }
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace

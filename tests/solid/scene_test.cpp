@@ -1,0 +1,136 @@
+// JSON scenes (solid/scene.h): every node kind, transforms, and errors naming the JSON path.
+#include "solid/scene.h"
+
+#include <gtest/gtest.h>
+
+#include "helpers.h"
+#include "solid/errors.h"
+#include "solid/measure.h"
+#include "solid/mesh_io.h"
+#include "solid/primitives.h"
+
+namespace cover {
+namespace {
+
+LoadedInput parse(const std::string& text) { return parse_scene(text, "scene.json"); }
+
+std::string error_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+double leaf_volume(const Solid& s, uint32_t l) { return signed_volume(leaf_mesh(s, l)); }
+
+TEST(Scene, AllNodeKinds) {
+  const LoadedInput in = parse(R"({"difference": [
+      {"union": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
+                 {"sphere": {"center": [3,3,3], "radius": 1, "segments": 8}}]},
+      {"intersection": [{"cylinder": {"base": [1,1,-1], "top": [1,1,3], "radius": 0.5}},
+                        {"complement": {"box": {"min": [0,0,5], "max": [1,1,6]}}}]}]})");
+  const Solid& s = in.solid;
+  EXPECT_EQ(s.leaves.size(), 4u);
+  EXPECT_EQ(s.tree.nodes[s.tree.root].op, CsgOp::kDifference);
+  EXPECT_EQ(s.leaves[0].origin, "/difference/0/union/0/box");
+  EXPECT_EQ(s.leaves[2].origin, "/difference/1/intersection/0/cylinder");
+  EXPECT_DOUBLE_EQ(leaf_volume(s, 0), 8.0);
+  EXPECT_TRUE(in.warnings.empty());
+}
+
+TEST(Scene, TransformsComposeParentAfterChild) {
+  // Child: scale 2 then translate x by 1 → [1,3]; parent: translate y by 10.
+  const Solid s = parse(R"({"union": [{"box": {"min": [0,0,0], "max": [1,1,1]},
+      "transform": {"scale": 2, "translate": [1,0,0]}}],
+      "transform": {"translate": [0,10,0]}})").solid;
+  EXPECT_EQ(s.leaves[0].bbox.min, (Vec3{1, 10, 0}));
+  EXPECT_EQ(s.leaves[0].bbox.max, (Vec3{3, 12, 2}));
+  // T·R·S: rotate 90° about z then translate.
+  const Solid r = parse(R"({"box": {"min": [0,0,0], "max": [2,1,1]},
+      "transform": {"rotate": {"axis": [0,0,1], "degrees": 90}, "translate": [5,0,0]}})").solid;
+  EXPECT_NEAR(r.leaves[0].bbox.min.x, 4, 1e-15);
+  EXPECT_NEAR(r.leaves[0].bbox.max.y, 2, 1e-15);
+  // Row-major matrix.
+  const Solid m = parse(R"({"box": {"min": [0,0,0], "max": [1,1,1]},
+      "transform": {"matrix": [1,0,0,7, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})").solid;
+  EXPECT_EQ(m.leaves[0].bbox.min, (Vec3{7, 0, 0}));
+}
+
+TEST(Scene, NegativeDeterminantKeepsSolidsSolid) {
+  const LoadedInput in = parse(R"({"box": {"min": [0,0,0], "max": [1,2,3]},
+      "transform": {"scale": [-1, 1, 1]}})");
+  EXPECT_DOUBLE_EQ(leaf_volume(in.solid, 0), 6.0);
+  EXPECT_TRUE(in.warnings.empty());
+}
+
+TEST(Scene, ErrorsNameTheJsonPath) {
+  EXPECT_EQ(error_of(R"({"union": [{"box": {"min": [0,0,0], "max": [1,1,1]}},
+      {"box": {"min": [0,0,0], "max": [1,1,1]}, "transform": {"scale": "big"}}]})"),
+            "scene.json: /union/1/transform/scale: expected a number or 3 numbers");
+  EXPECT_EQ(error_of(R"({"union": []})"), "scene.json: /union: expected an array of one or more nodes");
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1]}})"), "scene.json: /box/max: expected 3 numbers");
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1], "colour": 1}})"),
+            "scene.json: /box/colour: unknown key");
+  EXPECT_EQ(error_of(R"({"sphere": {"center": [0,0,0], "radius": -1}})"),
+            "scene.json: /sphere/radius: expected a positive number");
+  EXPECT_EQ(error_of(R"({"sphere": {"center": [0,0,0], "radius": 1, "segments": 1000000000}})"),
+            "scene.json: /sphere/segments: expected an integer from 3 to 4096");
+  EXPECT_EQ(error_of(R"({"frobnicate": {}})"), "scene.json: /: unknown key 'frobnicate'");
+  EXPECT_EQ(error_of(R"({"difference": [{"box": {"min": [0,0,0], "max": [1,1,1]}}]})"),
+            "scene.json: /difference: expected two or more nodes");
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1]}, "transform": {"scale": 0}})"),
+            "scene.json: /transform: transform is singular");
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1]},
+      "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 1,0,0,1]}})"),
+            "scene.json: /transform/matrix: last row must be 0 0 0 1");
+  EXPECT_EQ(error_of("{\"box\": \n {\"min\": [0,0,0],, }"),
+            error_of("{\"box\": \n {\"min\": [0,0,0],, }"));
+  EXPECT_EQ(error_of("{\"box\": \n {\"min\": [0,0,0],, }").rfind("scene.json:2: invalid JSON", 0), 0u);
+  EXPECT_EQ(error_of(R"({"mesh": "does-not-exist.off"})").rfind("does-not-exist.off", 0), 0u);
+  std::string deep;
+  for (int i = 0; i < 300; ++i) deep += R"({"complement": )";
+  deep += R"({"box": {"min": [0,0,0], "max": [1,1,1]}})";
+  for (int i = 0; i < 300; ++i) deep += "}";
+  EXPECT_NE(error_of(deep).find("nested deeper than"), std::string::npos);
+}
+
+TEST(Scene, MeshLeavesRelativeToSceneFolderOpenAndInsideOut) {
+  const auto dir = test::temp_dir("scene");
+  PolygonMesh box = make_box({0, 0, 0}, {1, 1, 1});
+  write_mesh(dir / "box.off", box);
+  PolygonMesh inverted = box;
+  for (size_t f = 0; f < inverted.face_count(); ++f)
+    std::reverse(inverted.face_vertices.begin() + inverted.face_start[f],
+                 inverted.face_vertices.begin() + inverted.face_start[f + 1]);
+  write_mesh(dir / "inverted.off", inverted);
+  PolygonMesh open = box;
+  open.face_start.pop_back();
+  open.face_vertices.resize(open.face_start.back());
+  write_mesh(dir / "open.off", open);
+
+  test::write_file(dir / "s.json", R"({"union": [{"mesh": "box.off"}, {"mesh": "inverted.off",
+      "transform": {"translate": [3,0,0]}}]})");
+  const LoadedInput in = load_input(dir / "s.json");
+  ASSERT_EQ(in.warnings.size(), 1u);
+  EXPECT_NE(in.warnings[0].find("inside-out"), std::string::npos);
+  EXPECT_DOUBLE_EQ(leaf_volume(in.solid, 1), 1.0);
+  EXPECT_TRUE(in.solid.leaves[1].flipped);
+
+  test::write_file(dir / "o.json", R"({"union": [{"mesh": "open.off"}]})");
+  try {
+    load_input(dir / "o.json");
+    ADD_FAILURE() << "open mesh accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("open mesh: 4 boundary edges"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("/union/0/mesh"), std::string::npos);
+  }
+  LoadOptions lenient;
+  lenient.require_closed = false;
+  EXPECT_EQ(load_input(dir / "o.json", lenient).solid.leaves.size(), 1u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cover
