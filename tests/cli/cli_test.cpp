@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <array>
+#include <cstdio>
 #include <random>
 
 #include "helpers.h"
@@ -105,6 +107,34 @@ TEST_F(Cli, ClassifyNestedSceneSameForOneAndTwoThreads) {
   ASSERT_EQ(a.status, 0) << a.err;
   EXPECT_EQ(a.out, b.out);
   EXPECT_EQ(lines(a.out).size(), 2000u);
+}
+
+TEST_F(Cli, NestedSceneMatchesTruthTable) {
+  // (A − B) ∪ C with overlapping boxes; truth from the analytic boxes.
+  test::write_file(dir_ / "abc.json", R"({"union": [
+      {"difference": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
+                      {"box": {"min": [1,1,-1], "max": [3,3,3]}}]},
+      {"box": {"min": [1.5,1.5,1.5], "max": [2.5,2.5,2.5]}}]})");
+  auto in = [](const double* p, std::array<double, 6> b) {
+    return p[0] > b[0] && p[0] < b[3] && p[1] > b[1] && p[1] < b[4] && p[2] > b[2] && p[2] < b[5];
+  };
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.5, 3.5);
+  std::string pts;
+  std::vector<std::string> truth;
+  char buf[128];
+  for (int i = 0; i < 10000; ++i) {
+    double p[3] = {u(rng), u(rng), u(rng)};
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
+    pts += buf;
+    const bool t = (in(p, {0, 0, 0, 2, 2, 2}) && !in(p, {1, 1, -1, 3, 3, 3})) ||
+                   in(p, {1.5, 1.5, 1.5, 2.5, 2.5, 2.5});
+    truth.push_back(t ? "inside" : "outside");
+  }
+  test::write_file(dir_ / "p.txt", pts);
+  const auto r = run_cover("classify " + q(dir_ / "abc.json") + " --points " + q(dir_ / "p.txt"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines(r.out), truth);
 }
 
 TEST_F(Cli, InfoAndVolumeJson) {
