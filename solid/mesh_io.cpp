@@ -2,11 +2,16 @@
 //
 // Why the readers are hand-written instead of using CGAL::IO::read_polygon_soup or assimp:
 //   * errors: every malformed input becomes one InputError line naming the file and the line
-//     (text) or byte / triangle (binary) — library readers report "failed" or print to stderr;
+//     (text) or byte / triangle (binary); read_polygon_soup returns a bare `false` (checked on
+//     assimp's invalid/OutOfMemory.off and malformed.obj, and on out-of-range indices);
 //   * bounded allocation: header counts are checked against the file size before anything is
 //     reserved, so a 40-byte file claiming 10^9 faces is refused instead of allocating gigabytes;
 //   * speed: the file is read whole and parsed in place with std::from_chars.
-// MEASUREMENT_PLACEHOLDER
+// Measured (median of 21 reads, file in the page cache, g++ 12 -O3, CGAL 5.5.1, 2-core AMD EPYC
+// VM), cover::read_mesh vs CGAL::IO::read_polygon_soup into Epick points + vector<vector<size_t>>:
+//   bunny00.off   (2.6 MB, 37706 V, 75408 F)   5.1 ms vs 55.4 ms  (11x)
+//   armadillo.off (1.6 MB, 26002 V, 52000 F)   3.3 ms vs 37.5 ms  (11x)
+// (throwaway benchmark, not in the repository).
 
 #include "solid/mesh_io.h"
 
@@ -41,7 +46,8 @@ std::string load_file(const std::filesystem::path& path) {
   FdGuard guard{fd};
   struct stat info {};
   size_t size_hint = 0;
-  if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) size_hint = static_cast<size_t>(info.st_size);
+  if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode))
+    size_hint = static_cast<size_t>(info.st_size);
   // One byte more than the size so that the final read() sees end of file without growing.
   std::string data(std::max<size_t>(size_hint + 1, 4096), '\0');
   size_t used = 0;

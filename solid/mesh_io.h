@@ -13,14 +13,17 @@ namespace cover {
 
 /// Reads a polygon mesh. Faces keep their vertex order; polygons are not triangulated.
 /// STL triangles are welded by exact coordinate equality.
-/// Throws InputError "FILE:LINE: message" (binary formats: "FILE: byte N: ..." or "record N")
+/// Throws InputError "FILE:LINE: message" (binary formats: "FILE: byte N: ..." or
+/// "FILE: triangle N (byte B): ..."; whole-file problems: "FILE: empty file", "FILE: no faces")
 /// for any malformed input: empty, truncated, wrong counts, indices out of range, NaN/inf
 /// coordinates, absurd sizes (counts that cannot fit the file are refused before allocating),
-/// binary garbage, unsupported extension.
+/// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file.
 PolygonMesh read_mesh(const std::filesystem::path& path);
 
 /// Writes a mesh atomically (temporary file in the same folder, then rename).
-/// Polygons are fan-triangulated for STL. Throws InputError on unsupported extension or I/O failure.
+/// Polygons are fan-triangulated for STL (coordinates rounded to float); .off/.obj/.ply round
+/// trips are exact. Throws InputError on unsupported extension, I/O failure, or a mesh that
+/// cannot be written (index out of range, face with fewer than 3 vertices, non-finite vertex).
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh);
 
 /// True if the extension names a mesh format read_mesh understands.

@@ -18,10 +18,10 @@ namespace {
 
 /// Statements that carry no polygon geometry.
 constexpr std::array<std::string_view, 31> kIgnored = {
-    "vt",   "vn",    "vp",     "g",     "o",      "s",        "usemtl",   "mtllib",
-    "l",    "p",     "cstype", "deg",   "bmat",   "step",     "curv",     "curv2",
-    "surf", "parm",  "trim",   "hole",  "scrv",   "sp",       "end",      "con",
-    "mg",   "lod",   "bevel",  "c_interp", "d_interp", "usemap", "maplib"};
+    "vt",   "vn",   "vp",     "g",        "o",        "s",      "usemtl", "mtllib",
+    "l",    "p",    "cstype", "deg",      "bmat",     "step",   "curv",   "curv2",
+    "surf", "parm", "trim",   "hole",     "scrv",     "sp",     "end",    "con",
+    "mg",   "lod",  "bevel",  "c_interp", "d_interp", "usemap", "maplib"};
 
 /// True for the tail of a reference after the vertex index: "", "/t", "//n", "/t/n".
 bool is_reference_tail(std::string_view tail) {
@@ -68,9 +68,10 @@ PolygonMesh read_obj(const std::string& file, std::string_view data) {
         } else if (index < 0) {
           const uint64_t back = 0 - static_cast<uint64_t>(index);
           if (back > defined)
-            fail_line(file, n, "relative vertex index " + std::to_string(index) +
-                                   " reaches before the first vertex (" + std::to_string(defined) +
-                                   " defined so far)");
+            fail_line(file, n,
+                      "relative vertex index " + std::to_string(index) +
+                          " reaches before the first vertex (" + std::to_string(defined) +
+                          " defined so far)");
           resolved = defined - back;
         } else {
           const auto one_based = static_cast<uint64_t>(index);

@@ -44,8 +44,9 @@ bool is_header_keyword(std::string_view token, const std::string& file, uint64_t
   if (prefix.starts_with("C")) prefix.remove_prefix(1);
   if (prefix.starts_with("N")) prefix.remove_prefix(1);
   if (!prefix.empty())
-    fail_line(file, line, "unsupported OFF variant " + quote(token) +
-                              " (expected OFF, COFF, NOFF, CNOFF or STOFF)");
+    fail_line(
+        file, line,
+        "unsupported OFF variant " + quote(token) + " (expected OFF, COFF, NOFF, CNOFF or STOFF)");
   return true;
 }
 
@@ -69,7 +70,8 @@ PolygonMesh read_off(const std::string& file, std::string_view data) {
   std::string_view first = next_token(rest);
   if (is_header_keyword(first, file, lines.line_number())) {
     if (only_blanks(rest) && !lines.next(rest))
-      fail_line(file, lines.line_number(), "unexpected end of file: missing vertex and face counts");
+      fail_line(file, lines.line_number(),
+                "unexpected end of file: missing vertex and face counts");
     std::string_view peek = rest;
     if (next_token(peek) == "BINARY")
       fail_line(file, lines.line_number(), "binary OFF is not supported");
@@ -82,7 +84,8 @@ PolygonMesh read_off(const std::string& file, std::string_view data) {
   std::string_view edges = next_token(rest);
   if (!edges.empty()) parse_count(edges, file, count_line, "edge count");
   std::string_view extra = next_token(rest);
-  if (!extra.empty()) fail_line(file, count_line, "unexpected token " + quote(extra) + " after the counts");
+  if (!extra.empty())
+    fail_line(file, count_line, "unexpected token " + quote(extra) + " after the counts");
 
   if (vertex_count > kMaxIndexCount)
     fail_line(file, count_line, "vertex count " + std::to_string(vertex_count) + " exceeds 2^32-1");
@@ -125,14 +128,16 @@ PolygonMesh read_off(const std::string& file, std::string_view data) {
     for (uint64_t k = 0; k < size; ++k) {
       std::string_view token = next_token(line);
       if (token.empty())
-        fail_line(file, n, "face lists " + std::to_string(size) + " vertices but has only " +
-                               std::to_string(k) + " indices");
+        fail_line(file, n,
+                  "face lists " + std::to_string(size) + " vertices but has only " +
+                      std::to_string(k) + " indices");
       int64_t index;
       if (!parse_integer(token, index))
         fail_line(file, n, "expected a vertex index, found " + quote(token));
       if (index < 0 || static_cast<uint64_t>(index) >= vertex_count)
-        fail_line(file, n, "vertex index " + std::to_string(index) + " out of range [0, " +
-                               std::to_string(vertex_count) + ")");
+        fail_line(file, n,
+                  "vertex index " + std::to_string(index) + " out of range [0, " +
+                      std::to_string(vertex_count) + ")");
       mesh.face_vertices.push_back(static_cast<uint32_t>(index));
     }
     check_numeric_tail(line, file, n);

@@ -93,7 +93,8 @@ Header parse_header(const std::string& file, std::string_view data) {
   Header header;
   bool has_format = false;
   for (;;) {
-    if (!lines.next(line)) fail_line(file, lines.line_number(), "unexpected end of file: no end_header");
+    if (!lines.next(line))
+      fail_line(file, lines.line_number(), "unexpected end of file: no end_header");
     const uint64_t n = lines.line_number();
     std::string_view keyword = next_token(line);
     if (keyword == "end_header") break;
@@ -117,7 +118,8 @@ Header parse_header(const std::string& file, std::string_view data) {
       if (element.name.empty() || !parse_integer(count, element.count) || !only_blanks(line))
         fail_line(file, n, "expected 'element <name> <count>'");
       for (const Element& other : header.elements)
-        if (other.name == element.name) fail_line(file, n, "duplicate element " + quote(element.name));
+        if (other.name == element.name)
+          fail_line(file, n, "duplicate element " + quote(element.name));
       element.line = n;
       header.elements.push_back(std::move(element));
     } else if (keyword == "property") {
@@ -160,10 +162,14 @@ void check_header(const std::string& file, Header& header, uint64_t body_bytes, 
   if (face == nullptr || face->count == 0) fail_file(file, "no faces");
   if (vertex == nullptr) fail_line(file, end_line, "no vertex element");
   if (vertex->count > kMaxIndexCount)
-    fail_line(file, vertex->line, "vertex count " + std::to_string(vertex->count) + " exceeds 2^32-1");
+    fail_line(file, vertex->line,
+              "vertex count " + std::to_string(vertex->count) + " exceeds 2^32-1");
   int found = 0;
   for (Property& p : vertex->properties) {
-    Role role = p.name == "x" ? Role::kX : p.name == "y" ? Role::kY : p.name == "z" ? Role::kZ : Role::kSkip;
+    Role role = p.name == "x"   ? Role::kX
+                : p.name == "y" ? Role::kY
+                : p.name == "z" ? Role::kZ
+                                : Role::kSkip;
     if (role == Role::kSkip) continue;
     if (p.is_list) fail_line(file, vertex->line, "vertex property " + quote(p.name) + " is a list");
     p.role = role;
@@ -214,26 +220,40 @@ Unsigned load_unsigned(const char* bytes, bool swap) {
 /// Reads a binary value of type `t` as a double (any type) or int64 (integer types).
 double load_double(const char* bytes, Type t, bool swap) {
   switch (t) {
-    case Type::kFloat32: return std::bit_cast<float>(load_unsigned<uint32_t>(bytes, swap));
-    case Type::kFloat64: return std::bit_cast<double>(load_unsigned<uint64_t>(bytes, swap));
-    case Type::kInt8: return static_cast<int8_t>(bytes[0]);
-    case Type::kUint8: return static_cast<uint8_t>(bytes[0]);
-    case Type::kInt16: return static_cast<int16_t>(load_unsigned<uint16_t>(bytes, swap));
-    case Type::kUint16: return load_unsigned<uint16_t>(bytes, swap);
-    case Type::kInt32: return static_cast<int32_t>(load_unsigned<uint32_t>(bytes, swap));
-    case Type::kUint32: return load_unsigned<uint32_t>(bytes, swap);
+    case Type::kFloat32:
+      return std::bit_cast<float>(load_unsigned<uint32_t>(bytes, swap));
+    case Type::kFloat64:
+      return std::bit_cast<double>(load_unsigned<uint64_t>(bytes, swap));
+    case Type::kInt8:
+      return static_cast<int8_t>(bytes[0]);
+    case Type::kUint8:
+      return static_cast<uint8_t>(bytes[0]);
+    case Type::kInt16:
+      return static_cast<int16_t>(load_unsigned<uint16_t>(bytes, swap));
+    case Type::kUint16:
+      return load_unsigned<uint16_t>(bytes, swap);
+    case Type::kInt32:
+      return static_cast<int32_t>(load_unsigned<uint32_t>(bytes, swap));
+    case Type::kUint32:
+      return load_unsigned<uint32_t>(bytes, swap);
   }
   return 0;
 }
 
 int64_t load_int(const char* bytes, Type t, bool swap) {
   switch (t) {
-    case Type::kInt8: return static_cast<int8_t>(bytes[0]);
-    case Type::kUint8: return static_cast<uint8_t>(bytes[0]);
-    case Type::kInt16: return static_cast<int16_t>(load_unsigned<uint16_t>(bytes, swap));
-    case Type::kUint16: return load_unsigned<uint16_t>(bytes, swap);
-    case Type::kInt32: return static_cast<int32_t>(load_unsigned<uint32_t>(bytes, swap));
-    default: return load_unsigned<uint32_t>(bytes, swap);  // kUint32; floats are refused earlier
+    case Type::kInt8:
+      return static_cast<int8_t>(bytes[0]);
+    case Type::kUint8:
+      return static_cast<uint8_t>(bytes[0]);
+    case Type::kInt16:
+      return static_cast<int16_t>(load_unsigned<uint16_t>(bytes, swap));
+    case Type::kUint16:
+      return load_unsigned<uint16_t>(bytes, swap);
+    case Type::kInt32:
+      return static_cast<int32_t>(load_unsigned<uint32_t>(bytes, swap));
+    default:
+      return load_unsigned<uint32_t>(bytes, swap);  // kUint32; floats are refused earlier
   }
 }
 
@@ -275,8 +295,8 @@ class BinaryBody {
     if (bytes > body_.data.size() - pos_)
       fail_byte(body_.file, pos_,
                 "unexpected end of file in " + instance_name(element, i) + " (need " +
-                    std::to_string(bytes) + " bytes, " +
-                    std::to_string(body_.data.size() - pos_) + " left)");
+                    std::to_string(bytes) + " bytes, " + std::to_string(body_.data.size() - pos_) +
+                    " left)");
     const char* at = body_.data.data() + pos_;
     pos_ += bytes;
     return at;
@@ -291,18 +311,22 @@ class BinaryBody {
         if (prop.role == Role::kSkip) continue;
         double value = load_double(bytes, prop.type, swap_);
         if (!std::isfinite(value))
-          fail_byte(body_.file, at, "non-finite " + prop.name + " coordinate of vertex " + std::to_string(i));
+          fail_byte(body_.file, at,
+                    "non-finite " + prop.name + " coordinate of vertex " + std::to_string(i));
         (prop.role == Role::kX ? p.x : prop.role == Role::kY ? p.y : p.z) = value;
         continue;
       }
-      const int64_t count = load_int(take(type_size(prop.count_type), element, i), prop.count_type, swap_);
-      if (count < 0) fail_byte(body_.file, at, "negative list size in " + instance_name(element, i));
+      const int64_t count =
+          load_int(take(type_size(prop.count_type), element, i), prop.count_type, swap_);
+      if (count < 0)
+        fail_byte(body_.file, at, "negative list size in " + instance_name(element, i));
       const size_t item = type_size(prop.type);
       const char* items = take(static_cast<uint64_t>(count) * item, element, i);
       if (prop.role != Role::kIndices) continue;
       if (count < 3)
-        fail_byte(body_.file, at, "face " + std::to_string(i) + " has " + std::to_string(count) +
-                                      " vertices (at least 3 needed)");
+        fail_byte(body_.file, at,
+                  "face " + std::to_string(i) + " has " + std::to_string(count) +
+                      " vertices (at least 3 needed)");
       for (int64_t k = 0; k < count; ++k) {
         const int64_t index = load_int(items + k * item, prop.type, swap_);
         if (index < 0 || static_cast<uint64_t>(index) >= body_.vertex_count)
@@ -337,8 +361,8 @@ class AsciiBody {
   void expect_end() {
     std::string_view token = next();
     if (!token.empty())
-      fail_line(body_.file, line_, "unexpected data after the last element " + quote(token) +
-                                       " (wrong counts?)");
+      fail_line(body_.file, line_,
+                "unexpected data after the last element " + quote(token) + " (wrong counts?)");
   }
 
  private:
@@ -364,8 +388,8 @@ class AsciiBody {
     std::string_view token = need(element, i);
     int64_t value;
     if (!parse_integer(token, value))
-      fail_line(body_.file, line_, "expected an integer in " + instance_name(element, i) +
-                                       ", found " + quote(token));
+      fail_line(body_.file, line_,
+                "expected an integer in " + instance_name(element, i) + ", found " + quote(token));
     return value;
   }
 
@@ -377,27 +401,32 @@ class AsciiBody {
         if (prop.role == Role::kSkip) {
           double ignored;
           if (!parse_double(token, ignored))
-            fail_line(body_.file, line_, "expected a number in " + instance_name(element, i) +
-                                             ", found " + quote(token));
+            fail_line(
+                body_.file, line_,
+                "expected a number in " + instance_name(element, i) + ", found " + quote(token));
           continue;
         }
         const char axis = prop.role == Role::kX ? 'x' : prop.role == Role::kY ? 'y' : 'z';
-        (axis == 'x' ? p.x : axis == 'y' ? p.y : p.z) =
-            parse_coordinate(token, body_.file, line_, axis);
+        (axis == 'x'   ? p.x
+         : axis == 'y' ? p.y
+                       : p.z) = parse_coordinate(token, body_.file, line_, axis);
         continue;
       }
       const int64_t count = need_integer(element, i);
-      if (count < 0) fail_line(body_.file, line_, "negative list size in " + instance_name(element, i));
+      if (count < 0)
+        fail_line(body_.file, line_, "negative list size in " + instance_name(element, i));
       if (prop.role == Role::kIndices && count < 3)
-        fail_line(body_.file, line_, "face " + std::to_string(i) + " has " + std::to_string(count) +
-                                         " vertices (at least 3 needed)");
+        fail_line(body_.file, line_,
+                  "face " + std::to_string(i) + " has " + std::to_string(count) +
+                      " vertices (at least 3 needed)");
       for (int64_t k = 0; k < count; ++k) {
         if (prop.role != Role::kIndices) {
           std::string_view token = need(element, i);
           double ignored;
           if (!parse_double(token, ignored))
-            fail_line(body_.file, line_, "expected a number in " + instance_name(element, i) +
-                                             ", found " + quote(token));
+            fail_line(
+                body_.file, line_,
+                "expected a number in " + instance_name(element, i) + ", found " + quote(token));
           continue;
         }
         const int64_t index = need_integer(element, i);

@@ -68,7 +68,7 @@ PolygonMesh read_binary(const std::string& file, std::string_view data, uint64_t
   for (uint64_t t = 0; t < count; ++t) {
     const uint64_t offset = kHeaderBytes + t * kTriangleBytes;
     const char* record = data.data() + offset;
-    for (int corner = 0; corner < 3; ++corner) {
+    for (size_t corner = 0; corner < 3; ++corner) {
       const char* xyz = record + 12 + 12 * corner;
       Vec3 p{load_float(xyz), load_float(xyz + 4), load_float(xyz + 8)};
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -106,19 +106,18 @@ PolygonMesh read_ascii(const std::string& file, std::string_view data) {
   std::string_view line;
   State state = State::kOutside;
   size_t loop_start = 0;
-  bool any_solid = false;
   while (lines.next(line)) {
     const uint64_t n = lines.line_number();
     std::string_view keyword = next_token(line);
     if (keyword.empty()) continue;
     auto unexpected = [&] {
-      fail_line(file, n, "expected " + std::string(kExpected[static_cast<int>(state)]) +
-                             ", found " + quote(keyword));
+      fail_line(file, n,
+                "expected " + std::string(kExpected[static_cast<int>(state)]) + ", found " +
+                    quote(keyword));
     };
     switch (state) {
       case State::kOutside:
         if (!keyword_is(keyword, "solid")) unexpected();
-        any_solid = true;
         state = State::kSolid;
         break;
       case State::kSolid:
@@ -148,7 +147,8 @@ PolygonMesh read_ascii(const std::string& file, std::string_view data) {
         if (keyword_is(keyword, "endloop")) {
           const size_t size = mesh.face_vertices.size() - loop_start;
           if (size < 3)
-            fail_line(file, n, "facet with " + std::to_string(size) + " vertices (at least 3 needed)");
+            fail_line(file, n,
+                      "facet with " + std::to_string(size) + " vertices (at least 3 needed)");
           state = State::kLoopDone;
           break;
         }
@@ -173,11 +173,10 @@ PolygonMesh read_ascii(const std::string& file, std::string_view data) {
         break;
     }
   }
-  if (!any_solid) fail_file(file, "not an STL file (no 'solid' line)");
   if (state != State::kOutside)
-    fail_line(file, lines.line_number(),
-              "unexpected end of file: expected " +
-                  std::string(kExpected[static_cast<int>(state)]));
+    fail_line(
+        file, lines.line_number(),
+        "unexpected end of file: expected " + std::string(kExpected[static_cast<int>(state)]));
   if (mesh.face_count() == 0) fail_file(file, "no faces");
   return mesh;
 }
@@ -198,13 +197,12 @@ PolygonMesh read_stl(const std::string& file, std::string_view data) {
   if (start.size() >= 5 && keyword_is(start.substr(0, 5), "solid") && !has_nul)
     return read_ascii(file, data);
   if (data.size() < kHeaderBytes)
-    fail_byte(file, data.size(),
-              "truncated: not an ASCII STL (no 'solid') and shorter than the 84-byte binary header");
+    fail_byte(file, data.size(), "truncated: neither ASCII STL nor a binary STL header (84 bytes)");
   const uint64_t count = load_u32(data.data() + 80);
   fail_byte(file, 80,
             "binary STL declares " + std::to_string(count) + " triangles, which need " +
-                std::to_string(kHeaderBytes + count * kTriangleBytes) + " bytes, but the file has " +
-                std::to_string(data.size()));
+                std::to_string(kHeaderBytes + count * kTriangleBytes) +
+                " bytes, but the file has " + std::to_string(data.size()));
 }
 
 }  // namespace cover::detail

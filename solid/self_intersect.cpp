@@ -1,12 +1,12 @@
 // Exact self-intersection test (validate.h) and the exact predicates of detail/exact_geometry.h.
-// The only file of solid/ that includes CGAL. All predicates are CGAL's Epick filtered predicates on
-// the input doubles (exact); no point is ever constructed.
-// Notation:
+// The only file of solid/ that includes CGAL. All predicates are CGAL's Epick filtered predicates
+// on the input doubles (exact); no point is ever constructed. Notation:
 //   ring       a face's index list without consecutive repeats (cyclic)
 //   triangle   three vertex indices and the face it covers; collinear triangles are dropped
-//   tiling     the triangles of one face cover exactly the face's region: a fan when the ring is
-//              convex, else a constrained triangulation of the ring in the face's projection
-//              plane with even-odd inside marking (false pairs cancel, so holes stay holes)
+//   tiling     the triangles of one face cover exactly the face's region, every ring vertex a
+//              tile corner: a fan when the ring is strictly convex, else a constrained
+//              triangulation of the ring in the face's projection plane with even-odd inside
+//              marking (false pairs cancel, so holes stay holes)
 // Two triangles of the same face never count as intersecting. For other pairs the tests follow
 // CGAL::Polygon_mesh_processing::self_intersections (internal::do_faces_intersect), with shared
 // vertices decided by index:
@@ -15,17 +15,20 @@
 //   1 shared  intersecting iff the edge opposite the shared vertex in one meets the other triangle
 //   0 shared  CGAL::do_intersect (touching counts)
 
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <span>
-#include <vector>
-
 #include <CGAL/Constrained_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_data_structure_2.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
 
 #include "solid/detail/exact_geometry.h"
 #include "solid/validate.h"
@@ -40,12 +43,13 @@ using Point3 = K::Point_3;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, K>;
 using Fb = CGAL::Constrained_triangulation_face_base_2<
     K, CGAL::Triangulation_face_base_with_info_2<int, K>>;  // info: nesting level
-using Cdt = CGAL::Constrained_triangulation_2<
-    K, CGAL::Triangulation_data_structure_2<Vb, Fb>,
-    CGAL::No_constraint_intersection_requiring_constructions_tag>;
+using Cdt =
+    CGAL::Constrained_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>,
+                                      CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
-using Box = CGAL::Box_intersection_d::Box_with_info_d<
-    double, 3, uint32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+using Box =
+    CGAL::Box_intersection_d::Box_with_info_d<double, 3, uint32_t,
+                                              CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
 
 /// Above this many vertices a ring is tiled by the constrained triangulation (the convexity
 /// test is quadratic).
@@ -76,7 +80,8 @@ class Tiler {
     }
     axis_ = dominant_axis();
     if (is_convex()) {
-      for (size_t i = 1; i + 1 < ring_.size(); ++i) add_triangle(ring_[0], ring_[i], ring_[i + 1], f);
+      for (size_t i = 1; i + 1 < ring_.size(); ++i)
+        add_triangle(ring_[0], ring_[i], ring_[i + 1], f);
       return true;
     }
     return add_constrained(f);
@@ -111,8 +116,11 @@ class Tiler {
     return {p.x(), p.y()};
   }
 
-  /// True when every vertex lies on one closed side of every edge's line (the same side for all
-  /// edges) and no index repeats: the projected ring is convex and its fan tiles it.
+  /// True when the projected ring is strictly convex: no index repeats, every vertex lies on one
+  /// closed side of every edge's line (the same side for all edges), and no three consecutive
+  /// vertices are collinear. Its fan then tiles it with every ring vertex a corner of a tile (a
+  /// vertex in the middle of a straight side would vanish from a fan's tiles and then look like a
+  /// contact with the neighbouring face).
   bool is_convex() const {
     const size_t n = ring_.size();
     if (n > kMaxFanRing) return false;
@@ -124,6 +132,7 @@ class Tiler {
       const Point2 a = project(ring_[i]), b = project(ring_[(i + 1) % n]);
       for (size_t k = 0; k < n; ++k) {
         const CGAL::Orientation o = CGAL::orientation(a, b, project(ring_[k]));
+        if (o == CGAL::COLLINEAR && k == (i + 2) % n) return false;
         positive |= o == CGAL::POSITIVE;
         negative |= o == CGAL::NEGATIVE;
       }
@@ -150,8 +159,8 @@ class Tiler {
     try {
       for (size_t i = 0; i < ring_.size(); ++i) {
         const uint64_t u = ring_[i], v = ring_[(i + 1) % ring_.size()];
-        const auto range = std::equal_range(keys_.begin(), keys_.end(),
-                                            std::min(u, v) << 32 | std::max(u, v));
+        const auto range =
+            std::equal_range(keys_.begin(), keys_.end(), std::min(u, v) << 32 | std::max(u, v));
         if ((range.second - range.first) % 2 == 1 && handles[i] != handles[(i + 1) % ring_.size()])
           cdt.insert_constraint(handles[i], handles[(i + 1) % ring_.size()]);
       }
@@ -214,8 +223,6 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Poin
         ia = i;
         ib = j;
       }
-  const K::Triangle_3 ta(p[a.v[0]], p[a.v[1]], p[a.v[2]]);
-  const K::Triangle_3 tb(p[b.v[0]], p[b.v[1]], p[b.v[2]]);
   if (shared == 3) return true;
   if (shared == 2) {
     int ra = 0, rb = 0;  // the unshared (third) vertices
@@ -226,6 +233,8 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Poin
     return CGAL::coplanar(q0, q1, p[a.v[ra]], p[b.v[rb]]) &&
            CGAL::coplanar_orientation(q0, q1, p[a.v[ra]], p[b.v[rb]]) == CGAL::POSITIVE;
   }
+  const K::Triangle_3 ta(p[a.v[0]], p[a.v[1]], p[a.v[2]]);
+  const K::Triangle_3 tb(p[b.v[0]], p[b.v[1]], p[b.v[2]]);
   if (shared == 1) {
     const K::Segment_3 sa(p[a.v[(ia + 1) % 3]], p[a.v[(ia + 2) % 3]]);
     const K::Segment_3 sb(p[b.v[(ib + 1) % 3]], p[b.v[(ib + 2) % 3]]);

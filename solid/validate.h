@@ -1,16 +1,23 @@
 #pragma once
 // Topological and geometric validation of one leaf mesh (what `cover info` reports per leaf).
-// Edges are undirected vertex-index pairs of the faces' loops; false edges (a pair used once in
-// each direction inside the SAME face, paper §3 Fig. 1) are not edges of the surface and are
-// skipped. Conventions:
+// Edges are undirected vertex-index pairs of the faces' loops; a repeated consecutive index is not
+// an edge. False edges (a pair used once in each direction inside the SAME face, paper §3 Fig. 1)
+// are not edges of the surface: they are never a side of an edge below. Conventions:
 //   boundary edge      used by exactly one face side
 //   non-manifold edge  used by more than two face sides
-//   oriented           every manifold edge is traversed once in each direction
-//   outward            oriented and the signed covering volume is > 0
-//   components         connected components of faces through shared edges
-//   genus              (2·components − χ)/2 with χ = V − E + F over referenced vertices;
-//                      only for closed, manifold, oriented meshes (else -1)
-//   degenerate face    fewer than 3 distinct vertices, or zero area (all vertices collinear, exact)
+//   manifold           no non-manifold edge and no pinched vertex (a vertex whose faces form more
+//                      than one fan, e.g. two cones meeting at their apex)
+//   oriented           every edge with two sides is traversed once in each direction
+//   outward            closed, oriented, and the signed covering volume is > 0
+//   components         connected components of faces through shared edges (faces whose indices
+//                      are all equal have no edge and are ignored)
+//   genus              (2·components − χ)/2, only for closed, manifold, oriented meshes (else -1).
+//                      χ = V − E + F reads each face as a disk bounded by its loop and glued to
+//                      itself along its false edges: V counts vertices on an edge, F faces with an
+//                      edge, E the surface edges plus one per false pair; so a face with L loops
+//                      joined by L−1 false edges counts as a disk with L−1 holes (χ = 2 − L).
+//   degenerate face    all its vertices on one line (exact), including faces with fewer than three
+//                      distinct vertices
 
 #include <cstdint>
 #include <optional>
@@ -33,15 +40,21 @@ struct MeshReport {
   int64_t components = 0;
   int64_t genus = -1;  ///< -1 when not closed/manifold/oriented
   int64_t degenerate_faces = 0;
-  double volume = 0;  ///< signed covering volume (Σ signed tetra volumes from the origin)
+  double volume = 0;  ///< signed covering volume, signed_volume() of measure.h
   std::optional<bool> self_intersecting;  ///< empty when not checked
 };
 
-/// Validates one mesh. Precondition: all indices < vertices.size().
+/// Validates one mesh in O(n log d) for n face indices and largest vertex degree d (plus
+/// self_intersects() when asked). Precondition: all indices < vertices.size().
 MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options = {});
 
-/// Exact self-intersection test of the faces (fan-triangulated); false edges and degenerate
-/// triangles ignored; triangles that share vertices intersect only if they meet elsewhere.
+/// Exact self-intersection test (CGAL Epick predicates on the input doubles). Each face is tiled
+/// exactly: a fan when it is convex, else a constrained triangulation of its loops in its
+/// projection plane (false edges join no region, holes stay empty); a face whose boundary crosses
+/// itself counts as self-intersecting. Tiles of the same face are never tested against each other;
+/// collinear tiles are ignored. Tiles sharing vertex indices intersect only when they meet beyond
+/// the shared vertices (CGAL::Polygon_mesh_processing::self_intersections' rules); distinct indices
+/// at equal coordinates are a contact, hence an intersection.
 bool self_intersects(const PolygonMesh& mesh);
 
 }  // namespace cover

@@ -47,16 +47,18 @@ class Output {
   /// Appends the little-endian bytes of an integer or floating-point value.
   template <typename T>
   void binary(T value) {
-    using Bits = std::conditional_t<sizeof(T) == 1, uint8_t,
-                 std::conditional_t<sizeof(T) == 2, uint16_t,
-                 std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>>>;
+    using Bits = std::conditional_t<
+        sizeof(T) == 1, uint8_t,
+        std::conditional_t<sizeof(T) == 2, uint16_t,
+                           std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>>>;
     auto bits = std::bit_cast<Bits>(value);
     char bytes[sizeof bits];
     for (size_t i = 0; i < sizeof bits; ++i) bytes[i] = static_cast<char>(bits >> (8 * i));
     text({bytes, sizeof bytes});
   }
   void flush() {
-    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), stream_) != buffer_.size())
+    if (!buffer_.empty() &&
+        std::fwrite(buffer_.data(), 1, buffer_.size(), stream_) != buffer_.size())
       detail::fail_file(file_, std::string("cannot write: ") + std::strerror(errno));
     buffer_.clear();
   }
@@ -82,11 +84,13 @@ void check_mesh(const std::string& file, const PolygonMesh& mesh) {
   }
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     if (mesh.face_start[f + 1] < mesh.face_start[f] + 3)
-      detail::fail_file(file, "cannot write: face " + std::to_string(f) + " has fewer than 3 vertices");
+      detail::fail_file(file,
+                        "cannot write: face " + std::to_string(f) + " has fewer than 3 vertices");
     for (uint32_t v : mesh.face(f))
       if (v >= mesh.vertices.size())
         detail::fail_file(file, "cannot write: face " + std::to_string(f) + " references vertex " +
-                                    std::to_string(v) + " of " + std::to_string(mesh.vertices.size()));
+                                    std::to_string(v) + " of " +
+                                    std::to_string(mesh.vertices.size()));
   }
 }
 
@@ -145,7 +149,8 @@ void write_ply(Output& out, const PolygonMesh& mesh) {
 void write_stl(Output& out, const PolygonMesh& mesh, const std::string& file) {
   uint64_t triangles = 0;
   for (size_t f = 0; f < mesh.face_count(); ++f) triangles += mesh.face(f).size() - 2;
-  if (triangles > 0xFFFFFFFFull) detail::fail_file(file, "cannot write: more than 2^32-1 STL triangles");
+  if (triangles > 0xFFFFFFFFull)
+    detail::fail_file(file, "cannot write: more than 2^32-1 STL triangles");
   std::string header = "binary STL written by Cover";
   header.resize(80, ' ');
   out.text(header);
@@ -176,7 +181,8 @@ void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh) {
   std::filesystem::path temp = path;
   temp += ".tmp-" + std::to_string(::getpid());
   std::FILE* stream = std::fopen(temp.c_str(), "wb");
-  if (stream == nullptr) detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
+  if (stream == nullptr)
+    detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
   try {
     Output out(stream, file);
     if (ext == ".off")

@@ -1,6 +1,7 @@
 #pragma once
 // Exact geometric predicates used by solid/ without exposing CGAL (implemented with CGAL's Epick
-// filtered predicates in self_intersect.cpp, the one translation unit of solid/ that includes CGAL).
+// filtered predicates in self_intersect.cpp, the one translation unit of solid/ that includes
+// CGAL).
 
 #include <cstdint>
 #include <span>

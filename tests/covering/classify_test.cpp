@@ -38,7 +38,7 @@ void expect_box_classes(const Solid& s, Vec3 lo, Vec3 hi) {
         EXPECT_EQ(one(s, p), expected) << p.x << " " << p.y << " " << p.z;
       }
   EXPECT_EQ(one(s, {hi.x + 1, ys[1], zs[1]}), PC::kOutside);
-  EXPECT_EQ(one(s, {xs[1], lo.y - 1e-300, zs[1]}), PC::kOutside);
+  EXPECT_EQ(one(s, {xs[1], std::nextafter(lo.y, -1e300), zs[1]}), PC::kOutside);
   EXPECT_EQ(one(s, {xs[1], ys[1], std::nextafter(hi.z, 1e300)}), PC::kOutside);
   EXPECT_EQ(one(s, {xs[1], ys[1], std::nextafter(hi.z, -1e300)}), PC::kInside);
 }

@@ -6,11 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <ostream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include "solid/mesh_io.h"
 #include "tests/helpers.h"
@@ -50,7 +53,8 @@ PolygonMesh weld(const PolygonMesh& m) {
   std::map<std::tuple<double, double, double>, uint32_t> index;
   std::vector<uint32_t> remap;
   for (const Vec3& v : m.vertices) {
-    auto [it, added] = index.try_emplace({v.x, v.y, v.z}, static_cast<uint32_t>(out.vertices.size()));
+    auto [it, added] =
+        index.try_emplace({v.x, v.y, v.z}, static_cast<uint32_t>(out.vertices.size()));
     if (added) out.vertices.push_back(v);
     remap.push_back(it->second);
   }
@@ -78,12 +82,13 @@ PolygonMesh torus(uint32_t n, uint32_t k, double R = 3, double r = 1) {
   for (uint32_t i = 0; i < n; ++i)
     for (uint32_t j = 0; j < k; ++j) {
       const double u = tau * i / n, v = tau * j / k;
-      m.vertices.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
-                            r * std::sin(v)});
+      m.vertices.push_back({(R + r * std::cos(v)) * std::cos(u),
+                            (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
     }
   auto id = [&](uint32_t i, uint32_t j) { return (i % n) * k + j % k; };
   for (uint32_t i = 0; i < n; ++i)
-    for (uint32_t j = 0; j < k; ++j) m.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    for (uint32_t j = 0; j < k; ++j)
+      m.add_face({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
   return m;
 }
 
@@ -98,10 +103,10 @@ PolygonMesh picture_frame() {
     for (const auto& p : hole) m.vertices.push_back({p[0], p[1], z});
   }
   m.add_face({9, 10, 11, 8, 12, 15, 14, 13, 12, 8});  // top: 8→12 and 12→8 are false edges
-  m.add_face({3, 2, 1, 0, 4, 5, 6, 7, 4, 0});        // bottom: 0→4 and 4→0 are false edges
+  m.add_face({3, 2, 1, 0, 4, 5, 6, 7, 4, 0});         // bottom: 0→4 and 4→0 are false edges
   for (uint32_t k = 0; k < 4; ++k) {
     const uint32_t k1 = (k + 1) % 4;
-    m.add_face({k, k1, 8 + k1, 8 + k});          // outer wall
+    m.add_face({k, k1, 8 + k1, 8 + k});            // outer wall
     m.add_face({4 + k1, 4 + k, 12 + k, 12 + k1});  // hole wall
   }
   return m;
@@ -199,6 +204,43 @@ TEST(ValidateMesh, CubesSharingOnlyAVertexArePinched) {
   EXPECT_EQ(r.genus, -1);
   EXPECT_EQ(r.components, 2);
   EXPECT_FALSE(*r.self_intersecting);
+}
+
+TEST(ValidateMesh, OpenFansMeetingAtAVertexArePinched) {
+  PolygonMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+  m.add_face({0, 1, 2});
+  m.add_face({0, 3, 4});  // touches the first triangle at vertex 0 only
+  MeshReport r = validate_mesh(m);
+  EXPECT_EQ(r.boundary_edges, 6);
+  EXPECT_FALSE(r.manifold);
+  EXPECT_EQ(r.components, 2);
+  m.add_face({0, 2, 3});  // now one fan around vertex 0
+  r = validate_mesh(m);
+  EXPECT_TRUE(r.manifold);
+  EXPECT_EQ(r.components, 1);
+  EXPECT_EQ(r.boundary_edges, 5);
+}
+
+TEST(ValidateMesh, MoebiusStripIsManifoldButNotOriented) {
+  const uint32_t n = 16;
+  PolygonMesh m;
+  for (uint32_t i = 0; i < n; ++i) {
+    const double t = 2 * std::numbers::pi * i / n;
+    const Vec3 c{3 * std::cos(t), 3 * std::sin(t), 0};
+    const Vec3 d =
+        std::cos(t / 2) * Vec3{std::cos(t), std::sin(t), 0} + std::sin(t / 2) * Vec3{0, 0, 1};
+    m.vertices.push_back(c + d);      // 2i
+    m.vertices.push_back(c - 1 * d);  // 2i + 1
+  }
+  for (uint32_t i = 0; i + 1 < n; ++i) m.add_face({2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1});
+  m.add_face({2 * n - 2, 1, 0, 2 * n - 1});  // the half twist: a(n) = b(0), b(n) = a(0)
+  const MeshReport r = validate_mesh(m);
+  EXPECT_TRUE(r.manifold);
+  EXPECT_FALSE(r.oriented);
+  EXPECT_EQ(r.boundary_edges, 2 * n);
+  EXPECT_EQ(r.components, 1);
+  EXPECT_EQ(r.genus, -1);
 }
 
 TEST(ValidateMesh, SeparateCubesAreTwoComponents) {
@@ -312,7 +354,7 @@ TEST(SelfIntersects, DegenerateTrianglesAreIgnored) {
 struct RealMesh {
   std::string name;
   int64_t genus;
-  friend void PrintTo(const RealMesh& m, std::ostream* os) { *os << m.name; }
+  friend std::ostream& operator<<(std::ostream& os, const RealMesh& m) { return os << m.name; }
 };
 
 class CleanCgalMesh : public testing::TestWithParam<RealMesh> {};
@@ -329,11 +371,10 @@ TEST_P(CleanCgalMesh, IsAValidSolid) {
 
 INSTANTIATE_TEST_SUITE_P(Meshes, CleanCgalMesh,
                          testing::Values(RealMesh{"elephant.off", 3},  // V − E + F = −4
-                                         RealMesh{"knot1.off", 1},
-                                         RealMesh{"armadillo.off", 0}, RealMesh{"bunny00.off", 0},
-                                         RealMesh{"fandisk.off", 0}),
-                         [](const auto& info) {
-                           return info.param.name.substr(0, info.param.name.find('.'));
+                                         RealMesh{"knot1.off", 1}, RealMesh{"armadillo.off", 0},
+                                         RealMesh{"bunny00.off", 0}, RealMesh{"fandisk.off", 0}),
+                         [](const auto& p) {
+                           return p.param.name.substr(0, p.param.name.find('.'));
                          });
 
 class SelfIntersectingCgalMesh : public testing::TestWithParam<std::string> {};
@@ -344,7 +385,7 @@ TEST_P(SelfIntersectingCgalMesh, IsReported) {
 
 INSTANTIATE_TEST_SUITE_P(Meshes, SelfIntersectingCgalMesh,
                          testing::Values("cow.off", "camel.off", "bull.off", "man.off"),
-                         [](const auto& info) { return info.param.substr(0, info.param.find('.')); });
+                         [](const auto& p) { return p.param.substr(0, p.param.find('.')); });
 
 }  // namespace
 }  // namespace cover
