@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 namespace cover {
 
@@ -19,6 +20,10 @@ void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_
                         body(c * grain, std::min(n, (c + 1) * grain));
                     },
                     tbb::simple_partitioner());
+}
+
+void parallel_invoke(const std::function<void()>& f, const std::function<void()>& g) {
+  tbb::parallel_invoke(f, g);
 }
 
 struct ThreadLimit::Impl {

@@ -12,6 +12,9 @@ namespace cover {
 /// Calls body(begin, end) over consecutive chunks of [0, n); serial when n <= grain.
 void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_t)>& body);
 
+/// Runs f() and g(), possibly in parallel; returns when both are done.
+void parallel_invoke(const std::function<void()>& f, const std::function<void()>& g);
+
 /// Limits the worker threads of every parallel_for while alive (n <= 0: all cores).
 class ThreadLimit {
  public:

@@ -217,7 +217,7 @@ Unsigned load_unsigned(const char* bytes, bool swap) {
   return value;
 }
 
-/// Reads a binary value of type `t` as a double (any type) or int64 (integer types).
+/// Reads a binary value of any type `t` as a double.
 double load_double(const char* bytes, Type t, bool swap) {
   switch (t) {
     case Type::kFloat32:
@@ -240,6 +240,7 @@ double load_double(const char* bytes, Type t, bool swap) {
   return 0;
 }
 
+/// Reads a binary value of integer type `t`.
 int64_t load_int(const char* bytes, Type t, bool swap) {
   switch (t) {
     case Type::kInt8:

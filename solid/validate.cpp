@@ -19,6 +19,9 @@
 #include "solid/validate.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <span>
+#include <vector>
 
 #include "solid/detail/exact_geometry.h"
 #include "solid/measure.h"

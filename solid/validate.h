@@ -40,7 +40,7 @@ struct MeshReport {
   int64_t components = 0;
   int64_t genus = -1;  ///< -1 when not closed/manifold/oriented
   int64_t degenerate_faces = 0;
-  double volume = 0;  ///< signed covering volume, signed_volume() of measure.h
+  double volume = 0;                      ///< signed covering volume, signed_volume() of measure.h
   std::optional<bool> self_intersecting;  ///< empty when not checked
 };
 

@@ -1,5 +1,6 @@
 #pragma once
-// Internals shared by the mesh readers (mesh_io.cpp, read_*.cpp); not part of the public API.
+// Internals shared by the mesh readers and the writer (mesh_io.cpp, read_*.cpp, write_mesh.cpp);
+// not part of the public API.
 // Notation:
 //   file   the path as the caller gave it, used verbatim as the prefix of every error message
 //   data   the whole file contents (read once, parsed in place)
@@ -76,6 +77,7 @@ class LineReader {
   uint64_t line_ = 0;
 };
 
+/// Whitespace inside a line (the newline is the line separator, not a blank).
 inline bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }

@@ -305,6 +305,24 @@ TEST(ValidateMesh, EmptyMesh) {
   EXPECT_FALSE(*r.self_intersecting);
 }
 
+TEST(SelfIntersects, VertexInTheMiddleOfAStraightSideIsNotAContact) {
+  // Top and front faces of a cube share the edge 4-5 split at its midpoint 8 (libcgal-demo's
+  // mpi.off has such faces). A fan from vertex 4 would drop 8 from the top face's tiles.
+  PolygonMesh m = cube();
+  m.vertices.push_back({0.5, 0, 1});
+  PolygonMesh split;
+  split.vertices = m.vertices;
+  split.add_face({0, 2, 3, 1});
+  split.add_face({4, 8, 5, 7, 6});
+  split.add_face({0, 1, 5, 8, 4});
+  split.add_face({2, 6, 7, 3});
+  split.add_face({0, 4, 6, 2});
+  split.add_face({1, 3, 7, 5});
+  const MeshReport r = validate_mesh(split);
+  expect_valid_solid(r, 0);
+  EXPECT_FALSE(*r.self_intersecting);
+}
+
 TEST(SelfIntersects, InterpenetratingCubes) {
   EXPECT_TRUE(self_intersects(concat(cube(), cube({0.5, 0.5, 0.5}))));
 }

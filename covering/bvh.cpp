@@ -1,0 +1,114 @@
+#include "covering/bvh.h"
+
+#include <algorithm>
+
+#include "covering/predicates.h"
+#include "solid/parallel.h"
+
+namespace cover {
+namespace {
+
+/// Nodes of a subtree over n triangles (median split, leaves of at most leaf_size).
+uint32_t subtree_nodes(uint32_t n, uint32_t leaf_size) {
+  if (n <= leaf_size) return 1;
+  return 1 + subtree_nodes(n / 2, leaf_size) + subtree_nodes(n - n / 2, leaf_size);
+}
+
+/// A triangle with its centroid and input position (the tie-breaker that keeps splits
+/// deterministic).
+struct Item {
+  Bvh::Tri tri;
+  Vec3 centroid;
+  uint32_t index;
+};
+
+struct Builder {
+  std::vector<Item>& items;
+  std::vector<Bvh::Node>& nodes;
+  const BvhOptions& options;
+
+  /// Builds the subtree of items[begin, end) into nodes[slot ...].
+  void build(uint32_t slot, uint32_t begin, uint32_t end) {
+    const uint32_t n = end - begin;
+    Bvh::Node& node = nodes[slot];
+    Bbox cb;
+    for (uint32_t i = begin; i < end; ++i) {
+      node.box.add(items[i].tri.a);
+      node.box.add(items[i].tri.b);
+      node.box.add(items[i].tri.c);
+      cb.add(items[i].centroid);
+    }
+    if (n <= options.leaf_size) {
+      node.first = begin;
+      node.count = n;
+      return;
+    }
+    const Vec3 ext = cb.max - cb.min;
+    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+    const uint32_t mid = begin + n / 2;
+    std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                     [axis](const Item& l, const Item& r) {
+                       const double cl = l.centroid[axis], cr = r.centroid[axis];
+                       return cl < cr || (cl == cr && l.index < r.index);
+                     });
+    const uint32_t left = slot + 1;
+    const uint32_t right = left + subtree_nodes(n / 2, options.leaf_size);
+    node.first = right;
+    node.count = 0;
+    if (n >= options.parallel_threshold) {
+      parallel_invoke([&] { build(left, begin, mid); }, [&] { build(right, mid, end); });
+    } else {
+      build(left, begin, mid);
+      build(right, mid, end);
+    }
+  }
+};
+
+}  // namespace
+
+Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
+  const size_t faces = solid.face_count();
+  // Covering triangles per face, counted first so faces can be processed in parallel.
+  std::vector<uint32_t> start(faces + 1, 0);
+  for (size_t f = 0; f < faces; ++f) {
+    const size_t k = solid.face(f).size();
+    start[f + 1] = start[f] + static_cast<uint32_t>(k >= 3 ? k - 2 : 0);
+  }
+  std::vector<Tri> all(start[faces]);
+  std::vector<uint8_t> keep(all.size(), 0);
+  parallel_for(faces, 1024, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      auto face = solid.face(f);
+      const bool rev = solid.face_sign[f] < 0;  // back to the leaf's own orientation
+      auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
+      for (size_t i = 1; i + 1 < face.size(); ++i) {
+        Tri t{vtx(0), vtx(i), vtx(i + 1), solid.face_leaf[f], static_cast<uint32_t>(f)};
+        const size_t slot = start[f] + i - 1;
+        keep[slot] = orient2d(t.a, t.b, t.c, 0) != 0 || orient2d(t.a, t.b, t.c, 1) != 0 ||
+                     orient2d(t.a, t.b, t.c, 2) != 0;
+        all[slot] = t;
+      }
+    }
+  });
+  std::vector<Item> items;
+  for (size_t i = 0; i < all.size(); ++i)
+    if (keep[i]) {
+      const Tri& t = all[i];
+      items.push_back({t, (1.0 / 3.0) * (t.a + t.b + t.c), static_cast<uint32_t>(items.size())});
+    }
+  if (items.empty()) return;
+  BvhOptions o = options;
+  o.leaf_size = std::max<uint32_t>(1, o.leaf_size);
+  const auto n = static_cast<uint32_t>(items.size());
+  nodes_.resize(subtree_nodes(n, o.leaf_size));
+  Builder{items, nodes_, o}.build(0, 0, n);
+  tris_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) tris_[i] = items[i].tri;
+  for (const Node& node : nodes_) leaves_ += node.count > 0;
+}
+
+size_t Bvh::memory_bytes() const {
+  return tris_.capacity() * sizeof(Tri) + nodes_.capacity() * sizeof(Node);
+}
+
+}  // namespace cover

@@ -1,0 +1,55 @@
+#pragma once
+// Bounding volume hierarchy over the covering triangles of every leaf (DESIGN.md §2).
+//
+// Why hand-written: queries need exact culling on double boxes for an axis-aligned half-line
+// (classification) and for general rays, plus the triangle's leaf and face; CGAL's AABB_tree
+// (the peer) stores a primitive per node with slower traversal (bench/compare_cgal measures both).
+// Layout: nodes in depth-first order; an inner node's left child is the next node, its right
+// child is `right`. Leaves own triangles [first, first + count). Boxes are exact min/max of the
+// double coordinates, so "box misses ⇒ triangle misses" holds exactly.
+// Build: median split of centroids along the widest axis; the node count of a subtree depends only
+// on its size, so subtrees are built in parallel into pre-computed slices (deterministic layout).
+
+#include <cstdint>
+#include <vector>
+
+#include "solid/solid.h"
+
+namespace cover {
+
+struct BvhOptions {
+  uint32_t leaf_size = 4;           ///< max triangles per leaf node
+  size_t parallel_threshold = 8192; ///< subtrees at least this large are built in parallel
+};
+
+class Bvh {
+ public:
+  /// A covering triangle (v0, vi, vi+1) of a face, in its LEAF's own orientation (outward).
+  struct Tri {
+    Vec3 a, b, c;
+    uint32_t leaf = 0;
+    uint32_t face = 0;  ///< face index in the Solid
+  };
+  struct Node {
+    Bbox box;
+    uint32_t first = 0;  ///< leaf: first triangle; inner: index of the right child
+    uint32_t count = 0;  ///< leaf: number of triangles; inner: 0
+  };
+
+  /// Builds over every non-degenerate covering triangle of `solid` (collinear ones are dropped:
+  /// they bound no volume and no perturbed ray crosses them).
+  explicit Bvh(const Solid& solid, const BvhOptions& options = {});
+
+  const std::vector<Tri>& triangles() const { return tris_; }
+  const std::vector<Node>& nodes() const { return nodes_; }
+  size_t leaf_count() const { return leaves_; }
+  /// Bytes held by the structure (triangles + nodes).
+  size_t memory_bytes() const;
+
+ private:
+  std::vector<Tri> tris_;
+  std::vector<Node> nodes_;
+  size_t leaves_ = 0;
+};
+
+}  // namespace cover
