@@ -1,5 +1,12 @@
 #include "covering/classify.h"
 
+#include <algorithm>
+#include <functional>
+#include <cmath>
+#include <mutex>
+#include <optional>
+
+#include "covering/detail/cell_grid.h"
 #include "covering/detail/local.h"
 #include "covering/detail/triangles.h"
 #include "covering/predicates.h"
@@ -8,53 +15,107 @@
 namespace cover {
 namespace {
 
-using detail::CoverTri;
 using detail::LeafTriangles;
 
-/// Sign of the (y, z) orientation of (a, b, q) with q perturbed to q + (0, ε, ε²).
-int perturbed_orient_yz(const Vec3& a, const Vec3& b, const Vec3& q) {
-  const int o = orient2d(a, b, q, 0);
+/// An axis-aligned half-line direction s·e_k; u, w are the other two axes in cyclic order.
+struct AxisRay {
+  int k = 0, u = 1, w = 2;
+  int s = 1;
+};
+AxisRay axis_ray(int k, int s) { return {k, (k + 1) % 3, (k + 2) % 3, s}; }
+
+/// Sign of the projected orientation of (a, b, q) (dropping axis k) with q perturbed to
+/// q + ε·e_u + ε²·e_w: o(q) − (b_w − a_w)·ε + (b_u − a_u)·ε².
+int perturbed_orient(const Vec3& a, const Vec3& b, const Vec3& q, const AxisRay& r) {
+  const int o = orient2d(a, b, q, r.k);
   if (o != 0) return o;
-  // o(q + (0,ε,ε²)) = o(q) − (b.z − a.z)·ε + (b.y − a.y)·ε²
-  if (a.z != b.z) return a.z > b.z ? 1 : -1;
-  if (a.y != b.y) return b.y > a.y ? 1 : -1;
+  if (a[r.w] != b[r.w]) return a[r.w] > b[r.w] ? 1 : -1;
+  if (a[r.u] != b[r.u]) return b[r.u] > a[r.u] ? 1 : -1;
   return 0;
 }
 
-/// Adds the crossing of the +x ray from q with t to `winding`; returns true when q lies on t.
-bool visit(const CoverTri& t, const Vec3& q, int& winding) {
-  if (q.y < t.box.min.y || q.y > t.box.max.y || q.z < t.box.min.z || q.z > t.box.max.z ||
-      q.x > t.box.max.x)
+/// Adds the crossing of the half-line q + t·s·e_k (t > 0) with triangle abc to `winding`;
+/// returns true when q lies on the triangle. Precondition: abc is not degenerate.
+bool visit(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q, const AxisRay& r,
+           int& winding) {
+  const int k = r.k, u = r.u, w = r.w;
+  if (q[u] < std::min({a[u], b[u], c[u]}) || q[u] > std::max({a[u], b[u], c[u]}) ||
+      q[w] < std::min({a[w], b[w], c[w]}) || q[w] > std::max({a[w], b[w], c[w]}))
     return false;
-  const int o3 = orient3d(t.a, t.b, t.c, q);  // sign of n·(q − a)
-  if (o3 == 0) return detail::on_triangle(t, q);
-  const int nx = orient2d(t.a, t.b, t.c, 0);  // sign of the normal's x component
-  // The ray meets the plane at t > 0 iff q is behind the plane as seen along +x.
-  if (nx == 0 || o3 != -nx) return false;
-  if (perturbed_orient_yz(t.a, t.b, q) == nx && perturbed_orient_yz(t.b, t.c, q) == nx &&
-      perturbed_orient_yz(t.c, t.a, q) == nx)
-    winding += nx;  // leaving through an outward face (+1) or entering (−1)
+  if (r.s > 0 ? q[k] > std::max({a[k], b[k], c[k]}) : q[k] < std::min({a[k], b[k], c[k]}))
+    return false;
+  const int o3 = orient3d(a, b, c, q);  // sign of n·(q − a)
+  if (o3 == 0) return detail::on_triangle(a, b, c, q);
+  const int nk = orient2d(a, b, c, k);  // sign of the normal's k component
+  // The half-line meets the plane ahead (t > 0) iff q is behind it as seen along s·e_k.
+  if (nk == 0 || o3 != -r.s * nk) return false;
+  if (perturbed_orient(a, b, q, r) == nk && perturbed_orient(b, c, q, r) == nk &&
+      perturbed_orient(c, a, q, r) == nk)
+    winding += r.s * nk;  // leaving through an outward face counts +1, entering −1
   return false;
 }
 
-void windings(const LeafTriangles& lt, const Vec3& q, std::vector<int>& winding,
-              std::vector<uint8_t>& on_surface) {
+/// Per-leaf winding numbers and on-surface flags at q, from every covering triangle.
+void brute_windings(const LeafTriangles& lt, const Vec3& q, std::vector<int>& winding,
+                    std::vector<uint8_t>& on_surface) {
   const size_t leaves = lt.leaf_start.size() - 1;
   winding.assign(leaves, 0);
   on_surface.assign(leaves, 0);
-  for (size_t l = 0; l < leaves; ++l) {
-    int w = 0;
-    bool on = false;
-    for (uint32_t i = lt.leaf_start[l]; i < lt.leaf_start[l + 1]; ++i) on |= visit(lt.tris[i], q, w);
-    winding[l] = w;
-    on_surface[l] = on;
+  for (size_t l = 0; l < leaves; ++l)
+    for (uint32_t i = lt.leaf_start[l]; i < lt.leaf_start[l + 1]; ++i) {
+      const detail::CoverTri& t = lt.tris[i];
+      on_surface[l] |= visit(t.a, t.b, t.c, q, axis_ray(0, 1), winding[l]);
+    }
+}
+
+/// The same from the BVH: only nodes whose box meets the half-line. The half-line runs along
+/// the axis direction that leaves the solid's box soonest (fewer nodes to visit); the winding
+/// number does not depend on that choice.
+void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
+                  std::vector<uint8_t>& on_surface) {
+  std::fill(winding.begin(), winding.end(), 0);
+  std::fill(on_surface.begin(), on_surface.end(), 0);
+  const auto& nodes = bvh.nodes();
+  if (nodes.empty()) return;
+  const auto& tris = bvh.triangles();
+  const Bbox& all = nodes[0].box;
+  AxisRay r = axis_ray(0, 1);
+  double shortest = all.max.x - q.x;
+  for (int k = 0; k < 3; ++k)
+    for (int s : {1, -1}) {
+      const double len = s > 0 ? all.max[k] - q[k] : q[k] - all.min[k];
+      if (len < shortest) {
+        shortest = len;
+        r = axis_ray(k, s);
+      }
+    }
+  const int k = r.k, u = r.u, w = r.w;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t id = stack[--top];
+    const Bvh::Node& node = nodes[id];
+    const Bbox& b = node.box;
+    if (q[u] < b.min[u] || q[u] > b.max[u] || q[w] < b.min[w] || q[w] > b.max[w] ||
+        (r.s > 0 ? q[k] > b.max[k] : q[k] < b.min[k]))
+      continue;
+    if (node.count == 0) {
+      stack[top++] = node.first;
+      stack[top++] = id + 1;
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+      const Bvh::Tri& t = tris[i];
+      on_surface[t.leaf] |= visit(t.a, t.b, t.c, q, r, winding[t.leaf]);
+    }
   }
 }
 
-PointClass classify_point(const LeafTriangles& lt, const CsgTree& tree, const Vec3& q,
-                          std::vector<int>& winding, std::vector<uint8_t>& on_surface,
-                          std::vector<uint8_t>& inside) {
-  windings(lt, q, winding, on_surface);
+/// Leaf memberships → result class; on-surface points go to the exact local analysis.
+PointClass finish(const Vec3& q, const CsgTree& tree, const std::vector<int>& winding,
+                  const std::vector<uint8_t>& on_surface, std::vector<uint8_t>& inside,
+                  const std::function<const LeafTriangles&()>& triangles) {
   inside.resize(winding.size());
   bool any_on = false;
   for (size_t l = 0; l < winding.size(); ++l) {
@@ -62,8 +123,9 @@ PointClass classify_point(const LeafTriangles& lt, const CsgTree& tree, const Ve
     any_on |= on_surface[l] != 0;
   }
   if (!any_on) return tree.evaluate(inside) ? PointClass::kInside : PointClass::kOutside;
-  return detail::classify_on_surface(lt, tree, q, on_surface, inside);
+  return detail::classify_on_surface(triangles(), tree, q, on_surface, inside);
 }
+
 
 }  // namespace
 
@@ -78,22 +140,72 @@ std::string_view to_string(PointClass c) {
   return "?";
 }
 
+std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+                                 const ClassifyOptions& options) {
+  // Per-leaf covering triangles, built on first use (only points on a surface need them).
+  std::once_flag once;
+  LeafTriangles lazy;
+  const std::function<const LeafTriangles&()> triangles = [&]() -> const LeafTriangles& {
+    std::call_once(once, [&] { lazy = detail::covering_triangles(solid); });
+    return lazy;
+  };
+  std::vector<PointClass> out(points.size());
+  // Many queries: first label the grid cells no surface touches (exact, see cell_grid.h).
+  std::optional<detail::CellGrid> grid;
+  if (points.size() >= options.grid_min_points) {
+    const int res = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(points.size()))),
+                               8, options.grid_max_resolution);
+    grid.emplace(bvh, res, [&](const Vec3& c) {
+      std::vector<int> w(solid.leaves.size());
+      std::vector<uint8_t> on(solid.leaves.size()), in;
+      bvh_windings(bvh, c, w, on);
+      return finish(c, solid.tree, w, on, in, triangles) == PointClass::kInside;
+    });
+  }
+  parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
+    std::vector<int> winding(solid.leaves.size());
+    std::vector<uint8_t> on_surface(solid.leaves.size()), inside;
+    for (size_t i = begin; i < end; ++i) {
+      if (grid) {
+        if (const int known = grid->lookup(points[i]); known >= 0) {
+          out[i] = known ? PointClass::kInside : PointClass::kOutside;
+          continue;
+        }
+      }
+      bvh_windings(bvh, points[i], winding, on_surface);
+      out[i] = finish(points[i], solid.tree, winding, on_surface, inside, triangles);
+    }
+  });
+  return out;
+}
+
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
                                  const ClassifyOptions& options) {
+  const Bvh bvh(solid);
+  return classify(solid, bvh, points, options);
+}
+
+std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const Vec3> points,
+                                             const ClassifyOptions& options) {
   const LeafTriangles lt = detail::covering_triangles(solid);
+  const std::function<const LeafTriangles&()> triangles = [&]() -> const LeafTriangles& {
+    return lt;
+  };
   std::vector<PointClass> out(points.size());
   parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
     std::vector<int> winding;
     std::vector<uint8_t> on_surface, inside;
-    for (size_t i = begin; i < end; ++i)
-      out[i] = classify_point(lt, solid.tree, points[i], winding, on_surface, inside);
+    for (size_t i = begin; i < end; ++i) {
+      brute_windings(lt, points[i], winding, on_surface);
+      out[i] = finish(points[i], solid.tree, winding, on_surface, inside, triangles);
+    }
   });
   return out;
 }
 
 void leaf_windings(const Solid& solid, const Vec3& q, std::vector<int>& winding,
                    std::vector<uint8_t>& on_surface) {
-  windings(detail::covering_triangles(solid), q, winding, on_surface);
+  brute_windings(detail::covering_triangles(solid), q, winding, on_surface);
 }
 
 }  // namespace cover

@@ -10,13 +10,16 @@
 // classified at the RESULT level from the arrangement of the face planes through the point
 // (covering/detail/local.h): inside / outside when the result is locally full / empty (a face of A
 // buried in B for A∪B is inside), otherwise face / edge / vertex of the result's boundary.
-// This is the O(faces)-per-point brute-force path; it stays the reference for faster ones.
+// classify() walks a BVH (covering/bvh.h): only boxes that the half-line can meet are visited,
+// O(log n) per query. classify_brute_force() visits every covering triangle: the independent
+// O(faces) path that tests compare against. Both use the same exact per-triangle decision.
 
 #include <cstdint>
 #include <span>
 #include <string_view>
 #include <vector>
 
+#include "covering/bvh.h"
 #include "solid/solid.h"
 
 namespace cover {
@@ -27,12 +30,23 @@ enum class PointClass : uint8_t { kOutside, kInside, kFace, kEdge, kVertex };
 std::string_view to_string(PointClass c);
 
 struct ClassifyOptions {
-  size_t grain = 64;  ///< points per parallel chunk (results never depend on it)
+  size_t grain = 256;                ///< points per parallel chunk (results never depend on it)
+  size_t grid_min_points = 20000;    ///< build the empty-cell grid from this many points on
+  int grid_max_resolution = 64;      ///< cells per axis of that grid, at most
 };
 
-/// Classifies every point. Preconditions: leaves are closed. Thread-count independent.
+/// Classifies every point with a prebuilt BVH of `solid`. Preconditions: leaves are closed.
+/// Thread-count independent.
+std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+                                 const ClassifyOptions& options = {});
+
+/// One-shot: builds the BVH, then classifies.
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
+
+/// The same classification visiting every covering triangle for every point (reference path).
+std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const Vec3> points,
+                                             const ClassifyOptions& options = {});
 
 /// Winding number of each leaf at q (exact), for q on no leaf's surface; on_surface[l] is set
 /// for the leaves whose surface contains q (their winding is then meaningless).

@@ -206,7 +206,7 @@ PointClass classify_on_surface(const LeafTriangles& lt, const CsgTree& tree, con
     if (!on_surface[l]) continue;
     for (uint32_t i = lt.leaf_start[l]; i < lt.leaf_start[l + 1]; ++i) {
       const CoverTri& t = lt.tris[i];
-      if (!on_triangle(t, q)) continue;
+      if (!on_triangle(t.a, t.b, t.c, q)) continue;
       const RVec a = rvec(t.a);
       const RVec n = cross(rvec(t.b) - a, rvec(t.c) - a);
       bool known = false;

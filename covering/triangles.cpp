@@ -31,8 +31,13 @@ LeafTriangles covering_triangles(const Solid& solid) {
   return out;
 }
 
-bool on_triangle(const CoverTri& t, const Vec3& q) {
-  if (!t.box.contains(q) || orient3d(t.a, t.b, t.c, q) != 0) return false;
+bool on_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q) {
+  Bbox box;
+  box.add(a);
+  box.add(b);
+  box.add(c);
+  const CoverTri t{a, b, c, box};
+  if (!box.contains(q) || orient3d(a, b, c, q) != 0) return false;
   for (int axis = 0; axis < 3; ++axis) {
     const int s = orient2d(t.a, t.b, t.c, axis);
     if (s == 0) continue;

@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 
 namespace cover {
 
@@ -25,6 +26,8 @@ void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_
 void parallel_invoke(const std::function<void()>& f, const std::function<void()>& g) {
   tbb::parallel_invoke(f, g);
 }
+
+void parallel_sort(std::vector<uint64_t>& keys) { tbb::parallel_sort(keys.begin(), keys.end()); }
 
 struct ThreadLimit::Impl {
   std::unique_ptr<tbb::global_control> control;

@@ -5,7 +5,9 @@
 
 #include <cstddef>
 #include <functional>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace cover {
 
@@ -14,6 +16,9 @@ void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_
 
 /// Runs f() and g(), possibly in parallel; returns when both are done.
 void parallel_invoke(const std::function<void()>& f, const std::function<void()>& g);
+
+/// Sorts ascending (parallel; the result is unique, so it does not depend on the threads).
+void parallel_sort(std::vector<uint64_t>& keys);
 
 /// Limits the worker threads of every parallel_for while alive (n <= 0: all cores).
 class ThreadLimit {

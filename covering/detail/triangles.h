@@ -26,7 +26,7 @@ struct LeafTriangles {
 
 LeafTriangles covering_triangles(const Solid& solid);
 
-/// True when q lies in the closed triangle (exact). Precondition: t is not degenerate.
-bool on_triangle(const CoverTri& t, const Vec3& q);
+/// True when q lies in the closed triangle abc (exact). Precondition: abc is not degenerate.
+bool on_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q);
 
 }  // namespace cover::detail

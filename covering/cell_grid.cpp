@@ -1,0 +1,79 @@
+#include "covering/detail/cell_grid.h"
+
+#include <algorithm>
+
+namespace cover::detail {
+namespace {
+
+/// Cells i with planes[i] <= hi and planes[i+1] >= lo, as [first, last] (exact comparisons).
+std::pair<int, int> cell_range(const std::vector<double>& planes, double lo, double hi) {
+  const int n = static_cast<int>(planes.size()) - 1;
+  const int first = static_cast<int>(std::lower_bound(planes.begin(), planes.end(), lo) - planes.begin()) - 1;
+  const int last = static_cast<int>(std::upper_bound(planes.begin(), planes.end(), hi) - planes.begin()) - 1;
+  return {std::max(first, 0), std::min(last, n - 1)};
+}
+
+}  // namespace
+
+CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(const Vec3&)>& member) {
+  if (bvh.nodes().empty() || resolution < 1) return;
+  n_ = resolution;
+  const Bbox& box = bvh.nodes()[0].box;
+  for (int a = 0; a < 3; ++a) {
+    planes_[a].resize(n_ + 1);
+    for (int i = 0; i <= n_; ++i) planes_[a][i] = box.min[a] + (box.max[a] - box.min[a]) * i / n_;
+    planes_[a][n_] = box.max[a];
+    scale_[a] = box.max[a] > box.min[a] ? n_ / (box.max[a] - box.min[a]) : 0;
+  }
+  state_.assign(static_cast<size_t>(n_) * n_ * n_, 2);  // 2: empty, not yet labelled
+  for (const Bvh::Tri& t : bvh.triangles()) {
+    std::array<std::pair<int, int>, 3> r;
+    for (int a = 0; a < 3; ++a)
+      r[a] = cell_range(planes_[a], std::min({t.a[a], t.b[a], t.c[a]}), std::max({t.a[a], t.b[a], t.c[a]}));
+    for (int k = r[2].first; k <= r[2].second; ++k)
+      for (int j = r[1].first; j <= r[1].second; ++j)
+        for (int i = r[0].first; i <= r[0].second; ++i) state_[index(i, j, k)] = -1;
+  }
+  // Flood fill each component of empty cells from one exactly classified centre.
+  std::vector<std::array<int, 3>> queue;
+  for (int k = 0; k < n_; ++k)
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i < n_; ++i) {
+        if (state_[index(i, j, k)] != 2) continue;
+        const Vec3 c{0.5 * (planes_[0][i] + planes_[0][i + 1]), 0.5 * (planes_[1][j] + planes_[1][j + 1]),
+                     0.5 * (planes_[2][k] + planes_[2][k + 1])};
+        const int8_t label = member(c) ? 1 : 0;
+        state_[index(i, j, k)] = label;
+        queue.assign(1, {i, j, k});
+        while (!queue.empty()) {
+          const auto [x, y, z] = queue.back();
+          queue.pop_back();
+          const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z},
+                                {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
+          for (const auto& q : nb) {
+            if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n_ || q[1] >= n_ || q[2] >= n_) continue;
+            int8_t& s = state_[index(q[0], q[1], q[2])];
+            if (s != 2) continue;
+            s = label;
+            queue.push_back({q[0], q[1], q[2]});
+          }
+        }
+      }
+}
+
+int CellGrid::lookup(const Vec3& p) const {
+  if (n_ == 0) return -1;
+  int c[3];
+  for (int a = 0; a < 3; ++a) {
+    const auto& pl = planes_[a];
+    if (p[a] < pl.front() || p[a] > pl.back()) return -1;
+    // A floating guess, then exact steps: any cell whose closed extent holds p is valid.
+    int i = std::clamp(static_cast<int>((p[a] - pl.front()) * scale_[a]), 0, n_ - 1);
+    while (i > 0 && p[a] < pl[i]) --i;
+    while (i < n_ - 1 && p[a] > pl[i + 1]) ++i;
+    c[a] = i;
+  }
+  return state_[index(c[0], c[1], c[2])];
+}
+
+}  // namespace cover::detail

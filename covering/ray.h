@@ -1,0 +1,71 @@
+#pragma once
+// Ray casting through a non-evaluated CSG solid (paper §6 "Ray-Casting", DESIGN.md §3).
+//
+// A ray o + t·d (t > 0) meets covering triangles; each hit carries its leaf, face and sign
+// (+1: leaving the leaf, n·d > 0 for the leaf's outward normal n; −1: entering). Crossing
+// decisions are exact: the line is symbolically perturbed, o → o + ε·e_u + ε²·e_w + ε³·e_k
+// (k = the axis of d's largest component, u, w the other two), so a ray through an edge or a
+// vertex is counted once, consistently for all triangles, and a hit at t = 0 is decided too.
+// The winding of leaf L at o is the sum of its hit signs; sweeping the sorted hits with per-leaf
+// counters and evaluating the CSG tree on each interval gives the inside spans (Roth 1982).
+// Hit parameters t are floating point (for ordering and lengths only, never for decisions).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "covering/bvh.h"
+#include "solid/solid.h"
+
+namespace cover {
+
+/// A half-line origin + t·dir, t > 0. Precondition: dir != 0, all coordinates finite.
+struct Ray {
+  Vec3 origin;
+  Vec3 dir;
+};
+
+struct RayHit {
+  double t = 0;
+  uint32_t tri = 0;  ///< index into Bvh::triangles()
+  uint32_t leaf = 0;
+  uint32_t face = 0;
+  int8_t sign = 0;  ///< +1 leaving the leaf, −1 entering it
+};
+
+/// An interval of the ray inside the result. `enter` / `exit` index the hits that bound it
+/// (kNone: the span starts at the origin / never ends, for unbounded results).
+struct Span {
+  static constexpr uint32_t kNone = UINT32_MAX;
+  double t0 = 0, t1 = 0;
+  uint32_t enter = kNone, exit = kNone;
+};
+
+struct RayResult {
+  std::vector<RayHit> hits;  ///< sorted by t (ties: by leaf, then triangle index)
+  std::vector<Span> spans;   ///< disjoint, increasing, non-empty
+};
+
+/// The first surface point of the result along the ray.
+struct FirstHit {
+  bool hit = false;
+  double t = 0;
+  Vec3 normal;  ///< outward normal of the result there (unnormalized, n·dir < 0)
+  uint32_t leaf = 0, face = 0;
+};
+
+/// All hits and the CSG inside spans of one ray.
+RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray);
+
+/// First entry into the result (the start of the first span that does not begin at the origin).
+FirstHit first_hit(const Bvh& bvh, const RayResult& result);
+
+struct CastOptions {
+  size_t grain = 256;  ///< rays per parallel chunk (results never depend on it)
+};
+
+/// Casts many rays in parallel; results[i] belongs to rays[i].
+std::vector<RayResult> cast(const Bvh& bvh, const Solid& solid, std::span<const Ray> rays,
+                            const CastOptions& options = {});
+
+}  // namespace cover
