@@ -99,12 +99,14 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   print_warnings(in);
   VolumeOptions vo;
   vo.exact = o.exact;
+  vo.rays = static_cast<int>(o.rays);
   const VolumeResult r = volume(in.solid, vo);
   json j;
   j["volume"] = r.volume;
   j["area"] = r.area ? json(*r.area) : json(nullptr);
   j["method"] = r.method;
   j["error_bound"] = r.error_bound;
+  if (r.method == "rays") j["rays"] = r.rays;
   j["seconds"] = seconds_since(start);
   if (common.json) {
     std::cout << j.dump() << "\n";
