@@ -120,16 +120,17 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
   const LoadedInput in = load_input(o.input);
   print_warnings(in);
-  const std::vector<Vec3> points = read_points(o.points);
   const auto start = Clock::now();
+  const std::vector<Vec3> points = read_points(o.points);
   // Batches keep the progress bar moving; results do not depend on the batch size.
-  constexpr size_t kBatch = 1 << 16;
+  constexpr size_t kBatch = 1 << 20;
   std::vector<PointClass> classes;
   classes.reserve(points.size());
   Progress progress("classify", common.quiet);
+  const Bvh bvh(in.solid);
   for (size_t begin = 0; begin < points.size(); begin += kBatch) {
     const size_t n = std::min(kBatch, points.size() - begin);
-    const auto part = classify(in.solid, std::span<const Vec3>(points.data() + begin, n));
+    const auto part = classify(in.solid, bvh, std::span<const Vec3>(points.data() + begin, n));
     classes.insert(classes.end(), part.begin(), part.end());
     progress.update(begin + n, points.size());
   }

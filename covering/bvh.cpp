@@ -1,6 +1,7 @@
 #include "covering/bvh.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "covering/predicates.h"
 #include "solid/parallel.h"
@@ -12,6 +13,17 @@ namespace {
 uint32_t subtree_nodes(uint32_t n, uint32_t leaf_size) {
   if (n <= leaf_size) return 1;
   return 1 + subtree_nodes(n / 2, leaf_size) + subtree_nodes(n - n / 2, leaf_size);
+}
+
+/// The largest float <= v and the smallest float >= v (for doubles beyond the float range:
+/// ±infinity, still conservative).
+float round_down(double v) {
+  float f = static_cast<float>(v);
+  return static_cast<double>(f) > v ? std::nextafter(f, -INFINITY) : f;
+}
+float round_up(double v) {
+  float f = static_cast<float>(v);
+  return static_cast<double>(f) < v ? std::nextafter(f, INFINITY) : f;
 }
 
 /// A triangle with its centroid and input position (the tie-breaker that keeps splits
@@ -31,12 +43,16 @@ struct Builder {
   void build(uint32_t slot, uint32_t begin, uint32_t end) {
     const uint32_t n = end - begin;
     Bvh::Node& node = nodes[slot];
-    Bbox cb;
+    Bbox box, cb;
     for (uint32_t i = begin; i < end; ++i) {
-      node.box.add(items[i].tri.a);
-      node.box.add(items[i].tri.b);
-      node.box.add(items[i].tri.c);
+      box.add(items[i].tri.a);
+      box.add(items[i].tri.b);
+      box.add(items[i].tri.c);
       cb.add(items[i].centroid);
+    }
+    for (int a = 0; a < 3; ++a) {
+      node.lo[a] = round_down(box.min[a]);
+      node.hi[a] = round_up(box.max[a]);
     }
     if (n <= options.leaf_size) {
       node.first = begin;
@@ -103,6 +119,11 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   nodes_.resize(subtree_nodes(n, o.leaf_size));
   Builder{items, nodes_, o}.build(0, 0, n);
   tris_.resize(n);
+  for (const Item& it : items) {
+    bounds_.add(it.tri.a);
+    bounds_.add(it.tri.b);
+    bounds_.add(it.tri.c);
+  }
   for (uint32_t i = 0; i < n; ++i) tris_[i] = items[i].tri;
   for (const Node& node : nodes_) leaves_ += node.count > 0;
 }

@@ -4,8 +4,8 @@
 // Why hand-written: queries need exact culling on double boxes for an axis-aligned half-line
 // (classification) and for general rays, plus the triangle's leaf and face; CGAL's AABB_tree
 // (the peer) stores a primitive per node with slower traversal (bench/compare_cgal measures both).
-// Layout: nodes in depth-first order; an inner node's left child is the next node, its right
-// child is `right`. Leaves own triangles [first, first + count). Boxes are exact min/max of the
+// Layout: 32-byte nodes in depth-first order; an inner node's left child is the next node, its right
+// child is `first`. Leaves own triangles [first, first + count). Boxes are exact min/max of the
 // double coordinates, so "box misses ⇒ triangle misses" holds exactly.
 // Build: median split of centroids along the widest axis; the node count of a subtree depends only
 // on its size, so subtrees are built in parallel into pre-computed slices (deterministic layout).
@@ -30,8 +30,12 @@ class Bvh {
     uint32_t leaf = 0;
     uint32_t face = 0;  ///< face index in the Solid
   };
+  /// 32 bytes. Bounds are floats rounded outwards from the exact double box, so they contain
+  /// it: a half-line or ray that misses them misses every triangle below (culling only; every
+  /// decision on a triangle uses its double coordinates).
   struct Node {
-    Bbox box;
+    float lo[3];
+    float hi[3];
     uint32_t first = 0;  ///< leaf: first triangle; inner: index of the right child
     uint32_t count = 0;  ///< leaf: number of triangles; inner: 0
   };
@@ -42,6 +46,8 @@ class Bvh {
 
   const std::vector<Tri>& triangles() const { return tris_; }
   const std::vector<Node>& nodes() const { return nodes_; }
+  /// Exact bounding box of all triangles (empty when there are none).
+  const Bbox& bounds() const { return bounds_; }
   size_t leaf_count() const { return leaves_; }
   /// Bytes held by the structure (triangles + nodes).
   size_t memory_bytes() const;
@@ -49,6 +55,7 @@ class Bvh {
  private:
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
+  Bbox bounds_;
   size_t leaves_ = 0;
 };
 

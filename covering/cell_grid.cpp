@@ -18,7 +18,7 @@ std::pair<int, int> cell_range(const std::vector<double>& planes, double lo, dou
 CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(const Vec3&)>& member) {
   if (bvh.nodes().empty() || resolution < 1) return;
   n_ = resolution;
-  const Bbox& box = bvh.nodes()[0].box;
+  const Bbox& box = bvh.bounds();
   for (int a = 0; a < 3; ++a) {
     planes_[a].resize(n_ + 1);
     for (int i = 0; i <= n_; ++i) planes_[a][i] = box.min[a] + (box.max[a] - box.min[a]) * i / n_;

@@ -1,17 +1,20 @@
 #pragma once
 // Exact point classification against a CSG solid (paper Theorem 2, DESIGN.md §1–§2).
 //
-// Per leaf, the covering sum at Q with the covering origin O pushed to infinity along −x equals
-// the signed count of covering triangles crossed by the ray Q + t·(1,0,0), t > 0: the leaf's
-// winding number (nonzero rule: inside iff w ≠ 0). Ties (ray through a triangle's edge or vertex)
-// are broken by symbolic perturbation of Q by (0, ε, ε²) in the projection — consistent for
-// every triangle, hence the count of a genuinely perturbed point, with no epsilon.
+// Per leaf, the covering sum at Q with the covering origin O pushed to infinity along −s·e_k
+// equals the signed count of covering triangles crossed by the half-line Q + t·s·e_k, t > 0:
+// the leaf's winding number (nonzero rule: inside iff w ≠ 0). The axis direction s·e_k is the
+// one leaving the solid's box soonest (any choice gives the same number). Ties (half-line
+// through a triangle's edge or vertex) are broken by a symbolic perturbation Q + ε·e_u + ε²·e_w
+// in the projection — consistent for every triangle, hence the count of a genuinely perturbed
+// point, with no epsilon.
 // Points exactly on a leaf's surface are found exactly (orient3d = 0 and closed containment) and
 // classified at the RESULT level from the arrangement of the face planes through the point
 // (covering/detail/local.h): inside / outside when the result is locally full / empty (a face of A
 // buried in B for A∪B is inside), otherwise face / edge / vertex of the result's boundary.
 // classify() walks a BVH (covering/bvh.h): only boxes that the half-line can meet are visited,
-// O(log n) per query. classify_brute_force() visits every covering triangle: the independent
+// O(log n) per query; for many points it first labels the grid cells no surface touches
+// (covering/detail/cell_grid.h, exact) and visits the remaining points in spatial order. classify_brute_force() visits every covering triangle: the independent
 // O(faces) path that tests compare against. Both use the same exact per-triangle decision.
 
 #include <cstdint>

@@ -38,13 +38,13 @@ int perturbed_plane_side(const Bvh::Tri& t, const Vec3& o, Axes ax) {
   return orient2d(t.a, t.b, t.c, ax.k);
 }
 
-bool ray_meets_box(const Bbox& b, const Vec3& o, const Vec3& inv) {
+bool ray_meets_box(const Bvh::Node& node, const Vec3& o, const Vec3& inv) {
   // Slab test; conservative: the box is widened by a relative margin so that floating-point
   // error can only keep a box, never drop one the exact ray touches.
   double t0 = 0, t1 = INFINITY;
   for (int i = 0; i < 3; ++i) {
-    const double pad = 1e-9 * (std::abs(b.min[i]) + std::abs(b.max[i])) + 1e-300;
-    const double lo = b.min[i] - pad, hi = b.max[i] + pad;
+    const double pad = 1e-9 * (std::abs(node.lo[i]) + std::abs(node.hi[i])) + 1e-300;
+    const double lo = node.lo[i] - pad, hi = node.hi[i] + pad;
     if (inv[i] == INFINITY || inv[i] == -INFINITY) {  // parallel to this slab
       if (o[i] < lo || o[i] > hi) return false;
       continue;
@@ -77,7 +77,7 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
   stack[top++] = 0;
   while (top > 0) {
     const Bvh::Node& node = nodes[stack[--top]];
-    if (!ray_meets_box(node.box, ray.origin, inv)) continue;
+    if (!ray_meets_box(node, ray.origin, inv)) continue;
     if (node.count == 0) {
       const uint32_t self = static_cast<uint32_t>(&node - nodes.data());
       stack[top++] = node.first;

@@ -1,0 +1,218 @@
+// How Cover's exact queries scale with mesh size (Google Benchmark).
+//
+// Model: a closed bumpy sphere (make_sphere's UV sphere, vertices displaced radially by a smooth
+// positive function of the direction, quads fan-triangulated) at about 10k, 100k and 1M
+// triangles; the benchmark argument is the target count, the counter `triangles` the exact one.
+// Measured (single thread unless stated, so the numbers show algorithmic scaling):
+//   BM_BvhBuild        cover::Bvh construction; time per triangle and BVH bytes per triangle.
+//   BM_ClassifyPoint   classify() of batches of 1000 uniform points in the bounding box with the
+//                      BVH prebuilt and the empty-cell grid off (pure BVH path); time per point.
+//   BM_ClassifyMillion end to end on 2 threads: BVH build + classify() of 1,000,000 points with
+//                      default options (grid on).
+//   BM_ClassifyBulk    classify() of 1,000,000 points in one call, BVH prebuilt, 1 thread, grid
+//                      off: per-query cost of the BVH path in bulk (spatially ordered) use.
+//   BM_CastRay         cast() of one ray (all hits + CSG spans) from outside the bounding sphere
+//                      toward a uniform point in the box, BVH prebuilt; time per ray.
+// Usage: bench_queries [--benchmark_min_time=0.2] [--benchmark_filter=REGEX]
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "covering/bvh.h"
+#include "covering/classify.h"
+#include "covering/ray.h"
+#include "solid/parallel.h"
+#include "solid/primitives.h"
+
+namespace {
+
+constexpr size_t kBatch = 1000;       ///< points or rays per timed iteration
+constexpr size_t kBatches = 64;       ///< distinct batches cycled through (64k queries)
+constexpr size_t kMillion = 1000000;  ///< points of BM_ClassifyMillion
+constexpr uint64_t kSeed = 20240601;  ///< every random input is seeded
+
+/// Longitudes of make_sphere whose triangulation has about `target` triangles: s longitudes and
+/// s/2 bands give 2s pole triangles + s(s/2 − 2) quads of 2 triangles = s² − 2s (s even).
+int segments_for(int64_t target) {
+  const int s = static_cast<int>(std::lround(1 + std::sqrt(1.0 + static_cast<double>(target))));
+  return s + (s % 2);
+}
+
+/// Closed, outward, star-shaped bumpy sphere of radius ≈ 1 (0.85 to 1.15) at the origin, triangles
+/// only. The displacement depends on the direction alone, so it is well defined at the poles.
+cover::PolygonMesh bumpy_sphere(int segments) {
+  const cover::PolygonMesh sphere = cover::make_sphere({0, 0, 0}, 1.0, segments);
+  cover::PolygonMesh mesh;
+  mesh.vertices.reserve(sphere.vertices.size());
+  for (const cover::Vec3& u : sphere.vertices)
+    mesh.vertices.push_back((1 + 0.15 * std::sin(6 * u.x) * std::sin(6 * u.y) * std::sin(6 * u.z)) *
+                            u);
+  for (size_t f = 0; f < sphere.face_count(); ++f) {
+    const auto loop = sphere.face(f);
+    for (size_t i = 1; i + 1 < loop.size(); ++i) mesh.add_face({loop[0], loop[i], loop[i + 1]});
+  }
+  return mesh;
+}
+
+/// The solid and its BVH for one target size, built once and shared by every benchmark.
+struct Model {
+  cover::Solid solid;
+  std::unique_ptr<cover::Bvh> bvh;
+};
+
+const Model& model(int64_t target) {
+  static std::map<int64_t, Model> cache;
+  Model& m = cache[target];
+  if (!m.bvh) {
+    m.solid = cover::make_leaf(bumpy_sphere(segments_for(target)), "sphere");
+    m.bvh = std::make_unique<cover::Bvh>(m.solid);
+  }
+  return m;
+}
+
+/// `n` uniform random points in the solid's bounding box.
+std::vector<cover::Vec3> random_points(const cover::Solid& solid, size_t n, uint64_t seed) {
+  const cover::Bbox box = solid.bbox();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y),
+      uz(box.min.z, box.max.z);
+  std::vector<cover::Vec3> points(n);
+  for (auto& p : points) p = {ux(rng), uy(rng), uz(rng)};
+  return points;
+}
+
+/// `n` rays from uniform points on the sphere (center of the box, radius = box diagonal), which
+/// encloses the solid, aimed at uniform points in the box (as bench/compare_cgal does).
+std::vector<cover::Ray> random_rays(const cover::Solid& solid, size_t n, uint64_t seed) {
+  const cover::Bbox box = solid.bbox();
+  const cover::Vec3 center = 0.5 * (box.min + box.max);
+  const double radius = std::sqrt(cover::dot(box.max - box.min, box.max - box.min));
+  const std::vector<cover::Vec3> targets = random_points(solid, n, seed);
+  std::mt19937_64 rng(seed + 1);
+  std::normal_distribution<double> nd;
+  std::vector<cover::Ray> rays(n);
+  for (size_t i = 0; i < n; ++i) {
+    cover::Vec3 u{nd(rng), nd(rng), nd(rng)};
+    u = (radius / std::sqrt(cover::dot(u, u))) * u;
+    rays[i].origin = center + u;
+    rays[i].dir = targets[i] - rays[i].origin;
+  }
+  return rays;
+}
+
+/// Counter: seconds per item (printed as e.g. "45.3ns"), `items` processed per iteration.
+benchmark::Counter time_per(double items) {
+  return benchmark::Counter(
+      items, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// Bvh construction, one thread.
+void BM_BvhBuild(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
+  const Model& m = model(state.range(0));
+  const auto triangles = static_cast<double>(m.solid.face_count());
+  cover::ThreadLimit limit(1);
+  size_t bytes = 0;
+  for (auto _ : state) {
+    const cover::Bvh bvh(m.solid);
+    bytes = bvh.memory_bytes();
+    benchmark::DoNotOptimize(bvh.nodes().data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(triangles));
+  state.counters["triangles"] = triangles;
+  state.counters["bytes_per_triangle"] = static_cast<double>(bytes) / triangles;
+  state.counters["time_per_triangle"] = time_per(triangles);
+}
+
+// classify() of 1000 points per iteration, BVH prebuilt, empty-cell grid off, one thread.
+void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
+  const Model& m = model(state.range(0));
+  const std::vector<cover::Vec3> points = random_points(m.solid, kBatch * kBatches, kSeed);
+  const cover::ClassifyOptions options{.grid_min_points = SIZE_MAX};
+  cover::ThreadLimit limit(1);
+  size_t batch = 0, inside = 0, classified = 0;
+  for (auto _ : state) {
+    const auto result = cover::classify(m.solid, *m.bvh,
+                                        std::span(points).subspan(batch * kBatch, kBatch), options);
+    for (const cover::PointClass c : result) inside += c == cover::PointClass::kInside;
+    classified += result.size();
+    batch = (batch + 1) % kBatches;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(classified));
+  state.counters["triangles"] = static_cast<double>(m.solid.face_count());
+  state.counters["inside_fraction"] = static_cast<double>(inside) / static_cast<double>(classified);
+  state.counters["time_per_point"] = time_per(kBatch);
+}
+
+// End to end on 2 threads: BVH build + classify() of 1M points, default options (grid on).
+void BM_ClassifyMillion(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
+  const Model& m = model(state.range(0));
+  const std::vector<cover::Vec3> points = random_points(m.solid, kMillion, kSeed);
+  cover::ThreadLimit limit(2);
+  for (auto _ : state) {
+    const cover::Bvh bvh(m.solid);
+    const auto result = cover::classify(m.solid, bvh, points);
+    benchmark::DoNotOptimize(result.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(kMillion));
+  state.counters["triangles"] = static_cast<double>(m.solid.face_count());
+  state.counters["time_per_point"] = time_per(kMillion);
+}
+
+// classify() of 1,000,000 points in one call, BVH prebuilt, one thread, empty-cell grid off:
+// the per-query cost of the BVH path in bulk use (queries processed in spatial order).
+void BM_ClassifyBulk(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
+  const Model& m = model(state.range(0));
+  const std::vector<cover::Vec3> points = random_points(m.solid, kMillion, kSeed);
+  cover::ThreadLimit limit(1);
+  cover::ClassifyOptions options;
+  options.grid_min_points = SIZE_MAX;
+  for (auto _ : state) {
+    const auto result = cover::classify(m.solid, *m.bvh, points, options);
+    benchmark::DoNotOptimize(result.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(kMillion));
+  state.counters["triangles"] = static_cast<double>(m.solid.face_count());
+  state.counters["time_per_point"] = time_per(kMillion);
+}
+
+// cast() of 1000 rays per iteration (all hits and CSG spans), BVH prebuilt, one thread.
+void BM_CastRay(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
+  const Model& m = model(state.range(0));
+  const std::vector<cover::Ray> rays = random_rays(m.solid, kBatch * kBatches, kSeed);
+  cover::ThreadLimit limit(1);
+  size_t batch = 0, hits = 0, cast = 0;
+  for (auto _ : state) {
+    for (size_t i = batch * kBatch; i < (batch + 1) * kBatch; ++i) {
+      const cover::RayResult result =
+          cover::cast(*m.bvh, m.solid.tree, m.solid.leaves.size(), rays[i]);
+      hits += result.hits.size();
+    }
+    cast += kBatch;
+    batch = (batch + 1) % kBatches;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(cast));
+  state.counters["triangles"] = static_cast<double>(m.solid.face_count());
+  state.counters["hits_per_ray"] = static_cast<double>(hits) / static_cast<double>(cast);
+  state.counters["time_per_ray"] = time_per(kBatch);
+}
+
+// Targets 10k, 100k, 1M triangles; wall-clock time (the TBB workers' CPU time is not the
+// calling thread's).
+void sizes(benchmark::internal::Benchmark* b) {
+  b->Arg(10000)->Arg(100000)->Arg(1000000)->UseRealTime();
+}
+
+BENCHMARK(BM_BvhBuild)->Apply(sizes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClassifyPoint)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ClassifyMillion)->Apply(sizes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClassifyBulk)->Apply(sizes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CastRay)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
