@@ -129,6 +129,36 @@ void BM_BvhBuild(benchmark::State& state) {  // NOLINT(readability-identifier-na
 }
 
 // classify() of 1000 points per iteration, BVH prebuilt, empty-cell grid off, one thread.
+/// BVH nodes a classification query visits (the algorithmic cost, free of cache effects):
+/// the same half-line walk as covering/classify.cpp, counted over the public node array.
+double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& points) {
+  const cover::Bbox& all = bvh.bounds();
+  size_t visited = 0;
+  for (const cover::Vec3& p : points) {
+    int k = 0, s = 1;
+    double shortest = all.max.x - p.x;
+    for (int a = 0; a < 3; ++a)
+      for (int sa : {1, -1}) {
+        const double len = sa > 0 ? all.max[a] - p[a] : p[a] - all.min[a];
+        if (len < shortest) shortest = len, k = a, s = sa;
+      }
+    const int u = (k + 1) % 3, w = (k + 2) % 3;
+    std::vector<uint32_t> stack{0};
+    while (!stack.empty()) {
+      const uint32_t id = stack.back();
+      stack.pop_back();
+      ++visited;
+      const cover::Bvh::Node& n = bvh.nodes()[id];
+      if (p[u] < n.lo[u] || p[u] > n.hi[u] || p[w] < n.lo[w] || p[w] > n.hi[w] ||
+          (s > 0 ? p[k] > n.hi[k] : p[k] < n.lo[k]) || n.count > 0)
+        continue;
+      stack.push_back(n.first);
+      stack.push_back(id + 1);
+    }
+  }
+  return static_cast<double>(visited) / static_cast<double>(points.size());
+}
+
 void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
   const Model& m = model(state.range(0));
   const std::vector<cover::Vec3> points = random_points(m.solid, kBatch * kBatches, kSeed);
@@ -146,6 +176,7 @@ void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifi
   state.counters["triangles"] = static_cast<double>(m.solid.face_count());
   state.counters["inside_fraction"] = static_cast<double>(inside) / static_cast<double>(classified);
   state.counters["time_per_point"] = time_per(kBatch);
+  state.counters["nodes_per_query"] = nodes_per_query(*m.bvh, points);
 }
 
 // End to end on 2 threads: BVH build + classify() of 1M points, default options (grid on).

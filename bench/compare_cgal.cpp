@@ -3,7 +3,9 @@
 //                   (AABB tree build + queries, 1 thread); disagreements counted (CGAL's
 //                   ON_BOUNDARY points excluded); Cover's BVH path vs its brute-force path.
 //   rays:           Cover first_hit vs CGAL AABB_tree first_intersection (1 thread each).
+// Timings are the median of --repeat runs (default 3) of each side, interleaved.
 // Usage: compare_cgal MESH [--points N] [--brute N] [--rays N] [--threads T] [--seed S]
+//                          [--repeat R]
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -11,6 +13,7 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -32,6 +35,11 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
 
 long arg(int argc, char** argv, const char* name, long fallback) {
   for (int i = 2; i + 1 < argc; ++i)
@@ -66,23 +74,27 @@ int main(int argc, char** argv) {
   std::vector<cover::Vec3> pts(static_cast<size_t>(n_points));
   for (auto& p : pts) p = {ux(rng), uy(rng), uz(rng)};
 
-  // Cover: BVH build + classification on `threads` threads.
+  const int repeat = static_cast<int>(std::max(1L, arg(argc, argv, "--repeat", 3)));
   std::vector<cover::PointClass> ours;
-  double cover_build, cover_total;
-  {
-    cover::ThreadLimit limit(threads);
-    const auto t0 = Clock::now();
-    const cover::Bvh bvh(solid);
-    cover_build = since(t0);
-    ours = cover::classify(solid, bvh, pts);
-    cover_total = since(t0);
-  }
-  // CGAL: tree build + queries on one thread.
-  const auto t1 = Clock::now();
-  CGAL::Side_of_triangle_mesh<Mesh, K> side(mesh);
   std::vector<CGAL::Bounded_side> theirs(pts.size());
-  for (size_t i = 0; i < pts.size(); ++i) theirs[i] = side(K::Point_3(pts[i].x, pts[i].y, pts[i].z));
-  const double cgal_total = since(t1);
+  std::vector<double> cover_builds, cover_totals, cgal_totals;
+  for (int rep = 0; rep < repeat; ++rep) {
+    {  // Cover: BVH build + classification on `threads` threads.
+      cover::ThreadLimit limit(threads);
+      const auto t0 = Clock::now();
+      const cover::Bvh bvh(solid);
+      cover_builds.push_back(since(t0));
+      ours = cover::classify(solid, bvh, pts);
+      cover_totals.push_back(since(t0));
+    }
+    // CGAL: tree build + queries on one thread.
+    const auto t1 = Clock::now();
+    CGAL::Side_of_triangle_mesh<Mesh, K> side(mesh);
+    for (size_t i = 0; i < pts.size(); ++i) theirs[i] = side(K::Point_3(pts[i].x, pts[i].y, pts[i].z));
+    cgal_totals.push_back(since(t1));
+  }
+  const double cover_build = median(cover_builds), cover_total = median(cover_totals),
+               cgal_total = median(cgal_totals);
 
   long disagree = 0, boundary = 0, inside = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
