@@ -1,6 +1,8 @@
 #include "cli/commands.h"
 
 #include <array>
+#include <cmath>
+#include <cstdlib>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -9,7 +11,11 @@
 #include "cli/output.h"
 #include "cli/points.h"
 #include "covering/classify.h"
+#include "covering/bounds.h"
 #include "covering/volume.h"
+#include "raster/png.h"
+#include "raster/render.h"
+#include "solid/errors.h"
 #include "solid/scene.h"
 #include "solid/validate.h"
 
@@ -42,6 +48,51 @@ json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
   j["self_intersecting"] = r.self_intersecting ? json(*r.self_intersecting) : json(nullptr);
   j["volume"] = r.volume;
   j["bbox"] = to_json(leaf.bbox);
+  return j;
+}
+
+/// Splits "a,b,c" (commas or 'x') into numbers; throws InputError naming the option.
+std::vector<double> numbers(const std::string& text, const std::string& option, size_t count,
+                            const char* separators) {
+  std::vector<double> out;
+  size_t pos = 0;
+  while (pos <= text.size()) {
+    const size_t next = text.find_first_of(separators, pos);
+    const std::string item = text.substr(pos, next == std::string::npos ? std::string::npos : next - pos);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+      throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
+    out.push_back(v);
+    if (next == std::string::npos) break;
+    pos = next + 1;
+  }
+  if (out.size() != count)
+    throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
+  return out;
+}
+
+json camera_json(const Camera& c) {
+  json j;
+  j["type"] = c.perspective ? "perspective" : "orthographic";
+  j["width"] = c.width;
+  j["height"] = c.height;
+  j["eye"] = to_json(c.eye);
+  j["forward"] = to_json(c.forward);
+  j["right"] = to_json(c.right);
+  j["up"] = to_json(c.up);
+  if (c.perspective)
+    j["tan_half_fov"] = c.tan_half_fov;
+  else
+    j["pixel_size"] = c.pixel_size;
+  j["depth_near"] = c.near;
+  j["depth_far"] = c.far;
+  j["pixel_ray"] = c.perspective
+                       ? "origin = eye; dir = normalize(forward + s*(px+0.5-width/2)*right + "
+                         "s*(height/2-py-0.5)*up), s = 2*tan_half_fov/min(width,height)"
+                       : "origin = eye + pixel_size*((px+0.5-width/2)*right + "
+                         "(height/2-py-0.5)*up); dir = forward";
+  j["depth_png"] = "t = depth_near + value/65534*(depth_far-depth_near); 65535 = no surface";
   return j;
 }
 
@@ -155,6 +206,60 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
     }
   }
   std::fwrite(out.data(), 1, out.size(), stdout);
+  return 0;
+}
+
+}  // namespace cover::cli
+
+namespace cover::cli {
+
+int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
+  const auto start = Clock::now();
+  const LoadedInput in = load_input(o.input);
+  print_warnings(in);
+  CameraOptions co;
+  co.view = parse_view(o.view);
+  co.perspective = o.perspective;
+  const std::vector<double> size = numbers(o.size, "--size", 2, "xX");
+  if (size[0] < 1 || size[1] < 1 || size[0] > 16384 || size[1] > 16384 || size[0] != std::floor(size[0]) ||
+      size[1] != std::floor(size[1]))
+    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got '" + o.size + "'");
+  co.width = static_cast<int>(size[0]);
+  co.height = static_cast<int>(size[1]);
+  RenderOptions ro;
+  ro.outline = o.outline;
+  const std::vector<double> bg = numbers(o.background, "--background", 3, ",");
+  for (int c = 0; c < 3; ++c) {
+    if (bg[c] < 0 || bg[c] > 255) throw InputError("--background: expected 3 numbers from 0 to 255");
+    ro.background[c] = static_cast<uint8_t>(bg[c]);
+  }
+  if (!o.section.empty()) {
+    const std::vector<double> p = numbers(o.section, "--section", 4, ",");
+    if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--section: the normal must be non-zero");
+    ro.section = Section{{p[0], p[1], p[2]}, p[3]};
+  }
+  // Frame the result's box when bounded, else every leaf.
+  const std::optional<Bbox> bounds = result_bounds(in.solid);
+  const Camera camera = frame_camera(bounds && !bounds->empty() ? *bounds : in.solid.bbox(), co);
+  const Bvh bvh(in.solid);
+  const Image image = render(in.solid, bvh, camera, ro);
+  write_png_rgb(o.output, image.width, image.height, image.rgb);
+  if (!o.depth.empty()) write_png_gray16(o.depth, image.width, image.height, image.depth);
+  if (!o.ids.empty()) write_png_gray16(o.ids, image.width, image.height, image.ids);
+  json j;
+  j["width"] = image.width;
+  j["height"] = image.height;
+  j["rays"] = static_cast<size_t>(image.width) * image.height;
+  j["seconds"] = seconds_since(start);
+  j["camera"] = camera_json(camera);
+  j["ids"] = json::object({{"0", "background"}, {"65535", "section cap"}});
+  for (size_t l = 0; l < in.solid.leaves.size(); ++l) j["ids"][std::to_string(l + 1)] = in.solid.leaves[l].name;
+  if (common.json) {
+    std::cout << j.dump() << "\n";
+  } else {
+    std::printf("%s: %dx%d, %zu rays, %.3f s\n", o.output.c_str(), image.width, image.height,
+                static_cast<size_t>(image.width) * image.height, j["seconds"].get<double>());
+  }
   return 0;
 }
 

@@ -28,8 +28,22 @@ struct ClassifyCommandOptions {
   std::string points;  ///< file or "-"
 };
 
+struct RenderCommandOptions {
+  std::string input;
+  std::string output;       ///< -o OUT.png
+  std::string size = "800x600";
+  std::string view = "iso";
+  bool perspective = false;
+  std::string section;      ///< "nx,ny,nz,d" or empty
+  std::string depth;        ///< --depth D.png
+  std::string ids;          ///< --ids I.png
+  std::string background = "255,255,255";
+  bool outline = true;
+};
+
 int run_info(const InfoOptions& o, const CommonOptions& common);
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
+int run_render(const RenderCommandOptions& o, const CommonOptions& common);
 
 }  // namespace cover::cli

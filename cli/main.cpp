@@ -52,6 +52,22 @@ int main(int argc, char** argv) {
   cls_cmd->add_option("--points", cls.points, "Points file (x y z per line; - for stdin)")->required();
   add_common(cls_cmd, common);
 
+  cover::cli::RenderCommandOptions ren;
+  CLI::App* ren_cmd = app.add_subcommand("render", "Ray-cast preview PNG of the non-evaluated solid");
+  ren_cmd->add_option("INPUT", ren.input, "Mesh or scene")->required();
+  ren_cmd->add_option("-o,--output", ren.output, "Output PNG")->required();
+  ren_cmd->add_option("--size", ren.size, "Image size WxH")->capture_default_str();
+  ren_cmd->add_option("--view", ren.view, "iso, front, back, left, right, top or bottom")
+      ->capture_default_str();
+  ren_cmd->add_flag("--perspective", ren.perspective, "Perspective camera (default orthographic)");
+  ren_cmd->add_option("--section", ren.section, "Remove n.x > d and show the cut: nx,ny,nz,d");
+  ren_cmd->add_option("--depth", ren.depth, "Also write 16-bit depth PNG");
+  ren_cmd->add_option("--ids", ren.ids, "Also write 16-bit leaf-id PNG (0 background, 65535 cap)");
+  ren_cmd->add_option("--background", ren.background, "Background colour r,g,b (0-255)")
+      ->capture_default_str();
+  ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
+  add_common(ren_cmd, common);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -69,6 +85,7 @@ int main(int argc, char** argv) {
     if (info_cmd->parsed()) return cover::cli::run_info(info, common);
     if (vol_cmd->parsed()) return cover::cli::run_volume(vol, common);
     if (cls_cmd->parsed()) return cover::cli::run_classify(cls, common);
+    if (ren_cmd->parsed()) return cover::cli::run_render(ren, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
     return fail(2, e.what());

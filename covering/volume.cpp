@@ -4,6 +4,7 @@
 #include <numeric>
 #include <optional>
 
+#include "covering/bounds.h"
 #include "covering/ray.h"
 #include "solid/errors.h"
 #include "solid/measure.h"
@@ -93,46 +94,6 @@ double face_sum(const Solid& s, PerFace per_face) {
   return total.value();
 }
 
-/// A box that contains the result (leaf boxes; ∪ → hull, ∩ → overlap, − → the first operand's);
-/// empty optional for an unbounded node.
-std::optional<Bbox> result_box(const Solid& s, uint32_t node) {
-  const CsgNode& n = s.tree.nodes[node];
-  switch (n.op) {
-    case CsgOp::kLeaf:
-      return s.leaves[n.leaf].bbox;
-    case CsgOp::kComplement:
-      return std::nullopt;
-    case CsgOp::kDifference:
-      return result_box(s, n.children[0]);
-    case CsgOp::kUnion: {
-      Bbox box;
-      for (uint32_t c : n.children) {
-        const auto b = result_box(s, c);
-        if (!b) return std::nullopt;
-        box.add(*b);
-      }
-      return box;
-    }
-    case CsgOp::kIntersection: {
-      std::optional<Bbox> box;
-      for (uint32_t c : n.children) {
-        const auto b = result_box(s, c);
-        if (!b) continue;
-        if (!box) {
-          box = b;
-          continue;
-        }
-        box->min = {std::max(box->min.x, b->min.x), std::max(box->min.y, b->min.y),
-                    std::max(box->min.z, b->min.z)};
-        box->max = {std::min(box->max.x, b->max.x), std::min(box->max.y, b->max.y),
-                    std::min(box->max.z, b->max.z)};
-      }
-      return box;
-    }
-  }
-  return std::nullopt;
-}
-
 /// Volume of the result along N×N parallel rays in direction d through `box`'s bounding sphere.
 double integrate_rays(const Solid& s, const Bvh& bvh, const Bbox& box, Vec3 d, int n) {
   const Vec3 c = 0.5 * (box.min + box.max);
@@ -163,7 +124,7 @@ double integrate_rays(const Solid& s, const Bvh& bvh, const Bbox& box, Vec3 d, i
 }
 
 VolumeResult ray_volume(const Solid& s, const VolumeOptions& options) {
-  const std::optional<Bbox> box = result_box(s, s.tree.root);
+  const std::optional<Bbox> box = result_bounds(s);
   if (!box) throw NotComputable("the solid is unbounded (a complement of a bounded solid)");
   VolumeResult r;
   r.method = "rays";

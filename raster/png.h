@@ -1,0 +1,26 @@
+#pragma once
+// PNG output through libpng (Debian libpng-dev). Files are written atomically: a temporary file
+// in the same folder, then rename; a failure leaves no partial file and throws InputError.
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace cover {
+
+/// 8-bit RGB, 3·width·height bytes, rows from the top.
+void write_png_rgb(const std::filesystem::path& path, int width, int height,
+                   const std::vector<uint8_t>& rgb);
+
+/// 16-bit grey, width·height values, rows from the top.
+void write_png_gray16(const std::filesystem::path& path, int width, int height,
+                      const std::vector<uint16_t>& values);
+
+/// Reads a PNG back (tests): channels = 3 for RGB8 or 1 for GRAY16; values widened to uint16.
+struct PngImage {
+  int width = 0, height = 0, channels = 0, bit_depth = 0;
+  std::vector<uint16_t> values;
+};
+PngImage read_png(const std::filesystem::path& path);
+
+}  // namespace cover

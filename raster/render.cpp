@@ -1,0 +1,149 @@
+#include "raster/render.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solid/parallel.h"
+
+namespace cover {
+namespace {
+
+/// What a pixel's ray sees first.
+struct Sample {
+  bool hit = false;
+  bool cap = false;
+  double t = 0;
+  Vec3 normal;  ///< unit, facing the camera
+  uint32_t leaf = 0;
+};
+
+Vec3 unit(Vec3 v) {
+  const double l = std::sqrt(dot(v, v));
+  return l > 0 ? (1.0 / l) * v : v;
+}
+
+/// The allowed parameter interval [lo, hi] of the ray outside the removed half-space n·x > d.
+std::pair<double, double> allowed(const Ray& ray, const std::optional<Section>& section) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (!section) return {0.0, kInf};
+  const double s = dot(section->n, ray.dir);
+  const double v0 = dot(section->n, ray.origin) - section->d;
+  if (s == 0) return v0 <= 0 ? std::pair{0.0, kInf} : std::pair{1.0, 0.0};
+  const double ts = -v0 / s;
+  return s > 0 ? std::pair{0.0, ts} : std::pair{std::max(0.0, ts), kInf};
+}
+
+Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
+              const std::optional<Section>& section) {
+  Sample out;
+  const auto [lo, hi] = allowed(ray, section);
+  if (lo > hi) return out;
+  const RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
+  for (const Span& span : r.spans) {
+    const double a = std::max(span.t0, lo), b = std::min(span.t1, hi);
+    if (!(a < b)) continue;  // no visible part of this span
+    out.hit = true;
+    out.t = a;
+    if (a == span.t0 && span.enter != Span::kNone) {
+      const RayHit& h = r.hits[span.enter];
+      const Bvh::Tri& t = bvh.triangles()[h.tri];
+      const Vec3 n = unit(cross(t.b - t.a, t.c - t.a));
+      // Entering a leaf shows its outward normal; leaving one (a subtrahend) the reverse.
+      out.normal = h.sign < 0 ? n : -1.0 * n;
+      out.leaf = h.leaf;
+    } else {
+      out.cap = true;
+      const Vec3 n = section ? unit(section->n) : -1.0 * ray.dir;
+      out.normal = dot(n, ray.dir) < 0 ? n : -1.0 * n;
+    }
+    return out;
+  }
+  return out;
+}
+
+std::array<uint8_t, 3> hsv(double h, double s, double v) {
+  const double c = v * s, x = c * (1 - std::abs(std::fmod(h * 6, 2.0) - 1)), m = v - c;
+  double r = 0, g = 0, b = 0;
+  switch (static_cast<int>(h * 6) % 6) {
+    case 0: r = c, g = x; break;
+    case 1: r = x, g = c; break;
+    case 2: g = c, b = x; break;
+    case 3: g = x, b = c; break;
+    case 4: r = x, b = c; break;
+    default: r = c, b = x; break;
+  }
+  auto byte = [](double f) { return static_cast<uint8_t>(std::lround(std::clamp(f, 0.0, 1.0) * 255)); };
+  return {byte(r + m), byte(g + m), byte(b + m)};
+}
+
+}  // namespace
+
+std::array<uint8_t, 3> leaf_colour(uint32_t leaf) {
+  // Golden-ratio hue steps from a blue start: neighbouring leaf ids get distant hues.
+  const double h = std::fmod(0.58 + 0.6180339887498949 * leaf, 1.0);
+  return hsv(h, 0.55, 0.95);
+}
+
+std::array<uint8_t, 3> cap_colour() { return {214, 48, 49}; }
+
+Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const RenderOptions& o) {
+  Image img;
+  img.width = cam.width;
+  img.height = cam.height;
+  const size_t n = static_cast<size_t>(cam.width) * cam.height;
+  img.rgb.assign(3 * n, 0);
+  img.depth.assign(n, Image::kFarDepth);
+  img.ids.assign(n, Image::kBackgroundId);
+  std::vector<Vec3> normals(n);
+  // A key light from the upper left of the camera plus a headlight and ambient.
+  const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
+  const int tile = std::max(1, o.tile);
+  const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
+  parallel_for(static_cast<size_t>(tiles_x) * tiles_y, 1, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const int x0 = static_cast<int>(t % tiles_x) * tile, y0 = static_cast<int>(t / tiles_x) * tile;
+      for (int py = y0; py < std::min(cam.height, y0 + tile); ++py)
+        for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
+          const size_t i = static_cast<size_t>(py) * cam.width + px;
+          const Ray ray = cam.ray(px, py);
+          const Sample s = sample(solid, bvh, ray, o.section);
+          std::array<uint8_t, 3> c = o.background;
+          if (s.hit) {
+            const std::array<uint8_t, 3> base = s.cap ? cap_colour() : leaf_colour(s.leaf);
+            const double head = std::max(0.0, -dot(s.normal, ray.dir));
+            const double lit = std::max(0.0, -dot(s.normal, key));
+            const double k = 0.28 + 0.47 * head + 0.25 * lit;
+            for (int ch = 0; ch < 3; ++ch)
+              c[ch] = static_cast<uint8_t>(std::lround(std::min(255.0, base[ch] * k)));
+            const double f = (s.t - cam.near) / (cam.far - cam.near);
+            img.depth[i] = static_cast<uint16_t>(std::lround(std::clamp(f, 0.0, 1.0) * 65534));
+            img.ids[i] = s.cap ? Image::kCapId : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
+            normals[i] = s.normal;
+          }
+          std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);
+        }
+    }
+  });
+  if (!o.outline) return img;
+  // Outline: a pixel whose right or lower neighbour shows another leaf (or background) or a
+  // normal more than ~35° apart (silhouettes, leaf boundaries, creases) is darkened.
+  std::vector<uint8_t> edge(n, 0);
+  for (int py = 0; py < cam.height; ++py)
+    for (int px = 0; px < cam.width; ++px) {
+      const size_t i = static_cast<size_t>(py) * cam.width + px;
+      for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        if (px + dx >= cam.width || py + dy >= cam.height) continue;
+        const size_t j = static_cast<size_t>(py + dy) * cam.width + px + dx;
+        if (img.ids[i] == Image::kBackgroundId && img.ids[j] == Image::kBackgroundId) continue;
+        const bool differ = img.ids[i] != img.ids[j] || dot(normals[i], normals[j]) < 0.82;
+        if (differ) edge[img.ids[i] == Image::kBackgroundId ? j : i] = 1;
+      }
+    }
+  for (size_t i = 0; i < n; ++i)
+    if (edge[i])
+      for (int ch = 0; ch < 3; ++ch) img.rgb[3 * i + ch] = static_cast<uint8_t>(img.rgb[3 * i + ch] * 0.35);
+  return img;
+}
+
+}  // namespace cover

@@ -1,0 +1,50 @@
+#pragma once
+// Ray-cast preview of a NON-evaluated CSG solid (paper §6 "Ray-Casting", DESIGN.md §3): each
+// pixel's ray gets the result's inside spans from covering/ray.h; the first span start in view
+// is the visible surface, shaded with its leaf's colour. A section half-space n·x > d is removed
+// by clipping the spans: where the plane cuts a span, the pixel shows the exact cut face (cap).
+// No B-rep is built. Pixels are independent, so the image does not depend on the thread count.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "covering/bvh.h"
+#include "raster/camera.h"
+
+namespace cover {
+
+/// Removes the half-space {x : n·x > d}. Precondition: n != 0.
+struct Section {
+  Vec3 n;
+  double d = 0;
+};
+
+struct RenderOptions {
+  std::optional<Section> section;                    ///< none by default
+  std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
+  bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
+  int tile = 32;        ///< tile side for the parallel loop (results never depend on it)
+};
+
+/// Per-pixel buffers, row-major from the top row, all width × height.
+struct Image {
+  static constexpr uint16_t kBackgroundId = 0;    ///< ids: no surface
+  static constexpr uint16_t kCapId = 65535;       ///< ids: section cap (else leaf index + 1)
+  static constexpr uint16_t kFarDepth = 65535;    ///< depth: no surface
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;     ///< 3 bytes per pixel
+  std::vector<uint16_t> depth;  ///< (t − near)/(far − near) · 65534, rounded; kFarDepth: none
+  std::vector<uint16_t> ids;    ///< leaf index + 1, kCapId, or kBackgroundId
+};
+
+/// The RGB colour of leaf `leaf` (distinct hues) and of section caps.
+std::array<uint8_t, 3> leaf_colour(uint32_t leaf);
+std::array<uint8_t, 3> cap_colour();
+
+/// Renders `solid` (with its prebuilt BVH) through `camera`.
+Image render(const Solid& solid, const Bvh& bvh, const Camera& camera,
+             const RenderOptions& options = {});
+
+}  // namespace cover
