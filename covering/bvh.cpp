@@ -92,11 +92,17 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   }
   std::vector<Tri> all(start[faces]);
   std::vector<uint8_t> keep(all.size(), 0);
+  planes_.resize(faces);
   parallel_for(faces, 1024, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; ++f) {
       auto face = solid.face(f);
       const bool rev = solid.face_sign[f] < 0;  // back to the leaf's own orientation
       auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
+      if (face.size() >= 3) {
+        Vec3 n{};
+        for (size_t i = 1; i + 1 < face.size(); ++i) n = n + cross(vtx(i) - vtx(0), vtx(i + 1) - vtx(0));
+        planes_[f] = {vtx(0), n};
+      }
       for (size_t i = 1; i + 1 < face.size(); ++i) {
         Tri t{vtx(0), vtx(i), vtx(i + 1), solid.face_leaf[f], static_cast<uint32_t>(f)};
         const size_t slot = start[f] + i - 1;
@@ -129,7 +135,8 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
 }
 
 size_t Bvh::memory_bytes() const {
-  return tris_.capacity() * sizeof(Tri) + nodes_.capacity() * sizeof(Node);
+  return tris_.capacity() * sizeof(Tri) + nodes_.capacity() * sizeof(Node) +
+         planes_.capacity() * sizeof(FacePlane);
 }
 
 }  // namespace cover

@@ -44,7 +44,16 @@ class Bvh {
   /// they bound no volume and no perturbed ray crosses them).
   explicit Bvh(const Solid& solid, const BvhOptions& options = {});
 
+  /// The plane used for hit distances on face f: its first vertex and Newell normal (the sum of
+  /// its fan triangles' normals). All covering triangles of a face share it, so coincident fan
+  /// triangles (non-convex faces, false edges) give bit-identical t.
+  struct FacePlane {
+    Vec3 point;
+    Vec3 normal;
+  };
+
   const std::vector<Tri>& triangles() const { return tris_; }
+  const std::vector<FacePlane>& face_planes() const { return planes_; }
   const std::vector<Node>& nodes() const { return nodes_; }
   /// Exact bounding box of all triangles (empty when there are none).
   const Bbox& bounds() const { return bounds_; }
@@ -55,6 +64,7 @@ class Bvh {
  private:
   std::vector<Tri> tris_;
   std::vector<Node> nodes_;
+  std::vector<FacePlane> planes_;
   Bbox bounds_;
   size_t leaves_ = 0;
 };

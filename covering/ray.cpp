@@ -58,7 +58,12 @@ bool ray_meets_box(const Bvh::Node& node, const Vec3& o, const Vec3& inv) {
   return true;
 }
 
-double hit_t(const Bvh::Tri& t, const Ray& r) {
+/// Distance parameter of the hit, from the face's shared plane (bit-identical for all fan
+/// triangles of a face); the triangle's own plane when the face plane is parallel to the ray.
+double hit_t(const Bvh& bvh, const Bvh::Tri& t, const Ray& r) {
+  const Bvh::FacePlane& p = bvh.face_planes()[t.face];
+  const double nd = dot(p.normal, r.dir);
+  if (nd != 0) return dot(p.normal, p.point - r.origin) / nd;
   const Vec3 n = cross(t.b - t.a, t.c - t.a);
   return dot(n, t.a - r.origin) / dot(n, r.dir);
 }
@@ -93,7 +98,7 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
       if (s3 != s1 || s1 == 0) continue;  // the perturbed line misses the triangle
       // The line crosses with sign(n·d) = s1; the hit is ahead iff o' is behind the plane.
       if (perturbed_plane_side(t, ray.origin, ax) != -s1) continue;
-      out.hits.push_back({std::max(0.0, hit_t(t, ray)), i, t.leaf, t.face, static_cast<int8_t>(s1)});
+      out.hits.push_back({std::max(0.0, hit_t(bvh, t, ray)), i, t.leaf, t.face, static_cast<int8_t>(s1)});
     }
   }
   std::sort(out.hits.begin(), out.hits.end(), [](const RayHit& a, const RayHit& b) {
