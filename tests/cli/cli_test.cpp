@@ -251,6 +251,39 @@ TEST_F(Cli, AssimpInvalidModelsExitTwo) {
   EXPECT_GE(files, 10);
 }
 
+TEST_F(Cli, RenderWritesImagesAndCamera) {
+  const auto scene = test::source_dir() / "models" / "default.json";
+  const std::string out = q(dir_ / "a.png"), depth = q(dir_ / "d.png"), ids = q(dir_ / "i.png");
+  auto r = run_cover("render " + q(scene) + " -o " + out + " --size 120x90 --depth " + depth +
+                     " --ids " + ids + " --section 0,-1,0,-2 --json --threads 1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["width"], 120);
+  EXPECT_EQ(j["height"], 90);
+  EXPECT_EQ(j["rays"], 120 * 90);
+  EXPECT_TRUE(j["seconds"].is_number());
+  EXPECT_EQ(j["camera"]["type"], "orthographic");
+  EXPECT_TRUE(j["camera"]["pixel_size"].is_number());
+  for (const char* f : {"a.png", "d.png", "i.png"}) EXPECT_TRUE(std::filesystem::exists(dir_ / f)) << f;
+  const std::string first = test::read_file(dir_ / "a.png");
+  r = run_cover("render " + q(scene) + " -o " + out + " --size 120x90 --section 0,-1,0,-2 --threads 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(test::read_file(dir_ / "a.png"), first);  // same bytes with 1 and 2 threads
+  r = run_cover("render " + q(scene) + " -o " + q(dir_ / "p.png") + " --perspective --view top --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["camera"]["type"], "perspective");
+  for (const std::string bad : {"--size 0x10", "--size 12", "--view sideways", "--section 0,0,0,1",
+                                "--section 1,2", "--background 300,0,0"}) {
+    r = run_cover("render " + q(scene) + " -o " + q(dir_ / "bad.png") + " " + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.png")) << bad;
+  }
+  r = run_cover("render " + q(scene) + " -o " + q(dir_ / "missing-folder" / "x.png"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("x.png"), std::string::npos);
+}
+
 TEST_F(Cli, DefaultSceneInfoAndVolume) {
   const auto scene = test::source_dir() / "models" / "default.json";
   auto r = run_cover("info " + q(scene));

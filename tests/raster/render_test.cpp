@@ -1,0 +1,194 @@
+// Ray-cast rendering (raster/render.h): invariants against analytic geometry, not golden images.
+#include "raster/render.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "helpers.h"
+#include "raster/png.h"
+#include "solid/parallel.h"
+#include "solid/primitives.h"
+
+namespace cover {
+namespace {
+
+Solid box_solid(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
+
+Image draw(const Solid& s, const Camera& cam, const RenderOptions& o = {}) {
+  const Bvh bvh(s);
+  return render(s, bvh, cam, o);
+}
+
+/// The cube [−1, 1]³: every test frames the same region, so pixel sizes are known.
+Bbox unit_frame() {
+  Bbox b;
+  b.add(Vec3{-1, -1, -1});
+  b.add(Vec3{1, 1, 1});
+  return b;
+}
+
+Camera front(const Bbox& frame, int w, int h) {
+  CameraOptions co;
+  co.view = View::kFront;
+  co.width = w;
+  co.height = h;
+  return frame_camera(frame, co);
+}
+
+size_t at(const Image& img, int x, int y) { return static_cast<size_t>(y) * img.width + x; }
+
+TEST(Render, BoxSilhouetteMatchesProjectionPixelForPixel) {
+  // Box bounds chosen off pixel centres; the camera looks along +y, so a pixel shows the box
+  // iff its ray origin projects strictly inside [lo.x, hi.x] × [lo.z, hi.z].
+  const Vec3 lo{-0.731, -0.4, -0.512}, hi{0.613, 0.9, 0.377};
+  const Solid s = box_solid(lo, hi);
+  const Bbox frame = unit_frame();
+  const Camera cam = front(frame, 97, 83);
+  const Image img = draw(s, cam);
+  int inside = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Ray r = cam.ray(x, y);
+      ASSERT_EQ(r.dir, (Vec3{0, 1, 0}));
+      const bool expected = r.origin.x > lo.x && r.origin.x < hi.x && r.origin.z > lo.z && r.origin.z < hi.z;
+      inside += expected;
+      ASSERT_EQ(img.ids[at(img, x, y)] == 1, expected) << x << "," << y;
+      ASSERT_EQ(img.ids[at(img, x, y)] == Image::kBackgroundId, !expected);
+    }
+  EXPECT_GT(inside, 400);
+}
+
+TEST(Render, SphereSilhouetteWithinPolygonApproximation) {
+  const Vec3 c{0.1, 0.2, -0.05};
+  const double r = 0.8;
+  const int segments = 64;  // 64 slices, 32 stacks
+  const Solid s = make_leaf(make_sphere(c, r, segments), "sphere");
+  // The polyhedron lies between the circumscribed sphere r and an inscribed one: every face's
+  // vertices are within angle sqrt((π/64)² + (π/64)²) of its centre direction.
+  const double r_in = r * std::cos(std::hypot(M_PI / 64, M_PI / 64) * 1.01);
+  const Bbox frame = unit_frame();
+  const Camera cam = front(frame, 120, 120);
+  const Image img = draw(s, cam);
+  int checked = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Ray ray = cam.ray(x, y);
+      const double d = std::hypot(ray.origin.x - c.x, ray.origin.z - c.z);
+      const bool hit = img.ids[at(img, x, y)] == 1;
+      if (d < r_in) {
+        ASSERT_TRUE(hit) << x << "," << y;
+      }
+      if (d > r) {
+        ASSERT_FALSE(hit) << x << "," << y;
+      }
+      checked += d < r_in || d > r;
+    }
+  EXPECT_GT(checked, 120 * 120 * 9 / 10);
+}
+
+TEST(Render, SectionCapExactlyWhereTheCutIs) {
+  // Remove y < 0.25 (n = (0,−1,0), d = −0.25): seen from the front, every ray through the box's
+  // projection meets the cap at y = 0.25; its depth is analytic.
+  const Vec3 lo{-0.6, -0.5, -0.45}, hi{0.55, 0.7, 0.38};
+  const Solid s = box_solid(lo, hi);
+  const Bbox frame = unit_frame();
+  const Camera cam = front(frame, 90, 70);
+  RenderOptions o;
+  o.section = Section{{0, -1, 0}, -0.25};
+  const Image img = draw(s, cam, o);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Ray r = cam.ray(x, y);
+      const bool in = r.origin.x > lo.x && r.origin.x < hi.x && r.origin.z > lo.z && r.origin.z < hi.z;
+      ASSERT_EQ(img.ids[at(img, x, y)], in ? Image::kCapId : Image::kBackgroundId) << x << "," << y;
+      if (in) {
+        EXPECT_GT(img.rgb[3 * at(img, x, y)], img.rgb[3 * at(img, x, y) + 1]);  // reddish cap
+      }
+    }
+  // A section plane that misses the solid leaves it untouched; one that removes all of it leaves
+  // nothing.
+  o.section = Section{{0, 1, 0}, 5};
+  EXPECT_EQ(draw(s, cam, o).ids, draw(s, cam).ids);
+  o.section = Section{{0, 1, 0}, -5};
+  for (uint16_t id : draw(s, cam, o).ids) ASSERT_EQ(id, Image::kBackgroundId);
+}
+
+TEST(Render, DepthMatchesAnalyticDepthOnABox) {
+  const Vec3 lo{-0.5, -0.3, -0.5}, hi{0.5, 0.6, 0.5};
+  const Solid s = box_solid(lo, hi);
+  const Bbox frame = unit_frame();
+  const Camera cam = front(frame, 64, 64);
+  const Image img = draw(s, cam);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Ray r = cam.ray(x, y);
+      if (img.ids[at(img, x, y)] != 1) continue;
+      const double t = lo.y - r.origin.y;  // the front face y = lo.y
+      const double expected = (t - cam.near) / (cam.far - cam.near) * 65534;
+      ASSERT_NEAR(img.depth[at(img, x, y)], expected, 0.5 + 1e-9) << x << "," << y;
+    }
+}
+
+TEST(Render, DifferenceShowsTheSubtrahendOnCarvedSurfaces) {
+  // A box with a spherical bite out of its front face: the bite shows leaf 2 (B), the rest of the
+  // front face leaf 1 (A).
+  const Solid a = box_solid({-0.8, -0.5, -0.8}, {0.8, 0.5, 0.8});
+  const Solid b = make_leaf(make_sphere({0, -0.5, 0}, 0.45, 48), "bite");
+  const Solid d = subtract({a, b});
+  const Bbox frame = unit_frame();
+  const Camera cam = front(frame, 101, 101);
+  const Image img = draw(d, cam);
+  int carved = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Ray r = cam.ray(x, y);
+      const double rad = std::hypot(r.origin.x, r.origin.z);
+      const uint16_t id = img.ids[at(img, x, y)];
+      if (rad < 0.45 * 0.98) {
+        ASSERT_EQ(id, 2) << x << "," << y;
+        ++carved;
+      } else if (rad > 0.46 && std::abs(r.origin.x) < 0.79 && std::abs(r.origin.z) < 0.79) {
+        ASSERT_EQ(id, 1) << x << "," << y;
+      }
+    }
+  EXPECT_GT(carved, 300);
+}
+
+TEST(Render, SameImageWithOneAndTwoThreadsAndPngRoundTrip) {
+  const Solid s = unite({subtract({box_solid({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "s")}),
+                         make_leaf(make_cylinder({0, 0, -1}, {0, 0, 3}, 0.6, 20), "c")});
+  const Bbox frame = s.bbox();
+  for (bool perspective : {false, true}) {
+    CameraOptions co;
+    co.perspective = perspective;
+    co.width = 160;
+    co.height = 120;
+    const Camera cam = frame_camera(frame, co);
+    RenderOptions o;
+    o.section = Section{{1, 1, 0}, 2.5};
+    Image one, two;
+    {
+      ThreadLimit limit(1);
+      one = draw(s, cam, o);
+    }
+    {
+      ThreadLimit limit(2);
+      two = draw(s, cam, o);
+    }
+    EXPECT_EQ(one.rgb, two.rgb);
+    EXPECT_EQ(one.depth, two.depth);
+    EXPECT_EQ(one.ids, two.ids);
+    const auto dir = test::temp_dir("png");
+    write_png_rgb(dir / "c.png", one.width, one.height, one.rgb);
+    write_png_gray16(dir / "d.png", one.width, one.height, one.depth);
+    const PngImage c = read_png(dir / "c.png"), d = read_png(dir / "d.png");
+    EXPECT_EQ(c.width, 160);
+    EXPECT_EQ(std::vector<uint16_t>(one.rgb.begin(), one.rgb.end()), c.values);
+    EXPECT_EQ(d.values, one.depth);
+    std::filesystem::remove_all(dir);
+  }
+}
+
+}  // namespace
+}  // namespace cover
