@@ -82,7 +82,7 @@ struct Builder {
 
 }  // namespace
 
-Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
+std::vector<Bvh::Tri> leaf_triangles(const Solid& solid) {
   const size_t faces = solid.face_count();
   // Covering triangles per face, counted first so faces can be processed in parallel.
   std::vector<uint32_t> start(faces + 1, 0);
@@ -90,21 +90,15 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
     const size_t k = solid.face(f).size();
     start[f + 1] = start[f] + static_cast<uint32_t>(k >= 3 ? k - 2 : 0);
   }
-  std::vector<Tri> all(start[faces]);
+  std::vector<Bvh::Tri> all(start[faces]);
   std::vector<uint8_t> keep(all.size(), 0);
-  planes_.resize(faces);
   parallel_for(faces, 1024, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; ++f) {
       auto face = solid.face(f);
       const bool rev = solid.face_sign[f] < 0;  // back to the leaf's own orientation
       auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
-      if (face.size() >= 3) {
-        Vec3 n{};
-        for (size_t i = 1; i + 1 < face.size(); ++i) n = n + cross(vtx(i) - vtx(0), vtx(i + 1) - vtx(0));
-        planes_[f] = {vtx(0), n};
-      }
       for (size_t i = 1; i + 1 < face.size(); ++i) {
-        Tri t{vtx(0), vtx(i), vtx(i + 1), solid.face_leaf[f], static_cast<uint32_t>(f)};
+        Bvh::Tri t{vtx(0), vtx(i), vtx(i + 1), solid.face_leaf[f], static_cast<uint32_t>(f)};
         const size_t slot = start[f] + i - 1;
         keep[slot] = orient2d(t.a, t.b, t.c, 0) != 0 || orient2d(t.a, t.b, t.c, 1) != 0 ||
                      orient2d(t.a, t.b, t.c, 2) != 0;
@@ -112,12 +106,33 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
       }
     }
   });
-  std::vector<Item> items;
+  size_t kept = 0;
   for (size_t i = 0; i < all.size(); ++i)
-    if (keep[i]) {
-      const Tri& t = all[i];
-      items.push_back({t, (1.0 / 3.0) * (t.a + t.b + t.c), static_cast<uint32_t>(items.size())});
+    if (keep[i]) all[kept++] = all[i];
+  all.resize(kept);
+  return all;
+}
+
+Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
+  const size_t faces = solid.face_count();
+  planes_.resize(faces);
+  parallel_for(faces, 1024, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      auto face = solid.face(f);
+      if (face.size() < 3) continue;
+      const bool rev = solid.face_sign[f] < 0;
+      auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
+      Vec3 n{};
+      for (size_t i = 1; i + 1 < face.size(); ++i) n = n + cross(vtx(i) - vtx(0), vtx(i + 1) - vtx(0));
+      planes_[f] = {vtx(0), n};
     }
+  });
+  const std::vector<Tri> all = leaf_triangles(solid);
+  std::vector<Item> items(all.size());
+  for (size_t i = 0; i < all.size(); ++i) {
+    const Tri& t = all[i];
+    items[i] = {t, (1.0 / 3.0) * (t.a + t.b + t.c), static_cast<uint32_t>(i)};
+  }
   if (items.empty()) return;
   BvhOptions o = options;
   o.leaf_size = std::max<uint32_t>(1, o.leaf_size);
