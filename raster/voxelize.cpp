@@ -43,10 +43,21 @@ std::vector<double> centres(double min, double h, int n) {
   return c;
 }
 
-/// Indices [first, last] of the centres inside [lo, hi] (exact comparisons), or first > last.
+/// Indices [first, last] of the centres inside [lo, hi], or first > last: a floating-point
+/// guess, then exact comparisons with the centre coordinates.
 std::pair<int, int> centre_range(const std::vector<double>& c, double lo, double hi) {
-  const int first = static_cast<int>(std::lower_bound(c.begin(), c.end(), lo) - c.begin());
-  const int last = static_cast<int>(std::upper_bound(c.begin(), c.end(), hi) - c.begin()) - 1;
+  const int n = static_cast<int>(c.size());
+  const double inv_h = n > 1 ? 1 / (c[1] - c[0]) : 1;
+  auto guess = [&](double v) {
+    const double g = std::floor((v - c[0]) * inv_h);
+    return std::isfinite(g) ? static_cast<int>(std::clamp(g, -1.0, static_cast<double>(n))) : -1;
+  };
+  int first = std::max(0, guess(lo));
+  while (first > 0 && c[first - 1] >= lo) --first;
+  while (first < n && c[first] < lo) ++first;
+  int last = std::min(n - 1, guess(hi) + 1);
+  while (last >= 0 && c[last] > hi) --last;
+  while (last + 1 < n && c[last + 1] <= hi) ++last;
   return {first, last};
 }
 
@@ -94,6 +105,11 @@ void fill(uint64_t* column, int k0, int k1) {
 
 VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options) {
   VoxelGrid g;
+  voxelize(solid, options, g);
+  return g;
+}
+
+void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) {
   g.n = options.resolution;
   if (options.bounds) {
     g.bounds = *options.bounds;
@@ -164,7 +180,6 @@ VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options) {
       }
     }
   });
-  return g;
 }
 
 }  // namespace cover

@@ -29,4 +29,7 @@ struct VoxelizeOptions {
 /// Voxelizes the result of the CSG expression over an N×N×N grid.
 VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options);
 
+/// The same into `grid`, reusing its memory (repeated voxelizations, benchmarks).
+void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& grid);
+
 }  // namespace cover
