@@ -115,7 +115,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
     g.bounds = *options.bounds;
   } else {
     const std::optional<Bbox> box = result_bounds(solid);
-    g.bounds = default_voxel_bounds(box && !box->empty() ? *box : solid.bbox(), g.n);
+    g.bounds = default_voxel_bounds(box && !box->empty() ? *box : solid.bbox(), std::max(g.n, 3));
   }
   const int n = g.n;
   const double h = g.voxel_size();
