@@ -41,9 +41,28 @@ struct RenderCommandOptions {
   bool outline = true;
 };
 
+struct VoxelizeCommandOptions {
+  std::string input;
+  std::string output;   ///< -o OUT.(binvox|vti|npy|raw)
+  int res = 0;          ///< --res N
+  std::string bounds;   ///< --bounds xmin,ymin,zmin,size
+  std::string surface;  ///< --surface OUT.(obj|stl|off|ply)
+  long max_memory_mib = 4096;  ///< --max-memory: refuse grids needing more (MiB)
+};
+
+struct OctreeCommandOptions {
+  std::string input;
+  std::string output;  ///< -o OUT.(htg|bt|json)
+  int depth = 0;       ///< --depth D
+  std::string bounds;
+  double threshold = 0.5;
+};
+
 int run_info(const InfoOptions& o, const CommonOptions& common);
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
 int run_render(const RenderCommandOptions& o, const CommonOptions& common);
+int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common);
+int run_octree(const OctreeCommandOptions& o, const CommonOptions& common);
 
 }  // namespace cover::cli

@@ -68,6 +68,28 @@ int main(int argc, char** argv) {
   ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
   add_common(ren_cmd, common);
 
+  cover::cli::VoxelizeCommandOptions vox;
+  CLI::App* vox_cmd = app.add_subcommand("voxelize", "Voxelize the solid (presence buffer)");
+  vox_cmd->add_option("INPUT", vox.input, "Mesh or scene")->required();
+  vox_cmd->add_option("--res", vox.res, "Voxels per axis")->required()->check(CLI::Range(1, 4096));
+  vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy or .raw")->required();
+  vox_cmd->add_option("--bounds", vox.bounds, "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
+  vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)");
+  vox_cmd->add_option("--max-memory", vox.max_memory_mib, "Refuse grids needing more MiB")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  add_common(vox_cmd, common);
+
+  cover::cli::OctreeCommandOptions oct;
+  CLI::App* oct_cmd = app.add_subcommand("octree", "Direct octree generation (exact full/empty cells)");
+  oct_cmd->add_option("INPUT", oct.input, "Mesh or scene")->required();
+  oct_cmd->add_option("--depth", oct.depth, "Maximum depth")->required()->check(CLI::Range(0, 16));
+  oct_cmd->add_option("-o,--output", oct.output, "OUT.htg, .bt or .json")->required();
+  oct_cmd->add_option("--bounds", oct.bounds, "Octree cube xmin,ymin,zmin,size");
+  oct_cmd->add_option("--threshold", oct.threshold, "Occupancy deciding partial cells where a format needs yes/no")
+      ->capture_default_str();
+  add_common(oct_cmd, common);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -86,6 +108,8 @@ int main(int argc, char** argv) {
     if (vol_cmd->parsed()) return cover::cli::run_volume(vol, common);
     if (cls_cmd->parsed()) return cover::cli::run_classify(cls, common);
     if (ren_cmd->parsed()) return cover::cli::run_render(ren, common);
+    if (vox_cmd->parsed()) return cover::cli::run_voxelize(vox, common);
+    if (oct_cmd->parsed()) return cover::cli::run_octree(oct, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
     return fail(2, e.what());

@@ -284,6 +284,55 @@ TEST_F(Cli, RenderWritesImagesAndCamera) {
   EXPECT_NE(r.err.find("x.png"), std::string::npos);
 }
 
+TEST_F(Cli, VoxelizeAndOctreeWriteEveryFormatDeterministically) {
+  const auto scene = test::source_dir() / "models" / "default.json";
+  for (const char* ext : {"binvox", "vti", "npy", "raw"}) {
+    const auto out = dir_ / (std::string("v.") + ext);
+    auto r = run_cover("voxelize " + q(scene) + " --res 40 -o " + q(out) + " --json --threads 1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["res"], 40);
+    EXPECT_GT(j["occupied"].get<long>(), 0);
+    EXPECT_TRUE(j["bounds"]["min"].is_array());
+    EXPECT_NEAR(j["volume_estimate"].get<double>(), 93.8187, 0.1 * 93.8187);
+    EXPECT_TRUE(j["seconds"].is_number());
+    const std::string first = test::read_file(out);
+    r = run_cover("voxelize " + q(scene) + " --res 40 -o " + q(out) + " --threads 2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(out), first) << ext;
+  }
+  auto r = run_cover("voxelize " + q(scene) + " --res 24 -o " + q(dir_ / "s.npy") + " --surface " +
+                     q(dir_ / "s.off") + " --bounds -1,-6,-1,12");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run_cover("info --json " + q(dir_ / "s.off"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* k : {"closed", "manifold", "oriented", "outward"})
+    EXPECT_EQ(json::parse(r.out)["leaves_info"][0][k], true) << k;
+  for (const char* ext : {"htg", "bt", "json"}) {
+    const auto out = dir_ / (std::string("o.") + ext);
+    r = run_cover("octree " + q(scene) + " --depth 5 -o " + q(out) + " --json --threads 1");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["depth"], 5);
+    EXPECT_GT(j["nodes"].get<long>(), 1);
+    EXPECT_GT(j["leaves"]["full"].get<long>(), 0);
+    EXPECT_GT(j["leaves"]["partial"].get<long>(), 0);
+    const std::string first = test::read_file(out);
+    r = run_cover("octree " + q(scene) + " --depth 5 -o " + q(out) + " --threads 2");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(out), first) << ext;
+  }
+  for (const std::string bad : {"voxelize --res 10 -o x.png", "voxelize --res 0 -o x.npy",
+                                "voxelize --res 5000 -o x.npy", "voxelize --res 10 -o x.npy --bounds 1,2,3",
+                                "voxelize --res 4096 -o x.npy", "octree --depth 4 -o x.vtk",
+                                "octree --depth 40 -o x.bt", "octree --depth 3 -o x.bt --threshold 2"}) {
+    const std::string cmd = bad.substr(0, bad.find(' '));
+    r = run_cover(cmd + " " + q(scene) + bad.substr(bad.find(' ')));
+    EXPECT_EQ(r.status, 2) << bad << r.err;
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+  }
+}
+
 TEST_F(Cli, DefaultSceneInfoAndVolume) {
   const auto scene = test::source_dir() / "models" / "default.json";
   auto r = run_cover("info " + q(scene));

@@ -1,0 +1,149 @@
+// Voxelization and octree benchmark, one process, same machine (issue: voxels and octrees):
+//   cover      voxelize() into a reused grid (2 threads by default)
+//   floor      one memset + one XOR pass over a bit grid of the same size (memory-bandwidth
+//              floor): "warm" reuses the grid memory, "fresh" allocates it each time
+//   openvdb    tools::meshToVolume at the same voxel size: narrow band (half width 3) and
+//              with the interior filled (the occupancy Cover produces), same thread count
+//   octree     build_octree() at the given depths
+//   peak       ru_maxrss after the runs (run --peak-only to measure one voxelization alone)
+// Usage: voxel_bench MESH --res N [--res N ...] [--octree D ...] [--threads T] [--no-openvdb]
+//                     [--peak-only]
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <sys/resource.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "octree/octree.h"
+#include "raster/voxelize.h"
+#include "solid/parallel.h"
+#include "solid/scene.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+double peak_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;
+}
+
+/// memset + XOR prefix pass over `words` (the same traffic a presence buffer needs at least).
+uint64_t floor_pass(std::vector<uint64_t>& words) {
+  std::memset(words.data(), 0, words.size() * sizeof(uint64_t));
+  uint64_t acc = 0x9e3779b97f4a7c15ULL;
+  for (uint64_t& w : words) w = acc ^= w;
+  return acc;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: voxel_bench MESH --res N [--octree D] [--threads T]\n");
+    return 2;
+  }
+  std::vector<int> resolutions, depths;
+  int threads = 2;
+  bool openvdb_on = true, peak_only = false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--res" && i + 1 < argc) resolutions.push_back(std::atoi(argv[++i]));
+    if (a == "--octree" && i + 1 < argc) depths.push_back(std::atoi(argv[++i]));
+    if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
+    if (a == "--no-openvdb") openvdb_on = false;
+    if (a == "--peak-only") peak_only = true;
+  }
+  const cover::Solid solid = cover::load_input(argv[1]).solid;
+  cover::ThreadLimit limit(threads);
+  tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
+  std::printf("{\"mesh\": \"%s\", \"faces\": %zu, \"threads\": %d, \"runs\": [\n", argv[1],
+              solid.face_count(), threads);
+  for (size_t r = 0; r < resolutions.size(); ++r) {
+    const int n = resolutions[r];
+    cover::VoxelizeOptions o;
+    o.resolution = n;
+    cover::VoxelGrid grid;
+    const int reps = peak_only ? 1 : 3;
+    std::vector<double> t_cover, t_warm, t_fresh;
+    for (int k = 0; k < reps; ++k) {
+      auto t0 = Clock::now();
+      cover::voxelize(solid, o, grid);
+      t_cover.push_back(since(t0));
+    }
+    const double cover_peak = peak_mib();
+    if (peak_only) {
+      std::printf("  {\"res\": %d, \"cover_s\": %.4f, \"occupied\": %llu, \"peak_mib\": %.1f}\n", n,
+                  t_cover[0], static_cast<unsigned long long>(grid.count()), cover_peak);
+      continue;
+    }
+    uint64_t sink = 0;
+    for (int k = 0; k < reps; ++k) {
+      auto t0 = Clock::now();
+      sink ^= floor_pass(grid.bits);
+      t_warm.push_back(since(t0));
+      t0 = Clock::now();
+      std::vector<uint64_t> fresh(grid.bits.size());
+      sink ^= floor_pass(fresh);
+      t_fresh.push_back(since(t0));
+    }
+    double vdb_band = 0, vdb_filled = 0;
+    if (openvdb_on) {
+      openvdb::initialize();
+      std::vector<openvdb::Vec3s> points;
+      std::vector<openvdb::Vec3I> triangles;
+      for (const cover::Vec3& p : solid.vertices)
+        points.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
+      for (size_t f = 0; f < solid.face_count(); ++f) {
+        const auto face = solid.face(f);
+        for (size_t i = 1; i + 1 < face.size(); ++i) triangles.emplace_back(face[0], face[i], face[i + 1]);
+      }
+      const auto xform = openvdb::math::Transform::createLinearTransform(grid.voxel_size());
+      openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> mesh(points, triangles);
+      auto t0 = Clock::now();
+      auto band = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, *xform, 3.0f, 3.0f);
+      vdb_band = since(t0);
+      t0 = Clock::now();
+      auto filled = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+          mesh, *xform, 3.0f, std::numeric_limits<float>::max());
+      vdb_filled = since(t0);
+      sink ^= band->activeVoxelCount() ^ filled->activeVoxelCount();
+    }
+    const double c = median(t_cover), w = median(t_warm), f = median(t_fresh);
+    std::printf("  {\"res\": %d, \"cover_s\": %.4f, \"floor_warm_s\": %.4f, \"floor_fresh_s\": %.4f, "
+                "\"x_floor_warm\": %.1f, \"x_floor_fresh\": %.1f, \"openvdb_band_s\": %.3f, "
+                "\"openvdb_filled_s\": %.3f, \"openvdb_band_over_cover\": %.1f, "
+                "\"openvdb_filled_over_cover\": %.1f, \"occupied\": %llu, \"peak_mib\": %.1f, \"sink\": %llu}%s\n",
+                n, c, w, f, c / w, c / f, vdb_band, vdb_filled, vdb_band / c, vdb_filled / c,
+                static_cast<unsigned long long>(grid.count()), cover_peak,
+                static_cast<unsigned long long>(sink & 1), r + 1 < resolutions.size() || !depths.empty() ? "," : "");
+  }
+  for (size_t d = 0; d < depths.size(); ++d) {
+    cover::OctreeOptions oo;
+    oo.depth = depths[d];
+    const cover::Bbox box = solid.bbox();
+    const auto bounds = cover::default_voxel_bounds(box, 1 << std::min(depths[d], 20));
+    const auto t0 = Clock::now();
+    const cover::Octree tree = cover::build_octree(solid, bounds, oo);
+    const double t = since(t0);
+    const auto counts = tree.leaf_counts();
+    std::printf("  {\"octree_depth\": %d, \"seconds\": %.3f, \"nodes\": %zu, \"full\": %llu, \"empty\": %llu, "
+                "\"partial\": %llu}%s\n", depths[d], t, tree.nodes.size(),
+                static_cast<unsigned long long>(counts[1]), static_cast<unsigned long long>(counts[0]),
+                static_cast<unsigned long long>(counts[2]), d + 1 < depths.size() ? "," : "");
+  }
+  std::printf("]}\n");
+  return 0;
+}

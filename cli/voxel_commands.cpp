@@ -1,0 +1,116 @@
+// `cover voxelize` and `cover octree` (CONTRACT.md).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/output.h"
+#include "covering/bounds.h"
+#include "octree/octree.h"
+#include "octree/octree_io.h"
+#include "raster/voxel_io.h"
+#include "raster/voxel_surface.h"
+#include "raster/voxelize.h"
+#include "solid/errors.h"
+#include "solid/mesh_io.h"
+#include "solid/scene.h"
+
+namespace cover::cli {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+/// --bounds xmin,ymin,zmin,size, or the default cube around the result's box.
+VoxelBounds bounds_option(const std::string& text, const Solid& solid, int n) {
+  if (text.empty()) {
+    const std::optional<Bbox> box = result_bounds(solid);
+    // One voxel of margin per side needs N >= 3; coarser grids get the margin of N = 3.
+    return default_voxel_bounds(box && !box->empty() ? *box : solid.bbox(), std::max(n, 3));
+  }
+  double v[4];
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &v[3], &tail) != 4 ||
+      !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]) || !(v[3] > 0) ||
+      !std::isfinite(v[3]))
+    throw InputError("--bounds: expected xmin,ymin,zmin,size with size > 0, got '" + text + "'");
+  return {{v[0], v[1], v[2]}, v[3]};
+}
+
+json bounds_json(const VoxelBounds& b) {
+  return json{{"min", to_json(b.min)}, {"size", b.size}};
+}
+
+}  // namespace
+
+int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
+  const auto start = Clock::now();
+  if (!is_voxel_extension(o.output))
+    throw InputError(o.output + ": unsupported voxel format (expected .binvox, .vti, .npy, .raw)");
+  if (!o.surface.empty() && !is_mesh_extension(o.surface))
+    throw InputError(o.surface + ": unsupported mesh format for --surface (expected .obj, .stl, .off, .ply)");
+  // The bit grid needs N³/8 bytes: refuse sizes beyond --max-memory before allocating.
+  const double bytes = std::pow(static_cast<double>(o.res), 3) / 8;
+  if (bytes > o.max_memory_mib * 1048576.0)
+    throw InputError("--res " + std::to_string(o.res) + ": the grid needs " +
+                     std::to_string(static_cast<long long>(bytes / 1048576)) +
+                     " MiB, over --max-memory " + std::to_string(o.max_memory_mib) + " MiB");
+  const LoadedInput in = load_input(o.input);
+  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  VoxelizeOptions vo;
+  vo.resolution = o.res;
+  vo.bounds = bounds_option(o.bounds, in.solid, o.res);
+  Progress progress("voxelize", common.quiet);
+  const VoxelGrid grid = voxelize(in.solid, vo);
+  write_voxels(o.output, grid);
+  if (!o.surface.empty()) write_mesh(o.surface, voxel_surface(grid));
+  const uint64_t occupied = grid.count();
+  const double h = grid.voxel_size();
+  json j;
+  j["res"] = o.res;
+  j["bounds"] = bounds_json(grid.bounds);
+  j["occupied"] = occupied;
+  j["volume_estimate"] = static_cast<double>(occupied) * h * h * h;
+  j["seconds"] = seconds_since(start);
+  if (common.json) {
+    std::cout << j.dump() << "\n";
+  } else {
+    std::printf("%s: %d^3 voxels, %llu occupied, volume estimate %.9g, %.3f s\n", o.output.c_str(), o.res,
+                static_cast<unsigned long long>(occupied), j["volume_estimate"].get<double>(),
+                j["seconds"].get<double>());
+  }
+  return 0;
+}
+
+int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
+  const auto start = Clock::now();
+  if (!is_octree_extension(o.output))
+    throw InputError(o.output + ": unsupported octree format (expected .htg, .bt, .json)");
+  if (!(o.threshold >= 0 && o.threshold <= 1)) throw InputError("--threshold: expected a number from 0 to 1");
+  const LoadedInput in = load_input(o.input);
+  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  OctreeOptions oo;
+  oo.depth = o.depth;
+  const Octree tree = build_octree(in.solid, bounds_option(o.bounds, in.solid, 1 << o.depth), oo);
+  write_octree(o.output, tree, o.threshold);
+  const auto counts = tree.leaf_counts();
+  json j;
+  j["depth"] = o.depth;
+  j["nodes"] = tree.nodes.size();
+  j["leaves"] = {{"empty", counts[0]}, {"full", counts[1]}, {"partial", counts[2]}};
+  j["bounds"] = bounds_json(tree.bounds);
+  j["seconds"] = seconds_since(start);
+  if (common.json) {
+    std::cout << j.dump() << "\n";
+  } else {
+    std::printf("%s: depth %d, %zu nodes, leaves: %llu full, %llu empty, %llu partial, %.3f s\n",
+                o.output.c_str(), o.depth, tree.nodes.size(), static_cast<unsigned long long>(counts[1]),
+                static_cast<unsigned long long>(counts[0]), static_cast<unsigned long long>(counts[2]),
+                j["seconds"].get<double>());
+  }
+  return 0;
+}
+
+}  // namespace cover::cli

@@ -1,0 +1,420 @@
+#include "octree/octree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <span>
+#include <string>
+
+#include "covering/bvh.h"
+#include "covering/classify.h"
+#include "octree/detail/box_overlap.h"
+#include "solid/errors.h"
+#include "solid/parallel.h"
+
+// Notation
+//   D        maximum depth; h = size/2^D the finest cell size. Grid plane m (0 ≤ m ≤ 2^D) of axis a
+//            is the double bounds.min[a] + m·h, the same for every level, so children tile their
+//            parent exactly.
+//   coord    integer corner (i, j, k) of a cell at depth d: it spans planes i·2^(D−d) ..
+//            (i+1)·2^(D−d) along x, and so on.
+//   T_C      the covering triangles that meet the closed cell C (exact); C is crossed if T_C ≠ ∅.
+//   rank     index of a crossed cell among the crossed cells of its level (in node order); its
+//            children are the cells 8·rank .. 8·rank + 7 of the next level, in Morton order.
+// One level at a time, in blocks of cells:
+//   (A) T_C for every cell, testing the parent's list (or the BVH's candidates for the cell's box
+//       when that list is long) with the exact triangle / closed-box test;
+//   (B) the points to classify. Uncrossed siblings: their closed cells all hold the parent's
+//       centre, so together they form a connected set no surface meets, where every leaf's
+//       winding — hence membership — is constant: one centre is classified for all of them.
+//       Partial cells: the samples³ sub-points, grouped by their sides of the planes of T_C;
+//       every surface in the cell lies in those planes, so a side class is a convex region no
+//       surface meets: one point per class is classified, and a point ON a plane alone (it may
+//       be on a surface);
+//   (C) one classify() call per block; (D) states, occupancies and child links.
+// Node order, ranks and results depend only on the input: every parallel step writes per cell or
+// per fixed chunk, and chunks are concatenated in order.
+
+namespace cover {
+namespace {
+
+constexpr int kMaxDepth = 16;       // OctoMap's depth, and 2^16 cells per axis
+constexpr int kMaxSamples = 32;     // 32³ sub-points per partial cell
+constexpr size_t kInheritMax = 64;  // parent lists up to this length are the children's candidates
+constexpr size_t kGroupMax = 64;    // planes up to which points are grouped by sides
+constexpr size_t kExactKey = 40;    // side vectors up to this length are exact base-3 keys
+constexpr size_t kGrain = 512;  // cells per parallel chunk (a multiple of 8: whole sibling sets)
+constexpr size_t kBlock = size_t{1} << 18;  // cells per classification batch (multiple of kGrain)
+
+using Coord = std::array<uint32_t, 3>;
+
+/// One list of triangle indices per cell (compressed rows).
+struct Lists {
+  std::vector<uint64_t> start{0};
+  std::vector<uint32_t> tris;
+
+  std::span<const uint32_t> operator[](size_t i) const {
+    return {tris.data() + start[i], static_cast<size_t>(start[i + 1] - start[i])};
+  }
+  void append(std::span<const uint32_t> list) {
+    tris.insert(tris.end(), list.begin(), list.end());
+    start.push_back(tris.size());
+  }
+};
+
+/// A classification request: cell `cell` (index in its block) gets `weight` times the class of
+/// representative point `rep`.
+struct Entry {
+  uint32_t cell = 0;
+  uint32_t rep = 0;
+  uint32_t weight = 0;
+};
+
+/// Per-chunk buffers, reused from cell to cell.
+struct Scratch {
+  std::vector<detail::PlaneSide> planes;
+  std::vector<int8_t> sides;     ///< points × planes
+  std::vector<uint32_t> first;   ///< per group: its first point
+  std::vector<uint32_t> weight;  ///< per group: its number of points
+  std::vector<uint64_t> keys;    ///< per group: its side vector in base 3
+};
+
+/// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
+/// closed box.
+void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out) {
+  const auto& nodes = bvh.nodes();
+  if (nodes.empty()) return;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t id = stack[--top];
+    const Bvh::Node& node = nodes[id];
+    bool miss = false;
+    for (int a = 0; a < 3; ++a) miss |= node.lo[a] > box.max[a] || node.hi[a] < box.min[a];
+    if (miss) continue;
+    if (node.count == 0) {
+      stack[top++] = node.first;
+      stack[top++] = id + 1;
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) out.push_back(i);
+  }
+}
+
+/// Groups `points` (all in `box`) by their sides of the planes of `tris`: equal side vectors
+/// without a zero share a group; a point on some plane gets a group of its own, and so does every
+/// point when there are more than kGroupMax planes. Fills s.first and s.weight.
+void group_by_sides(const Bvh& bvh, std::span<const uint32_t> tris, const Bbox& box,
+                    std::span<const Vec3> points, Scratch& s) {
+  const size_t n = points.size(), k = tris.size();
+  s.first.clear();
+  s.weight.clear();
+  if (k > kGroupMax) {
+    for (size_t i = 0; i < n; ++i) s.first.push_back(static_cast<uint32_t>(i));
+    s.weight.assign(n, 1);
+    return;
+  }
+  s.planes.clear();
+  for (uint32_t t : tris) {
+    const Bvh::Tri& tri = bvh.triangles()[t];
+    s.planes.emplace_back(tri.a, tri.b, tri.c, box);
+  }
+  s.sides.resize(n * k);
+  s.keys.clear();
+  for (size_t i = 0; i < n; ++i) {
+    int8_t* side = s.sides.data() + i * k;
+    bool on_plane = false;
+    uint64_t key = 0;  // base 3: exact up to kExactKey planes, a hash beyond
+    for (size_t j = 0; j < k; ++j) {
+      side[j] = static_cast<int8_t>(s.planes[j].sign(points[i]));
+      on_plane |= side[j] == 0;
+      key = 3 * key + static_cast<uint64_t>(side[j] + 1);
+    }
+    uint32_t g = static_cast<uint32_t>(s.first.size());
+    if (!on_plane)
+      for (uint32_t q = 0; q < s.first.size(); ++q)
+        if (s.keys[q] == key &&
+            (k <= kExactKey ||
+             std::memcmp(side, s.sides.data() + size_t{s.first[q]} * k, k) == 0)) {
+          g = q;
+          break;
+        }
+    if (g == s.first.size()) {
+      s.first.push_back(static_cast<uint32_t>(i));
+      s.weight.push_back(0);
+      s.keys.push_back(key);
+    }
+    ++s.weight[g];
+  }
+}
+
+Vec3 centre(const Bbox& b) {
+  return {b.min.x + 0.5 * (b.max.x - b.min.x), b.min.y + 0.5 * (b.max.y - b.min.y),
+          b.min.z + 0.5 * (b.max.z - b.min.z)};
+}
+
+/// Twice the weight of a class in an occupancy: inside 2, on the surface 1, outside 0.
+uint32_t halves(PointClass c) {
+  if (c == PointClass::kInside) return 2;
+  return c == PointClass::kOutside ? 0 : 1;
+}
+
+class Builder {
+ public:
+  Builder(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options)
+      : solid_(solid),
+        bvh_(solid),
+        bounds_(bounds),
+        depth_(options.depth),
+        samples_(options.samples),
+        h_(std::ldexp(bounds.size, -options.depth)) {}
+
+  Octree run() {
+    Octree tree;
+    tree.bounds = bounds_;
+    tree.depth = depth_;
+    size_t level_start = 0;
+    for (int d = 0; d <= depth_; ++d) {
+      const size_t n = d == 0 ? 1 : 8 * parents_.size();
+      if (n == 0) break;
+      if (level_start + n > UINT32_MAX)
+        throw NotComputable("octree: more than 2^32 nodes; use a smaller depth");
+      tree.nodes.resize(level_start + n);
+      std::vector<Coord> next;
+      Lists next_lists;
+      for (size_t b0 = 0; b0 < n; b0 += kBlock)
+        block(d, b0, std::min(n, b0 + kBlock), tree.nodes.data() + level_start, level_start + n,
+              next, next_lists);
+      parents_ = std::move(next);
+      parent_lists_ = std::move(next_lists);
+      level_start += n;
+    }
+    // Inner nodes: the mean occupancy of their children (children follow their parent).
+    for (size_t i = tree.nodes.size(); i-- > 0;) {
+      Octree::Node& node = tree.nodes[i];
+      if (node.first_child == 0) continue;
+      double sum = 0;
+      for (uint32_t c = 0; c < 8; ++c) sum += tree.nodes[node.first_child + c].occupancy;
+      node.occupancy = static_cast<float>(sum / 8);
+    }
+    return tree;
+  }
+
+ private:
+  double plane(int axis, uint64_t m) const {
+    return bounds_.min[axis] + static_cast<double>(m) * h_;
+  }
+
+  Bbox box(const Coord& c, int d) const {
+    const int shift = depth_ - d;
+    Bbox b;
+    b.min = {plane(0, uint64_t{c[0]} << shift), plane(1, uint64_t{c[1]} << shift),
+             plane(2, uint64_t{c[2]} << shift)};
+    b.max = {plane(0, (uint64_t{c[0]} + 1) << shift), plane(1, (uint64_t{c[1]} + 1) << shift),
+             plane(2, (uint64_t{c[2]} + 1) << shift)};
+    return b;
+  }
+
+  /// Corner of cell `cell` of level d ≥ 1: child cell % 8 of the crossed parent cell / 8.
+  Coord coord(int d, size_t cell) const {
+    if (d == 0) return {0, 0, 0};
+    const Coord& p = parents_[cell / 8];
+    const uint32_t c = static_cast<uint32_t>(cell % 8);
+    return {2 * p[0] + (c & 1), 2 * p[1] + ((c >> 1) & 1), 2 * p[2] + ((c >> 2) & 1)};
+  }
+
+  /// The samples³ sub-points of a cell, x fastest.
+  void sub_points(const Bbox& b, std::vector<Vec3>& out) const {
+    out.clear();
+    const int s = samples_;
+    const Vec3 step{(b.max.x - b.min.x) / s, (b.max.y - b.min.y) / s, (b.max.z - b.min.z) / s};
+    for (int k = 0; k < s; ++k)
+      for (int j = 0; j < s; ++j)
+        for (int i = 0; i < s; ++i)
+          out.push_back({b.min.x + (i + 0.5) * step.x, b.min.y + (j + 0.5) * step.y,
+                         b.min.z + (k + 0.5) * step.z});
+  }
+
+  /// (A) The triangles that meet each closed cell of [b0, b0 + m) at level d, one list per cell.
+  Lists meeting(int d, size_t b0, size_t m) const {
+    std::vector<std::vector<uint32_t>> chunk_tris((m + kGrain - 1) / kGrain);
+    std::vector<uint32_t> count(m);
+    parallel_for(m, kGrain, [&](size_t begin, size_t end) {
+      std::vector<uint32_t>& out = chunk_tris[begin / kGrain];
+      std::vector<uint32_t> candidates;
+      std::array<std::vector<uint32_t>, 8> octant;
+      const size_t siblings = d == 0 ? 1 : 8;
+      for (size_t g0 = begin; g0 < end; g0 += siblings) {
+        const size_t parent = (b0 + g0) / 8;
+        if (d > 0 && parent_lists_[parent].size() <= kInheritMax) {
+          // The parent's triangles against its 8 octants at once.
+          double planes[3][3];
+          for (int a = 0; a < 3; ++a)
+            for (uint64_t t = 0; t < 3; ++t)
+              planes[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
+          for (auto& list : octant) list.clear();
+          for (uint32_t t : parent_lists_[parent]) {
+            const Bvh::Tri& tri = bvh_.triangles()[t];
+            detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
+            for (int c = 0; c < 8; ++c)
+              if (overlap.meets(c)) octant[c].push_back(t);
+          }
+          for (int c = 0; c < 8; ++c) {
+            out.insert(out.end(), octant[c].begin(), octant[c].end());
+            count[g0 + c] = static_cast<uint32_t>(octant[c].size());
+          }
+          continue;
+        }
+        for (size_t i = g0; i < g0 + siblings; ++i) {
+          const Bbox b = box(coord(d, b0 + i), d);
+          candidates.clear();
+          bvh_candidates(bvh_, b, candidates);
+          const size_t before = out.size();
+          for (uint32_t t : candidates) {
+            const Bvh::Tri& tri = bvh_.triangles()[t];
+            if (detail::triangle_meets_box(tri.a, tri.b, tri.c, b)) out.push_back(t);
+          }
+          count[i] = static_cast<uint32_t>(out.size() - before);
+        }
+      }
+    });
+    Lists lists;
+    lists.start.resize(m + 1, 0);
+    for (size_t i = 0; i < m; ++i) lists.start[i + 1] = lists.start[i] + count[i];
+    lists.tris.reserve(lists.start[m]);
+    for (auto& c : chunk_tris) {
+      lists.tris.insert(lists.tris.end(), c.begin(), c.end());
+      std::vector<uint32_t>().swap(c);
+    }
+    return lists;
+  }
+
+  /// (B) The points to classify for the cells [b0, b0 + m) of level d, per chunk: one centre per
+  /// sibling set's uncrossed cells, one sub-point per side class of a partial cell.
+  void representatives(int d, size_t b0, size_t m, const Lists& lists,
+                       std::vector<std::vector<Vec3>>& chunk_points,
+                       std::vector<std::vector<Entry>>& chunk_entries) const {
+    parallel_for(m, kGrain, [&](size_t begin, size_t end) {
+      std::vector<Vec3>& points = chunk_points[begin / kGrain];
+      std::vector<Entry>& entries = chunk_entries[begin / kGrain];
+      Scratch s;
+      std::vector<Vec3> subs;
+      const size_t siblings = d == 0 ? 1 : 8;
+      for (size_t g0 = begin; g0 < end; g0 += siblings) {
+        uint32_t rep = UINT32_MAX;
+        for (size_t i = g0; i < g0 + siblings; ++i) {
+          if (!lists[i].empty()) continue;
+          if (rep == UINT32_MAX) {
+            rep = static_cast<uint32_t>(points.size());
+            points.push_back(centre(box(coord(d, b0 + i), d)));
+          }
+          entries.push_back({static_cast<uint32_t>(i), rep, 1});
+        }
+        if (d < depth_) continue;
+        for (size_t i = g0; i < g0 + siblings; ++i) {
+          if (lists[i].empty()) continue;
+          const Bbox b = box(coord(d, b0 + i), d);
+          sub_points(b, subs);
+          group_by_sides(bvh_, lists[i], b, subs, s);
+          const uint32_t base = static_cast<uint32_t>(points.size());
+          for (uint32_t g = 0; g < s.first.size(); ++g) {
+            points.push_back(subs[s.first[g]]);
+            entries.push_back({static_cast<uint32_t>(i), base + g, s.weight[g]});
+          }
+        }
+      }
+    });
+  }
+
+  /// Cells [b0, b1) of level d; `nodes` is the level's first node, `next_start` the next level's.
+  /// Appends the crossed cells (d < D) and their triangles to `next` / `next_lists`.
+  void block(int d, size_t b0, size_t b1, Octree::Node* nodes, size_t next_start,
+             std::vector<Coord>& next, Lists& next_lists) {
+    const size_t m = b1 - b0;
+    const size_t chunks = (m + kGrain - 1) / kGrain;
+    const Lists lists = meeting(d, b0, m);
+    // Crossed cells above the maximum depth are split: their children come next, in rank order.
+    if (d < depth_)
+      for (size_t i = 0; i < m; ++i) {
+        if (lists[i].empty()) continue;
+        nodes[b0 + i].first_child = static_cast<uint32_t>(next_start + 8 * next.size());
+        next.push_back(coord(d, b0 + i));
+        next_lists.append(lists[i]);
+      }
+    std::vector<std::vector<Vec3>> chunk_points(chunks);
+    std::vector<std::vector<Entry>> chunk_entries(chunks);
+    representatives(d, b0, m, lists, chunk_points, chunk_entries);
+    // (C) Classify the representatives of the whole block at once.
+    std::vector<size_t> offset(chunks + 1, 0);
+    for (size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + chunk_points[c].size();
+    std::vector<Vec3> points;
+    points.reserve(offset[chunks]);
+    for (auto& c : chunk_points) {
+      points.insert(points.end(), c.begin(), c.end());
+      std::vector<Vec3>().swap(c);
+    }
+    ClassifyOptions options;
+    options.grid_min_points = std::numeric_limits<size_t>::max();  // near-surface points only
+    const std::vector<PointClass> classes = classify(solid_, bvh_, points, options);
+    // (D) States and occupancies (a cell's entries all lie in its own chunk).
+    std::vector<uint32_t> sum(m, 0);
+    parallel_for(chunks, 1, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c)
+        for (const Entry& e : chunk_entries[c])
+          sum[e.cell] += e.weight * halves(classes[offset[c] + e.rep]);
+    });
+    const double total = 2.0 * samples_ * samples_ * samples_;
+    parallel_for(m, kGrain, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        Octree::Node& node = nodes[b0 + i];
+        node.depth = static_cast<uint8_t>(d);
+        node.min = box(coord(d, b0 + i), d).min;
+        if (lists[i].empty()) {  // the centre of an uncrossed cell is on no surface: 0 or 2
+          node.state = sum[i] == 2 ? CellState::kFull : CellState::kEmpty;
+          node.occupancy = sum[i] == 2 ? 1.0f : 0.0f;
+        } else {
+          node.state = CellState::kPartial;
+          if (d == depth_) node.occupancy = static_cast<float>(sum[i] / total);
+        }
+      }
+    });
+  }
+
+  const Solid& solid_;
+  const Bvh bvh_;
+  VoxelBounds bounds_;
+  int depth_;
+  int samples_;
+  double h_;
+  std::vector<Coord> parents_;  ///< crossed cells of the previous level, by rank
+  Lists parent_lists_;          ///< their triangles, by rank
+};
+
+}  // namespace
+
+double Octree::cell_size(int d) const { return std::ldexp(bounds.size, -d); }
+
+std::array<uint64_t, 3> Octree::leaf_counts() const {
+  std::array<uint64_t, 3> counts{0, 0, 0};
+  for (const Node& node : nodes)
+    if (node.first_child == 0) ++counts[static_cast<size_t>(node.state)];
+  return counts;
+}
+
+Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options) {
+  if (options.depth < 0 || options.depth > kMaxDepth)
+    throw InputError("--depth: expected a whole number from 0 to " + std::to_string(kMaxDepth) +
+                     ", got " + std::to_string(options.depth));
+  if (options.samples < 1 || options.samples > kMaxSamples)
+    throw InputError("octree samples: expected 1 to " + std::to_string(kMaxSamples) + ", got " +
+                     std::to_string(options.samples));
+  const bool finite = std::isfinite(bounds.min.x) && std::isfinite(bounds.min.y) &&
+                      std::isfinite(bounds.min.z) && std::isfinite(bounds.size);
+  if (!finite || !(bounds.size > 0))
+    throw InputError("--bounds: expected a finite cube of positive size");
+  return Builder(solid, bounds, options).run();
+}
+
+}  // namespace cover

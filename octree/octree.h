@@ -1,0 +1,60 @@
+#pragma once
+// Direct octree generation from a non-evaluated CSG solid (paper §7, DESIGN.md §5), exact and
+// conservative: a cell is kFull / kEmpty only if truly so — no leaf surface meets the CLOSED cell
+// (exact triangle–box overlap against every covering triangle that may meet the cell, found
+// through the BVH or the parent cell's list) and its centre classifies inside / outside
+// (covering/classify.h). Crossed cells
+// split down to `depth`; crossed cells at that depth are kPartial with an occupancy fraction
+// (the share of `samples`³ regularly spaced sub-points classified inside).
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "raster/voxel_grid.h"
+#include "solid/solid.h"
+
+namespace cover {
+
+enum class CellState : uint8_t { kEmpty = 0, kFull = 1, kPartial = 2 };
+
+struct OctreeOptions {
+  int depth = 6;    ///< maximum depth (root = 0), 0..16; cells at depth D have side size/2^D
+  int samples = 4;  ///< occupancy of partial cells: samples³ sub-points per cell, 1..32
+};
+
+/// Nodes in breadth-first order; children of an inner node are 8 consecutive nodes starting at
+/// `first_child`, in Morton order: child c has offset (c&1, (c>>1)&1, (c>>2)&1) along (x, y, z).
+/// Within a depth, nodes keep their parents' order — the breadth-first vertex order of a VTK
+/// HyperTree. Cell faces are the grid planes bounds.min + m·cell_size(depth) (m whole) computed
+/// in doubles, the same values at every depth, so children tile their parent exactly.
+struct Octree {
+  struct Node {
+    uint32_t first_child = 0;  ///< 0 for a leaf cell (the root is node 0, never a child)
+    uint8_t depth = 0;
+    CellState state = CellState::kEmpty;  ///< inner nodes: kPartial
+    /// 1 full, 0 empty; partial leaves: the share of their samples³ sub-points (the centres of a
+    /// regular sub-grid) inside, points on the surface counting ½; inner nodes: the mean of their
+    /// children.
+    float occupancy = 0;
+    Vec3 min;  ///< lower corner; the cell is [min, next grid plane] ≈ [min, min + size/2^depth]³
+  };
+  VoxelBounds bounds;
+  int depth = 0;
+  std::vector<Node> nodes;
+
+  /// Side of the cells at depth d: bounds.size / 2^d.
+  double cell_size(int d) const;
+  /// Leaf cells by state: {empty, full, partial}.
+  std::array<uint64_t, 3> leaf_counts() const;
+};
+
+/// Builds the octree of `solid` over `bounds`: level by level, the cells no leaf surface meets
+/// become full / empty leaves, the others split (or, at `options.depth`, become partial leaves).
+/// Memory and time grow with the number of crossed cells, not with 8^depth. TBB-parallel; the
+/// result does not depend on the thread count. Preconditions: closed leaves. Throws InputError
+/// for options out of range or bounds that are not a finite cube of positive size;
+/// NotComputable beyond 2^32 nodes.
+Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options);
+
+}  // namespace cover

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The checked build: the whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer
+# (-O1, asserts on, every sanitizer report is fatal). Called by .ci/run after the README's test
+# command; run it by hand the same way.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+cmake -S . -B build-checked -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOVER_SANITIZE=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g"
+cmake --build build-checked -j"$(nproc)"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --test-dir build-checked --output-on-failure -j"$(nproc)"

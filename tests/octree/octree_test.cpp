@@ -1,0 +1,541 @@
+// Octrees (octree/octree.h, octree/octree_io.h): every full / empty leaf checked against the
+// brute-force classification, partial leaves crossed by a surface (CGAL's exact overlap test as
+// the oracle), volume bounds, occupancy re-derived point by point, thread independence, and the
+// .htg / .bt / .json files read back independently (XML scan, liboctomap, nlohmann_json).
+#include "octree/octree.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <gtest/gtest.h>
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "covering/bvh.h"
+#include "covering/classify.h"
+#include "covering/predicates.h"
+#include "covering/volume.h"
+#include "helpers.h"
+#include "octree/detail/box_overlap.h"
+#include "octree/octree_io.h"
+#include "raster/voxel_grid.h"
+#include "solid/errors.h"
+#include "solid/parallel.h"
+#include "solid/primitives.h"
+#include "solid/scene.h"
+
+namespace cover {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+Solid box_solid(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
+
+VoxelBounds cube(Vec3 min, double size) {
+  VoxelBounds b;
+  b.min = min;
+  b.size = size;
+  return b;
+}
+
+Octree build(const Solid& s, const VoxelBounds& b, int depth, int samples = 4) {
+  OctreeOptions o;
+  o.depth = depth;
+  o.samples = samples;
+  return build_octree(s, b, o);
+}
+
+/// The exact closed box of a node: its faces are grid planes bounds.min + m·h (octree.h).
+Bbox cell_box(const Octree& t, const Octree::Node& n) {
+  const double h = t.cell_size(t.depth);
+  const long long span = 1LL << (t.depth - n.depth);
+  Bbox b;
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    const long long m = std::llround((n.min[a] - t.bounds.min[a]) / h);
+    lo[a] = t.bounds.min[a] + static_cast<double>(m) * h;
+    hi[a] = t.bounds.min[a] + static_cast<double>(m + span) * h;
+  }
+  b.min = {lo[0], lo[1], lo[2]};
+  b.max = {hi[0], hi[1], hi[2]};
+  return b;
+}
+
+bool cgal_meets(const Bvh::Tri& t, const Bbox& b) {
+  const K::Triangle_3 tri({t.a.x, t.a.y, t.a.z}, {t.b.x, t.b.y, t.b.z}, {t.c.x, t.c.y, t.c.z});
+  const K::Iso_cuboid_3 box({b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z});
+  return CGAL::do_intersect(tri, box);
+}
+
+std::vector<size_t> leaves_of(const Octree& t, CellState s) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < t.nodes.size(); ++i)
+    if (t.nodes[i].first_child == 0 && t.nodes[i].state == s) out.push_back(i);
+  return out;
+}
+
+/// At most `count` of `ids`, chosen with a fixed seed (all when there are few).
+std::vector<size_t> sample(std::vector<size_t> ids, size_t count, std::mt19937_64& rng) {
+  if (ids.size() <= count) return ids;
+  std::shuffle(ids.begin(), ids.end(), rng);
+  ids.resize(count);
+  return ids;
+}
+
+/// Structure and correctness of every sampled leaf: full / empty cells hold only inside / outside
+/// random points (brute-force classification), partial cells are met by some triangle (CGAL),
+/// occupancies lie in [0, 1] and inner nodes have 8 children one level down.
+void check_leaves(const Solid& s, const Octree& t, size_t max_cells = 2000) {
+  ASSERT_FALSE(t.nodes.empty());
+  for (size_t i = 0; i < t.nodes.size(); ++i) {
+    const Octree::Node& n = t.nodes[i];
+    EXPECT_GE(n.occupancy, 0.0f);
+    EXPECT_LE(n.occupancy, 1.0f);
+    EXPECT_LE(n.depth, t.depth);
+    if (n.first_child != 0) {
+      EXPECT_EQ(n.state, CellState::kPartial);
+      ASSERT_LE(n.first_child + 8u, t.nodes.size());
+      EXPECT_GT(n.first_child, i);
+      for (uint32_t c = 0; c < 8; ++c) EXPECT_EQ(t.nodes[n.first_child + c].depth, n.depth + 1);
+    } else {
+      if (n.state == CellState::kFull) {
+        EXPECT_EQ(n.occupancy, 1.0f);
+      } else if (n.state == CellState::kEmpty) {
+        EXPECT_EQ(n.occupancy, 0.0f);
+      } else {
+        EXPECT_EQ(n.depth, t.depth);
+      }
+    }
+  }
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> unit(0.001, 0.999);
+  std::vector<Vec3> points;
+  std::vector<CellState> expected;
+  for (CellState state : {CellState::kFull, CellState::kEmpty})
+    for (size_t id : sample(leaves_of(t, state), max_cells, rng)) {
+      const Bbox b = cell_box(t, t.nodes[id]);
+      for (int k = 0; k < 3; ++k) {
+        points.push_back({b.min.x + unit(rng) * (b.max.x - b.min.x),
+                          b.min.y + unit(rng) * (b.max.y - b.min.y),
+                          b.min.z + unit(rng) * (b.max.z - b.min.z)});
+        expected.push_back(state);
+      }
+    }
+  const std::vector<PointClass> got = classify_brute_force(s, points);
+  for (size_t i = 0; i < points.size(); ++i)
+    EXPECT_EQ(got[i], expected[i] == CellState::kFull ? PointClass::kInside : PointClass::kOutside)
+        << points[i].x << " " << points[i].y << " " << points[i].z;
+  const Bvh bvh(s);
+  for (size_t id : sample(leaves_of(t, CellState::kPartial), max_cells / 10, rng)) {
+    const Bbox b = cell_box(t, t.nodes[id]);
+    bool crossed = false;
+    for (const Bvh::Tri& tri : bvh.triangles()) crossed = crossed || cgal_meets(tri, b);
+    EXPECT_TRUE(crossed) << "partial node " << id;
+  }
+}
+
+/// Σ full-cell volumes ≤ exact ≤ Σ (full + partial) cell volumes.
+void expect_volume_bounds(const Octree& t, double exact) {
+  double full = 0, partial = 0;
+  for (const Octree::Node& n : t.nodes) {
+    if (n.first_child != 0) continue;
+    const double v = std::pow(t.cell_size(n.depth), 3);
+    if (n.state == CellState::kFull) full += v;
+    if (n.state == CellState::kPartial) partial += v;
+  }
+  EXPECT_LE(full, exact * (1 + 1e-9));
+  EXPECT_GE(full + partial, exact * (1 - 1e-9));
+  EXPECT_GT(partial, 0);
+}
+
+/// Partial occupancies equal the share of the samples³ sub-grid centres classified inside (the
+/// surface counting ½), every sub-point classified on its own by the brute-force path.
+void expect_occupancy_by_points(const Solid& s, const Octree& t, int samples, size_t cells) {
+  std::mt19937_64 rng(777);
+  for (size_t id : sample(leaves_of(t, CellState::kPartial), cells, rng)) {
+    const Bbox b = cell_box(t, t.nodes[id]);
+    std::vector<Vec3> subs;
+    for (int k = 0; k < samples; ++k)
+      for (int j = 0; j < samples; ++j)
+        for (int i = 0; i < samples; ++i)
+          subs.push_back({b.min.x + (i + 0.5) * ((b.max.x - b.min.x) / samples),
+                          b.min.y + (j + 0.5) * ((b.max.y - b.min.y) / samples),
+                          b.min.z + (k + 0.5) * ((b.max.z - b.min.z) / samples)});
+    int halves = 0;
+    for (PointClass c : classify_brute_force(s, subs))
+      halves += c == PointClass::kInside ? 2 : (c == PointClass::kOutside ? 0 : 1);
+    EXPECT_EQ(t.nodes[id].occupancy,
+              static_cast<float>(halves / (2.0 * samples * samples * samples)))
+        << "node " << id;
+  }
+}
+
+Solid elephant() { return load_input(test::cgal_mesh("elephant.off")).solid; }
+
+VoxelBounds default_bounds(const Solid& s, int depth) {
+  return default_voxel_bounds(s.bbox(), 1 << std::max(depth, 2));
+}
+
+TEST(BoxOverlap, AgreesWithCgalOnTouchingAndRandomCases) {
+  const Bbox b = [] {
+    Bbox x;
+    x.add(Vec3{0, 0, 0});
+    x.add(Vec3{1, 1, 1});
+    return x;
+  }();
+  const auto meets = [&](Vec3 a, Vec3 c, Vec3 d) {
+    const bool got = detail::triangle_meets_box(a, c, d, b);
+    EXPECT_EQ(got, cgal_meets({a, c, d}, b));
+    return got;
+  };
+  EXPECT_TRUE(meets({1, 0, 0}, {2, 0, 0}, {1, 1, 0}));      // an edge on a box face
+  EXPECT_TRUE(meets({1, 1, 1}, {2, 1, 1}, {1, 2, 1}));      // a vertex on a corner
+  EXPECT_TRUE(meets({1, -1, -1}, {1, 3, -1}, {1, -1, 3}));  // lying in a face plane
+  EXPECT_FALSE(meets({std::nextafter(1.0, 2.0), -1, -1}, {1.5, 3, -1}, {1.5, -1, 3}));
+  EXPECT_TRUE(meets({-1, 0.5, 2}, {2, 0.5, 2}, {0.5, 0.5, -1}));  // through the middle
+  EXPECT_TRUE(meets({0, 2, 0}, {2, 0, 0}, {2, 2, 5}));  // touches the corner (1, 1, 0) only
+  EXPECT_FALSE(meets({0.1, 2.1, 0}, {2.1, 0.1, 0}, {2.1, 2.1, 1}));  // just misses it
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-0.6, 1.6);
+  std::uniform_int_distribution<int> grid(-2, 6);
+  for (int i = 0; i < 20000; ++i) {
+    // Half the vertices on a quarter grid: faces, edges and corners get touched exactly.
+    const auto v = [&] {
+      return i % 2 ? Vec3{u(rng), u(rng), u(rng)}
+                   : Vec3{grid(rng) / 4.0, grid(rng) / 4.0, grid(rng) / 4.0};
+    };
+    const Vec3 a = v(), c = v(), d = v();
+    if (orient2d(a, c, d, 0) == 0 && orient2d(a, c, d, 1) == 0 && orient2d(a, c, d, 2) == 0)
+      continue;  // collinear: never a covering triangle
+    meets(a, c, d);
+  }
+}
+
+TEST(BoxOverlap, PlaneSideIsExact) {
+  Bbox b;
+  b.add(Vec3{-1, -1, -1});
+  b.add(Vec3{1, 1, 1});
+  const Vec3 a{-0.3, 0.1, 0.7}, c{0.9, -0.2, 0.1}, d{0.2, 0.8, -0.6};
+  const detail::PlaneSide side(a, c, d, b);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 20000; ++i) {
+    Vec3 p{u(rng), u(rng), u(rng)};
+    if (i % 2) {  // on or next to the plane: the exact path decides
+      const double s = u(rng), r = u(rng) * (1 - std::abs(s));
+      p = a + s * (c - a) + r * (d - a);
+    }
+    if (!b.contains(p)) continue;
+    EXPECT_EQ(side.sign(p), orient3d(a, c, d, p));
+  }
+}
+
+TEST(Octree, BoxSphereElephantAndDifferenceAreExactAndConservative) {
+  const Solid box = box_solid({0.1, 0.2, 0.3}, {0.8, 0.7, 0.9});
+  const Octree tb = build(box, cube({0, 0, 0}, 1), 5);
+  check_leaves(box, tb);
+  expect_volume_bounds(tb, 0.7 * 0.5 * 0.6);
+  expect_occupancy_by_points(box, tb, 4, 40);
+
+  const Solid sphere = make_leaf(make_sphere({0.1, -0.2, 0.3}, 0.75, 24), "sphere");
+  const Octree ts = build(sphere, default_bounds(sphere, 5), 5, 3);
+  check_leaves(sphere, ts);
+  expect_volume_bounds(ts, covering_volume(sphere));
+  expect_occupancy_by_points(sphere, ts, 3, 40);
+
+  const Solid e = elephant();
+  const Octree te = build(e, default_bounds(e, 6), 6);
+  check_leaves(e, te);
+  expect_volume_bounds(te, covering_volume(e));
+  expect_occupancy_by_points(e, te, 4, 30);
+
+  // A notch cut through a box (analytic volume) and a sphere carved out of a box.
+  const Solid notch =
+      subtract({box_solid({0, 0, 0}, {1, 1, 1}), box_solid({0.5, 0.3, -0.5}, {1.5, 0.7, 1.5})});
+  const Octree tn = build(notch, cube({-0.1, -0.1, -0.1}, 1.3), 5);
+  check_leaves(notch, tn);
+  expect_volume_bounds(tn, 1 - 0.5 * 0.4);
+  const Solid ball = make_leaf(make_sphere({0.1, 0, 0}, 0.6, 16), "sphere");
+  const Solid hollow = subtract({box_solid({-1, -1, -1}, {1, 1, 1}), ball});
+  const Octree th = build(hollow, default_bounds(hollow, 5), 5);
+  check_leaves(hollow, th);
+  expect_volume_bounds(th, 8 - covering_volume(ball));
+  expect_occupancy_by_points(hollow, th, 4, 30);
+}
+
+TEST(Octree, GridAlignedBoxHasWholeOccupancies) {
+  // Faces on grid planes touch the closed cells on both sides, which therefore split down to
+  // the maximum depth; no sub-point lies on a face, so each partial cell is wholly in or out.
+  const Solid box = box_solid({0.25, 0.25, 0.5}, {0.75, 0.625, 0.875});
+  const Octree t = build(box, cube({0, 0, 0}, 1), 4);
+  check_leaves(box, t, 1000);
+  expect_volume_bounds(t, 0.5 * 0.375 * 0.375);
+  double weighted = 0;
+  for (const Octree::Node& n : t.nodes)
+    if (n.first_child == 0) {
+      EXPECT_TRUE(n.occupancy == 0.0f || n.occupancy == 1.0f);
+      weighted += n.occupancy * std::pow(t.cell_size(n.depth), 3);
+    }
+  EXPECT_DOUBLE_EQ(weighted, 0.5 * 0.375 * 0.375);
+}
+
+TEST(Octree, UncrossedRootAndDepthZero) {
+  const Solid box = box_solid({0, 0, 0}, {4, 4, 4});
+  const Octree inside = build(box, cube({1, 1, 1}, 1), 5);
+  ASSERT_EQ(inside.nodes.size(), 1u);
+  EXPECT_EQ(inside.nodes[0].state, CellState::kFull);
+  const Octree outside = build(box, cube({5, 1, 1}, 1), 5);
+  ASSERT_EQ(outside.nodes.size(), 1u);
+  EXPECT_EQ(outside.nodes[0].state, CellState::kEmpty);
+  EXPECT_EQ(outside.leaf_counts(), (std::array<uint64_t, 3>{1, 0, 0}));
+  const Octree root = build(box, cube({3, 3, 3}, 2), 0, 2);  // one eighth of the cube inside
+  ASSERT_EQ(root.nodes.size(), 1u);
+  EXPECT_EQ(root.nodes[0].state, CellState::kPartial);
+  EXPECT_EQ(root.nodes[0].occupancy, 0.125f);
+}
+
+TEST(Octree, InvalidOptionsThrow) {
+  const Solid box = box_solid({0, 0, 0}, {1, 1, 1});
+  EXPECT_THROW(build(box, cube({0, 0, 0}, 1), 17), InputError);
+  EXPECT_THROW(build(box, cube({0, 0, 0}, 1), -1), InputError);
+  EXPECT_THROW(build(box, cube({0, 0, 0}, 1), 3, 0), InputError);
+  EXPECT_THROW(build(box, cube({0, 0, 0}, 0), 3), InputError);
+  EXPECT_THROW(build(box, cube({0, NAN, 0}, 1), 3), InputError);
+}
+
+TEST(Octree, SameNodesForOneAndTwoThreads) {
+  const Solid e = elephant();
+  const VoxelBounds b = default_bounds(e, 7);
+  Octree one, two;
+  {
+    ThreadLimit limit(1);
+    one = build(e, b, 7);
+  }
+  {
+    ThreadLimit limit(2);
+    two = build(e, b, 7);
+  }
+  ASSERT_EQ(one.nodes.size(), two.nodes.size());
+  for (size_t i = 0; i < one.nodes.size(); ++i) {
+    const Octree::Node &p = one.nodes[i], &q = two.nodes[i];
+    ASSERT_TRUE(p.first_child == q.first_child && p.depth == q.depth && p.state == q.state &&
+                p.occupancy == q.occupancy && p.min == q.min)
+        << "node " << i;
+  }
+}
+
+// ---- files --------------------------------------------------------------------------------------
+
+/// Attribute `name` of the first tag that starts at or after `from` and contains `key`.
+std::string attribute(const std::string& xml, const std::string& key, const std::string& name) {
+  const size_t at = xml.find(key);
+  EXPECT_NE(at, std::string::npos) << key;
+  if (at == std::string::npos) return "";
+  const size_t open = xml.rfind('<', at), close = xml.find('>', at);
+  const std::string tag = xml.substr(open, close - open);
+  const size_t a = tag.find(" " + name + "=\"");
+  if (a == std::string::npos) return "";
+  const size_t v = a + name.size() + 3;
+  return tag.substr(v, tag.find('"', v) - v);
+}
+
+/// Text between the DataArray named `name` and its closing tag, trimmed.
+std::string array_text(const std::string& xml, const std::string& name) {
+  const size_t at = xml.find("Name=\"" + name + "\"");
+  const size_t begin = xml.find('>', at) + 1, end = xml.find("</DataArray>", begin);
+  std::string body = xml.substr(begin, end - begin);
+  body.erase(0, body.find_first_not_of(" \n"));
+  body.erase(body.find_last_not_of(" \n") + 1);
+  return body;
+}
+
+std::vector<uint8_t> unbase64(const std::string& text) {
+  std::vector<uint8_t> out;
+  uint32_t acc = 0;
+  int bits = 0;
+  for (char ch : text) {
+    const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const char* p = std::strchr(digits, ch);
+    if (ch == '=' || p == nullptr || ch == '\0') break;
+    acc = (acc << 6) | static_cast<uint32_t>(p - digits);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<uint8_t>(acc >> bits));
+    }
+  }
+  return out;
+}
+
+/// Decoded inline binary array: the UInt64 byte count, then exactly that many bytes (the file
+/// declares the machine's byte order).
+std::vector<uint8_t> binary_array(const std::string& xml, const std::string& name) {
+  std::vector<uint8_t> raw = unbase64(array_text(xml, name));
+  if (raw.size() < 8) {
+    ADD_FAILURE() << name << ": no header";
+    return {};
+  }
+  uint64_t size = 0;
+  std::memcpy(&size, raw.data(), 8);
+  EXPECT_EQ(raw.size(), 8 + size) << name;
+  return {raw.begin() + 8, raw.end()};
+}
+
+/// Every opening tag closed in order (declarations and self-closing tags aside).
+bool balanced(const std::string& xml) {
+  std::vector<std::string> open;
+  for (size_t at = xml.find('<'); at != std::string::npos; at = xml.find('<', at + 1)) {
+    const size_t end = xml.find('>', at);
+    if (end == std::string::npos) return false;
+    const std::string tag = xml.substr(at + 1, end - at - 1);
+    if (tag.empty() || tag[0] == '?' || tag.back() == '/') continue;
+    const std::string name =
+        tag.substr(tag[0] == '/', tag.find_first_of(" /", 1) - (tag[0] == '/'));
+    if (tag[0] != '/') {
+      open.push_back(name);
+    } else {
+      if (open.empty() || open.back() != name) return false;
+      open.pop_back();
+    }
+  }
+  return open.empty();
+}
+
+class OctreeFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    solid_ = subtract({elephant(), box_solid({-1, -1, 0.05}, {1, 1, 1})});  // the top sliced off
+    tree_ = build(solid_, default_bounds(solid_, 5), 5);
+    dir_ = test::temp_dir("octree");
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  Solid solid_;
+  Octree tree_;
+  std::filesystem::path dir_;
+};
+
+TEST_F(OctreeFiles, HtgDescribesTheTreeBreadthFirst) {
+  write_octree(dir_ / "t.htg", tree_, 0.5);
+  const std::string xml = test::read_file(dir_ / "t.htg");
+  ASSERT_TRUE(balanced(xml));
+  EXPECT_EQ(attribute(xml, "<VTKFile", "type"), "HyperTreeGrid");
+  EXPECT_EQ(attribute(xml, "<VTKFile", "version"), "1.0");
+  EXPECT_EQ(attribute(xml, "<VTKFile", "byte_order"),
+            std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian");
+  EXPECT_EQ(attribute(xml, "<HyperTreeGrid", "Dimensions"), "2 2 2");
+  EXPECT_EQ(attribute(xml, "<HyperTreeGrid", "BranchFactor"), "2");
+  const size_t n = tree_.nodes.size();
+  EXPECT_EQ(attribute(xml, "<Tree ", "NumberOfVertices"), std::to_string(n));
+  int levels = 0;
+  std::map<int, long long> per_level;
+  for (const Octree::Node& node : tree_.nodes) {
+    levels = std::max(levels, node.depth + 1);
+    ++per_level[node.depth];
+  }
+  EXPECT_EQ(attribute(xml, "<Tree ", "NumberOfLevels"), std::to_string(levels));
+  std::string counts;
+  for (const auto& [d, c] : per_level) {
+    if (d > 0) counts += ' ';
+    counts += std::to_string(c);
+  }
+  EXPECT_EQ(array_text(xml, "NbVerticesByLevel"), counts);
+  const double x0 = std::stod(array_text(xml, "XCoordinates"));
+  EXPECT_EQ(x0, tree_.bounds.min.x);
+  // Descriptor: one bit per vertex above the deepest level, most significant bit first.
+  const size_t described = n - static_cast<size_t>(per_level.rbegin()->second);
+  EXPECT_EQ(attribute(xml, "Name=\"Descriptor\"", "NumberOfTuples"), std::to_string(described));
+  const std::vector<uint8_t> bits = binary_array(xml, "Descriptor");
+  ASSERT_EQ(bits.size(), (described + 7) / 8);
+  for (size_t i = 0; i < described; ++i)
+    EXPECT_EQ((bits[i / 8] >> (7 - i % 8)) & 1, tree_.nodes[i].first_child != 0 ? 1 : 0) << i;
+  for (size_t i = described; i < n; ++i) EXPECT_EQ(tree_.nodes[i].first_child, 0u);
+  const std::vector<uint8_t> state = binary_array(xml, "state");
+  const std::vector<uint8_t> occupancy = binary_array(xml, "occupancy");
+  ASSERT_EQ(state.size(), n);
+  ASSERT_EQ(occupancy.size(), 4 * n);
+  for (size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(state[i], static_cast<uint8_t>(tree_.nodes[i].state));
+    float f;
+    std::memcpy(&f, occupancy.data() + 4 * i, 4);
+    EXPECT_EQ(f, tree_.nodes[i].occupancy);
+  }
+}
+
+TEST_F(OctreeFiles, BtReadsBackWithLiboctomap) {
+  for (double threshold : {0.5, 0.1}) {
+    write_octree(dir_ / "t.bt", tree_, threshold);
+    octomap::OcTree read(0.1);
+    ASSERT_TRUE(read.readBinary((dir_ / "t.bt").string()));
+    const double h = tree_.cell_size(tree_.depth);
+    EXPECT_EQ(read.getResolution(), h);
+    const Vec3 centre =
+        tree_.bounds.min + 0.5 * Vec3{tree_.bounds.size, tree_.bounds.size, tree_.bounds.size};
+    for (const Octree::Node& node : tree_.nodes) {
+      if (node.first_child != 0) continue;
+      const double half = 0.5 * tree_.cell_size(node.depth);
+      const Vec3 p = node.min + Vec3{half, half, half} - centre;  // OctoMap's frame
+      const octomap::OcTreeNode* leaf = read.search(p.x, p.y, p.z);
+      ASSERT_NE(leaf, nullptr);
+      const bool occupied = node.state == CellState::kFull ||
+                            (node.state == CellState::kPartial && node.occupancy >= threshold);
+      EXPECT_EQ(read.isNodeOccupied(leaf), occupied);
+    }
+  }
+}
+
+TEST_F(OctreeFiles, JsonListsEveryLeaf) {
+  write_octree(dir_ / "t.json", tree_, 0.5);
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(dir_ / "t.json"));
+  EXPECT_EQ(j["depth"], tree_.depth);
+  EXPECT_EQ(j["nodes"], tree_.nodes.size());
+  EXPECT_EQ(j["bounds"]["size"].get<double>(), tree_.bounds.size);
+  EXPECT_EQ(j["bounds"]["min"][1].get<double>(), tree_.bounds.min.y);
+  const auto counts = tree_.leaf_counts();
+  EXPECT_EQ(j["leaves"]["empty"], counts[0]);
+  EXPECT_EQ(j["leaves"]["full"], counts[1]);
+  EXPECT_EQ(j["leaves"]["partial"], counts[2]);
+  const auto& cells = j["cells"];
+  ASSERT_EQ(cells.size(), counts[0] + counts[1] + counts[2]);
+  size_t k = 0;
+  const char* names[3] = {"empty", "full", "partial"};
+  for (const Octree::Node& node : tree_.nodes) {
+    if (node.first_child != 0) continue;
+    const auto& c = cells[k++];
+    EXPECT_EQ(c["state"], names[static_cast<int>(node.state)]);
+    EXPECT_EQ(c["size"].get<double>(), tree_.cell_size(node.depth));
+    EXPECT_EQ(c["min"][0].get<double>(), node.min.x);
+    EXPECT_EQ(c["min"][2].get<double>(), node.min.z);
+    EXPECT_EQ(c["occupancy"].get<float>(), node.occupancy);
+  }
+}
+
+TEST_F(OctreeFiles, ErrorsNameTheFileAndLeaveNothingBehind) {
+  EXPECT_TRUE(is_octree_extension("a.HTG"));
+  EXPECT_TRUE(is_octree_extension("a.bt"));
+  EXPECT_FALSE(is_octree_extension("a.vti"));
+  EXPECT_THROW(write_octree(dir_ / "t.vti", tree_, 0.5), InputError);
+  EXPECT_THROW(write_octree(dir_ / "t.bt", tree_, 1.5), InputError);
+  EXPECT_THROW(write_octree(dir_ / "missing" / "t.json", tree_, 0.5), InputError);
+  const Octree flat = build(solid_, default_bounds(solid_, 2), 0);
+  try {
+    write_octree(dir_ / "flat.bt", flat, 0.5);
+    ADD_FAILURE() << "depth 0 written as .bt";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("flat.bt"), std::string::npos);
+  }
+  write_octree(dir_ / "flat.htg", flat, 0.5);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_),
+                          std::filesystem::directory_iterator()),
+            1);
+}
+
+}  // namespace
+}  // namespace cover
