@@ -1,9 +1,14 @@
 // Voxelization and octree benchmark, one process, same machine (issue: voxels and octrees):
 //   cover      voxelize() into a reused grid (2 threads by default)
 //   floor      one memset + one XOR pass over a bit grid of the same size (memory-bandwidth
-//              floor): "warm" reuses the grid memory, "fresh" allocates it each time
-//   openvdb    tools::meshToVolume at the same voxel size: narrow band (half width 3) and
-//              with the interior filled (the occupancy Cover produces), same thread count
+//              floor): "cold" = mapped memory not in cache (a 256 MiB sweep evicts it first: the
+//              memory-bandwidth floor proper), "warm" = right after another pass (at 512³ the
+//              16 MiB grid sits in the 32 MiB L3: a cache-bandwidth figure), "fresh" = newly
+//              allocated memory (page faults included, as a new grid pays them)
+//   openvdb    tools::meshToVolume at the same voxel size, through its world-space wrappers:
+//              meshToLevelSet (narrow band, half width 3) and, up to 512³,
+//              meshToSignedDistanceField with the interior band unlimited (the filled volume that
+//              Cover's occupancy corresponds to); same thread count
 //   octree     build_octree() at the given depths
 //   peak       ru_maxrss after the runs (run --peak-only to measure one voxelization alone)
 // Usage: voxel_bench MESH --res N [--res N ...] [--octree D ...] [--threads T] [--no-openvdb]
@@ -77,21 +82,27 @@ int main(int argc, char** argv) {
     o.resolution = n;
     cover::VoxelGrid grid;
     const int reps = peak_only ? 1 : 3;
-    std::vector<double> t_cover, t_warm, t_fresh;
+    std::vector<double> t_cover, t_warm, t_fresh, t_cold;
+    std::vector<uint64_t> evict(size_t{256} << 17, 1);  // 256 MiB
     for (int k = 0; k < reps; ++k) {
       auto t0 = Clock::now();
       cover::voxelize(solid, o, grid);
       t_cover.push_back(since(t0));
     }
     const double cover_peak = peak_mib();
+    const uint64_t occupied = grid.count();
     if (peak_only) {
       std::printf("  {\"res\": %d, \"cover_s\": %.4f, \"occupied\": %llu, \"peak_mib\": %.1f}\n", n,
-                  t_cover[0], static_cast<unsigned long long>(grid.count()), cover_peak);
+                  t_cover[0], static_cast<unsigned long long>(occupied), cover_peak);
       continue;
     }
     uint64_t sink = 0;
     for (int k = 0; k < reps; ++k) {
+      for (uint64_t& e : evict) e += k;
       auto t0 = Clock::now();
+      sink ^= floor_pass(grid.bits);
+      t_cold.push_back(since(t0));
+      t0 = Clock::now();
       sink ^= floor_pass(grid.bits);
       t_warm.push_back(since(t0));
       t0 = Clock::now();
@@ -110,24 +121,29 @@ int main(int argc, char** argv) {
         const auto face = solid.face(f);
         for (size_t i = 1; i + 1 < face.size(); ++i) triangles.emplace_back(face[0], face[i], face[i + 1]);
       }
+      // World-space points; the transform sets the voxel size (the same as Cover's).
       const auto xform = openvdb::math::Transform::createLinearTransform(grid.voxel_size());
-      openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> mesh(points, triangles);
       auto t0 = Clock::now();
-      auto band = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, *xform, 3.0f, 3.0f);
+      auto band = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, 3.0f);
       vdb_band = since(t0);
-      t0 = Clock::now();
-      auto filled = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
-          mesh, *xform, 3.0f, std::numeric_limits<float>::max());
-      vdb_filled = since(t0);
-      sink ^= band->activeVoxelCount() ^ filled->activeVoxelCount();
+      sink ^= band->activeVoxelCount();
+      band.reset();
+      if (n <= 512) {  // the filled interior is dense: 4 bytes per inside voxel
+        t0 = Clock::now();
+        auto filled = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
+            *xform, points, triangles, {}, 3.0f, std::numeric_limits<float>::max());
+        vdb_filled = since(t0);
+        sink ^= filled->activeVoxelCount();
+      }
     }
-    const double c = median(t_cover), w = median(t_warm), f = median(t_fresh);
-    std::printf("  {\"res\": %d, \"cover_s\": %.4f, \"floor_warm_s\": %.4f, \"floor_fresh_s\": %.4f, "
+    const double c = median(t_cover), w = median(t_warm), f = median(t_fresh), cold = median(t_cold);
+    std::printf("  {\"res\": %d, \"cover_s\": %.4f, \"floor_cold_s\": %.4f, \"x_floor_cold\": %.1f, "
+                "\"floor_warm_s\": %.4f, \"floor_fresh_s\": %.4f, "
                 "\"x_floor_warm\": %.1f, \"x_floor_fresh\": %.1f, \"openvdb_band_s\": %.3f, "
                 "\"openvdb_filled_s\": %.3f, \"openvdb_band_over_cover\": %.1f, "
                 "\"openvdb_filled_over_cover\": %.1f, \"occupied\": %llu, \"peak_mib\": %.1f, \"sink\": %llu}%s\n",
-                n, c, w, f, c / w, c / f, vdb_band, vdb_filled, vdb_band / c, vdb_filled / c,
-                static_cast<unsigned long long>(grid.count()), cover_peak,
+                n, c, cold, c / cold, w, f, c / w, c / f, vdb_band, vdb_filled, vdb_band / c, vdb_filled / c,
+                static_cast<unsigned long long>(occupied), cover_peak,
                 static_cast<unsigned long long>(sink & 1), r + 1 < resolutions.size() || !depths.empty() ? "," : "");
   }
   for (size_t d = 0; d < depths.size(); ++d) {
