@@ -38,6 +38,7 @@ struct Builder {
   std::vector<Item>& items;
   std::vector<Bvh::Node>& nodes;
   const BvhOptions& options;
+  double margin;  ///< absolute widening of node bounds (see Bvh::Node)
 
   /// Builds the subtree of items[begin, end) into nodes[slot ...].
   void build(uint32_t slot, uint32_t begin, uint32_t end) {
@@ -51,8 +52,8 @@ struct Builder {
       cb.add(items[i].centroid);
     }
     for (int a = 0; a < 3; ++a) {
-      node.lo[a] = round_down(box.min[a]);
-      node.hi[a] = round_up(box.max[a]);
+      node.lo[a] = round_down(box.min[a] - margin);
+      node.hi[a] = round_up(box.max[a] + margin);
     }
     if (n <= options.leaf_size) {
       node.first = begin;
@@ -138,7 +139,18 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   o.leaf_size = std::max<uint32_t>(1, o.leaf_size);
   const auto n = static_cast<uint32_t>(items.size());
   nodes_.resize(subtree_nodes(n, o.leaf_size));
-  Builder{items, nodes_, o}.build(0, 0, n);
+  // Widen node bounds by 1e-9 of the scene's scale: a ray slab test in doubles then errs far less
+  // than the widening, so it can drop no box the exact ray meets (ray.cpp needs no padding).
+  Bbox extent;
+  for (const Item& it : items) {
+    extent.add(it.tri.a);
+    extent.add(it.tri.b);
+    extent.add(it.tri.c);
+  }
+  double scale = 0;
+  for (int a = 0; a < 3; ++a)
+    scale = std::max({scale, std::abs(extent.min[a]), std::abs(extent.max[a])});
+  Builder{items, nodes_, o, 1e-9 * scale}.build(0, 0, n);
   tris_.resize(n);
   for (const Item& it : items) {
     bounds_.add(it.tri.a);

@@ -30,8 +30,8 @@ class Bvh {
     uint32_t leaf = 0;
     uint32_t face = 0;  ///< face index in the Solid
   };
-  /// 32 bytes. Bounds are floats rounded outwards from the exact double box, so they contain
-  /// it: a half-line or ray that misses them misses every triangle below (culling only; every
+  /// 32 bytes. Bounds are floats rounded outwards from the exact double box widened by 1e-9 of
+  /// the scene's largest coordinate, so they contain it with room for a ray slab test's rounding: a half-line or ray that misses them misses every triangle below (culling only; every
   /// decision on a triangle uses its double coordinates).
   struct Node {
     float lo[3];

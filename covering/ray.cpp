@@ -39,20 +39,19 @@ int perturbed_plane_side(const Bvh::Tri& t, const Vec3& o, Axes ax) {
 }
 
 bool ray_meets_box(const Bvh::Node& node, const Vec3& o, const Vec3& inv) {
-  // Slab test; conservative: the box is widened by a relative margin so that floating-point
-  // error can only keep a box, never drop one the exact ray touches.
+  // Slab test. Node bounds are already widened (bvh.h), and the t interval gets a relative
+  // slack, so floating-point error can only keep a box, never drop one the exact ray meets.
   double t0 = 0, t1 = INFINITY;
   for (int i = 0; i < 3; ++i) {
-    const double pad = 1e-9 * (std::abs(node.lo[i]) + std::abs(node.hi[i])) + 1e-300;
-    const double lo = node.lo[i] - pad, hi = node.hi[i] + pad;
-    if (inv[i] == INFINITY || inv[i] == -INFINITY) {  // parallel to this slab
+    const double lo = node.lo[i], hi = node.hi[i];
+    if (std::isinf(inv[i])) {  // parallel to this slab
       if (o[i] < lo || o[i] > hi) return false;
       continue;
     }
     double ta = (lo - o[i]) * inv[i], tb = (hi - o[i]) * inv[i];
     if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta * (1 - 1e-12) - 1e-300);
-    t1 = std::min(t1, tb * (1 + 1e-12) + 1e-300);
+    t0 = std::max(t0, ta * (1 - 1e-12));
+    t1 = std::min(t1, tb * (1 + 1e-12));
     if (t0 > t1) return false;
   }
   return true;
@@ -105,9 +104,11 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
     return a.t < b.t || (a.t == b.t && (a.leaf < b.leaf || (a.leaf == b.leaf && a.tri < b.tri)));
   });
   // Winding at the origin = Σ signs; sweep and evaluate the expression on each interval.
-  std::vector<int> winding(leaves, 0);
+  thread_local std::vector<int> winding;  // per-thread scratch: no allocation per ray
+  thread_local std::vector<uint8_t> inside;
+  winding.assign(leaves, 0);
+  inside.resize(leaves);
   for (const RayHit& h : out.hits) winding[h.leaf] += h.sign;
-  std::vector<uint8_t> inside(leaves);
   auto member = [&] {
     for (size_t l = 0; l < leaves; ++l) inside[l] = winding[l] != 0;
     return tree.evaluate(inside);
