@@ -59,16 +59,16 @@ struct LeafSpec {
 // The iso camera looks from (1, −1, 1): groups spread along (1, 1, 0) sit side by side on screen,
 // and subtrahends are offset towards the eye so that their bites are visible.
 const LeafSpec kLeaves[] = {
-    {"bunny00.off", {-0.3, -0.3, 0}, 0.8, {0, 0, 1}, 0},               // A
-    {"bunny00.off", {0.3, 0.3, 0.05}, 0.8, {0.2, 1, 0.3}, 70},         // B
-    {"refined_elephant.off", {0, -0.1, 0.3}, 0.9, {1, 0.2, 0.1}, 30},  // C
-    {"armadillo.off", {0.35, -0.45, 0.25}, 0.55, {0.3, 1, 0.2}, 120},  // D
-    {"bunny00.off", {-0.1, -0.35, 0.55}, 0.45, {1, 1, 0}, 200},        // E
-    {"armadillo.off", {1.0, 1.0, 0}, 0.85, {0.1, 0.3, 1}, 20},         // F
-    {"bunny00.off", {1.05, 1.05, 0.1}, 0.85, {0.4, 0.1, 1}, 160},      // G
-    {"fandisk_large.off", {1.3, 0.7, 0.35}, 0.55, {0.3, 1, 0.2}, 45},  // H
-    {"armadillo.off", {-1.0, -1.0, 0}, 0.8, {0.2, 0.2, 1}, 250},       // I
-    {"bear.off", {-0.75, -1.2, 0.3}, 0.5, {0, 1, 0.3}, 90},            // J
+    {"bunny00.off", {-0.2, -0.2, 0}, 0.8, {0, 0, 1}, 0},                   // A
+    {"bunny00.off", {0.2, 0.2, 0.05}, 0.8, {0.2, 1, 0.3}, 70},             // B
+    {"refined_elephant.off", {0.1, -0.35, 0.35}, 0.9, {1, 0.2, 0.1}, 30},  // C
+    {"armadillo.off", {0.3, -0.4, 0.3}, 0.55, {0.3, 1, 0.2}, 120},         // D
+    {"bunny00.off", {0.05, -0.3, 0.5}, 0.5, {1, 1, 0}, 200},               // E
+    {"armadillo.off", {0.75, 0.75, 0}, 0.85, {0.1, 0.3, 1}, 20},           // F
+    {"bunny00.off", {0.8, 0.8, 0.1}, 0.85, {0.4, 0.1, 1}, 160},            // G
+    {"fandisk_large.off", {0.85, 0.55, 0.25}, 0.55, {0.3, 1, 0.2}, 45},    // H
+    {"armadillo.off", {-0.75, -0.75, 0}, 0.8, {0.2, 0.2, 1}, 250},         // I
+    {"bear.off", {-0.55, -0.95, 0.3}, 0.5, {0, 1, 0.3}, 90},               // J
 };
 
 enum class Op { kLeaf, kUnion, kIntersection, kDifference };
