@@ -69,6 +69,29 @@ class Bvh {
   size_t leaves_ = 0;
 };
 
+/// Depth-first walk: for every leaf node reached through nodes whose bounds satisfy
+/// `meets(node)`, calls `visit(i)` for each of its triangle indices i. The one traversal loop of
+/// every BVH query (classification half-lines, rays, octree boxes).
+template <typename Meets, typename Visit>
+void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
+  const auto& nodes = bvh.nodes();
+  if (nodes.empty()) return;
+  uint32_t stack[128];  // depth ≤ log2(n) + 1 for the median-split tree
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t id = stack[--top];
+    const Bvh::Node& node = nodes[id];
+    if (!meets(node)) continue;
+    if (node.count == 0) {
+      stack[top++] = node.first;
+      stack[top++] = id + 1;
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) visit(i);
+  }
+}
+
 /// Every non-degenerate covering triangle (v0, vi, vi+1) of every face of `solid`, in face
 /// order, in its leaf's own orientation (the triangles a Bvh is built over).
 std::vector<Bvh::Tri> leaf_triangles(const Solid& solid);

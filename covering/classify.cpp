@@ -75,8 +75,7 @@ void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
                   std::vector<uint8_t>& on_surface) {
   std::fill(winding.begin(), winding.end(), 0);
   std::fill(on_surface.begin(), on_surface.end(), 0);
-  const auto& nodes = bvh.nodes();
-  if (nodes.empty()) return;
+  if (bvh.nodes().empty()) return;
   const auto& tris = bvh.triangles();
   const Bbox& all = bvh.bounds();
   AxisRay r = axis_ray(0, 1);
@@ -90,25 +89,16 @@ void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
       }
     }
   const int k = r.k, u = r.u, w = r.w;
-  uint32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const uint32_t id = stack[--top];
-    const Bvh::Node& node = nodes[id];
-    if (q[u] < node.lo[u] || q[u] > node.hi[u] || q[w] < node.lo[w] || q[w] > node.hi[w] ||
-        (r.s > 0 ? q[k] > node.hi[k] : q[k] < node.lo[k]))
-      continue;
-    if (node.count == 0) {
-      stack[top++] = node.first;
-      stack[top++] = id + 1;
-      continue;
-    }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-      const Bvh::Tri& t = tris[i];
-      on_surface[t.leaf] |= visit(t.a, t.b, t.c, q, r, winding[t.leaf]);
-    }
-  }
+  walk(
+      bvh,
+      [&](const Bvh::Node& node) {
+        return !(q[u] < node.lo[u] || q[u] > node.hi[u] || q[w] < node.lo[w] ||
+                 q[w] > node.hi[w] || (r.s > 0 ? q[k] > node.hi[k] : q[k] < node.lo[k]));
+      },
+      [&](uint32_t i) {
+        const Bvh::Tri& t = tris[i];
+        on_surface[t.leaf] |= visit(t.a, t.b, t.c, q, r, winding[t.leaf]);
+      });
 }
 
 /// Leaf memberships → result class; on-surface points go to the exact local analysis.

@@ -74,32 +74,19 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
   if (bvh.nodes().empty()) return out;
   const Axes ax = axes_for(ray.dir);
   const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
-  const auto& nodes = bvh.nodes();
   const auto& tris = bvh.triangles();
-  uint32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Bvh::Node& node = nodes[stack[--top]];
-    if (!ray_meets_box(node, ray.origin, inv)) continue;
-    if (node.count == 0) {
-      const uint32_t self = static_cast<uint32_t>(&node - nodes.data());
-      stack[top++] = node.first;
-      stack[top++] = self + 1;
-      continue;
-    }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-      const Bvh::Tri& t = tris[i];
-      const int s1 = perturbed_side(ray.origin, ray.dir, t.a, t.b, ax);
-      const int s2 = perturbed_side(ray.origin, ray.dir, t.b, t.c, ax);
-      if (s1 != s2) continue;
-      const int s3 = perturbed_side(ray.origin, ray.dir, t.c, t.a, ax);
-      if (s3 != s1 || s1 == 0) continue;  // the perturbed line misses the triangle
-      // The line crosses with sign(n·d) = s1; the hit is ahead iff o' is behind the plane.
-      if (perturbed_plane_side(t, ray.origin, ax) != -s1) continue;
-      out.hits.push_back({std::max(0.0, hit_t(bvh, t, ray)), i, t.leaf, t.face, static_cast<int8_t>(s1)});
-    }
-  }
+  walk(bvh, [&](const Bvh::Node& node) { return ray_meets_box(node, ray.origin, inv); },
+       [&](uint32_t i) {
+         const Bvh::Tri& t = tris[i];
+         const int s1 = perturbed_side(ray.origin, ray.dir, t.a, t.b, ax);
+         const int s2 = perturbed_side(ray.origin, ray.dir, t.b, t.c, ax);
+         if (s1 != s2) return;
+         const int s3 = perturbed_side(ray.origin, ray.dir, t.c, t.a, ax);
+         if (s3 != s1 || s1 == 0) return;  // the perturbed line misses the triangle
+         // The line crosses with sign(n·d) = s1; the hit is ahead iff o' is behind the plane.
+         if (perturbed_plane_side(t, ray.origin, ax) != -s1) return;
+         out.hits.push_back({std::max(0.0, hit_t(bvh, t, ray)), i, t.leaf, t.face, static_cast<int8_t>(s1)});
+       });
   std::sort(out.hits.begin(), out.hits.end(), [](const RayHit& a, const RayHit& b) {
     return a.t < b.t || (a.t == b.t && (a.leaf < b.leaf || (a.leaf == b.leaf && a.tri < b.tri)));
   });

@@ -83,24 +83,14 @@ struct Scratch {
 /// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
 /// closed box.
 void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out) {
-  const auto& nodes = bvh.nodes();
-  if (nodes.empty()) return;
-  uint32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const uint32_t id = stack[--top];
-    const Bvh::Node& node = nodes[id];
-    bool miss = false;
-    for (int a = 0; a < 3; ++a) miss |= node.lo[a] > box.max[a] || node.hi[a] < box.min[a];
-    if (miss) continue;
-    if (node.count == 0) {
-      stack[top++] = node.first;
-      stack[top++] = id + 1;
-      continue;
-    }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) out.push_back(i);
-  }
+  walk(
+      bvh,
+      [&](const Bvh::Node& node) {
+        for (int a = 0; a < 3; ++a)
+          if (node.lo[a] > box.max[a] || node.hi[a] < box.min[a]) return false;
+        return true;
+      },
+      [&](uint32_t i) { out.push_back(i); });
 }
 
 /// Groups `points` (all in `box`) by their sides of the planes of `tris`: equal side vectors
