@@ -26,7 +26,7 @@ for t in "${targets[@]}"; do
   findings=build-fuzz/findings/$t
   mkdir -p "$corpus" "$findings"
   case $t in
-    scene) cp models/*.json "$corpus"/ ;;
+    scene) cp models/*.json tests/data/fuzz/*.json "$corpus"/ ;;
     *) find models "$cgal" /usr/share/assimp/models tests/data/fuzz -iname "*.$t" -size -200k \
          -exec cp {} "$corpus"/ \; 2>/dev/null || true ;;
   esac

@@ -238,11 +238,13 @@ LoadedInput parse_scene(const std::string& text, const std::filesystem::path& sc
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e400-like numbers
     std::string what = e.what();
     // nlohmann: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
     const auto colon = what.find("] ");
-    throw InputError(scene_path.string() + ":" + line_of(text, e.byte == 0 ? 0 : e.byte - 1) +
+    const auto* parse = dynamic_cast<const json::parse_error*>(&e);
+    const size_t byte = parse && parse->byte > 0 ? parse->byte - 1 : 0;
+    throw InputError(scene_path.string() + ":" + line_of(text, byte) +
                      ": invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
   }
   LoadedInput out;

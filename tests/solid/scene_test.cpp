@@ -96,6 +96,15 @@ TEST(Scene, ErrorsNameTheJsonPath) {
   EXPECT_NE(error_of(deep).find("nested deeper than"), std::string::npos);
 }
 
+// Found by fuzz_scene: a number too large for a double made nlohmann throw out_of_range, which
+// escaped as an internal error instead of an InputError.
+TEST(Scene, FuzzRegressionNumberOverflow) {
+  const auto file = test::source_dir() / "tests" / "data" / "fuzz" / "scene-number-overflow.json";
+  EXPECT_THROW(load_input(file), InputError);
+  EXPECT_NE(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1e400]}})").find("invalid JSON"),
+            std::string::npos);
+}
+
 TEST(Scene, MeshLeavesRelativeToSceneFolderOpenAndInsideOut) {
   const auto dir = test::temp_dir("scene");
   PolygonMesh box = make_box({0, 0, 0}, {1, 1, 1});
