@@ -16,46 +16,21 @@
 #include <vector>
 
 #include "helpers.h"
+#include "voxel_grids.h"
 #include "raster/voxel_grid.h"
 #include "solid/errors.h"
 
 namespace cover {
 namespace {
 
+using test::empty_grid;
+using test::random_grid;
+using test::sphere_grid;
+
 namespace fs = std::filesystem;
 
-VoxelGrid empty_grid(int n, VoxelBounds bounds = {{-1.25, 0.5, 3.0}, 2.5}) {
-  VoxelGrid grid;
-  grid.n = n;
-  grid.bounds = bounds;
-  grid.bits.assign(static_cast<size_t>(n) * n * grid.words_per_column(), 0);
-  return grid;
-}
 
-/// Each voxel set with probability `density` (seeded, reproducible).
-VoxelGrid random_grid(int n, double density, uint64_t seed) {
-  VoxelGrid grid = empty_grid(n);
-  std::mt19937_64 rng(seed);
-  std::bernoulli_distribution coin(density);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        if (coin(rng)) grid.set(i, j, k);
-  return grid;
-}
 
-/// An off-centre ball, so that the x, y and z axes are not interchangeable.
-VoxelGrid sphere_grid(int n) {
-  VoxelGrid grid = empty_grid(n, {{0, 0, 0}, 1});
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) {
-        const Vec3 c = grid.voxel_centre(i, j, k);
-        const Vec3 d = c - Vec3{0.45, 0.55, 0.6};
-        if (dot(d, d) < 0.35 * 0.35) grid.set(i, j, k);
-      }
-  return grid;
-}
 
 VoxelGrid full_grid(int n) {
   VoxelGrid grid = empty_grid(n);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "helpers.h"
+#include "voxel_grids.h"
 #include "raster/voxel_grid.h"
 #include "solid/measure.h"
 #include "solid/mesh_io.h"
@@ -31,13 +32,10 @@
 namespace cover {
 namespace {
 
-VoxelGrid empty_grid(int n, VoxelBounds bounds = {{-1.25, 0.5, 3.0}, 2.5}) {
-  VoxelGrid grid;
-  grid.n = n;
-  grid.bounds = bounds;
-  grid.bits.assign(static_cast<size_t>(n) * n * grid.words_per_column(), 0);
-  return grid;
-}
+using test::empty_grid;
+using test::random_grid;
+using test::sphere_grid;
+
 
 VoxelGrid grid_of(int n, const std::vector<std::array<int, 3>>& voxels) {
   VoxelGrid grid = empty_grid(n);
@@ -45,29 +43,7 @@ VoxelGrid grid_of(int n, const std::vector<std::array<int, 3>>& voxels) {
   return grid;
 }
 
-/// Each voxel set with probability `density` (seeded, reproducible).
-VoxelGrid random_grid(int n, double density, uint64_t seed) {
-  VoxelGrid grid = empty_grid(n);
-  std::mt19937_64 rng(seed);
-  std::bernoulli_distribution coin(density);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        if (coin(rng)) grid.set(i, j, k);
-  return grid;
-}
 
-/// An off-centre ball.
-VoxelGrid sphere_grid(int n) {
-  VoxelGrid grid = empty_grid(n, {{0, 0, 0}, 1});
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) {
-        const Vec3 d = grid.voxel_centre(i, j, k) - Vec3{0.45, 0.55, 0.6};
-        if (dot(d, d) < 0.35 * 0.35) grid.set(i, j, k);
-      }
-  return grid;
-}
 
 bool occupied(const VoxelGrid& g, int i, int j, int k) {
   return i >= 0 && j >= 0 && k >= 0 && i < g.n && j < g.n && k < g.n && g.get(i, j, k);

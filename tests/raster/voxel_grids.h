@@ -1,0 +1,43 @@
+#pragma once
+// Shared voxel-grid generators for the raster tests (seeded, reproducible).
+
+#include <random>
+
+#include "raster/voxel_grid.h"
+
+namespace cover::test {
+
+/// An all-empty N³ grid over `bounds` (off the origin by default, so bounds are exercised).
+inline VoxelGrid empty_grid(int n, VoxelBounds bounds = {{-1.25, 0.5, 3.0}, 2.5}) {
+  VoxelGrid grid;
+  grid.n = n;
+  grid.bounds = bounds;
+  grid.bits.assign(static_cast<size_t>(n) * n * grid.words_per_column(), 0);
+  return grid;
+}
+
+/// Each voxel set with probability `density`.
+inline VoxelGrid random_grid(int n, double density, uint64_t seed) {
+  VoxelGrid grid = empty_grid(n);
+  std::mt19937_64 rng(seed);
+  std::bernoulli_distribution coin(density);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        if (coin(rng)) grid.set(i, j, k);
+  return grid;
+}
+
+/// An off-centre ball in the unit cube, so that the x, y and z axes are not interchangeable.
+inline VoxelGrid sphere_grid(int n) {
+  VoxelGrid grid = empty_grid(n, {{0, 0, 0}, 1});
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const Vec3 d = grid.voxel_centre(i, j, k) - Vec3{0.45, 0.55, 0.6};
+        if (dot(d, d) < 0.35 * 0.35) grid.set(i, j, k);
+      }
+  return grid;
+}
+
+}  // namespace cover::test
