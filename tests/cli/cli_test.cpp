@@ -333,6 +333,35 @@ TEST_F(Cli, VoxelizeAndOctreeWriteEveryFormatDeterministically) {
   }
 }
 
+TEST_F(Cli, EveryCommandIsByteIdenticalWithOneAndTwoThreads) {
+  // stdout (without --json, whose "seconds" is a timing) and every output file.
+  test::write_file(dir_ / "s.json", R"({"difference": [
+      {"union": [{"box": {"min": [0,0,0], "max": [2,2,2]}}, {"sphere": {"center": [2,2,2], "radius": 1}}]},
+      {"cylinder": {"base": [1,1,-1], "top": [1,1,4], "radius": 0.5}}]})");
+  test::write_file(dir_ / "p.txt", "1 1 1\n2 2 2\n0 0 0\n1.5 1 1\n2 1 1\n");
+  const std::string in = q(dir_ / "s.json");
+  const std::vector<std::string> commands = {
+      "info " + in, "volume " + in, "classify " + in + " --points " + q(dir_ / "p.txt"),
+      "render " + in + " --size 64x48 -o " + q(dir_ / "r.png") + " --depth " + q(dir_ / "d.png"),
+      "voxelize " + in + " --res 32 -o " + q(dir_ / "v.binvox"),
+      "octree " + in + " --depth 4 -o " + q(dir_ / "o.json")};
+  const std::vector<std::string> files = {"r.png", "d.png", "v.binvox", "o.json"};
+  std::vector<std::string> outputs[2];
+  for (int t = 0; t < 2; ++t) {
+    for (const std::string& c : commands) {
+      const auto r = run_cover(c + " --quiet --threads " + std::to_string(t + 1));
+      ASSERT_EQ(r.status, 0) << c << r.err;
+      // The render and voxelize summaries print seconds; keep only the first word for those.
+      outputs[t].push_back(c.rfind("render", 0) == 0 || c.rfind("voxelize", 0) == 0 ||
+                                   c.rfind("octree", 0) == 0
+                               ? r.out.substr(0, r.out.find(' '))
+                               : r.out);
+    }
+    for (const std::string& f : files) outputs[t].push_back(test::read_file(dir_ / f));
+  }
+  EXPECT_EQ(outputs[0], outputs[1]);
+}
+
 TEST_F(Cli, DefaultSceneInfoAndVolume) {
   const auto scene = test::source_dir() / "models" / "default.json";
   auto r = run_cover("info " + q(scene));
