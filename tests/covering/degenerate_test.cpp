@@ -115,6 +115,34 @@ TEST(Degenerate, RaysExactlyAlongFacesAndThroughEdges) {
   EXPECT_DOUBLE_EQ(mid.spans[0].t1, 2.0);
 }
 
+TEST(Degenerate, DuplicateVerticesAndRayOriginsOnFaces) {
+  // An unwelded box: every face has its own copies of its corners.
+  const PolygonMesh welded = make_box({0, 0, 0}, {1, 1, 1});
+  PolygonMesh soup;
+  for (size_t f = 0; f < welded.face_count(); ++f) {
+    std::vector<uint32_t> loop;
+    for (uint32_t v : welded.face(f)) {
+      loop.push_back(static_cast<uint32_t>(soup.vertices.size()));
+      soup.vertices.push_back(welded.vertices[v]);
+    }
+    soup.add_face(loop);
+  }
+  const Solid s = make_leaf(soup, "soup");
+  const auto pts = probe_points(-0.5, 1.5, 0.25, 4);
+  EXPECT_EQ(classify(s, pts), classify(box({0, 0, 0}, {1, 1, 1}), pts));
+  expect_paths_agree(s, pts);
+  // Rays starting exactly on a face, an edge and a vertex, pointing in and out.
+  const Bvh bvh(s);
+  const std::vector<Ray> rays = {{{0.5, 0.5, 0}, {0, 0, 1}}, {{0.5, 0.5, 0}, {0, 0, -1}},
+                                 {{0.5, 0, 0}, {0, 1, 1}},    {{0, 0, 0}, {1, 1, 1}},
+                                 {{1, 1, 1}, {1, 1, 1}}};
+  const std::vector<size_t> spans = {1, 0, 1, 1, 0};
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const RayResult r = cast(bvh, s.tree, s.leaves.size(), rays[i]);
+    EXPECT_EQ(r.spans.size(), spans[i]) << i;
+  }
+}
+
 class SelfIntersecting : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(SelfIntersecting, NonzeroRuleBothPathsAgree) {
