@@ -217,28 +217,8 @@ Unsigned load_unsigned(const char* bytes, bool swap) {
   return value;
 }
 
-/// Reads a binary value of any type `t` as a double.
-double load_double(const char* bytes, Type t, bool swap) {
-  switch (t) {
-    case Type::kFloat32:
-      return std::bit_cast<float>(load_unsigned<uint32_t>(bytes, swap));
-    case Type::kFloat64:
-      return std::bit_cast<double>(load_unsigned<uint64_t>(bytes, swap));
-    case Type::kInt8:
-      return static_cast<int8_t>(bytes[0]);
-    case Type::kUint8:
-      return static_cast<uint8_t>(bytes[0]);
-    case Type::kInt16:
-      return static_cast<int16_t>(load_unsigned<uint16_t>(bytes, swap));
-    case Type::kUint16:
-      return load_unsigned<uint16_t>(bytes, swap);
-    case Type::kInt32:
-      return static_cast<int32_t>(load_unsigned<uint32_t>(bytes, swap));
-    case Type::kUint32:
-      return load_unsigned<uint32_t>(bytes, swap);
-  }
-  return 0;
-}
+/// Reads a binary value of any type `t` as a double (integers through load_int).
+double load_double(const char* bytes, Type t, bool swap);
 
 /// Reads a binary value of integer type `t`.
 int64_t load_int(const char* bytes, Type t, bool swap) {
@@ -255,6 +235,18 @@ int64_t load_int(const char* bytes, Type t, bool swap) {
       return static_cast<int32_t>(load_unsigned<uint32_t>(bytes, swap));
     default:
       return load_unsigned<uint32_t>(bytes, swap);  // kUint32; floats are refused earlier
+  }
+}
+
+/// Reads a binary value of any type `t` as a double (integers through load_int).
+double load_double(const char* bytes, Type t, bool swap) {
+  switch (t) {
+    case Type::kFloat32:
+      return std::bit_cast<float>(load_unsigned<uint32_t>(bytes, swap));
+    case Type::kFloat64:
+      return std::bit_cast<double>(load_unsigned<uint64_t>(bytes, swap));
+    default:
+      return static_cast<double>(load_int(bytes, t, swap));
   }
 }
 
