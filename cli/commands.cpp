@@ -185,6 +185,7 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
     classes.insert(classes.end(), part.begin(), part.end());
     progress.update(begin + n, points.size());
   }
+  progress.finish();
   const double seconds = seconds_since(start);
   std::array<size_t, 5> counts{};
   for (PointClass c : classes) ++counts[static_cast<size_t>(c)];

@@ -10,8 +10,11 @@ Progress::Progress(std::string label, bool quiet)
       enabled_(!quiet && isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()) {}
 
-Progress::~Progress() {
+Progress::~Progress() { finish(); }
+
+void Progress::finish() {
   if (shown_) std::fprintf(stderr, "\r\033[K");
+  shown_ = false;
 }
 
 void Progress::update(size_t done, size_t total) {

@@ -16,6 +16,8 @@ class Progress {
   Progress(std::string label, bool quiet);
   ~Progress();
   void update(size_t done, size_t total);
+  /// Clears the bar (if shown) so that the command's own output starts on a clean line.
+  void finish();
 
  private:
   std::string label_;

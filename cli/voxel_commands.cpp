@@ -93,7 +93,10 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   OctreeOptions oo;
   oo.depth = o.depth;
+  Progress progress("octree", common.quiet);
+  oo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   const Octree tree = build_octree(in.solid, bounds_option(o.bounds, in.solid, 1 << o.depth), oo);
+  progress.finish();
   write_octree(o.output, tree, o.threshold);
   const auto counts = tree.leaf_counts();
   json j;

@@ -159,13 +159,17 @@ class Builder {
         bounds_(bounds),
         depth_(options.depth),
         samples_(options.samples),
-        h_(std::ldexp(bounds.size, -options.depth)) {}
+        h_(std::ldexp(bounds.size, -options.depth)),
+        progress_(options.progress) {}
 
   Octree run() {
     Octree tree;
     tree.bounds = bounds_;
     tree.depth = depth_;
     size_t level_start = 0;
+    // Progress: crossed cells grow about 4× per level, so level d weighs 4^d.
+    const double weight_total = (std::ldexp(1.0, 2 * depth_ + 2) - 1) / 3;
+    double weight_done = 0;
     for (int d = 0; d <= depth_; ++d) {
       const size_t n = d == 0 ? 1 : 8 * parents_.size();
       if (n == 0) break;
@@ -174,9 +178,13 @@ class Builder {
       tree.nodes.resize(level_start + n);
       std::vector<Coord> next;
       Lists next_lists;
-      for (size_t b0 = 0; b0 < n; b0 += kBlock)
-        block(d, b0, std::min(n, b0 + kBlock), tree.nodes.data() + level_start, level_start + n,
-              next, next_lists);
+      for (size_t b0 = 0; b0 < n; b0 += kBlock) {
+        const size_t b1 = std::min(n, b0 + kBlock);
+        block(d, b0, b1, tree.nodes.data() + level_start, level_start + n, next, next_lists);
+        if (progress_)
+          progress_((weight_done + std::ldexp(1.0, 2 * d) * static_cast<double>(b1) / n) / weight_total);
+      }
+      weight_done += std::ldexp(1.0, 2 * d);
       parents_ = std::move(next);
       parent_lists_ = std::move(next_lists);
       level_start += n;
@@ -378,6 +386,7 @@ class Builder {
   int depth_;
   int samples_;
   double h_;
+  std::function<void(double)> progress_;
   std::vector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank
 };

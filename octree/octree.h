@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "raster/voxel_grid.h"
@@ -21,6 +22,9 @@ enum class CellState : uint8_t { kEmpty = 0, kFull = 1, kPartial = 2 };
 struct OctreeOptions {
   int depth = 6;    ///< maximum depth (root = 0), 0..16; cells at depth D have side size/2^D
   int samples = 4;  ///< occupancy of partial cells: samples³ sub-points per cell, 1..32
+  /// Called on the calling thread after each block of cells with the estimated share of the work
+  /// done, 0..1 (levels weighted by 4^d, the growth of crossed cells); default: none.
+  std::function<void(double)> progress;
 };
 
 /// Nodes in breadth-first order; children of an inner node are 8 consecutive nodes starting at
