@@ -1,0 +1,46 @@
+#pragma once
+// Exact plane clip and patch of a closed mesh (Erleben & Henriksen, "The Plane Patcher", 2006;
+// DESIGN.md §6). Both halves are kept and closed by cap faces on the plane.
+//   above = solid ∩ {x : n·x ≥ d}   (cap faces have outward normal −n)
+//   below = solid ∩ {x : n·x ≤ d}   (cap faces have outward normal +n)
+// Vertex sides are exact (no tolerance); points constructed on crossing edges are computed once,
+// shared by both halves and rounded to the nearest double; every 2D decision of the cap is exact
+// on the unrounded points (see cap.cpp).
+
+#include <cstdint>
+
+#include "solid/polygon_mesh.h"
+
+namespace cover::brep {
+
+/// The plane n·x = d (n need not be unit length; n ≠ 0).
+struct Plane {
+  Vec3 normal;
+  double offset = 0;
+};
+
+struct ClipOptions {
+  bool triangulate_caps = false;  ///< caps as triangles; default: convex polygons (paper §4)
+};
+
+/// One half of the clip.
+struct ClipHalf {
+  PolygonMesh mesh;        ///< closed, outward-oriented 2-manifold (empty when nothing is there)
+  int64_t rings = 0;       ///< boundary rings walked on the plane (touching rings walk as one)
+  int64_t cap_faces = 0;   ///< faces added on the plane
+};
+
+struct ClipResult {
+  ClipHalf above, below;
+  int64_t constructed_vertices = 0;  ///< edge ∩ plane points (each shared by both halves)
+  int64_t split_vertices = 0;        ///< vertices duplicated to keep 2-manifolds (pinches)
+};
+
+/// Clips a closed, consistently oriented 2-manifold polygon mesh (any simple polygons; faces with
+/// holes joined by false edges too) that does not intersect itself, by `plane`.
+/// Faces lying in the plane go to the half they bound from outside (normal·n < 0: above).
+/// Throws InputError for a zero or non-finite plane, an open or non-manifold mesh; NotComputable
+/// when the cap's rings are inconsistent (which only a self-intersecting input can cause).
+ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& options = {});
+
+}  // namespace cover::brep

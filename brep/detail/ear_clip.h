@@ -1,0 +1,113 @@
+#pragma once
+// Ear-clipping triangulation of one weakly simple polygon (O'Rourke 1998 §1.6; paper §4 uses the
+// same ear search). Shared by the cap (exact constructed points, cap.cpp) and by the splitting of
+// non-convex input faces (input doubles, clip.cpp); only the geometry callbacks differ.
+//
+// Nodes 0..n−1 are the polygon's corners in counter-clockwise order. Nodes with equal id() are the
+// same point (a pinched vertex or both ends of a bridge, paper §6). An ear (a, b, c) is cut when b
+// is strictly convex and no other node blocks it: a reflex (or flat) node inside or on the closed
+// triangle, or a node at a corner's point whose edge leaves that corner into the triangle (or
+// along the diagonal a–c). Only reflex nodes and nodes sharing an id are tested (a convex node
+// inside an ear implies a reflex one inside). No ear in a full turn only happens on degenerate
+// input: the first convex node (else any node) is cut and `forced` counts it.
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace cover::brep::detail {
+
+/// Triangles (a, b, c) of node indices, counter-clockwise, in cutting order: ear tip b is removed
+/// from the polygon; the last triangle is the final remainder. Geometry provides
+/// `int orient(a, b, c)` (exact sign, > 0 counter-clockwise), `uint32_t id(node)` and
+/// `bool box_may_contain(p, a, b, c)` (conservative filter: false only if p is outside the
+/// triangle's bounding box). Precondition: n ≥ 3.
+template <class Geometry>
+std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int64_t& forced) {
+  std::vector<std::array<uint32_t, 3>> tris;
+  tris.reserve(n - 2);
+  std::vector<uint32_t> prev(n), next(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    prev[i] = i == 0 ? n - 1 : i - 1;
+    next[i] = i + 1 == n ? 0 : i + 1;
+  }
+  std::vector<uint8_t> alive(n, 1), reflex(n), dup(n, 0);
+  {
+    std::vector<std::pair<uint32_t, uint32_t>> ids(n);
+    for (uint32_t i = 0; i < n; ++i) ids[i] = {g.id(i), i};
+    std::sort(ids.begin(), ids.end());
+    for (uint32_t i = 1; i < n; ++i)
+      if (ids[i].first == ids[i - 1].first) dup[ids[i].second] = dup[ids[i - 1].second] = 1;
+  }
+  std::vector<uint32_t> cands;
+  for (uint32_t i = 0; i < n; ++i) {
+    reflex[i] = g.orient(prev[i], i, next[i]) <= 0;
+    if (reflex[i] || dup[i]) cands.push_back(i);
+  }
+  // Does node p block the ear (a, b, c)?
+  auto blocks = [&](uint32_t p, uint32_t a, uint32_t b, uint32_t c) {
+    if (!g.box_may_contain(p, a, b, c)) return false;
+    const uint32_t ip = g.id(p);
+    if (ip == g.id(a) || ip == g.id(b) || ip == g.id(c)) {
+      for (uint32_t q : {prev[p], next[p]}) {
+        if (ip == g.id(a) && g.orient(a, b, q) > 0 && g.orient(c, a, q) >= 0) return true;
+        if (ip == g.id(c) && g.orient(b, c, q) > 0 && g.orient(c, a, q) >= 0) return true;
+        if (ip == g.id(b) && g.orient(a, b, q) > 0 && g.orient(b, c, q) > 0) return true;
+      }
+      return false;
+    }
+    if (!reflex[p]) return false;
+    return g.orient(a, b, p) >= 0 && g.orient(b, c, p) >= 0 && g.orient(c, a, p) >= 0;
+  };
+  auto is_ear = [&](uint32_t b) {
+    const uint32_t a = prev[b], c = next[b];
+    if (g.orient(a, b, c) <= 0) return false;
+    size_t kept = 0;
+    bool ear = true;
+    for (size_t k = 0; k < cands.size(); ++k) {
+      const uint32_t p = cands[k];
+      if (!alive[p] || (!reflex[p] && !dup[p])) continue;  // dropped for good
+      cands[kept++] = p;
+      if (ear && p != a && p != b && p != c && blocks(p, a, b, c)) ear = false;
+    }
+    cands.resize(kept);
+    return ear;
+  };
+  auto cut = [&](uint32_t b) {
+    const uint32_t a = prev[b], c = next[b];
+    tris.push_back({a, b, c});
+    next[a] = c;
+    prev[c] = a;
+    alive[b] = 0;
+    reflex[a] = g.orient(prev[a], a, c) <= 0;
+    reflex[c] = g.orient(a, c, next[c]) <= 0;
+  };
+  uint32_t remaining = n, ear = 0, stop = 0;
+  while (remaining > 3) {
+    if (is_ear(ear)) {
+      const uint32_t c = next[ear];
+      cut(ear);
+      --remaining;
+      ear = stop = c;
+      continue;
+    }
+    ear = next[ear];
+    if (ear != stop) continue;
+    ++forced;
+    uint32_t pick = ear;
+    for (uint32_t k = 0, v = ear; k < remaining; ++k, v = next[v])
+      if (g.orient(prev[v], v, next[v]) > 0) {
+        pick = v;
+        break;
+      }
+    const uint32_t c = next[pick];
+    cut(pick);
+    --remaining;
+    ear = stop = c;
+  }
+  tris.push_back({prev[ear], ear, next[ear]});
+  return tris;
+}
+
+}  // namespace cover::brep::detail

@@ -1,0 +1,73 @@
+#pragma once
+// Invariant checks shared by the brep tests: a clipped half must be a closed, consistently
+// oriented 2-manifold (kernel validity), outward (positive volume) and free of self-intersections
+// near the cut. Pinched vertices (distinct vertices at equal coordinates, one per fan) are
+// counted separately and welded for the self-intersection test.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "brep/clip.h"
+#include "brep/halfedge.h"
+#include "solid/measure.h"
+#include "solid/validate.h"
+
+namespace cover::test {
+
+struct HalfCheck {
+  brep::BrepReport report;
+  double volume = 0;
+  int64_t pinched = 0;        ///< extra vertices sharing coordinates with another vertex
+  bool self_intersecting = false;
+};
+
+/// Validity, volume and (restricted to faces within `slab` of the plane; all faces when slab < 0)
+/// self-intersection of one half.
+inline HalfCheck check_half(const PolygonMesh& half, const brep::Plane& plane, double slab) {
+  HalfCheck c;
+  c.report = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(half));
+  c.volume = signed_volume(half);
+  std::map<std::array<double, 3>, uint32_t> seen;
+  std::vector<uint32_t> weld(half.vertices.size());
+  for (uint32_t v = 0; v < half.vertices.size(); ++v) {
+    const Vec3& p = half.vertices[v];
+    auto [it, fresh] = seen.emplace(std::array<double, 3>{p.x, p.y, p.z}, v);
+    weld[v] = it->second;
+    c.pinched += !fresh;
+  }
+  PolygonMesh near;
+  near.vertices = half.vertices;
+  std::vector<uint32_t> loop;
+  for (size_t f = 0; f < half.face_count(); ++f) {
+    bool keep = slab < 0;
+    loop.clear();
+    for (uint32_t v : half.face(f)) {
+      loop.push_back(weld[v]);
+      const Vec3& p = half.vertices[v];
+      keep = keep || std::abs(dot(plane.normal, p) - plane.offset) <= slab;
+    }
+    if (keep) near.add_face(loop);
+  }
+  c.self_intersecting = near.face_count() > 0 && self_intersects(near);
+  return c;
+}
+
+/// Expects both halves valid and the volumes to add up to `volume` (relative `tolerance`).
+inline void expect_valid_clip(const brep::ClipResult& r, const brep::Plane& plane, double volume,
+                              double slab, const std::string& what, double tolerance = 1e-9) {
+  for (const brep::ClipHalf* h : {&r.above, &r.below}) {
+    const char* name = h == &r.above ? "above" : "below";
+    const HalfCheck c = check_half(h->mesh, plane, slab);
+    EXPECT_TRUE(c.report.consistent) << what << " " << name;
+    EXPECT_TRUE(c.report.closed) << what << " " << name;
+    EXPECT_TRUE(c.report.manifold) << what << " " << name;
+    EXPECT_FALSE(c.self_intersecting) << what << " " << name;
+    if (h->mesh.face_count() > 0) EXPECT_GT(c.volume, 0) << what << " " << name;
+  }
+  const double sum = signed_volume(r.above.mesh) + signed_volume(r.below.mesh);
+  EXPECT_NEAR(sum, volume, tolerance * std::abs(volume)) << what;
+}
+
+}  // namespace cover::test

@@ -1,0 +1,151 @@
+// Plane clip and patch (brep/clip.h) on constructed cases: CGAL's classic clip cases reproduced
+// independently (hollow box, nine concentric cubes of alternating orientation, planes through
+// vertices and along faces), faces with false edges, and the cap modes.
+#include "brep/clip.h"
+
+#include <gtest/gtest.h>
+
+#include "brep_checks.h"
+#include "helpers.h"
+#include "solid/errors.h"
+#include "solid/mesh_io.h"
+
+namespace cover::brep {
+namespace {
+
+/// Appends the box [lo, hi]³ to m, outward (or inward when `reversed`).
+void add_cube(PolygonMesh& m, double lo, double hi, bool reversed = false) {
+  const uint32_t b = static_cast<uint32_t>(m.vertices.size());
+  for (int i = 0; i < 8; ++i)
+    m.vertices.push_back({(i & 1) ? hi : lo, (i & 2) ? hi : lo, (i & 4) ? hi : lo});
+  const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    if (reversed)
+      m.add_face({b + f[3], b + f[2], b + f[1], b + f[0]});
+    else
+      m.add_face({b + f[0], b + f[1], b + f[2], b + f[3]});
+  }
+}
+
+ClipResult clip_and_check(const PolygonMesh& m, const Plane& p, const std::string& what,
+                          const ClipOptions& o = {}) {
+  const ClipResult r = clip(m, p, o);
+  test::expect_valid_clip(r, p, signed_volume(m), -1, what);
+  return r;
+}
+
+TEST(Clip, CubeThroughTheMiddle) {
+  PolygonMesh m;
+  add_cube(m, 0, 1);
+  const ClipResult r = clip_and_check(m, {{0, 0, 1}, 0.25}, "cube z=0.25");
+  EXPECT_NEAR(signed_volume(r.above.mesh), 0.75, 1e-15);
+  EXPECT_EQ(r.above.rings, 1);
+  EXPECT_EQ(r.below.rings, 1);
+  EXPECT_EQ(r.above.cap_faces, 1);  // a square stays one convex face
+  for (const Vec3& v : r.below.mesh.vertices) EXPECT_TRUE(v.z == 0 || v.z == 0.25);
+}
+
+TEST(Clip, TriangulatedCapsAreTriangles) {
+  PolygonMesh m;
+  add_cube(m, 0, 1);
+  ClipOptions o;
+  o.triangulate_caps = true;
+  const ClipResult r = clip_and_check(m, {{1, 2, 3}, 2.5}, "cube oblique triangulated", o);
+  EXPECT_GE(r.above.cap_faces, 2);
+  const ClipResult c = clip_and_check(m, {{1, 2, 3}, 2.5}, "cube oblique convex");
+  EXPECT_EQ(c.above.cap_faces, 1);
+}
+
+TEST(Clip, HollowBoxThroughBothShells) {
+  // CGAL's classic: outer box ±2 outward, inner ±1 reversed (a cavity).
+  PolygonMesh m;
+  add_cube(m, -2, 2);
+  add_cube(m, -1, 1, true);
+  const ClipResult r = clip_and_check(m, {{0.3, -0.2, 1}, 0.1}, "hollow box");
+  EXPECT_EQ(r.above.rings, 2);
+  EXPECT_EQ(r.below.rings, 2);
+  EXPECT_NEAR(signed_volume(r.above.mesh) + signed_volume(r.below.mesh), 56, 1e-12);
+  // Axis plane: the cap is one square with a square hole, bridged then decomposed.
+  const ClipResult a = clip_and_check(m, {{1, 0, 0}, 0}, "hollow box x=0");
+  EXPECT_NEAR(signed_volume(a.above.mesh), 28, 1e-12);
+}
+
+TEST(Clip, NineConcentricCubesAlternating) {
+  PolygonMesh m;
+  for (int k = 9; k >= 1; --k) add_cube(m, -k, k, k % 2 == 0);
+  const ClipResult r = clip_and_check(m, {{0.1, 0.2, 1}, 0.05}, "nine cubes");
+  EXPECT_EQ(r.above.rings, 9);
+  EXPECT_EQ(r.below.rings, 9);
+  const ClipResult x = clip_and_check(m, {{0, 1, 0}, 0}, "nine cubes y=0");
+  EXPECT_EQ(x.above.rings, 9);
+}
+
+TEST(Clip, PlaneAlongAFace) {
+  PolygonMesh m;
+  add_cube(m, 0, 1);
+  // z = 0 is the plane of the bottom face (normal −z): the whole cube is above.
+  ClipResult r = clip_and_check(m, {{0, 0, 1}, 0}, "cube z=0");
+  EXPECT_EQ(r.above.mesh.face_count(), 6u);
+  EXPECT_EQ(r.below.mesh.face_count(), 0u);
+  // z = 1 is the plane of the top face (normal +z): the whole cube is below.
+  r = clip_and_check(m, {{0, 0, 1}, 1}, "cube z=1");
+  EXPECT_EQ(r.below.mesh.face_count(), 6u);
+  EXPECT_EQ(r.above.mesh.face_count(), 0u);
+  // Two stacked boxes sharing no face but touching the plane z = 1 from both sides along faces.
+  PolygonMesh hollow;
+  add_cube(hollow, -2, 2);
+  add_cube(hollow, -1, 1, true);
+  r = clip_and_check(hollow, {{0, 0, 1}, 1}, "hollow box along the cavity's top");
+  EXPECT_NEAR(signed_volume(r.above.mesh), 4 * 4 * 1, 1e-12);
+}
+
+TEST(Clip, PlaneThroughADiagonalOfVertices) {
+  PolygonMesh m;
+  add_cube(m, 0, 1);
+  // x − y = 0 passes through vertices 0, 3, 4, 7 (a diagonal rectangle).
+  const ClipResult r = clip_and_check(m, {{1, -1, 0}, 0}, "cube diagonal");
+  EXPECT_NEAR(signed_volume(r.above.mesh), 0.5, 1e-15);
+  EXPECT_EQ(r.constructed_vertices, 0);
+  // x + y + z = 1.5 cuts a regular hexagon.
+  const ClipResult h = clip_and_check(m, {{1, 1, 1}, 1.5}, "cube hexagon");
+  EXPECT_EQ(h.constructed_vertices, 6);
+  EXPECT_NEAR(signed_volume(h.above.mesh), 0.5, 1e-15);
+  // x + y + z = 1 passes through three vertices: a triangle cap.
+  const ClipResult t = clip_and_check(m, {{1, 1, 1}, 1}, "cube corner");
+  EXPECT_NEAR(signed_volume(t.below.mesh), 1.0 / 6, 1e-15);
+}
+
+TEST(Clip, FacesWithFalseEdges) {
+  const PolygonMesh frame = read_mesh(test::source_dir() / "models/frame.off");
+  const double v = signed_volume(frame);
+  for (const Plane& p : {Plane{{1, 0, 0}, 2}, Plane{{1, 0, 0}, 0.5}, Plane{{0, 0, 1}, 2},
+                         Plane{{1, 0.3, 0.2}, 2.1}, Plane{{0, 0, 1}, 4}}) {
+    const ClipResult r = clip(frame, p);
+    test::expect_valid_clip(r, p, v, -1, "frame");
+  }
+}
+
+TEST(Clip, RejectsBadPlanesAndOpenMeshes) {
+  PolygonMesh m;
+  add_cube(m, 0, 1);
+  EXPECT_THROW(clip(m, {{0, 0, 0}, 1}), InputError);
+  EXPECT_THROW(clip(m, {{0, 0, NAN}, 1}), InputError);
+  PolygonMesh open;
+  open.vertices = m.vertices;
+  for (size_t f = 1; f < m.face_count(); ++f) open.add_face(m.face(f));
+  EXPECT_THROW(clip(open, {{0, 0, 1}, 0.5}), InputError);
+}
+
+TEST(Clip, AxisPlaneKeepsTheCoordinateExact) {
+  const PolygonMesh torus = read_mesh(test::source_dir() / "models/torus.off");
+  const double c = 0.123456789;
+  const ClipResult r = clip_and_check(torus, {{1, 0, 0}, c}, "torus x=c");
+  EXPECT_EQ(r.above.rings, 2);
+  size_t on_plane = 0;
+  for (const Vec3& v : r.above.mesh.vertices) on_plane += v.x == c;
+  EXPECT_EQ(on_plane, static_cast<size_t>(r.constructed_vertices));
+}
+
+}  // namespace
+}  // namespace cover::brep
