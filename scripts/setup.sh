@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libtbb-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev
-  nlohmann-json3-dev libcli11-dev libpng-dev liboctomap-dev python3-numpy
+  nlohmann-json3-dev libcli11-dev libpng-dev liboctomap-dev python3-numpy python3-vtk9
   libcgal-demo assimp-testmodels
 )
 

@@ -11,7 +11,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -466,6 +468,64 @@ TEST_F(OctreeFiles, HtgDescribesTheTreeBreadthFirst) {
     float f;
     std::memcpy(&f, occupancy.data() + 4 * i, 4);
     EXPECT_EQ(f, tree_.nodes[i].occupancy);
+  }
+}
+
+/// Runs tests/octree/read_htg.py (VTK's vtkXMLHyperTreeGridReader) on `file`; its JSON, or null
+/// with a test failure when the script (or VTK inside it) fails.
+nlohmann::json read_htg_with_vtk(const std::filesystem::path& file) {
+  const std::string python =
+      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::filesystem::path out = file.string() + ".out";
+  const std::string cmd = python + " '" +
+                          (test::source_dir() / "tests/octree/read_htg.py").string() + "' '" +
+                          file.string() + "' >'" + out.string() + "'";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(status, 0) << cmd;
+  if (status != 0) return nullptr;
+  const nlohmann::json j = nlohmann::json::parse(test::read_file(out), nullptr, false);
+  std::filesystem::remove(out);
+  EXPECT_FALSE(j.is_discarded()) << cmd;
+  return j.is_discarded() ? nlohmann::json() : j;
+}
+
+/// Cover's leaves in VTK's depth-first order (children x fastest, then y, then z: the octree's
+/// Morton child order).
+void leaves_depth_first(const Octree& t, uint32_t node, std::vector<uint32_t>& out) {
+  if (t.nodes[node].first_child == 0) {
+    out.push_back(node);
+    return;
+  }
+  for (uint32_t c = 0; c < 8; ++c) leaves_depth_first(t, t.nodes[node].first_child + c, out);
+}
+
+TEST_F(OctreeFiles, HtgLoadsInVtkWithTheSameLeaves) {
+  // Issue 5: the .htg must load in VTK itself (python3-vtk9) with the same leaf cells, states
+  // and occupancies; also for a depth-0 tree (the root alone).
+  const Octree flat = build(solid_, default_bounds(solid_, 2), 0);
+  for (const Octree* tree : std::initializer_list<const Octree*>{&tree_, &flat}) {
+    write_octree(dir_ / "t.htg", *tree, 0.5);
+    const nlohmann::json j = read_htg_with_vtk(dir_ / "t.htg");
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j["trees"], 1);
+    EXPECT_EQ(j["vertices"], tree->nodes.size());
+    std::vector<uint32_t> leaves;
+    leaves_depth_first(*tree, 0, leaves);
+    const auto& cells = j["leaves"];
+    ASSERT_EQ(cells.size(), leaves.size());
+    const double tol = 1e-12 * tree->bounds.size;
+    for (size_t k = 0; k < leaves.size(); ++k) {
+      const Octree::Node& node = tree->nodes[leaves[k]];
+      const auto& c = cells[k];
+      ASSERT_EQ(c[0].get<int>(), node.depth) << "leaf " << k;
+      const double h = tree->cell_size(node.depth);
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(c[1 + 2 * a].get<double>(), node.min[a], tol) << "leaf " << k;
+        EXPECT_NEAR(c[2 + 2 * a].get<double>(), node.min[a] + h, tol) << "leaf " << k;
+      }
+      EXPECT_EQ(c[7].get<int>(), static_cast<int>(node.state)) << "leaf " << k;
+      EXPECT_EQ(c[8].get<float>(), node.occupancy) << "leaf " << k;
+    }
   }
 }
 
