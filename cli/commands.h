@@ -58,11 +58,17 @@ struct OctreeCommandOptions {
   double threshold = 0.5;
 };
 
+struct EvaluateCommandOptions {
+  std::string input;
+  std::string output;  ///< -o OUT.(off|obj|stl|ply)
+};
+
 int run_info(const InfoOptions& o, const CommonOptions& common);
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
 int run_render(const RenderCommandOptions& o, const CommonOptions& common);
 int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common);
 int run_octree(const OctreeCommandOptions& o, const CommonOptions& common);
+int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
 
 }  // namespace cover::cli

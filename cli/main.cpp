@@ -90,6 +90,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   add_common(oct_cmd, common);
 
+  cover::cli::EvaluateCommandOptions eva;
+  CLI::App* eva_cmd =
+      app.add_subcommand("evaluate", "The CSG result as one closed 2-manifold mesh (B-rep)");
+  eva_cmd->add_option("INPUT", eva.input, "Mesh or scene")->required();
+  eva_cmd->add_option("-o,--output", eva.output, "OUT.off, .obj, .stl or .ply")->required();
+  add_common(eva_cmd, common);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -110,6 +117,7 @@ int main(int argc, char** argv) {
     if (ren_cmd->parsed()) return cover::cli::run_render(ren, common);
     if (vox_cmd->parsed()) return cover::cli::run_voxelize(vox, common);
     if (oct_cmd->parsed()) return cover::cli::run_octree(oct, common);
+    if (eva_cmd->parsed()) return cover::cli::run_evaluate(eva, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
     return fail(2, e.what());

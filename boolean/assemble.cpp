@@ -1,0 +1,146 @@
+// Step 6 of evaluate() (boolean/evaluate.h): a 2-manifold mesh from the kept triangles.
+//
+// Notation
+//   half-edge h = 3·f + e   edge e of kept triangle f, from v[e] to v[e+1]
+//   corner 3·f + i          vertex v[i] of triangle f
+//   edge p–q                undirected, p < q (point ids); θ is the angle of a triangle's
+//                           half-plane around the axis p → q (right-hand rule)
+//
+// Around an edge with 2k > 2 triangles (e.g. two cubes sharing an edge), a triangle using p → q
+// has its normal towards increasing θ (its inside at θ−), one using q → p its inside at θ+.
+// Sorted by exact θ, the solid sectors are those between a "q → p" triangle and the next
+// triangle, which must use p → q: each such pair becomes one manifold edge. Corners are then
+// merged across paired edges; each class of corners (one fan) becomes an output vertex, so
+// non-manifold edges and vertices (touching at an edge or a point) get topologically
+// duplicated vertices at the same position.
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+
+#include "boolean/detail/arrangement.h"
+
+namespace cover::boolean_detail {
+namespace {
+
+/// The exact value rounded to the nearest double (ties to the even neighbour).
+double nearest(const K::FT& x) {
+  const auto& e = CGAL::exact(x);
+  const std::pair<double, double> i = CGAL::to_interval(e);
+  if (i.first == i.second) return i.first;
+  using ET = std::decay_t<decltype(e)>;
+  const ET mid = (ET(i.first) + ET(i.second)) / 2;
+  if (e < mid) return i.first;
+  if (e > mid) return i.second;
+  uint64_t bits;  // a tie: the neighbour with the even mantissa
+  std::memcpy(&bits, &i.first, sizeof bits);
+  return (bits & 1) == 0 ? i.first : i.second;
+}
+
+/// Angular class of r around p → q relative to r0: 0 at θ = 0, 1 in (0, π), 2 at π, 3 in (π, 2π).
+int quadrant(const Point& p, const Point& q, const Point& r0, const Point& r) {
+  const CGAL::Orientation s = CGAL::orientation(p, q, r0, r);
+  if (s == CGAL::POSITIVE) return 1;
+  if (s == CGAL::NEGATIVE) return 3;
+  const K::Vector_3 a = q - p;
+  return CGAL::sign(CGAL::cross_product(a, r0 - p) * CGAL::cross_product(a, r - p)) ==
+                 CGAL::POSITIVE
+             ? 0
+             : 2;
+}
+
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
+PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris) {
+  const size_t m = tris.size();
+  auto from = [&](uint32_t h) { return tris[h / 3][h % 3]; };
+  auto to = [&](uint32_t h) { return tris[h / 3][(h % 3 + 1) % 3]; };
+  auto third = [&](uint32_t h) { return tris[h / 3][(h % 3 + 2) % 3]; };
+  std::vector<std::pair<uint64_t, uint32_t>> hs(3 * m);
+  for (uint32_t h = 0; h < 3 * m; ++h) hs[h] = {edge_key(from(h), to(h)), h};
+  std::sort(hs.begin(), hs.end());
+
+  UnionFind corners(3 * m);
+  auto pair_up = [&](uint32_t h, uint32_t g) {  // h: a → b, g: b → a
+    corners.unite(h, 3 * (g / 3) + (g % 3 + 1) % 3);
+    corners.unite(3 * (h / 3) + (h % 3 + 1) % 3, g);
+  };
+  std::vector<uint32_t> group;
+  for (size_t i = 0; i < hs.size();) {
+    size_t j = i;
+    group.clear();
+    while (j < hs.size() && hs[j].first == hs[i].first) group.push_back(hs[j++].second);
+    i = j;
+    const uint32_t p = static_cast<uint32_t>(hs[i - 1].first >> 32);
+    auto forward = [&](uint32_t h) { return from(h) == p; };
+    if (group.size() % 2 != 0)
+      throw std::runtime_error("evaluate: an edge of the result has an odd number of faces");
+    if (group.size() == 2) {
+      if (forward(group[0]) == forward(group[1]))
+        throw std::runtime_error("evaluate: inconsistent orientation at an edge of the result");
+      pair_up(group[0], group[1]);
+      continue;
+    }
+    const Point& pp = arr.points[p];
+    const Point& qq = arr.points[static_cast<uint32_t>(hs[i - 1].first & 0xffffffffu)];
+    const Point& r0 = arr.points[third(group[0])];
+    std::vector<std::pair<int, uint32_t>> order;
+    for (uint32_t h : group) order.emplace_back(quadrant(pp, qq, r0, arr.points[third(h)]), h);
+    std::stable_sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
+      if (x.first != y.first) return x.first < y.first;
+      if (x.first == 0 || x.first == 2) return false;
+      return CGAL::orientation(pp, qq, arr.points[third(x.second)], arr.points[third(y.second)]) ==
+             CGAL::POSITIVE;
+    });
+    const size_t k = order.size();
+    for (size_t x = 0; x < k; ++x) {
+      const uint32_t h = order[x].second;
+      if (forward(h)) continue;
+      const uint32_t g = order[(x + 1) % k].second;
+      if (!forward(g))
+        throw std::runtime_error("evaluate: faces around a non-manifold edge do not alternate");
+      pair_up(h, g);
+    }
+  }
+
+  PolygonMesh mesh;
+  std::vector<uint32_t> vertex(3 * m, kNone);
+  std::vector<Vec3> rounded(arr.points.size());
+  std::vector<uint8_t> done(arr.points.size(), 0);
+  for (uint32_t c = 0; c < 3 * m; ++c) {
+    const uint32_t root = corners.find(c);
+    if (vertex[root] == kNone) {
+      const uint32_t id = tris[c / 3][c % 3];
+      if (!done[id]) {
+        done[id] = 1;
+        rounded[id] = id < arr.originals.size()
+                          ? arr.originals[id]
+                          : Vec3{nearest(arr.points[id].x()), nearest(arr.points[id].y()),
+                                 nearest(arr.points[id].z())};
+      }
+      vertex[root] = static_cast<uint32_t>(mesh.vertices.size());
+      mesh.vertices.push_back(rounded[id]);
+    }
+    vertex[c] = vertex[root];
+  }
+  for (uint32_t f = 0; f < m; ++f) mesh.add_face({vertex[3 * f], vertex[3 * f + 1], vertex[3 * f + 2]});
+  return mesh;
+}
+
+}  // namespace cover::boolean_detail

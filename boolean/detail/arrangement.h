@@ -1,0 +1,86 @@
+#pragma once
+// Internal to cover_boolean (included by the CGAL translation units only): the exact
+// arrangement of the leaves' surfaces.
+//
+// Notation
+//   point id     index into Arrangement::points; [0, originals) are the input vertices
+//                deduplicated by exact double value (shared by every leaf), the rest are
+//                constructed points (exact, CGAL Epeck).
+//   tri          a triangle of one leaf (the leaf faces triangulated: fan when strictly convex in
+//                the face's dominant projection, else a constrained triangulation of its loops),
+//                vertices in the LEAF's own orientation (outward); collinear ones are dropped.
+//   piece        a triangle of the arrangement: a sub-triangle of one tri (the whole tri when no
+//                other leaf meets it), same orientation as its tri.
+//   cut edge     an edge (point-id pair) lying on an intersection of two leaves' surfaces.
+//
+// Exactness scheme (constructed points keep every predicate consistent)
+//   * Input coordinates are doubles and exact. Every constructed point (triangle ∩ triangle,
+//     constraint ∩ constraint inside a triangle) is a CGAL Epeck point: a lazy exact rational,
+//     evaluated with interval arithmetic and recomputed in exact rationals whenever a sign is
+//     uncertain, so every predicate on constructed points is exact.
+//   * A point is identified by its exact VALUE, never by how it was built: the same point reached
+//     from two triangles (an intersection on a shared mesh edge, a triple point reached from
+//     each of its three triangles) gets one id through a map ordered by exact compare_xyz. So
+//     both sides of every edge see identical split points and the pieces conform.
+//   * Per tri, the 2D constrained Delaunay triangulation works in the projection that drops the
+//     dominant axis of the tri's normal (an affine bijection of the plane, so 2D intersections
+//     are the projections of the 3D ones); points it creates are lifted back onto the tri's
+//     plane exactly (X_k = (n·a − n_i X_i − n_j X_j) / n_k).
+//   * Output coordinates are the exact values rounded to the nearest double, once, at the end;
+//     every decision (classification, angular order at non-manifold edges) is taken on exact
+//     values before that.
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "solid/solid.h"
+
+namespace cover::boolean_detail {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using Point = K::Point_3;
+
+inline constexpr uint32_t kNone = 0xffffffffu;
+
+inline uint64_t edge_key(uint32_t a, uint32_t b) {
+  return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
+}
+
+struct Tri {
+  std::array<uint32_t, 3> v;  ///< point ids (originals), leaf orientation
+  uint32_t leaf = 0;
+};
+
+struct Piece {
+  std::array<uint32_t, 3> v;  ///< point ids, orientation of its tri
+  uint32_t tri = 0;
+};
+
+struct Arrangement {
+  std::vector<Point> points;       ///< exact points (see notation)
+  std::vector<Vec3> originals;     ///< the input vertices' doubles, points[i] == originals[i]
+  std::vector<Tri> tris;           ///< grouped by leaf, leaves in order
+  std::vector<Piece> pieces;       ///< in tri order
+  std::vector<uint64_t> cuts;      ///< sorted, unique edge keys of cut edges
+  size_t candidate_pairs = 0;      ///< tri pairs of different leaves with meeting boxes
+  size_t intersecting_pairs = 0;   ///< pairs whose triangles meet
+};
+
+/// Steps 1–3 of evaluate(): triangulation, exact pairwise intersections, per-tri constrained
+/// triangulations, global point identity. Deterministic for any thread count.
+Arrangement build_arrangement(const Solid& solid, size_t grain);
+
+/// Steps 4–5: patches, exact classification, the regularized keep rule and de-duplication of
+/// coincident pieces. Returns the kept triangles (point ids), oriented outward; `patches` gets
+/// the number of classified patches.
+std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
+                                                   size_t grain, size_t& patches);
+
+/// Step 6: pairs faces around edges with more than two faces by exact angular order, splits
+/// vertices per fan, rounds the exact points to the nearest doubles.
+PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris);
+
+}  // namespace cover::boolean_detail

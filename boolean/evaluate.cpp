@@ -1,0 +1,46 @@
+// evaluate(): the driver of boolean/evaluate.h (no CGAL here; the exact steps live in
+// arrangement.cpp, select.cpp and assemble.cpp).
+#include "boolean/evaluate.h"
+
+#include <cmath>
+#include <string>
+
+#include "boolean/detail/arrangement.h"
+#include "brep/halfedge.h"
+#include "solid/errors.h"
+#include "solid/validate.h"
+
+namespace cover {
+
+EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
+  if (options.check_leaves)
+    for (uint32_t l = 0; l < solid.leaves.size(); ++l)
+      if (self_intersects(leaf_mesh(solid, l))) {
+        const Leaf& leaf = solid.leaves[l];
+        throw InputError((leaf.origin.empty() ? leaf.name : leaf.origin + " (" + leaf.name + ")") +
+                         ": leaf is self-intersecting; evaluate needs non-self-intersecting "
+                         "leaves");
+      }
+  const size_t grain = options.grain == 0 ? 1 : options.grain;
+  EvaluateResult r;
+  const boolean_detail::Arrangement arr = boolean_detail::build_arrangement(solid, grain);
+  r.candidate_pairs = arr.candidate_pairs;
+  r.intersecting_pairs = arr.intersecting_pairs;
+  const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.patches);
+  r.mesh = boolean_detail::assemble(arr, kept);
+  for (size_t f = 0; f < r.mesh.face_count(); ++f) {
+    auto t = r.mesh.face(f);
+    const Vec3 a = r.mesh.vertices[t[0]], b = r.mesh.vertices[t[1]], c = r.mesh.vertices[t[2]];
+    r.volume += dot(a, cross(b, c)) / 6;
+    const Vec3 n = cross(b - a, c - a);
+    r.area += 0.5 * std::sqrt(dot(n, n));
+  }
+  if (r.mesh.face_count() > 0) {
+    const brep::BrepReport report = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(r.mesh));
+    r.components = report.components;
+    r.genus = report.genus;
+  }
+  return r;
+}
+
+}  // namespace cover

@@ -1,0 +1,48 @@
+// `cover evaluate INPUT -o OUT.(off|obj|stl|ply) [--json]` (CONTRACT.md): the CSG result as one
+// closed, outward-oriented 2-manifold B-rep (boolean/evaluate.h). An empty result (e.g. disjoint
+// operands intersected) is not an error: an empty mesh (0 vertices, 0 faces) is written, exit 0,
+// with a warning on stderr.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "boolean/evaluate.h"
+#include "cli/commands.h"
+#include "cli/output.h"
+#include "solid/errors.h"
+#include "solid/mesh_io.h"
+#include "solid/scene.h"
+
+namespace cover::cli {
+
+int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!is_mesh_extension(o.output))
+    throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
+  const LoadedInput in = load_input(o.input);
+  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  const EvaluateResult r = evaluate(in.solid);
+  if (r.mesh.face_count() == 0)
+    std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
+  write_mesh(o.output, r.mesh);
+  nlohmann::json j;
+  j["volume"] = r.volume;
+  j["area"] = r.area;
+  j["vertices"] = r.mesh.vertices.size();
+  j["faces"] = r.mesh.face_count();
+  j["genus"] = r.genus;
+  j["components"] = r.components;
+  j["seconds"] = seconds_since(start);
+  if (common.json) {
+    std::cout << j.dump() << "\n";
+  } else {
+    std::printf("wrote %s: %zu vertices, %zu faces, %lld components, genus %lld\n",
+                o.output.c_str(), r.mesh.vertices.size(), r.mesh.face_count(),
+                static_cast<long long>(r.components), static_cast<long long>(r.genus));
+    std::printf("volume %.17g\narea %.17g\n", r.volume, r.area);
+  }
+  return 0;
+}
+
+}  // namespace cover::cli
