@@ -16,6 +16,12 @@
 //   Output positions are the exact points rounded to the nearest double (ties to even): on an
 //   axis-aligned plane x = c the x coordinate is then c. Rings are small next to the mesh, so
 //   this costs little (bench/clip_vs_cgal.cpp measures the whole clip).
+//   Rounding can move a point across a line through near-collinear neighbours (a planar region
+//   of the input cut by the plane gives exactly collinear ring points). So the decomposition's
+//   orientation tests (ear, containment, Hertel–Mehlhorn convexity) take the sign only where the
+//   exact points and the rounded output points agree, and 0 (degenerate: not convex, blocking)
+//   where they differ: every cap face is then valid both exactly and as written. Both signs are
+//   exact (the rounded points are doubles: exact orient2d with a filter).
 //
 // Notation: a ring is a cycle of border half-edges of one side, oriented like the cap face that
 // will close it (each is the twin of a face side on the cut). A node is one corner of a ring or
@@ -104,19 +110,9 @@ class CapBuilder {
         stats.cap_faces[side] += decompose(polygon, stats.forced_ears);
       }
     }
-    // Constructed vertices: exact point rounded to nearest.
-    for (uint32_t i = 0; i < c_.constructed_from.size(); ++i) {
-      const uint32_t v = c_.original_vertices + i;
-      const auto [a, b] = c_.constructed_from[i];
-      const FT t = parameter(a, b);
-      Vec3 p;
-      double* out[3] = {&p.x, &p.y, &p.z};
-      for (int k = 0; k < 3; ++k) {
-        const double ak = c_.input_points[a][k], bk = c_.input_points[b][k];
-        *out[k] = ak == bk ? ak : nearest_double(FT(ak) + t * (FT(bk) - FT(ak)));
-      }
-      m_.set_position(v, p);
-    }
+    // Constructed vertices: exact point rounded to nearest (every one lies on a ring).
+    for (uint32_t i = 0; i < c_.constructed_from.size(); ++i)
+      m_.set_position(c_.original_vertices + i, rounded_[slot(c_.original_vertices + i)]);
   }
 
  private:
@@ -128,6 +124,19 @@ class CapBuilder {
     const FT na = FT(n.x) * pa.x + FT(n.y) * pa.y + FT(n.z) * pa.z;
     const FT nb = FT(n.x) * pb.x + FT(n.y) * pb.y + FT(n.z) * pb.z;
     return (FT(c_.plane.offset) - na) / (nb - na);
+  }
+
+  /// Constructed vertex v's exact point rounded to the nearest double per coordinate.
+  Vec3 round_point(uint32_t v) const {
+    const auto [a, b] = c_.constructed_from[v - c_.original_vertices];
+    const FT t = parameter(a, b);
+    Vec3 p;
+    double* out[3] = {&p.x, &p.y, &p.z};
+    for (int k = 0; k < 3; ++k) {
+      const double ak = c_.input_points[a][k], bk = c_.input_points[b][k];
+      *out[k] = ak == bk ? ak : nearest_double(FT(ak) + t * (FT(bk) - FT(ak)));
+    }
+    return p;
   }
 
   /// The slot of vertex v's exact point (computed once, shared by both sides).
@@ -147,6 +156,7 @@ class CapBuilder {
       pw = pa[w] == pb[w] ? FT(pa[w]) : FT(pa[w]) + t * (FT(pb[w]) - FT(pa[w]));
     }
     slot_of_[v] = static_cast<uint32_t>(frame_[0].size());
+    rounded_.push_back(v < c_.original_vertices ? c_.input_points[v] : round_point(v));
     frame_[0].emplace_back(pu, pw);
     frame_[1].emplace_back(pw, pu);
     const auto iu = CGAL::to_interval(pu), iw = CGAL::to_interval(pw);
@@ -158,6 +168,20 @@ class CapBuilder {
   const std::array<double, 4>& iv(uint32_t s) const { return interval_[swap_][s]; }
   int orient(uint32_t a, uint32_t b, uint32_t c) const {
     return static_cast<int>(CGAL::orientation(pt(a), pt(b), pt(c)));
+  }
+  /// Quality hint for ear clipping: the rounded corner a, b, c turns by less than ~1e-9 rad.
+  bool thin(uint32_t a, uint32_t b, uint32_t c) const {
+    const int u = c_.axis == 2 ? 0 : c_.axis + 1, w = c_.axis == 0 ? 2 : (c_.axis == 1 ? 0 : 1);
+    const Vec3 &pa = rounded_[a], &pb = rounded_[b], &pc = rounded_[c];
+    const double x1 = pb[u] - pa[u], y1 = pb[w] - pa[w], x2 = pc[u] - pb[u], y2 = pc[w] - pb[w];
+    const double cross = x1 * y2 - y1 * x2;
+    return std::abs(cross) <= 1e-9 * std::sqrt((x1 * x1 + y1 * y1) * (x2 * x2 + y2 * y2));
+  }
+  /// The orientation where the exact and the rounded points agree, else 0.
+  int orient_both(uint32_t a, uint32_t b, uint32_t c) const {
+    const int e = orient(a, b, c);
+    const int r = (swap_ ? -1 : 1) * orient2d(rounded_[a], rounded_[b], rounded_[c], c_.axis);
+    return e == r ? e : 0;
   }
 
   // --- §3: rings ---------------------------------------------------------------------------
@@ -360,9 +384,10 @@ class CapBuilder {
       const CapBuilder& b;
       const std::vector<Node>& poly;
       int orient(uint32_t i, uint32_t j, uint32_t k) const {
-        return b.orient(poly[i].slot, poly[j].slot, poly[k].slot);
+        return b.orient_both(poly[i].slot, poly[j].slot, poly[k].slot);
       }
       uint32_t id(uint32_t i) const { return poly[i].vid; }
+      bool thin(uint32_t i, uint32_t j, uint32_t k) const { return b.thin(poly[i].slot, poly[j].slot, poly[k].slot); }
       bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
         const auto &q = b.iv(poly[p].slot), &x = b.iv(poly[a].slot), &y = b.iv(poly[c].slot),
                    &z = b.iv(poly[d].slot);
@@ -398,8 +423,8 @@ class CapBuilder {
         const uint32_t t = twin[d];
         if (t == kNone || t < d) continue;
         const uint32_t u = from[d], v = from[t];
-        if (orient(poly[from[prev[d]]].slot, poly[u].slot, poly[from[next[next[t]]]].slot) <= 0 ||
-            orient(poly[from[prev[t]]].slot, poly[v].slot, poly[from[next[next[d]]]].slot) <= 0)
+        if (orient_both(poly[from[prev[d]]].slot, poly[u].slot, poly[from[next[next[t]]]].slot) <= 0 ||
+            orient_both(poly[from[prev[t]]].slot, poly[v].slot, poly[from[next[next[d]]]].slot) <= 0)
           continue;
         const uint32_t pd = prev[d], nd = next[d], pt = prev[t], nt = next[t];
         next[pd] = nt;
@@ -438,6 +463,7 @@ class CapBuilder {
   std::vector<uint32_t> slot_of_;
   std::vector<Point2> frame_[2];                       // (u, w) and (w, u) per slot
   std::vector<std::array<double, 4>> interval_[2];     // [xlo, xhi, ylo, yhi] per frame
+  std::vector<Vec3> rounded_;                          // output position per slot
   std::vector<Point2> scratch_;
   int side_ = 0;
   bool swap_ = false;

@@ -59,6 +59,7 @@ void triangulate_face(HalfedgeMesh& m, uint32_t f) {
       return sign * detail::orient2d(p(a), p(b), p(c), axis);
     }
     uint32_t id(uint32_t i) const { return m.origin(he[i]); }
+    bool thin(uint32_t, uint32_t, uint32_t) const { return false; }
     bool box_may_contain(uint32_t q, uint32_t a, uint32_t b, uint32_t c) const {
       for (int k : {u, w}) {
         const double x = p(q)[k];
@@ -182,6 +183,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   ClipResult result;
   result.constructed_vertices = static_cast<int64_t>(ctx.constructed_from.size());
   result.split_vertices = m.split_nonmanifold_vertices();
+  result.forced_ears = stats.forced_ears;
   result.above.rings = stats.rings[0];
   result.below.rings = stats.rings[1];
   result.above.cap_faces = stats.cap_faces[0];

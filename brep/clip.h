@@ -33,7 +33,9 @@ struct ClipHalf {
 struct ClipResult {
   ClipHalf above, below;
   int64_t constructed_vertices = 0;  ///< edge ∩ plane points (each shared by both halves)
-  int64_t split_vertices = 0;        ///< vertices duplicated to keep 2-manifolds (pinches)
+  int64_t split_vertices = 0;        ///< vertex copies made by split_nonmanifold_vertices: one per
+                                     ///< plane vertex shared by the halves, one per extra fan
+  int64_t forced_ears = 0;           ///< ear-clipping fallbacks (0 unless rings are degenerate)
 };
 
 /// Clips a closed, consistently oriented 2-manifold polygon mesh (any simple polygons; faces with

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "brep/halfedge.h"
 #include "cli/output.h"
 #include "cli/points.h"
 #include "covering/classify.h"
@@ -51,25 +52,17 @@ json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
   return j;
 }
 
-/// Splits "a,b,c" (commas or 'x') into numbers; throws InputError naming the option.
-std::vector<double> numbers(const std::string& text, const std::string& option, size_t count,
-                            const char* separators) {
-  std::vector<double> out;
-  size_t pos = 0;
-  while (pos <= text.size()) {
-    const size_t next = text.find_first_of(separators, pos);
-    const std::string item = text.substr(pos, next == std::string::npos ? std::string::npos : next - pos);
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
-      throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
-    out.push_back(v);
-    if (next == std::string::npos) break;
-    pos = next + 1;
+/// The half-edge kernel's view of a leaf (brep/halfedge.h): null when the faces do not form an
+/// oriented surface (an edge used twice in one direction, a face with < 3 vertices).
+json brep_json(const PolygonMesh& mesh) {
+  try {
+    const brep::BrepReport r = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(mesh));
+    return {{"closed", r.closed},       {"manifold", r.manifold},
+            {"euler", r.euler},         {"genus", r.genus >= 0 ? json(r.genus) : json(nullptr)},
+            {"components", r.components}, {"boundary_loops", r.boundary_loops}};
+  } catch (const InputError&) {
+    return nullptr;
   }
-  if (out.size() != count)
-    throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
-  return out;
 }
 
 json camera_json(const Camera& c) {
@@ -113,8 +106,12 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
   j["leaves_info"] = json::array();
   ValidateOptions vo;
   vo.check_self_intersection = o.check_self_intersection;
-  for (uint32_t l = 0; l < s.leaves.size(); ++l)
-    j["leaves_info"].push_back(leaf_json(s, l, validate_mesh(leaf_mesh(s, l), vo)));
+  for (uint32_t l = 0; l < s.leaves.size(); ++l) {
+    const PolygonMesh mesh = leaf_mesh(s, l);
+    json leaf = leaf_json(s, l, validate_mesh(mesh, vo));
+    leaf["brep"] = brep_json(mesh);
+    j["leaves_info"].push_back(std::move(leaf));
+  }
   if (common.json) {
     std::cout << j.dump() << "\n";
     return 0;
@@ -140,6 +137,13 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
                 leaf["self_intersecting"].is_null() ? "not checked"
                 : leaf["self_intersecting"].get<bool>() ? "yes" : "no",
                 leaf["volume"].get<double>());
+    const json& b = leaf["brep"];
+    if (b.is_null())
+      std::printf("  half-edge kernel: not an oriented surface\n");
+    else
+      std::printf("  half-edge kernel: euler %lld, boundary loops %lld, genus %s\n",
+                  b["euler"].get<long long>(), b["boundary_loops"].get<long long>(),
+                  b["genus"].is_null() ? "n/a" : std::to_string(b["genus"].get<long long>()).c_str());
   }
   return 0;
 }
@@ -221,7 +225,7 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   CameraOptions co;
   co.view = parse_view(o.view);
   co.perspective = o.perspective;
-  const std::vector<double> size = numbers(o.size, "--size", 2, "xX");
+  const std::vector<double> size = parse_numbers(o.size, "--size", 2, "xX");
   if (size[0] < 1 || size[1] < 1 || size[0] > 16384 || size[1] > 16384 || size[0] != std::floor(size[0]) ||
       size[1] != std::floor(size[1]))
     throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got '" + o.size + "'");
@@ -229,13 +233,13 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   co.height = static_cast<int>(size[1]);
   RenderOptions ro;
   ro.outline = o.outline;
-  const std::vector<double> bg = numbers(o.background, "--background", 3, ",");
+  const std::vector<double> bg = parse_numbers(o.background, "--background", 3, ",");
   for (int c = 0; c < 3; ++c) {
     if (bg[c] < 0 || bg[c] > 255) throw InputError("--background: expected 3 numbers from 0 to 255");
     ro.background[c] = static_cast<uint8_t>(bg[c]);
   }
   if (!o.section.empty()) {
-    const std::vector<double> p = numbers(o.section, "--section", 4, ",");
+    const std::vector<double> p = parse_numbers(o.section, "--section", 4, ",");
     if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--section: the normal must be non-zero");
     ro.section = Section{{p[0], p[1], p[2]}, p[3]};
   }

@@ -58,6 +58,14 @@ struct OctreeCommandOptions {
   double threshold = 0.5;
 };
 
+struct ClipCommandOptions {
+  std::string input;
+  std::string plane;        ///< --plane nx,ny,nz,d
+  std::string output;       ///< -o ABOVE (mesh or .json scene)
+  std::string below;        ///< --below BELOW (same kind as ABOVE)
+  bool triangulate = false; ///< --triangulate: triangle caps instead of convex polygons
+};
+
 struct EvaluateCommandOptions {
   std::string input;
   std::string output;  ///< -o OUT.(off|obj|stl|ply)
@@ -68,6 +76,8 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
 int run_render(const RenderCommandOptions& o, const CommonOptions& common);
 int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common);
+/// `cover clip`: ABOVE = solid ∩ {n·x ≥ d}, BELOW = solid ∩ {n·x ≤ d}, capped.
+int run_clip(const ClipCommandOptions& o, const CommonOptions& common);
 int run_octree(const OctreeCommandOptions& o, const CommonOptions& common);
 int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
 

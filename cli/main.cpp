@@ -90,6 +90,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   add_common(oct_cmd, common);
 
+  cover::cli::ClipCommandOptions clp;
+  CLI::App* clp_cmd = app.add_subcommand("clip", "Exact plane clip; both halves capped (closed 2-manifolds)");
+  clp_cmd->add_option("INPUT", clp.input, "Mesh or scene")->required();
+  clp_cmd->add_option("--plane", clp.plane, "Plane nx,ny,nz,d (ABOVE: n.x >= d)")->required();
+  clp_cmd->add_option("-o,--output", clp.output, "ABOVE: mesh (.off .obj .stl .ply) or .json scene")
+      ->required();
+  clp_cmd->add_option("--below", clp.below, "Also write BELOW (same kind as ABOVE)");
+  clp_cmd->add_flag("--triangulate", clp.triangulate, "Triangulate caps (default: convex polygons)");
+  add_common(clp_cmd, common);
+
   cover::cli::EvaluateCommandOptions eva;
   CLI::App* eva_cmd =
       app.add_subcommand("evaluate", "The CSG result as one closed 2-manifold mesh (B-rep)");
@@ -118,6 +128,7 @@ int main(int argc, char** argv) {
     if (vox_cmd->parsed()) return cover::cli::run_voxelize(vox, common);
     if (oct_cmd->parsed()) return cover::cli::run_octree(oct, common);
     if (eva_cmd->parsed()) return cover::cli::run_evaluate(eva, common);
+    if (clp_cmd->parsed()) return cover::cli::run_clip(clp, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
     return fail(2, e.what());

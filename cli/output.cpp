@@ -1,9 +1,34 @@
 #include "cli/output.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <unistd.h>
 
+#include "solid/errors.h"
+
 namespace cover::cli {
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& option, size_t count,
+                                  const char* separators) {
+  std::vector<double> out;
+  size_t pos = 0;
+  while (pos <= text.size()) {
+    const size_t next = text.find_first_of(separators, pos);
+    const std::string item = text.substr(pos, next == std::string::npos ? std::string::npos : next - pos);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+      throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
+    out.push_back(v);
+    if (next == std::string::npos) break;
+    pos = next + 1;
+  }
+  if (out.size() != count)
+    throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
+  return out;
+}
+
 
 Progress::Progress(std::string label, bool quiet)
     : label_(std::move(label)),

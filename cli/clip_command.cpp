@@ -1,0 +1,180 @@
+// `cover clip` (CONTRACT.md): the exact plane clip and patch of brep/clip.h.
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <unistd.h>
+
+#include "brep/clip.h"
+#include "brep/halfedge.h"
+#include "cli/commands.h"
+#include "cli/output.h"
+#include "solid/errors.h"
+#include "solid/measure.h"
+#include "solid/mesh_io.h"
+#include "solid/scene.h"
+
+namespace cover::cli {
+namespace {
+
+using nlohmann::json;
+
+struct HalfSummary {
+  std::optional<double> volume;  ///< empty for a scene of several leaves (needs evaluation)
+  int64_t faces = 0, rings = 0;
+  bool closed = true;
+};
+
+json summary_json(const HalfSummary& s) {
+  return {{"volume", s.volume ? json(*s.volume) : json(nullptr)},
+          {"faces", s.faces},
+          {"rings", s.rings},
+          {"closed", s.closed}};
+}
+
+void add(HalfSummary& s, const brep::ClipHalf& h) {
+  s.faces += static_cast<int64_t>(h.mesh.face_count());
+  s.rings += h.rings;
+  const brep::BrepReport r = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(h.mesh));
+  s.closed = s.closed && r.closed && r.manifold;
+}
+
+/// Writes text atomically (temporary sibling, then rename).
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::path temp = path;
+  temp += ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream out(temp, std::ios::binary);
+    out << text;
+    if (!out.good()) {
+      std::error_code ec;
+      std::filesystem::remove(temp, ec);
+      throw InputError(path.string() + ": cannot write");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    throw InputError(path.string() + ": cannot write");
+  }
+}
+
+/// The scene node of `node` with every leaf replaced by its clipped mesh file; empty when the
+/// node's set is empty (a clipped leaf with no faces), simplified through the operations.
+std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
+                                 const std::vector<std::optional<std::string>>& leaf_files) {
+  const CsgNode& n = tree.nodes[node];
+  if (n.op == CsgOp::kLeaf) {
+    if (!leaf_files[n.leaf]) return std::nullopt;
+    return json{{"mesh", *leaf_files[n.leaf]}};
+  }
+  if (n.op == CsgOp::kComplement)
+    throw InputError("clip: a scene with a complement cannot be clipped leaf by leaf");
+  std::vector<json> kids;
+  for (size_t k = 0; k < n.children.size(); ++k) {
+    std::optional<json> c = clipped_node(tree, n.children[k], leaf_files);
+    if (!c) {
+      if (n.op == CsgOp::kIntersection || (n.op == CsgOp::kDifference && k == 0)) return std::nullopt;
+      continue;  // an empty union member or subtrahend drops out
+    }
+    kids.push_back(std::move(*c));
+  }
+  if (kids.empty()) return std::nullopt;
+  if (kids.size() == 1 && n.op != CsgOp::kDifference) return kids[0];
+  if (n.op == CsgOp::kDifference && kids.size() == 1) return kids[0];
+  const char* key = n.op == CsgOp::kUnion ? "union" : (n.op == CsgOp::kIntersection ? "intersection" : "difference");
+  return json{{key, kids}};
+}
+
+}  // namespace
+
+int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<double> p = parse_numbers(o.plane, "--plane", 4, ",");
+  const brep::Plane plane{{p[0], p[1], p[2]}, p[3]};
+  if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--plane: the normal must be non-zero");
+  const std::filesystem::path above_path = o.output, below_path = o.below;
+  const bool scene_out = above_path.extension() == ".json";
+  for (const std::filesystem::path& out : {above_path, below_path}) {
+    if (out.empty()) continue;
+    if ((out.extension() == ".json") != scene_out)
+      throw InputError(out.string() + ": ABOVE and BELOW must both be meshes or both .json scenes");
+    if (!scene_out && !is_mesh_extension(out))
+      throw InputError(out.string() + ": unsupported output format (use .off .obj .stl .ply or .json)");
+  }
+  const LoadedInput in = load_input(o.input);
+  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  const Solid& s = in.solid;
+  brep::ClipOptions co;
+  co.triangulate_caps = o.triangulate;
+  HalfSummary above, below;
+  if (!scene_out) {
+    if (s.leaves.size() != 1)
+      throw InputError(o.input + ": a scene of " + std::to_string(s.leaves.size()) +
+                       " leaves: clipping a CSG expression into one mesh needs `cover evaluate` "
+                       "(not yet available); write .json scenes of clipped leaves instead");
+    const brep::ClipResult r = brep::clip(leaf_mesh(s, 0), plane, co);
+    add(above, r.above);
+    add(below, r.below);
+    above.volume = signed_volume(r.above.mesh);
+    below.volume = signed_volume(r.below.mesh);
+    write_mesh(above_path, r.above.mesh);
+    if (!below_path.empty()) write_mesh(below_path, r.below.mesh);
+  } else {
+    // Intersection with a half-space distributes over union, intersection and difference: clip
+    // every leaf and keep the expression. Leaf meshes are written beside each scene.
+    std::vector<std::optional<std::string>> files[2];
+    double volume[2] = {0, 0};
+    for (uint32_t l = 0; l < s.leaves.size(); ++l) {
+      const brep::ClipResult r = brep::clip(leaf_mesh(s, l), plane, co);
+      add(above, r.above);
+      add(below, r.below);
+      for (int side = 0; side < 2; ++side) {
+        const brep::ClipHalf& h = side == 0 ? r.above : r.below;
+        const std::filesystem::path& scene = side == 0 ? above_path : below_path;
+        volume[side] += signed_volume(h.mesh);
+        if (scene.empty() || h.mesh.face_count() == 0) {
+          files[side].push_back(std::nullopt);
+          continue;
+        }
+        const std::string name = scene.stem().string() + ".leaf" + std::to_string(l) + ".off";
+        write_mesh(scene.parent_path() / name, h.mesh);
+        files[side].push_back(name);
+      }
+    }
+    if (s.leaves.size() == 1) {
+      above.volume = volume[0];
+      below.volume = volume[1];
+    }
+    for (int side = 0; side < 2; ++side) {
+      const std::filesystem::path& scene = side == 0 ? above_path : below_path;
+      if (scene.empty()) continue;
+      const std::optional<json> root = clipped_node(s.tree, s.tree.root, files[side]);
+      if (!root)
+        throw NotComputable(scene.string() + ": the clipped scene is empty (a scene needs a leaf)");
+      write_text(scene, root->dump(2) + "\n");
+    }
+  }
+  const double seconds = seconds_since(start);
+  if (common.json) {
+    json j;
+    j["above"] = summary_json(above);
+    j["below"] = summary_json(below);
+    j["seconds"] = seconds;
+    std::cout << j.dump() << "\n";
+  } else {
+    for (const auto& [name, h] : {std::pair{"above", &above}, std::pair{"below", &below}}) {
+      std::printf("%s: %lld faces, %lld rings, %s", name, static_cast<long long>(h->faces),
+                  static_cast<long long>(h->rings), h->closed ? "closed" : "NOT closed");
+      if (h->volume) std::printf(", volume %.17g", *h->volume);
+      std::printf("\n");
+    }
+    std::printf("%.3f s\n", seconds);
+  }
+  return 0;
+}
+
+}  // namespace cover::cli
