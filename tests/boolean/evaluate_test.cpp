@@ -19,6 +19,7 @@
 #include "helpers.h"
 #include "solid/errors.h"
 #include "solid/mesh_io.h"
+#include "solid/parallel.h"
 #include "solid/primitives.h"
 #include "solid/transform.h"
 
@@ -168,6 +169,22 @@ TEST(Evaluate, RandomThreeOperand) {
       {"sphere", "box", "elephant"},  {"fandisk", "sphere", "knot1"},
       {"box", "knot1", "sphere"},     {"elephant", "box", "fandisk"}};
   for (unsigned i = 0; i < sets.size(); ++i) random_case(200 + i, sets[i]);
+}
+
+TEST(Evaluate, SameMeshForAnyThreadCount) {
+  std::mt19937_64 rng(7);
+  const Operand a = random_operand(rng, "knot1", 1.0), b = random_operand(rng, "sphere", 0.8);
+  const Solid s = subtract({a.solid, b.solid});
+  EvaluateOptions o;
+  o.grain = 8;  // many chunks
+  const EvaluateResult all = evaluate(s, o);
+  EvaluateResult one;
+  {
+    ThreadLimit limit(1);
+    one = evaluate(s, o);
+  }
+  EXPECT_EQ(all.mesh.vertices, one.mesh.vertices);
+  EXPECT_EQ(all.mesh.face_vertices, one.mesh.face_vertices);
 }
 
 // ---- coplanar and touching leaves --------------------------------------------------------------
