@@ -32,6 +32,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <unordered_map>
 
 #include "brep/detail/clip_internal.h"
@@ -126,15 +128,55 @@ class CapBuilder {
     return (FT(c_.plane.offset) - na) / (nb - na);
   }
 
-  /// Constructed vertex v's exact point rounded to the nearest double per coordinate.
+  /// Constructed vertex v's exact point rounded to the nearest double per coordinate. Filter:
+  /// the point is first evaluated in long double with a running error bound (unit roundoff u,
+  /// every operation's error bounded by u times its magnitude, doubled for safety); when the
+  /// interval value ± bound lies strictly between the two midpoints around its rounding, that
+  /// rounding is the nearest double of the exact value. Otherwise the exact rational decides.
   Vec3 round_point(uint32_t v) const {
     const auto [a, b] = c_.constructed_from[v - c_.original_vertices];
-    const FT t = parameter(a, b);
+    const Vec3& n = c_.plane.normal;
+    const Vec3& pa = c_.input_points[a];
+    const Vec3& pb = c_.input_points[b];
+    using L = long double;
+    constexpr L u = std::numeric_limits<L>::epsilon() / 2;
+    const L ma = std::abs(L(n.x) * pa.x) + std::abs(L(n.y) * pa.y) + std::abs(L(n.z) * pa.z);
+    const L mb = std::abs(L(n.x) * pb.x) + std::abs(L(n.y) * pb.y) + std::abs(L(n.z) * pb.z);
+    const L na = L(n.x) * pa.x + L(n.y) * pa.y + L(n.z) * pa.z;
+    const L nb = L(n.x) * pb.x + L(n.y) * pb.y + L(n.z) * pb.z;
+    const L num = L(c_.plane.offset) - na, den = nb - na;
+    const L err_num = 2 * 6 * u * (ma + std::abs(L(c_.plane.offset)));
+    const L err_den = 2 * 8 * u * (ma + mb);
+    const bool filtered = std::abs(num) > 2 * err_num && std::abs(den) > 2 * err_den;
+    const L t = num / den;
+    const L rel_t = filtered ? 2 * (err_num / std::abs(num) + err_den / std::abs(den) + u) : 0;
+    std::optional<FT> exact_t;
     Vec3 p;
     double* out[3] = {&p.x, &p.y, &p.z};
     for (int k = 0; k < 3; ++k) {
-      const double ak = c_.input_points[a][k], bk = c_.input_points[b][k];
-      *out[k] = ak == bk ? ak : nearest_double(FT(ak) + t * (FT(bk) - FT(ak)));
+      const double ak = pa[k], bk = pb[k];
+      if (ak == bk) {
+        *out[k] = ak;
+        continue;
+      }
+      if (n[(k + 1) % 3] == 0 && n[(k + 2) % 3] == 0) {  // plane n_k·x_k = d: x_k = d/n_k exactly
+        *out[k] = c_.plane.offset / n[k];                // (IEEE division rounds to nearest)
+        continue;
+      }
+      if (filtered) {
+        const L step = t * (L(bk) - L(ak));
+        const L x = L(ak) + step;
+        const L err = std::abs(step) * (rel_t + 4 * u) + 2 * u * std::abs(x);
+        const double r = static_cast<double>(x);
+        const L lo = (L(r) + L(std::nextafter(r, -INFINITY))) / 2;
+        const L hi = (L(r) + L(std::nextafter(r, INFINITY))) / 2;
+        if (x - err > lo && x + err < hi) {
+          *out[k] = r;
+          continue;
+        }
+      }
+      if (!exact_t) exact_t = parameter(a, b);
+      *out[k] = nearest_double(FT(ak) + *exact_t * (FT(bk) - FT(ak)));
     }
     return p;
   }
@@ -159,9 +201,10 @@ class CapBuilder {
     rounded_.push_back(v < c_.original_vertices ? c_.input_points[v] : round_point(v));
     frame_[0].emplace_back(pu, pw);
     frame_[1].emplace_back(pw, pu);
-    const auto iu = CGAL::to_interval(pu), iw = CGAL::to_interval(pw);
-    interval_[0].push_back({iu.first, iu.second, iw.first, iw.second});
-    interval_[1].push_back({iw.first, iw.second, iu.first, iu.second});
+    // The lazy numbers' own intervals (CGAL::to_interval would refine them exactly near 0).
+    const auto &iu = pu.approx(), &iw = pw.approx();
+    interval_[0].push_back({iu.inf(), iu.sup(), iw.inf(), iw.sup()});
+    interval_[1].push_back({iw.inf(), iw.sup(), iu.inf(), iu.sup()});
     return slot_of_[v];
   }
   const Point2& pt(uint32_t s) const { return frame_[swap_][s]; }
@@ -387,7 +430,10 @@ class CapBuilder {
         return b.orient_both(poly[i].slot, poly[j].slot, poly[k].slot);
       }
       uint32_t id(uint32_t i) const { return poly[i].vid; }
-      bool thin(uint32_t i, uint32_t j, uint32_t k) const { return b.thin(poly[i].slot, poly[j].slot, poly[k].slot); }
+      bool thin(uint32_t i, uint32_t j, uint32_t k) const {
+        return b.thin(poly[i].slot, poly[j].slot, poly[k].slot);
+      }
+      std::array<double, 4> bounds(uint32_t i) const { return b.iv(poly[i].slot); }
       bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
         const auto &q = b.iv(poly[p].slot), &x = b.iv(poly[a].slot), &y = b.iv(poly[c].slot),
                    &z = b.iv(poly[d].slot);

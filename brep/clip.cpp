@@ -16,6 +16,7 @@
 //      shared plane vertices and the fans of pinched vertices.
 #include "brep/clip.h"
 
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -60,6 +61,7 @@ void triangulate_face(HalfedgeMesh& m, uint32_t f) {
     }
     uint32_t id(uint32_t i) const { return m.origin(he[i]); }
     bool thin(uint32_t, uint32_t, uint32_t) const { return false; }
+    std::array<double, 4> bounds(uint32_t i) const { return {p(i)[u], p(i)[u], p(i)[w], p(i)[w]}; }
     bool box_may_contain(uint32_t q, uint32_t a, uint32_t b, uint32_t c) const {
       for (int k : {u, w}) {
         const double x = p(q)[k];
@@ -179,11 +181,15 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
     if (ctx.face_side[m.face(h)] != ctx.face_side[m.face(h ^ 1)]) m.detach_edge(h);
 
   // 7. Caps, then one vertex per fan.
+  const auto cap_start = std::chrono::steady_clock::now();
   const detail::CapStats stats = detail::add_caps(m, ctx);
+  const double cap_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - cap_start).count();
   ClipResult result;
   result.constructed_vertices = static_cast<int64_t>(ctx.constructed_from.size());
   result.split_vertices = m.split_nonmanifold_vertices();
   result.forced_ears = stats.forced_ears;
+  result.cap_seconds = cap_seconds;
   result.above.rings = stats.rings[0];
   result.below.rings = stats.rings[1];
   result.above.cap_faces = stats.cap_faces[0];

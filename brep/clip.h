@@ -36,6 +36,7 @@ struct ClipResult {
   int64_t split_vertices = 0;        ///< vertex copies made by split_nonmanifold_vertices: one per
                                      ///< plane vertex shared by the halves, one per extra fan
   int64_t forced_ears = 0;           ///< ear-clipping fallbacks (0 unless rings are degenerate)
+  double cap_seconds = 0;            ///< time in the cap (exact points, rings, decomposition)
 };
 
 /// Clips a closed, consistently oriented 2-manifold polygon mesh (any simple polygons; faces with

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -25,7 +26,9 @@ namespace cover::brep::detail {
 /// from the polygon; the last triangle is the final remainder. Geometry provides
 /// `int orient(a, b, c)` (exact sign, > 0 counter-clockwise), `uint32_t id(node)` and
 /// `bool box_may_contain(p, a, b, c)` (conservative filter: false only if p is outside the
-/// triangle's bounding box) and `bool thin(a, b, c)` (the angle at b is nearly flat).
+/// triangle's bounding box), `std::array<double, 4> bounds(node)` (conservative [xlo, xhi, ylo,
+/// yhi] of the node's point, for the candidate grid) and `bool thin(a, b, c)` (the angle at b
+/// is nearly flat).
 /// Precondition: n ≥ 3.
 template <class Geometry>
 std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int64_t& forced) {
@@ -44,10 +47,25 @@ std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int
     for (uint32_t i = 1; i < n; ++i)
       if (ids[i].first == ids[i - 1].first) dup[ids[i].second] = dup[ids[i - 1].second] = 1;
   }
-  std::vector<uint32_t> cands;
+  // Candidate blockers (reflex or sharing an id) bucketed in a uniform grid of about n/2 cells
+  // over the conservative bounds, so an ear test visits the cells its triangle's box overlaps.
+  std::array<double, 4> box = g.bounds(0);
+  for (uint32_t i = 1; i < n; ++i) {
+    const std::array<double, 4> b = g.bounds(i);
+    box = {std::min(box[0], b[0]), std::max(box[1], b[1]), std::min(box[2], b[2]), std::max(box[3], b[3])};
+  }
+  const int side = std::max(1, static_cast<int>(std::sqrt(n / 2.0)));
+  const double sx = box[1] > box[0] ? side / (box[1] - box[0]) : 0;
+  const double sy = box[3] > box[2] ? side / (box[3] - box[2]) : 0;
+  auto cell_x = [&](double x) { return std::clamp(static_cast<int>((x - box[0]) * sx), 0, side - 1); };
+  auto cell_y = [&](double y) { return std::clamp(static_cast<int>((y - box[2]) * sy), 0, side - 1); };
+  std::vector<std::vector<uint32_t>> cells(static_cast<size_t>(side) * side);
   for (uint32_t i = 0; i < n; ++i) {
     reflex[i] = g.orient(prev[i], i, next[i]) <= 0;
-    if (reflex[i] || dup[i]) cands.push_back(i);
+    if (!reflex[i] && !dup[i]) continue;
+    const std::array<double, 4> b = g.bounds(i);
+    for (int y = cell_y(b[2]); y <= cell_y(b[3]); ++y)
+      for (int x = cell_x(b[0]); x <= cell_x(b[1]); ++x) cells[static_cast<size_t>(y) * side + x].push_back(i);
   }
   // Does node p block the ear (a, b, c)?
   auto blocks = [&](uint32_t p, uint32_t a, uint32_t b, uint32_t c) {
@@ -67,16 +85,15 @@ std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int
   auto is_ear = [&](uint32_t b) {
     const uint32_t a = prev[b], c = next[b];
     if (g.orient(a, b, c) <= 0) return false;
-    size_t kept = 0;
-    bool ear = true;
-    for (size_t k = 0; k < cands.size(); ++k) {
-      const uint32_t p = cands[k];
-      if (!alive[p] || (!reflex[p] && !dup[p])) continue;  // dropped for good
-      cands[kept++] = p;
-      if (ear && p != a && p != b && p != c && blocks(p, a, b, c)) ear = false;
-    }
-    cands.resize(kept);
-    return ear;
+    const std::array<double, 4> ba = g.bounds(a), bb = g.bounds(b), bc = g.bounds(c);
+    const int x0 = cell_x(std::min({ba[0], bb[0], bc[0]})), x1 = cell_x(std::max({ba[1], bb[1], bc[1]}));
+    const int y0 = cell_y(std::min({ba[2], bb[2], bc[2]})), y1 = cell_y(std::max({ba[3], bb[3], bc[3]}));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        for (uint32_t p : cells[static_cast<size_t>(y) * side + x])
+          if (alive[p] && (reflex[p] || dup[p]) && p != a && p != b && p != c && blocks(p, a, b, c))
+            return false;
+    return true;
   };
   auto cut = [&](uint32_t b) {
     const uint32_t a = prev[b], c = next[b];

@@ -6,7 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
+#include <algorithm>
+#include <array>
 #include <string>
 
 #include "brep/clip.h"
@@ -29,13 +30,17 @@ inline HalfCheck check_half(const PolygonMesh& half, const brep::Plane& plane, d
   HalfCheck c;
   c.report = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(half));
   c.volume = signed_volume(half);
-  std::map<std::array<double, 3>, uint32_t> seen;
-  std::vector<uint32_t> weld(half.vertices.size());
-  for (uint32_t v = 0; v < half.vertices.size(); ++v) {
+  std::vector<uint32_t> order(half.vertices.size()), weld(half.vertices.size());
+  for (uint32_t v = 0; v < order.size(); ++v) order[v] = v;
+  auto key = [&](uint32_t v) {
     const Vec3& p = half.vertices[v];
-    auto [it, fresh] = seen.emplace(std::array<double, 3>{p.x, p.y, p.z}, v);
-    weld[v] = it->second;
-    c.pinched += !fresh;
+    return std::array<double, 3>{p.x, p.y, p.z};
+  };
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+  for (size_t i = 0; i < order.size(); ++i) {
+    const bool same = i > 0 && key(order[i]) == key(order[i - 1]);
+    weld[order[i]] = same ? weld[order[i - 1]] : order[i];
+    c.pinched += same;
   }
   PolygonMesh near;
   near.vertices = half.vertices;
