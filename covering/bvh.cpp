@@ -128,14 +128,21 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
     }
   });
   const std::vector<Tri> all = leaf_triangles(solid);
+  leaf_bounds_.resize(solid.leaves.size());
   if (all.empty()) return;
   // Widen node bounds by 1e-9 of the scene's scale: a ray slab test in doubles then errs far less
   // than the widening, so it can drop no box the exact ray meets (ray.cpp needs no padding).
   for (const Tri& t : all) {
-    bounds_.add(t.a);
-    bounds_.add(t.b);
-    bounds_.add(t.c);
+    Bbox& leaf = leaf_bounds_[t.leaf];
+    leaf.add(t.a);
+    leaf.add(t.b);
+    leaf.add(t.c);
   }
+  for (const Bbox& b : leaf_bounds_)
+    if (!b.empty()) {
+      bounds_.add(b.min);
+      bounds_.add(b.max);
+    }
   double scale = 0;
   for (int a = 0; a < 3; ++a)
     scale = std::max({scale, std::abs(bounds_.min[a]), std::abs(bounds_.max[a])});

@@ -57,6 +57,9 @@ class Bvh {
   const std::vector<Node>& nodes() const { return nodes_; }
   /// Exact bounding box of all triangles (empty when there are none).
   const Bbox& bounds() const { return bounds_; }
+  /// Exact bounding box of each leaf's triangles, by leaf id (#leaves; empty for a leaf without
+  /// triangles).
+  const std::vector<Bbox>& leaf_bounds() const { return leaf_bounds_; }
   size_t leaf_count() const { return leaves_; }
   /// Bytes held by the structure (triangles + nodes).
   size_t memory_bytes() const;
@@ -66,6 +69,7 @@ class Bvh {
   std::vector<Node> nodes_;
   std::vector<FacePlane> planes_;
   Bbox bounds_;
+  std::vector<Bbox> leaf_bounds_;
   size_t leaves_ = 0;
 };
 

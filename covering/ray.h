@@ -54,11 +54,30 @@ struct FirstHit {
   uint32_t leaf = 0, face = 0;
 };
 
+/// The first point of the result seen along the ray within the parameter window [lo, hi]: the
+/// start of the first span of cast() that overlaps it, clipped to it.
+struct VisibleHit {
+  bool hit = false;
+  bool cap = false;  ///< the window starts inside the result (lo cuts a span): no surface there
+  double t = 0;
+  RayHit enter;      ///< when hit && !cap: the hit where the span starts (its last hit at t)
+};
+
 /// All hits and the CSG inside spans of one ray.
 RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray);
 
 /// First entry into the result (the start of the first span that does not begin at the origin).
 FirstHit first_hit(const Bvh& bvh, const RayResult& result);
+
+/// The visible point of `result`'s spans within [lo, hi].
+VisibleHit first_visible(const RayResult& result, double lo, double hi);
+
+/// The same as first_visible(cast(bvh, tree, leaves, ray), lo, hi), computed front to back: only
+/// the hits up to the visible point are found. Precondition (as for cast()): closed leaves. Falls
+/// back to cast() when the origin lies in a leaf's box or the expression contains the point
+/// outside every leaf.
+VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray,
+                         double lo, double hi);
 
 struct CastOptions {
   size_t grain = 256;  ///< rays per parallel chunk (results never depend on it)

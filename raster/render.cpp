@@ -39,25 +39,20 @@ Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
   Sample out;
   const auto [lo, hi] = allowed(ray, section);
   if (lo > hi) return out;
-  const RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
-  for (const Span& span : r.spans) {
-    const double a = std::max(span.t0, lo), b = std::min(span.t1, hi);
-    if (!(a < b)) continue;  // no visible part of this span
-    out.hit = true;
-    out.t = a;
-    if (a == span.t0 && span.enter != Span::kNone) {
-      const RayHit& h = r.hits[span.enter];
-      const Bvh::Tri& t = bvh.triangles()[h.tri];
-      const Vec3 n = unit(cross(t.b - t.a, t.c - t.a));
-      // Entering a leaf shows its outward normal; leaving one (a subtrahend) the reverse.
-      out.normal = h.sign < 0 ? n : -1.0 * n;
-      out.leaf = h.leaf;
-    } else {
-      out.cap = true;
-      const Vec3 n = section ? unit(section->n) : -1.0 * ray.dir;
-      out.normal = dot(n, ray.dir) < 0 ? n : -1.0 * n;
-    }
-    return out;
+  const VisibleHit v = first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi);
+  if (!v.hit) return out;
+  out.hit = true;
+  out.t = v.t;
+  if (!v.cap) {
+    const Bvh::Tri& t = bvh.triangles()[v.enter.tri];
+    const Vec3 n = unit(cross(t.b - t.a, t.c - t.a));
+    // Entering a leaf shows its outward normal; leaving one (a subtrahend) the reverse.
+    out.normal = v.enter.sign < 0 ? n : -1.0 * n;
+    out.leaf = v.enter.leaf;
+  } else {
+    out.cap = true;
+    const Vec3 n = section ? unit(section->n) : -1.0 * ray.dir;
+    out.normal = dot(n, ray.dir) < 0 ? n : -1.0 * n;
   }
   return out;
 }

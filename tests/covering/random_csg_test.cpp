@@ -1,12 +1,17 @@
 // Seeded random CSG trees (in the spirit of Manifold's fuzz test): the accelerated classifier equals
 // the brute-force covering path on random points and on points exactly on faces, edges and
 // vertices; vol(A∪B) + vol(A∩B) = vol(A) + vol(B) within the reported error bounds; and scaled
-// copies of a scene (by powers of two, so the doubles scale exactly) classify identically.
+// copies of a scene (by powers of two, so the doubles scale exactly) classify identically; the
+// front-to-back first visible point of a ray equals the one from all of cast()'s spans.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
+#include "covering/bvh.h"
 #include "covering/classify.h"
+#include "covering/ray.h"
 #include "covering/volume.h"
 #include "helpers.h"
 #include "solid/errors.h"
@@ -70,6 +75,55 @@ TEST(RandomCsg, AcceleratedEqualsBruteForce) {
     many.grid_min_points = 1;  // exercise the empty-cell grid too
     EXPECT_EQ(classify(s, pts, many), classify_brute_force(s, pts)) << "trial " << trial;
   }
+}
+
+TEST(RandomCsg, FrontToBackFirstVisibleEqualsAllHits) {
+  const PolygonMesh knot = read_mesh(test::cgal_mesh("knot1.off"));
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> grid(-6, 6), axis(0, 2);
+  int compared = 0, caps = 0;  // visible points compared (some trees are empty)
+  for (int trial = 0; trial < 24; ++trial) {
+    const Solid s = random_tree(rng, knot, 1 + trial % 3);
+    const Bvh bvh(s);
+    for (int i = 0; i < 600; ++i) {
+      Ray r;
+      if (i % 3 == 0) {  // axis-aligned through the box lattice: along faces, edges, vertices
+        double o[3] = {grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25}, d[3] = {0, 0, 0};
+        const int k = axis(rng);
+        o[k] = -4;
+        d[k] = 1;
+        r.origin = {o[0], o[1], o[2]};
+        r.dir = {d[0], d[1], d[2]};
+      } else {  // from far outside (front to back) or from inside the scene (the fallback)
+        const double reach = i % 3 == 1 ? 4 : 1;
+        r.origin = {reach * u(rng), reach * u(rng), reach * u(rng)};
+        if (i % 3 == 1) r.origin = (4 / std::sqrt(dot(r.origin, r.origin))) * r.origin;
+        r.dir = Vec3{u(rng), u(rng), u(rng)} - r.origin;
+      }
+      const RayResult all = cast(bvh, s.tree, s.leaves.size(), r);
+      // Windows: the whole ray, one starting inside the scene (section caps), one ending there.
+      const double a = 0.5 + std::abs(u(rng)), b = a + std::abs(u(rng));
+      constexpr double kInf = std::numeric_limits<double>::infinity();
+      for (const auto& [lo, hi] : {std::pair{0.0, kInf}, std::pair{a, kInf}, std::pair{0.0, a},
+                                   std::pair{a, b}}) {
+        const VisibleHit want = first_visible(all, lo, hi);
+        const VisibleHit got = first_visible(bvh, s.tree, s.leaves.size(), r, lo, hi);
+        ASSERT_EQ(got.hit, want.hit) << "trial " << trial << " ray " << i;
+        if (!want.hit) continue;
+        ++compared;
+        caps += want.cap;
+        EXPECT_EQ(got.cap, want.cap) << "trial " << trial << " ray " << i;
+        EXPECT_EQ(got.t, want.t) << "trial " << trial << " ray " << i;
+        if (!want.cap) {
+          EXPECT_EQ(got.enter.tri, want.enter.tri) << "trial " << trial << " ray " << i;
+          EXPECT_EQ(got.enter.sign, want.enter.sign) << "trial " << trial << " ray " << i;
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 10000);
+  EXPECT_GT(caps, 1000);
 }
 
 TEST(RandomCsg, UnionIntersectionVolumeIdentity) {
