@@ -83,9 +83,10 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
     kids.push_back(std::move(*c));
   }
   if (kids.empty()) return std::nullopt;
-  if (kids.size() == 1 && n.op != CsgOp::kDifference) return kids[0];
-  if (n.op == CsgOp::kDifference && kids.size() == 1) return kids[0];
-  const char* key = n.op == CsgOp::kUnion ? "union" : (n.op == CsgOp::kIntersection ? "intersection" : "difference");
+  if (kids.size() == 1) return kids[0];
+  const char* key = n.op == CsgOp::kUnion          ? "union"
+                    : n.op == CsgOp::kIntersection ? "intersection"
+                                                   : "difference";
   return json{{key, kids}};
 }
 
@@ -114,8 +115,8 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   if (!scene_out) {
     if (s.leaves.size() != 1)
       throw InputError(o.input + ": a scene of " + std::to_string(s.leaves.size()) +
-                       " leaves: clipping a CSG expression into one mesh needs `cover evaluate` "
-                       "(not yet available); write .json scenes of clipped leaves instead");
+                       " leaves: clip one mesh of the CSG result (`cover evaluate` writes it), or "
+                       "write .json scenes of clipped leaves");
     const brep::ClipResult r = brep::clip(leaf_mesh(s, 0), plane, co);
     add(above, r.above);
     add(below, r.below);
