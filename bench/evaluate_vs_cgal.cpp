@@ -4,8 +4,10 @@
 //   CGAL:  PMP::corefine_and_compute_union / _intersection / _difference (Epick; serial), nested
 //          operations folded bottom-up; input copies are made outside the timings.
 // Every mesh is transformed once, by Cover, before either side sees it (same doubles). Median of
-// 3 runs each; the table prints seconds, the ratio Cover / CGAL, and both volumes.
-// Usage: evaluate_vs_cgal MESH_FOLDER   (libcgal-demo data/meshes)
+// 3 runs each; the table prints seconds, the ratio Cover / CGAL, and both volumes, then Cover's
+// time per step (EvaluateResult::seconds) of the median unchecked run.
+// Usage: evaluate_vs_cgal MESH_FOLDER [CASE...]   (libcgal-demo data/meshes; CASE: 1-based
+// indices of the cases to run, all by default)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -82,6 +84,21 @@ double median3(const std::function<double()>& run) {
   return t[1];
 }
 
+/// The run whose total time is the median of 3.
+cover::EvaluateResult median_run(const cover::Solid& solid, const cover::EvaluateOptions& o,
+                                 double& seconds) {
+  std::vector<std::pair<double, cover::EvaluateResult>> runs;
+  for (int i = 0; i < 3; ++i) {
+    const auto t = Clock::now();
+    cover::EvaluateResult r = cover::evaluate(solid, o);
+    runs.emplace_back(std::chrono::duration<double>(Clock::now() - t).count(), std::move(r));
+  }
+  std::sort(runs.begin(), runs.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  seconds = runs[1].first;
+  return std::move(runs[1].second);
+}
+
 struct Case {
   std::string name;
   cover::Solid solid;
@@ -96,6 +113,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   g_folder = argv[1];
+  std::vector<size_t> wanted;
+  for (int i = 2; i < argc; ++i) wanted.push_back(std::stoul(argv[i]));
   std::vector<Case> cases;
   {
     const Operand a = operand("bunny00.off", {0, 0, 0}, 1.0, 0);
@@ -131,15 +150,15 @@ int main(int argc, char** argv) {
   }
   std::printf("%-42s %9s %9s %9s %8s %8s %16s %16s\n", "expression", "faces in", "cover s",
               "+check s", "CGAL s", "ratio", "cover volume", "CGAL volume");
-  for (const Case& c : cases) {
+  std::vector<std::pair<std::string, cover::EvaluatePhases>> phases;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), i + 1) == wanted.end()) continue;
+    const Case& c = cases[i];
     cover::EvaluateOptions fast;
     fast.check_leaves = false;
-    cover::EvaluateResult result;
-    const double t_cover = median3([&] {
-      const auto t = Clock::now();
-      result = cover::evaluate(c.solid, fast);
-      return std::chrono::duration<double>(Clock::now() - t).count();
-    });
+    double t_cover = 0;
+    const cover::EvaluateResult result = median_run(c.solid, fast, t_cover);
+    phases.emplace_back(c.name, result.seconds);
     const double t_checked = median3([&] {
       const auto t = Clock::now();
       cover::evaluate(c.solid);
@@ -155,5 +174,10 @@ int main(int argc, char** argv) {
                 c.solid.face_count(), t_cover, t_checked, t_cgal, t_cover / t_cgal, result.volume,
                 CGAL::to_double(PMP::volume(out)));
   }
+  std::printf("\nCover seconds per step (median unchecked run)\n%-42s %8s %8s %8s %8s %8s %8s %8s\n",
+              "expression", "triang", "pairs", "inters", "split", "ident", "select", "assemb");
+  for (const auto& [name, s] : phases)
+    std::printf("%-44s %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n", name.c_str(), s.triangulate,
+                s.pairs, s.intersect, s.split, s.identify, s.select, s.assemble);
   return 0;
 }

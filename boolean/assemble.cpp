@@ -21,6 +21,7 @@
 #include <stdexcept>
 
 #include "boolean/detail/arrangement.h"
+#include "solid/parallel.h"
 
 namespace cover::boolean_detail {
 namespace {
@@ -119,23 +120,33 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
     }
   }
 
+  // Rounding needs each constructed point's exact value (rationals): the dominant cost of this
+  // step, so it runs in parallel over the distinct constructed points used.
+  std::vector<uint32_t> constructed;
+  for (const auto& t : tris)
+    for (uint32_t id : t)
+      if (id >= arr.originals.size()) constructed.push_back(id);
+  std::sort(constructed.begin(), constructed.end());
+  constructed.erase(std::unique(constructed.begin(), constructed.end()), constructed.end());
+  std::vector<Vec3> rounded(constructed.size());
+  parallel_for(constructed.size(), 64, [&](size_t begin, size_t end) {
+    for (size_t x = begin; x < end; ++x) {
+      const Point& p = arr.points[constructed[x]];
+      rounded[x] = {nearest(p.x()), nearest(p.y()), nearest(p.z())};
+    }
+  });
   PolygonMesh mesh;
   std::vector<uint32_t> vertex(3 * m, kNone);
-  std::vector<Vec3> rounded(arr.points.size());
-  std::vector<uint8_t> done(arr.points.size(), 0);
   for (uint32_t c = 0; c < 3 * m; ++c) {
     const uint32_t root = corners.find(c);
     if (vertex[root] == kNone) {
       const uint32_t id = tris[c / 3][c % 3];
-      if (!done[id]) {
-        done[id] = 1;
-        rounded[id] = id < arr.originals.size()
-                          ? arr.originals[id]
-                          : Vec3{nearest(arr.points[id].x()), nearest(arr.points[id].y()),
-                                 nearest(arr.points[id].z())};
-      }
       vertex[root] = static_cast<uint32_t>(mesh.vertices.size());
-      mesh.vertices.push_back(rounded[id]);
+      mesh.vertices.push_back(
+          id < arr.originals.size()
+              ? arr.originals[id]
+              : rounded[std::lower_bound(constructed.begin(), constructed.end(), id) -
+                        constructed.begin()]);
     }
     vertex[c] = vertex[root];
   }

@@ -2,31 +2,51 @@
 // arrangement.cpp, select.cpp and assemble.cpp).
 #include "boolean/evaluate.h"
 
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "boolean/detail/arrangement.h"
 #include "brep/halfedge.h"
 #include "solid/errors.h"
+#include "solid/parallel.h"
 #include "solid/validate.h"
 
 namespace cover {
 
 EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
-  if (options.check_leaves)
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  EvaluateResult r;
+  auto t = Clock::now();
+  if (options.check_leaves) {
+    // One leaf per task (the test itself is serial); the first bad leaf by index is reported.
+    std::vector<uint8_t> bad(solid.leaves.size(), 0);
+    parallel_for(solid.leaves.size(), 1, [&](size_t begin, size_t end) {
+      for (size_t l = begin; l < end; ++l)
+        bad[l] = self_intersects(leaf_mesh(solid, static_cast<uint32_t>(l)));
+    });
     for (uint32_t l = 0; l < solid.leaves.size(); ++l)
-      if (self_intersects(leaf_mesh(solid, l))) {
+      if (bad[l]) {
         const Leaf& leaf = solid.leaves[l];
         throw InputError((leaf.origin.empty() ? leaf.name : leaf.origin + " (" + leaf.name + ")") +
                          ": leaf is self-intersecting; evaluate needs non-self-intersecting "
                          "leaves");
       }
+  }
+  r.seconds.check = since(t);
   const size_t grain = options.grain == 0 ? 1 : options.grain;
-  EvaluateResult r;
-  const boolean_detail::Arrangement arr = boolean_detail::build_arrangement(solid, grain);
+  const boolean_detail::Arrangement arr =
+      boolean_detail::build_arrangement(solid, grain, r.seconds);
   r.candidate_pairs = arr.candidate_pairs;
   r.intersecting_pairs = arr.intersecting_pairs;
+  t = Clock::now();
   const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.patches);
+  r.seconds.select = since(t);
+  t = Clock::now();
   r.mesh = boolean_detail::assemble(arr, kept);
   for (size_t f = 0; f < r.mesh.face_count(); ++f) {
     auto t = r.mesh.face(f);
@@ -40,6 +60,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
     r.components = report.components;
     r.genus = report.genus;
   }
+  r.seconds.assemble = since(t);
   return r;
 }
 

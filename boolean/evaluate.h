@@ -26,6 +26,18 @@ struct EvaluateOptions {
   size_t grain = 64;         ///< items per parallel chunk (results never depend on it)
 };
 
+/// Wall-clock seconds per step of evaluate() (the numbers of the route above), for profiling.
+struct EvaluatePhases {
+  double check = 0;        ///< leaf self-intersection check (0 without check_leaves)
+  double triangulate = 0;  ///< step 1
+  double pairs = 0;        ///< step 2: candidate pairs (box intersection)
+  double intersect = 0;    ///< step 2: exact pairwise intersections
+  double split = 0;        ///< step 3: per-tri re-triangulation
+  double identify = 0;     ///< step 3: global point identity, pieces and cut edges
+  double select = 0;       ///< steps 4–5
+  double assemble = 0;     ///< step 6 and the mesh report
+};
+
 struct EvaluateResult {
   PolygonMesh mesh;        ///< triangles, outward; empty (no faces) when the result is empty
   double volume = 0;       ///< signed volume of `mesh` (doubles, after rounding)
@@ -35,6 +47,7 @@ struct EvaluateResult {
   size_t candidate_pairs = 0;     ///< triangle pairs of different leaves with meeting boxes
   size_t intersecting_pairs = 0;  ///< pairs that really meet
   size_t patches = 0;             ///< classified patches
+  EvaluatePhases seconds;         ///< time per step
 };
 
 /// Evaluates `solid` (closed leaves; the nonzero winding rule per leaf) to a B-rep.

@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "boolean/evaluate.h"
 #include "solid/solid.h"
 
 namespace cover::boolean_detail {
@@ -71,7 +72,8 @@ struct Arrangement {
 
 /// Steps 1–3 of evaluate(): triangulation, exact pairwise intersections, per-tri constrained
 /// triangulations, global point identity. Deterministic for any thread count.
-Arrangement build_arrangement(const Solid& solid, size_t grain);
+/// `seconds` gets the triangulate, pairs, intersect, split and identify times.
+Arrangement build_arrangement(const Solid& solid, size_t grain, EvaluatePhases& seconds);
 
 /// Steps 4–5: patches, exact classification, the regularized keep rule and de-duplication of
 /// coincident pieces. Returns the kept triangles (point ids), oriented outward; `patches` gets

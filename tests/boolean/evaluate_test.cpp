@@ -108,7 +108,12 @@ void check_against(const Solid& solid, const Mesh& expected, const std::string& 
   EXPECT_GT(r.volume, 0) << label;
   const double rel = std::abs(r.volume - cgal) / cgal;
   EXPECT_LE(rel, 1e-9) << label << ": evaluate " << r.volume << " CGAL " << cgal;
-  const VolumeResult cov = volume(solid);
+  // The covering's ray-integrated volume is an independent witness; at its default 1e-4 target it
+  // took ~85 % of this suite's time (up to 2048² rays per expression), so it runs to 1e-3 here
+  // (its error bound widens accordingly; the 1e-9 agreement with CGAL above is the sharp check).
+  VolumeOptions vo;
+  vo.target_relative_error = 1e-3;
+  const VolumeResult cov = volume(solid, vo);
   EXPECT_NEAR(r.volume, cov.volume, 2 * cov.error_bound + 1e-9 * cgal) << label;
   std::printf("%-44s faces %7zu genus %3lld  volume %.12g  CGAL %.12g  rel %.2e  covering %.9g\n",
               label.c_str(), r.mesh.face_count(), static_cast<long long>(rep.genus), r.volume,
