@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 
 #include "covering/detail/exact.h"
 #include "covering/predicates.h"
@@ -53,28 +55,37 @@ struct Interval {
 /// samples before, see first_visible()).
 struct Slab {
   double o[3], inv[3];
-  int near[3];        ///< 0: enters through lo, 1: through hi
-  bool parallel[3];   ///< inv infinite: the ray never leaves the slab's planes' side
+  int near[3], far[3];  ///< offsets into a node's {lo[3], hi[3]} of the bound entered / left
+  bool any_parallel;    ///< some inv is infinite: that axis only checks o against the slab
   Slab(const Vec3& origin, const Vec3& dir) {
+    any_parallel = false;
     for (int i = 0; i < 3; ++i) {
       o[i] = origin[i];
       inv[i] = 1.0 / dir[i];
-      parallel[i] = std::isinf(inv[i]);
-      near[i] = inv[i] < 0;
+      any_parallel |= std::isinf(inv[i]);
+      near[i] = inv[i] < 0 ? 3 + i : i;
+      far[i] = inv[i] < 0 ? i : 3 + i;
     }
   }
   Interval operator()(const Bvh::Node& node) const {
+    static_assert(offsetof(Bvh::Node, lo) == 0 && offsetof(Bvh::Node, hi) == 3 * sizeof(float));
+    float b[6];  // lo then hi (copied so that the offsets index one array)
+    std::memcpy(b, &node, sizeof b);
     double t0 = 0, t1 = INFINITY;
+    if (!any_parallel) {
+      for (int i = 0; i < 3; ++i) {
+        t0 = std::max(t0, ((b[near[i]] - o[i]) * inv[i]) * (1 - 1e-12));
+        t1 = std::min(t1, ((b[far[i]] - o[i]) * inv[i]) * (1 + 1e-12));
+      }
+      return t0 <= t1 ? Interval{t0, t1} : Interval{1, 0};
+    }
     for (int i = 0; i < 3; ++i) {
-      const double lo = node.lo[i], hi = node.hi[i];
-      if (parallel[i]) {
-        if (o[i] < lo || o[i] > hi) return {1, 0};
+      if (std::isinf(inv[i])) {
+        if (o[i] < b[i] || o[i] > b[3 + i]) return {1, 0};
         continue;
       }
-      const double ta = ((near[i] ? hi : lo) - o[i]) * inv[i];
-      const double tb = ((near[i] ? lo : hi) - o[i]) * inv[i];
-      t0 = std::max(t0, ta * (1 - 1e-12));
-      t1 = std::min(t1, tb * (1 + 1e-12));
+      t0 = std::max(t0, ((b[near[i]] - o[i]) * inv[i]) * (1 - 1e-12));
+      t1 = std::min(t1, ((b[far[i]] - o[i]) * inv[i]) * (1 + 1e-12));
     }
     return t0 <= t1 ? Interval{t0, t1} : Interval{1, 0};
   }
