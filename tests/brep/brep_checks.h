@@ -69,7 +69,9 @@ inline void expect_valid_clip(const brep::ClipResult& r, const brep::Plane& plan
     EXPECT_TRUE(c.report.closed) << what << " " << name;
     EXPECT_TRUE(c.report.manifold) << what << " " << name;
     EXPECT_FALSE(c.self_intersecting) << what << " " << name;
-    if (h->mesh.face_count() > 0) EXPECT_GT(c.volume, 0) << what << " " << name;
+    if (h->mesh.face_count() > 0) {
+      EXPECT_GT(c.volume, 0) << what << " " << name;
+    }
   }
   EXPECT_EQ(r.forced_ears, 0) << what;
   const double sum = signed_volume(r.above.mesh) + signed_volume(r.below.mesh);
