@@ -7,6 +7,7 @@
 #include <optional>
 #include <unistd.h>
 
+#include "boolean/evaluate.h"
 #include "brep/clip.h"
 #include "brep/halfedge.h"
 #include "cli/commands.h"
@@ -22,7 +23,7 @@ namespace {
 using nlohmann::json;
 
 struct HalfSummary {
-  std::optional<double> volume;  ///< empty for a scene of several leaves (needs evaluation)
+  std::optional<double> volume;  ///< empty for .json scene outputs of several leaves
   int64_t faces = 0, rings = 0;
   bool closed = true;
 };
@@ -113,11 +114,10 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   co.triangulate_caps = o.triangulate;
   HalfSummary above, below;
   if (!scene_out) {
-    if (s.leaves.size() != 1)
-      throw InputError(o.input + ": a scene of " + std::to_string(s.leaves.size()) +
-                       " leaves: clip one mesh of the CSG result (`cover evaluate` writes it), or "
-                       "write .json scenes of clipped leaves");
-    const brep::ClipResult r = brep::clip(leaf_mesh(s, 0), plane, co);
+    // CONTRACT.md: a scene of several leaves is evaluated first (boolean/evaluate.h: one closed
+    // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly.
+    const PolygonMesh mesh = s.leaves.size() == 1 ? leaf_mesh(s, 0) : evaluate(s).mesh;
+    const brep::ClipResult r = brep::clip(mesh, plane, co);
     add(above, r.above);
     add(below, r.below);
     above.volume = signed_volume(r.above.mesh);

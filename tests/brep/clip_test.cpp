@@ -186,7 +186,6 @@ class ClipPaperModel : public ::testing::TestWithParam<PaperModel> {};
 TEST_P(ClipPaperModel, RingsAndValidity) {
   const PaperModel& pm = GetParam();
   const PolygonMesh m = read_mesh(test::source_dir() / "models" / pm.file);
-  const double v = signed_volume(m);
   for (bool triangulate : {false, true}) {
     ClipOptions o;
     o.triangulate_caps = triangulate;

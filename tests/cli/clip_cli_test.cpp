@@ -62,15 +62,24 @@ TEST(ClipCli, BadInputExitsTwoWithOneLine) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(ClipCli, SceneWritesClippedLeavesOrRefusesOneMesh) {
+TEST(ClipCli, SceneWritesClippedLeavesOrTheEvaluatedMesh) {
   const auto dir = test::temp_dir("clip");
   test::write_file(dir / "scene.json", R"({"difference": [
       {"box": {"min": [0, 0, 0], "max": [4, 4, 4]}},
       {"sphere": {"center": [2, 2, 2], "radius": 1.5, "segments": 16}}]})");
-  // A mesh output for an expression of several leaves needs evaluation: exit 2.
-  const auto refused = run_cover("clip " + q(dir / "scene.json") + " --plane 0,0,1,2 -o " + q(dir / "a.off"));
-  EXPECT_EQ(refused.status, 2);
-  EXPECT_NE(refused.err.find("cover evaluate"), std::string::npos) << refused.err;
+  // A mesh output for an expression of several leaves: the evaluated result is clipped; its
+  // halves add up to the evaluated volume and are closed.
+  const auto meshes = run_cover("clip " + q(dir / "scene.json") + " --plane 0,0,1,2.25 -o " +
+                                q(dir / "a.off") + " --below " + q(dir / "b.off") + " --json");
+  ASSERT_EQ(meshes.status, 0) << meshes.err;
+  const json jm = json::parse(meshes.out);
+  const auto evaluated = run_cover("evaluate " + q(dir / "scene.json") + " -o " + q(dir / "e.off") + " --json");
+  ASSERT_EQ(evaluated.status, 0) << evaluated.err;
+  const double ve = json::parse(evaluated.out)["volume"].get<double>();
+  EXPECT_TRUE(jm["above"]["closed"].get<bool>());
+  EXPECT_TRUE(jm["below"]["closed"].get<bool>());
+  EXPECT_NEAR(jm["above"]["volume"].get<double>() + jm["below"]["volume"].get<double>(), ve, 1e-9 * ve);
+  EXPECT_GT(jm["above"]["rings"].get<int>(), 1);  // the box's outline and the sphere's hole
   // .json outputs: the expression is kept over clipped leaves.
   const auto r = run_cover("clip " + q(dir / "scene.json") + " --plane 0,0,1,2 -o " +
                            q(dir / "above.json") + " --below " + q(dir / "below.json") + " --json");
