@@ -63,7 +63,9 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   vo.resolution = o.res;
   vo.bounds = bounds_option(o.bounds, in.solid, o.res);
   Progress progress("voxelize", common.quiet);
+  vo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   const VoxelGrid grid = voxelize(in.solid, vo);
+  progress.finish();
   write_voxels(o.output, grid);
   if (!o.surface.empty()) write_mesh(o.surface, voxel_surface(grid));
   const uint64_t occupied = grid.count();

@@ -14,6 +14,7 @@
 // infinitesimally to c + (ε, ε², ε³) (slightly towards +x, then +y, then +z).
 // Parallel over triangles, then over columns; the grid does not depend on the thread count.
 
+#include <functional>
 #include <optional>
 
 #include "raster/voxel_grid.h"
@@ -24,6 +25,9 @@ namespace cover {
 struct VoxelizeOptions {
   int resolution = 128;                ///< N: voxels per axis (1 to 4096)
   std::optional<VoxelBounds> bounds;   ///< default: default_voxel_bounds(result box, N)
+  /// Called on the calling thread after each batch with the estimated share of the work done,
+  /// 0..1; default: none. The grid does not depend on it.
+  std::function<void(double)> progress;
 };
 
 /// Voxelizes the result of the CSG expression over an N×N×N grid.
