@@ -4,9 +4,11 @@
 //
 // Route (boolean/detail/arrangement.h has the notation and the exactness scheme):
 //   1. every leaf face is triangulated (fan when convex, else a constrained triangulation);
-//   2. triangles of different leaves whose boxes meet are intersected exactly (CGAL Epeck);
+//   2. triangles of different leaves whose boxes meet are intersected exactly (configuration by
+//      exact orient3d on the doubles, edge ∩ plane points built once each in CGAL Epeck);
 //   3. each intersected triangle is re-triangulated with the intersection segments as
-//      constraints (2D constrained Delaunay in its dominant projection, exact intersections);
+//      constraints: split directly when one segment runs between its edges / corners, else a
+//      2D constrained Delaunay triangulation in its dominant projection (exact intersections);
 //   4. the pieces of each leaf are grouped into patches bounded by intersection curves, and one
 //      exact interior point per patch is classified by an exact ray count per leaf;
 //   5. a piece is kept iff the expression differs on its two sides (regularized), oriented

@@ -14,14 +14,21 @@
 //   cut edge     an edge (point-id pair) lying on an intersection of two leaves' surfaces.
 //
 // Exactness scheme (constructed points keep every predicate consistent)
-//   * Input coordinates are doubles and exact. Every constructed point (triangle ∩ triangle,
-//     constraint ∩ constraint inside a triangle) is a CGAL Epeck point: a lazy exact rational,
-//     evaluated with interval arithmetic and recomputed in exact rationals whenever a sign is
-//     uncertain, so every predicate on constructed points is exact.
-//   * A point is identified by its exact VALUE, never by how it was built: the same point reached
-//     from two triangles (an intersection on a shared mesh edge, a triple point reached from
-//     each of its three triangles) gets one id through a map ordered by exact compare_xyz. So
-//     both sides of every edge see identical split points and the pieces conform.
+//   * Input coordinates are doubles and exact. The configuration of a triangle pair (apart,
+//     transversal, coplanar) and which corner / edge of each triangle bounds the intersection are
+//     decided by exact orient3d on those doubles (covering/predicates.h), no construction.
+//   * Every constructed point is a CGAL Epeck point: a lazy exact rational, evaluated with
+//     interval arithmetic and recomputed in exact rationals whenever a sign is uncertain, so every
+//     predicate on constructed points is exact. Transversal intersection ends are built
+//     canonically — the crossing of edge a–b with the plane of tri w is constructed once per
+//     (edge, w) key and shared by every pair that needs it — so the same point reached from the
+//     two tris of an edge is one object with one id, and never needs an exact comparison.
+//   * Points are then identified by exact VALUE as well, for the points that several
+//     constructions can reach (an edge crossing another leaf's edge exactly, a vertex on another
+//     leaf's face, triple points made by the per-tri triangulation, coplanar overlaps, which keep
+//     CGAL's intersection(Triangle_3, Triangle_3)): equal values merge to the smallest id,
+//     candidates found by hashing each point's interval box into a fine grid, then compared
+//     exactly. So both sides of every edge see identical split points and the pieces conform.
 //   * Per tri, the 2D constrained Delaunay triangulation works in the projection that drops the
 //     dominant axis of the tri's normal (an affine bijection of the plane, so 2D intersections
 //     are the projections of the 3D ones); points it creates are lifted back onto the tri's
