@@ -38,20 +38,6 @@
 namespace cover::boolean_detail {
 namespace {
 
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // root = smallest index
-  }
-};
-
 /// A Solid whose faces are the arrangement's tris (leaf orientation, sign +1), so the covering
 /// BVH over it holds exactly those triangles with face = tri index.
 Solid tri_solid(const Solid& solid, const Arrangement& arr) {

@@ -57,7 +57,7 @@ void triangulate_face(HalfedgeMesh& m, uint32_t f) {
     int axis, sign, u, w;
     const Vec3& p(uint32_t i) const { return m.position(m.origin(he[i])); }
     int orient(uint32_t a, uint32_t b, uint32_t c) const {
-      return sign * detail::orient2d(p(a), p(b), p(c), axis);
+      return sign * orient2d(p(a), p(b), p(c), axis);
     }
     uint32_t id(uint32_t i) const { return m.origin(he[i]); }
     bool thin(uint32_t, uint32_t, uint32_t) const { return false; }

@@ -1,5 +1,4 @@
 // Exact fallbacks for predicates on input doubles (CGAL private to brep/exact.cpp and cap.cpp).
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 
 #include "brep/detail/clip_internal.h"
@@ -8,7 +7,6 @@ namespace cover::brep::detail {
 namespace {
 
 using Q = CGAL::Exact_rational;
-using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 int sign_of(const Q& q) { return q > 0 ? 1 : (q < 0 ? -1 : 0); }
 
@@ -17,12 +15,6 @@ int sign_of(const Q& q) { return q > 0 ? 1 : (q < 0 ? -1 : 0); }
 int plane_side_exact(const Vec3& n, double d, const Vec3& v) {
   const Q value = Q(n.x) * Q(v.x) + Q(n.y) * Q(v.y) + Q(n.z) * Q(v.z) - Q(d);
   return sign_of(value);
-}
-
-int orient2d_exact(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
-  const int u = axis == 2 ? 0 : axis + 1, w = axis == 0 ? 2 : (axis == 1 ? 0 : 1);
-  return static_cast<int>(CGAL::orientation(Epick::Point_2(a[u], a[w]), Epick::Point_2(b[u], b[w]),
-                                            Epick::Point_2(c[u], c[w])));
 }
 
 int polygon_orientation(const std::vector<Vec3>& points, int axis) {

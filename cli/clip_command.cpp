@@ -5,13 +5,13 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <unistd.h>
 
 #include "boolean/evaluate.h"
 #include "brep/clip.h"
 #include "brep/halfedge.h"
 #include "cli/commands.h"
 #include "cli/output.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/measure.h"
 #include "solid/mesh_io.h"
@@ -42,25 +42,14 @@ void add(HalfSummary& s, const brep::ClipHalf& h) {
   s.closed = s.closed && r.closed && r.manifold;
 }
 
-/// Writes text atomically (temporary sibling, then rename).
+/// Writes text atomically (solid/atomic_file.h).
 void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::path temp = path;
-  temp += ".tmp-" + std::to_string(::getpid());
-  {
+  write_atomically(path, [&](const std::filesystem::path& temp) {
     std::ofstream out(temp, std::ios::binary);
     out << text;
-    if (!out.good()) {
-      std::error_code ec;
-      std::filesystem::remove(temp, ec);
-      throw InputError(path.string() + ": cannot write");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::filesystem::remove(temp, ec);
-    throw InputError(path.string() + ": cannot write");
-  }
+    out.flush();
+    return out.good();
+  }, "the scene");
 }
 
 /// The scene node of `node` with every leaf replaced by its clipped mesh file; empty when the

@@ -1,7 +1,6 @@
 #include "octree/octree_io.h"
 
 #include <octomap/OcTree.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -14,6 +13,7 @@
 #include <system_error>
 #include <vector>
 
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 
 namespace cover {
@@ -26,31 +26,6 @@ std::string extension_of(const fs::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
-}
-
-/// Runs write(temporary) and renames the temporary onto `path`; throws InputError naming `path`
-/// when write returns false or the rename fails (the temporary is removed either way).
-void write_atomically(const fs::path& path, const std::function<bool(const fs::path&)>& write) {
-  fs::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid());
-  std::error_code ec;
-  bool written = false;
-  try {
-    written = write(tmp);
-  } catch (...) {
-    fs::remove(tmp, ec);
-    throw;
-  }
-  if (!written) {
-    fs::remove(tmp, ec);
-    throw InputError(path.string() + ": cannot write the octree");
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw InputError(path.string() + ": cannot write the octree (" + ec.message() + ")");
-  }
 }
 
 /// Writes the text produced by `emit` into a file; false on any I/O error.
@@ -297,16 +272,16 @@ void write_octree(const std::filesystem::path& path, const Octree& tree, double 
   if (ext == ".htg") {
     write_atomically(path, [&](const fs::path& tmp) {
       return write_text(tmp, [&](std::ostream& out) { write_htg(out, tree); });
-    });
+    }, "the octree");
   } else if (ext == ".json") {
     write_atomically(path, [&](const fs::path& tmp) {
       return write_text(tmp, [&](std::ostream& out) { write_json(out, tree, threshold); });
-    });
+    }, "the octree");
   } else if (ext == ".bt") {
     if (tree.depth < 1 || tree.depth > 16)
       throw InputError(path.string() + ": OctoMap .bt needs a depth from 1 to 16, got " +
                        std::to_string(tree.depth));
-    write_atomically(path, [&](const fs::path& tmp) { return write_bt(tmp, tree, threshold); });
+    write_atomically(path, [&](const fs::path& tmp) { return write_bt(tmp, tree, threshold); }, "the octree");
   } else {
     throw InputError(path.string() + ": unsupported octree format (expected .htg, .bt, .json)");
   }

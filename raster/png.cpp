@@ -1,13 +1,13 @@
 #include "raster/png.h"
 
 #include <png.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
 
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 
 namespace cover {
@@ -47,19 +47,9 @@ bool encode(const std::filesystem::path& tmp, int width, int height, int bit_dep
 void write_atomic(const std::filesystem::path& path, int width, int height, int bit_depth,
                   int color, const std::vector<std::vector<uint8_t>>& rows) {
   if (width <= 0 || height <= 0) throw InputError(path.string() + ": empty image");
-  std::filesystem::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid());
-  if (!encode(tmp, width, height, bit_depth, color, rows)) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw InputError(path.string() + ": cannot write PNG");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(path.string() + ": cannot write PNG (" + ec.message() + ")");
-  }
+  write_atomically(path, [&](const std::filesystem::path& tmp) {
+    return encode(tmp, width, height, bit_depth, color, rows);
+  }, "PNG");
 }
 
 }  // namespace

@@ -39,8 +39,10 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numeric>
 #include <vector>
 
 #include "boolean/evaluate.h"
@@ -56,6 +58,22 @@ inline constexpr uint32_t kNone = 0xffffffffu;
 inline uint64_t edge_key(uint32_t a, uint32_t b) {
   return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
 }
+
+/// Disjoint sets over 0..n−1 with path halving; the root of a set is its smallest index, so
+/// results do not depend on the order of unions.
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
 
 struct Tri {
   std::array<uint32_t, 3> v;  ///< point ids (originals), leaf orientation
