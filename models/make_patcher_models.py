@@ -15,16 +15,8 @@ Faces with holes (top and bottom of frames and the slab) are single faces whose 
 joined by false edges (paper §3 Fig. 1).
 """
 import math
-import pathlib
 
-HERE = pathlib.Path(__file__).resolve().parent
-
-
-def write_off(name, verts, faces, comment):
-    lines = ["OFF", f"# {comment}", f"{len(verts)} {len(faces)} 0"]
-    lines += [" ".join(repr(float(c)) for c in v) for v in verts]
-    lines += [" ".join(str(x) for x in [len(f)] + list(f)) for f in faces]
-    (HERE / name).write_text("\n".join(lines) + "\n")
+from make_models import write_off  # the same OFF text writer as the project's other models
 
 
 def sub(a, b):
