@@ -2,18 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "covering/predicates.h"
 #include "solid/parallel.h"
 
 namespace cover {
 namespace {
-
-/// Nodes of a subtree over n triangles (median split, leaves of at most leaf_size).
-uint32_t subtree_nodes(uint32_t n, uint32_t leaf_size) {
-  if (n <= leaf_size) return 1;
-  return 1 + subtree_nodes(n / 2, leaf_size) + subtree_nodes(n - n / 2, leaf_size);
-}
 
 /// The largest float <= v and the smallest float >= v (for doubles beyond the float range:
 /// ±infinity, still conservative).
@@ -34,15 +29,33 @@ struct Ref {
   uint32_t index;
 };
 
+constexpr int kBins = 16;          // SAH bins over the centroid extent of the widest axis
+constexpr uint32_t kSahDepth = 64;  // deeper nodes use median splits: depth ≤ 64 + log2(n) + 1
+
+/// Half the surface area of a box (the SAH weight of a node).
+double half_area(const float lo[3], const float hi[3]) {
+  const double dx = double{hi[0]} - lo[0], dy = double{hi[1]} - lo[1], dz = double{hi[2]} - lo[2];
+  return dx * dy + dy * dz + dz * dx;
+}
+
+/// A subtree built by one task: above the parallel threshold an inner node with two child
+/// pieces, below it a serially built run of nodes whose inner `first` are local indices.
+struct Piece {
+  Bvh::Node node;
+  std::vector<Bvh::Node> nodes;
+  std::unique_ptr<Piece> left, right;
+  uint32_t size = 0;  ///< nodes of the subtree
+};
+
 struct Builder {
   std::vector<Ref>& refs;
-  std::vector<Bvh::Node>& nodes;
   const BvhOptions& options;
 
-  /// Builds the subtree of refs[begin, end) into nodes[slot ...].
-  void build(uint32_t slot, uint32_t begin, uint32_t end) {
+  /// Sets node's bounds over refs[begin, end); false for a leaf, else partitions the range into
+  /// [begin, mid) and [mid, end), both non-empty: binned SAH on the widest centroid axis, or the
+  /// centroid median when SAH finds no split (all centroids in one bin) or the node is deep.
+  bool split(Bvh::Node& node, uint32_t begin, uint32_t end, uint32_t depth, uint32_t& mid) {
     const uint32_t n = end - begin;
-    Bvh::Node& node = nodes[slot];
     float clo[3], chi[3];
     for (int a = 0; a < 3; ++a) {
       node.lo[a] = clo[a] = INFINITY;
@@ -55,28 +68,115 @@ struct Builder {
         clo[a] = std::min(clo[a], refs[i].c[a]);
         chi[a] = std::max(chi[a], refs[i].c[a]);
       }
-    if (n <= options.leaf_size) {
-      node.first = begin;
-      node.count = n;
-      return;
-    }
+    node.count = 0;
+    if (n <= options.leaf_size) return false;
     const float ex = chi[0] - clo[0], ey = chi[1] - clo[1], ez = chi[2] - clo[2];
     const int axis = ex >= ey && ex >= ez ? 0 : (ey >= ez ? 1 : 2);
-    const uint32_t mid = begin + n / 2;
+    const float extent = chi[axis] - clo[axis];
+    if (depth < kSahDepth && extent > 0) {
+      const float scale = kBins / extent;
+      auto bin = [&](const Ref& r) {
+        return std::clamp(static_cast<int>((r.c[axis] - clo[axis]) * scale), 0, kBins - 1);
+      };
+      uint32_t count[kBins] = {};
+      float lo[kBins][3], hi[kBins][3];
+      for (int b = 0; b < kBins; ++b)
+        for (int a = 0; a < 3; ++a) lo[b][a] = INFINITY, hi[b][a] = -INFINITY;
+      for (uint32_t i = begin; i < end; ++i) {
+        const Ref& r = refs[i];
+        const int b = bin(r);
+        ++count[b];
+        for (int a = 0; a < 3; ++a) {
+          lo[b][a] = std::min(lo[b][a], r.lo[a]);
+          hi[b][a] = std::max(hi[b][a], r.hi[a]);
+        }
+      }
+      // cost[b]: SAH cost of splitting after bin b (area × count on each side); least b on ties.
+      double right_cost[kBins];
+      float rlo[3] = {INFINITY, INFINITY, INFINITY}, rhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+      uint32_t rn = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        rn += count[b];
+        for (int a = 0; a < 3; ++a) rlo[a] = std::min(rlo[a], lo[b][a]), rhi[a] = std::max(rhi[a], hi[b][a]);
+        right_cost[b] = rn > 0 ? half_area(rlo, rhi) * rn : 0;
+      }
+      float llo[3] = {INFINITY, INFINITY, INFINITY}, lhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+      uint32_t ln = 0;
+      int best = -1;
+      double best_cost = INFINITY;
+      for (int b = 0; b + 1 < kBins; ++b) {
+        ln += count[b];
+        for (int a = 0; a < 3; ++a) llo[a] = std::min(llo[a], lo[b][a]), lhi[a] = std::max(lhi[a], hi[b][a]);
+        if (ln == 0 || ln == n) continue;
+        const double cost = half_area(llo, lhi) * ln + right_cost[b + 1];
+        if (cost < best_cost) best_cost = cost, best = b;
+      }
+      if (best >= 0) {
+        mid = static_cast<uint32_t>(
+            std::partition(refs.begin() + begin, refs.begin() + end,
+                           [&](const Ref& r) { return bin(r) <= best; }) -
+            refs.begin());
+        return true;
+      }
+    }
+    mid = begin + n / 2;
     std::nth_element(refs.begin() + begin, refs.begin() + mid, refs.begin() + end,
                      [axis](const Ref& l, const Ref& r) {
                        return l.c[axis] < r.c[axis] || (l.c[axis] == r.c[axis] && l.index < r.index);
                      });
-    const uint32_t left = slot + 1;
-    const uint32_t right = left + subtree_nodes(n / 2, options.leaf_size);
-    node.first = right;
-    node.count = 0;
-    if (n >= options.parallel_threshold) {
-      parallel_invoke([&] { build(left, begin, mid); }, [&] { build(right, mid, end); });
-    } else {
-      build(left, begin, mid);
-      build(right, mid, end);
+    return true;
+  }
+
+  /// Appends the subtree of refs[begin, end) to `out` in depth-first order.
+  void build_serial(std::vector<Bvh::Node>& out, uint32_t begin, uint32_t end, uint32_t depth) {
+    const auto slot = static_cast<uint32_t>(out.size());
+    out.emplace_back();
+    Bvh::Node node;
+    uint32_t mid = 0;
+    if (!split(node, begin, end, depth, mid)) {
+      node.first = begin;
+      node.count = end - begin;
+      out[slot] = node;
+      return;
     }
+    build_serial(out, begin, mid, depth + 1);
+    node.first = static_cast<uint32_t>(out.size());
+    out[slot] = node;
+    build_serial(out, mid, end, depth + 1);
+  }
+
+  /// Builds the subtree of refs[begin, end) into `piece`, both halves in parallel above the
+  /// threshold (the tree does not depend on which thread builds what).
+  void build(Piece& piece, uint32_t begin, uint32_t end, uint32_t depth) {
+    uint32_t mid = 0;
+    if (end - begin < options.parallel_threshold || !split(piece.node, begin, end, depth, mid)) {
+      piece.nodes.reserve(2 * (end - begin) / options.leaf_size + 1);
+      build_serial(piece.nodes, begin, end, depth);
+      piece.size = static_cast<uint32_t>(piece.nodes.size());
+      return;
+    }
+    piece.left = std::make_unique<Piece>();
+    piece.right = std::make_unique<Piece>();
+    parallel_invoke([&] { build(*piece.left, begin, mid, depth + 1); },
+                    [&] { build(*piece.right, mid, end, depth + 1); });
+    piece.size = 1 + piece.left->size + piece.right->size;
+  }
+
+  /// Copies `piece` into nodes[at, at + piece.size), making its child indices global.
+  static void place(const Piece& piece, std::vector<Bvh::Node>& nodes, uint32_t at) {
+    if (!piece.left) {
+      for (size_t i = 0; i < piece.nodes.size(); ++i) {
+        Bvh::Node node = piece.nodes[i];
+        if (node.count == 0) node.first += at;
+        nodes[at + i] = node;
+      }
+      return;
+    }
+    Bvh::Node& node = nodes[at];
+    node = piece.node;
+    node.first = at + 1 + piece.left->size;
+    parallel_invoke([&] { place(*piece.left, nodes, at + 1); },
+                    [&] { place(*piece.right, nodes, node.first); });
   }
 };
 
@@ -163,8 +263,11 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   BvhOptions o = options;
   o.leaf_size = std::max<uint32_t>(1, o.leaf_size);
   const auto n = static_cast<uint32_t>(refs.size());
-  nodes_.resize(subtree_nodes(n, o.leaf_size));
-  Builder{refs, nodes_, o}.build(0, 0, n);
+  Builder builder{refs, o};
+  Piece root;
+  builder.build(root, 0, n, 0);
+  nodes_.resize(root.size);
+  Builder::place(root, nodes_, 0);
   tris_.resize(n);
   parallel_for(n, 4096, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) tris_[i] = all[refs[i].index];

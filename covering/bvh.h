@@ -7,8 +7,10 @@
 // Layout: 32-byte nodes in depth-first order; an inner node's left child is the next node, its right
 // child is `first`. Leaves own triangles [first, first + count). Boxes are exact min/max of the
 // double coordinates, so "box misses ⇒ triangle misses" holds exactly.
-// Build: median split of centroids along the widest axis; the node count of a subtree depends only
-// on its size, so subtrees are built in parallel into pre-computed slices (deterministic layout).
+// Build: binned SAH (16 bins over the centroid extent of the widest axis), the centroid median
+// where SAH finds no split or below depth 64; subtrees above a size threshold are built in
+// parallel into separate pieces and then placed in depth-first order, so the tree does not
+// depend on the thread count.
 
 #include <cstdint>
 #include <vector>
@@ -80,7 +82,7 @@ template <typename Meets, typename Visit>
 void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
   const auto& nodes = bvh.nodes();
   if (nodes.empty()) return;
-  uint32_t stack[128];  // depth ≤ log2(n) + 1 for the median-split tree
+  uint32_t stack[128];  // depth ≤ 64 + log2(n) + 1 (bvh.cpp: median splits below depth 64)
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
