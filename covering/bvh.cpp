@@ -74,9 +74,11 @@ struct Builder {
     const int axis = ex >= ey && ex >= ez ? 0 : (ey >= ez ? 1 : 2);
     const float extent = chi[axis] - clo[axis];
     if (depth < kSahDepth && extent > 0) {
-      const float scale = kBins / extent;
+      // In double: kBins / extent stays finite even for a denormal float extent, and
+      // (c - clo) * scale lies in [0, kBins] up to rounding, so the int conversion is defined.
+      const double scale = kBins / double{extent};
       auto bin = [&](const Ref& r) {
-        return std::clamp(static_cast<int>((r.c[axis] - clo[axis]) * scale), 0, kBins - 1);
+        return std::clamp(static_cast<int>((double{r.c[axis]} - clo[axis]) * scale), 0, kBins - 1);
       };
       uint32_t count[kBins] = {};
       float lo[kBins][3], hi[kBins][3];
