@@ -11,8 +11,9 @@
 // reported). A corefinement that returns false or throws is reported and its first operand kept.
 // Scene: ((A ∪ B ∪ C) − (D ∪ E)) ∪ ((F ∩ G) − H) ∪ (I − J) over bunny00 ×4, armadillo ×3,
 // refined_elephant, fandisk_large and bear (each closed, manifold, not self-intersecting).
-// Usage: render_vs_cgal MESH_FOLDER [PNG]   (MESH_FOLDER: libcgal-demo data/meshes; PNG defaults to
-//        /tmp/render_vs_cgal.png)
+// Usage: render_vs_cgal MESH_FOLDER [PNG] [--cover-only]   (MESH_FOLDER: libcgal-demo data/meshes;
+//        PNG defaults to /tmp/render_vs_cgal.png; --cover-only stops after Cover's timings, for
+//        profiling Cover alone)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -190,11 +191,12 @@ std::string escape(const std::string& s) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: render_vs_cgal MESH_FOLDER [PNG]\n");
+    std::fprintf(stderr, "usage: render_vs_cgal MESH_FOLDER [PNG] [--cover-only]\n");
     return 2;
   }
   const std::filesystem::path folder = argv[1];
   const std::filesystem::path png = argc > 2 ? argv[2] : "/tmp/render_vs_cgal.png";
+  const bool cover_only = argc > 3 && std::string(argv[3]) == "--cover-only";
   // ((A ∪ B ∪ C) − (D ∪ E)) ∪ ((F ∩ G) − H) ∪ (I − J)
   const Expr expr = node(
       Op::kUnion, {node(Op::kDifference, {node(Op::kUnion, {leaf(0), leaf(1), leaf(2)}),
@@ -239,6 +241,12 @@ int main(int argc, char** argv) {
     refresh_identical = again.rgb == image.rgb;
   }
   cover::write_png_rgb(png, image.width, image.height, image.rgb);
+  if (cover_only) {
+    std::printf("{\"cover_first_frame_s\": %.4f, \"cover_csg_s\": %.4f, \"cover_bvh_s\": %.4f, "
+                "\"cover_render_s\": %.4f, \"cover_refresh_s\": %.4f}\n",
+                first_s, csg_s, bvh_s, first_s - csg_s - bvh_s, refresh_s);
+    return 0;
+  }
 
   // CGAL: the same expression by corefinement, 1 thread.
   std::vector<CorefineRecord> log;

@@ -26,6 +26,10 @@ struct BvhOptions {
 
 class Bvh {
  public:
+  /// Bound on a traversal stack (of node ids, or node ids with intervals): a depth-first stack
+  /// holds at most depth + 1 entries, and the depth is ≤ 64 (SAH) + 32 (median splits of at most
+  /// 2^32 triangles) + 1 (bvh.cpp).
+  static constexpr int kMaxStack = 128;
   /// A covering triangle (v0, vi, vi+1) of a face, in its LEAF's own orientation (outward).
   struct Tri {
     Vec3 a, b, c;
@@ -82,7 +86,7 @@ template <typename Meets, typename Visit>
 void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
   const auto& nodes = bvh.nodes();
   if (nodes.empty()) return;
-  uint32_t stack[128];  // depth ≤ 64 + log2(n) + 1 (bvh.cpp: median splits below depth 64)
+  uint32_t stack[Bvh::kMaxStack];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {

@@ -232,10 +232,10 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
     double t0, t1;
     uint32_t node;
   };
-  thread_local std::vector<Entry> stack;
+  Entry stack[Bvh::kMaxStack];  // a local array: no thread_local vector on the hot path
+  int top = 0;
   thread_local std::vector<RayHit> pending;
   thread_local std::vector<int> winding;
-  stack.clear();
   pending.clear();
   winding.assign(leaves, 0);
   bool in = false;
@@ -282,13 +282,12 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
   // least entry parameter of every node not yet visited (the stack and that node).
   double pending_min = INFINITY;
   const Interval root = slab(nodes[0]);
-  if (root.t0 <= root.t1) stack.push_back({root.t0, root.t1, 0});
-  while (!stack.empty()) {
-    const Entry cur = stack.back();
-    stack.pop_back();
+  if (root.t0 <= root.t1) stack[top++] = {root.t0, root.t1, 0};
+  while (top > 0) {
+    const Entry cur = stack[--top];
     if (cur.t0 > pending_min) {
       double tau = cur.t0;
-      for (const Entry& e : stack) tau = std::min(tau, e.t0);
+      for (int e = 0; e < top; ++e) tau = std::min(tau, stack[e].t0);
       if (tau > pending_min) {
         if (sweep(tau)) return v;
         pending_min = INFINITY;
@@ -297,11 +296,15 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
     }
     const Bvh::Node& node = nodes[cur.node];
     if (node.count == 0) {
-      const Interval c[2] = {slab(nodes[cur.node + 1]), slab(nodes[node.first])};
-      const uint32_t id[2] = {cur.node + 1, node.first};
-      const int near = c[1].t0 < c[0].t0;
-      for (const int k : {1 - near, near})
-        if (c[k].t0 <= c[k].t1) stack.push_back({c[k].t0, c[k].t1, id[k]});
+      const Interval l = slab(nodes[cur.node + 1]), r = slab(nodes[node.first]);
+      const bool l_in = l.t0 <= l.t1, r_in = r.t0 <= r.t1;
+      if (r.t0 < l.t0) {  // right child nearer: pushed last, popped first
+        if (l_in) stack[top++] = {l.t0, l.t1, cur.node + 1};
+        if (r_in) stack[top++] = {r.t0, r.t1, node.first};
+      } else {
+        if (r_in) stack[top++] = {r.t0, r.t1, node.first};
+        if (l_in) stack[top++] = {l.t0, l.t1, cur.node + 1};
+      }
       continue;
     }
     for (uint32_t i = node.first; i < node.first + node.count; ++i) {
