@@ -12,7 +12,9 @@
 // and "the centre is below T" is orient3d — no epsilon. Centres exactly on a leaf surface follow
 // one deterministic rule: voxel (i, j, k) records the membership of the centre displaced
 // infinitesimally to c + (ε, ε², ε³) (slightly towards +x, then +y, then +z).
-// Parallel over triangles, then over columns; the grid does not depend on the thread count.
+// Parallel over triangles, then over bands of rows (each band's crossings found, grouped by
+// column and swept by one task, its columns written once); the grid does not depend on the
+// thread count. Per-thread scratch (a band's crossings) is kept between calls.
 
 #include <functional>
 #include <optional>
@@ -25,8 +27,9 @@ namespace cover {
 struct VoxelizeOptions {
   int resolution = 128;                ///< N: voxels per axis (1 to 4096)
   std::optional<VoxelBounds> bounds;   ///< default: default_voxel_bounds(result box, N)
-  /// Called on the calling thread after each batch with the estimated share of the work done,
-  /// 0..1; default: none. The grid does not depend on it.
+  /// Called on the calling thread, after each band of rows it finishes and once at the end, with
+  /// the share of bands done, 0..1 (non-decreasing); default: none. The grid does not depend on
+  /// it.
   std::function<void(double)> progress;
 };
 
