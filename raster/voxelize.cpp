@@ -69,9 +69,10 @@ std::vector<double> centres(double min, double h, int n) {
 
 /// Indices [first, last] of the centres inside [lo, hi], or first > last: a floating-point
 /// guess, then exact comparisons with the centre coordinates.
-std::pair<int, int> centre_range(const std::vector<double>& c, double lo, double hi) {
+/// inv_h: 1 / (c[1] − c[0]) (1 when N = 1), computed once by the caller.
+std::pair<int, int> centre_range(const std::vector<double>& c, double inv_h, double lo,
+                                 double hi) {
   const int n = static_cast<int>(c.size());
-  const double inv_h = n > 1 ? 1 / (c[1] - c[0]) : 1;
   // A guess only (the loops below make it exact): truncation instead of floor (std::floor is a
   // library call without SSE4.1), NaN and out-of-range values clamped before the conversion.
   auto guess = [&](double v) {
@@ -290,6 +291,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
   const double h = g.voxel_size();
   const std::vector<double> xs = centres(g.bounds.min.x, h, n), ys = centres(g.bounds.min.y, h, n),
                             zs = centres(g.bounds.min.z, h, n);
+  const double inv_hx = n > 1 ? 1 / (xs[1] - xs[0]) : 1, inv_hy = n > 1 ? 1 / (ys[1] - ys[0]) : 1;
   const size_t words = g.words_per_column();
   // No zeroing pass here: step 2 writes every word of every band (a reused grid keeps its memory).
   g.bits.resize(static_cast<size_t>(n) * n * words);
@@ -337,9 +339,9 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
         const int nz = orient2d(a, b, c, 2);
         if (nz == 0) continue;  // parallel to z (or degenerate): no perturbed column line crosses
         const auto [i0, i1] =
-            centre_range(xs, std::min({a.x, b.x, c.x}), std::max({a.x, b.x, c.x}));
+            centre_range(xs, inv_hx, std::min({a.x, b.x, c.x}), std::max({a.x, b.x, c.x}));
         const auto [j0, j1] =
-            centre_range(ys, std::min({a.y, b.y, c.y}), std::max({a.y, b.y, c.y}));
+            centre_range(ys, inv_hy, std::min({a.y, b.y, c.y}), std::max({a.y, b.y, c.y}));
         if (i0 > i1 || j0 > j1) continue;
         tri.i0 = static_cast<uint16_t>(i0);
         tri.i1 = static_cast<uint16_t>(i1);
