@@ -104,7 +104,16 @@ struct BandTriangle {
   uint16_t i0, i1;      ///< rows whose centre x lies in the triangle's x range (N ≤ 4096)
   uint16_t j0, j1;      ///< the same for columns and y
   int8_t nz;            ///< orient2d(a, b, c, 2) ≠ 0: winding contribution to the centres below
+  bool moderate;        ///< every coordinate of a, b, c is moderate()
 };
+
+/// Whether v is 0 or of magnitude in [2^-100, 2^100]. When every coordinate a filter sees
+/// (triangle vertices and voxel centres) is moderate, its range guard never rejects: see
+/// crossings_of.
+bool moderate(double v) {
+  const double m = std::abs(v);
+  return m == 0 || (m >= 0x1p-100 && m <= 0x1p100);
+}
 
 /// Sign of one projected edge test orient2d(p, q, centre), given its filter terms (see
 /// crossings_of): the filter's sign when decided, else the exact perturbed predicate.
@@ -137,6 +146,19 @@ int edge_sign(double det, double sum, const Vec3& p, const Vec3& q, const Vec3& 
 /// error bounds (Shewchuk's, see predicates.h) apply unchanged; multiplying by nz = ±1 is exact.
 /// Where a filter is undecided, the full perturbed predicate (exact fallback included) decides.
 /// No new error analysis, no epsilon.
+///
+/// kModerate (every coordinate of a, b, c and of the voxel centres moderate()): the filters'
+/// range guards (sum, permanent ∈ (kFilterMin, kFilterMax) = (1e-200, 1e200)) are dropped from
+/// the hot loops, which decide exactly as with them (~7% of the call at 512³). Proof: every
+/// coordinate is then an integer multiple of 2^-152 (a double of magnitude ≥ 2^-100 has an ulp
+/// ≥ 2^-152), so a rounded coordinate difference is 0 (equal coordinates) or in
+/// [2^-152, 2^101] (rounding is monotone and both ends are doubles); a rounded product of two
+/// nonzero differences is in [2^-304, 2^202]; so a sum P = |l| + |r| is 0 or in
+/// [2^-304, 2^204], and a permanent (three terms P·|dz|) is 0 or in [2^-456, 2^307] — inside
+/// (1e-200, 1e200) whenever nonzero, so the guard passes. When it is 0, every product in it is 0,
+/// hence the minor M = l − r (resp. det, whose terms dz·M vanish with P or dz) is 0 and the
+/// bound is 0: neither "> bound" nor "< −bound" holds, undecided with or without the guard.
+template <bool kModerate>
 void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, int nz, int i0,
                   int i1, int j0, int j1, int band_first_row, const std::vector<double>& xs,
                   const std::vector<double>& ys, const std::vector<double>& zs,
@@ -177,7 +199,8 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
         m[2][t] = adxbdy - bdxady, p[2][t] = std::abs(adxbdy) + std::abs(bdxady);
         const double sma = snz * m[0][t], smb = snz * m[1][t], smc = snz * m[2][t];
         const double ba = kEps2 * p[0][t], bb = kEps2 * p[1][t], bc = kEps2 * p[2][t];
-        const bool ga = in_range(p[0][t]), gb = in_range(p[1][t]), gc = in_range(p[2][t]);
+        const bool ga = kModerate || in_range(p[0][t]), gb = kModerate || in_range(p[1][t]),
+                   gc = kModerate || in_range(p[2][t]);
         const bool in = ga & gb & gc & (sma > ba) & (smb > bb) & (smc > bc);
         const bool outside = (ga & (sma < -ba)) | (gb & (smb < -bb)) | (gc & (smc < -bc));
         status[t] = static_cast<uint8_t>(in | ((!in & !outside) << 1));
@@ -231,7 +254,8 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
           const v2d bound = 7.7715611723761027e-16 * permanent;
           // Below: orient3d = −n_z, i.e. n_z·det > bound; above: n_z·det < −bound.
           const v2d sdet = snz * det;
-          if (in_range(permanent[0]) & in_range(permanent[1]) & (sdet[0] > bound[0]) &
+          if ((kModerate || (in_range(permanent[0]) & in_range(permanent[1]))) &
+              (sdet[0] > bound[0]) &
               (sdet[1] < -bound[1])) {
             out.push_back({static_cast<uint32_t>((i - band_first_row) * n + j), leaf,
                            static_cast<uint32_t>(below), nz});
@@ -292,6 +316,9 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
   const std::vector<double> xs = centres(g.bounds.min.x, h, n), ys = centres(g.bounds.min.y, h, n),
                             zs = centres(g.bounds.min.z, h, n);
   const double inv_hx = n > 1 ? 1 / (xs[1] - xs[0]) : 1, inv_hy = n > 1 ? 1 / (ys[1] - ys[0]) : 1;
+  const bool moderate_centres = std::all_of(xs.begin(), xs.end(), moderate) &&
+                                std::all_of(ys.begin(), ys.end(), moderate) &&
+                                std::all_of(zs.begin(), zs.end(), moderate);
   const size_t words = g.words_per_column();
   // No zeroing pass here: step 2 writes every word of every band (a reused grid keeps its memory).
   g.bits.resize(static_cast<size_t>(n) * n * words);
@@ -333,9 +360,12 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
       for (uint32_t t = first_tri[f]; t < first_tri[f + 1]; ++t) {
         const size_t k = t - first_tri[f] + 1;
         BandTriangle& tri = tris[t];
-        tri = {{index(0), index(k), index(k + 1)}, solid.face_leaf[f], 1, 0, 1, 0, 0};
+        tri = {{index(0), index(k), index(k + 1)}, solid.face_leaf[f], 1, 0, 1, 0, 0, false};
         const Vec3 &a = solid.vertices[tri.v[0]], &b = solid.vertices[tri.v[1]],
                    &c = solid.vertices[tri.v[2]];
+        tri.moderate = moderate(a.x) && moderate(a.y) && moderate(a.z) && moderate(b.x) &&
+                       moderate(b.y) && moderate(b.z) && moderate(c.x) && moderate(c.y) &&
+                       moderate(c.z);
         const int nz = orient2d(a, b, c, 2);
         if (nz == 0) continue;  // parallel to z (or degenerate): no perturbed column line crosses
         const auto [i0, i1] =
@@ -406,9 +436,13 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
       if (i + kAhead < band_start[band + 1])
         for (const uint32_t v : listed[i + kAhead].v) __builtin_prefetch(&solid.vertices[v]);
       const BandTriangle& t = listed[i];
-      crossings_of(solid.vertices[t.v[0]], solid.vertices[t.v[1]], solid.vertices[t.v[2]], t.leaf,
-                   t.nz, std::max<int>(t.i0, row0), std::min<int>(t.i1, row1), t.j0, t.j1, row0,
-                   xs, ys, zs, found);
+      const Vec3 &a = solid.vertices[t.v[0]], &b = solid.vertices[t.v[1]],
+                 &c = solid.vertices[t.v[2]];
+      const int i0 = std::max<int>(t.i0, row0), i1 = std::min<int>(t.i1, row1);
+      if (t.moderate && moderate_centres)
+        crossings_of<true>(a, b, c, t.leaf, t.nz, i0, i1, t.j0, t.j1, row0, xs, ys, zs, found);
+      else
+        crossings_of<false>(a, b, c, t.leaf, t.nz, i0, i1, t.j0, t.j1, row0, xs, ys, zs, found);
     }
     const size_t band_columns = static_cast<size_t>(row1 - row0 + 1) * n;
     start.assign(band_columns + 1, 0);
