@@ -468,6 +468,18 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
       }
       if (last - first == 2) {  // the common case: one entry and one exit
         if (first[1] < first[0]) std::swap(first[0], first[1]);
+        if (use_table) {
+          // Centres below both crossings see both windings, those between only the upper one,
+          // those above neither (the sweep below, unrolled: ~6% of the call at 512³).
+          const uint32_t l0 = key_leaf(first[0]), l1 = key_leaf(first[1]);
+          const int b0 = key_below(first[0]), b1 = key_below(first[1]);
+          const bool cancel = l0 == l1 && key_sign(first[0]) + key_sign(first[1]) == 0;
+          const uint32_t both = cancel ? 0 : (uint32_t{1} << l0) | (uint32_t{1} << l1);
+          if (table[both]) fill(column, 0, b0);
+          if (table[uint32_t{1} << l1]) fill(column, b0, b1);
+          if (outside_value) fill(column, b1, n);
+          continue;
+        }
       } else {
         std::sort(first, last);
       }
