@@ -112,8 +112,9 @@ struct BandTriangle {
 /// crossings_of.
 bool moderate(double v) {
   const double m = std::abs(v);
-  return m == 0 || (m >= 0x1p-100 && m <= 0x1p100);
+  return (m == 0) | ((m >= 0x1p-100) & (m <= 0x1p100));  // no branches: vectorizable loops
 }
+bool moderate(const Vec3& v) { return moderate(v.x) & moderate(v.y) & moderate(v.z); }
 
 /// Sign of one projected edge test orient2d(p, q, centre), given its filter terms (see
 /// crossings_of): the filter's sign when decided, else the exact perturbed predicate.
@@ -317,9 +318,12 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
   const std::vector<double> xs = centres(g.bounds.min.x, h, n), ys = centres(g.bounds.min.y, h, n),
                             zs = centres(g.bounds.min.z, h, n);
   const double inv_hx = n > 1 ? 1 / (xs[1] - xs[0]) : 1, inv_hy = n > 1 ? 1 / (ys[1] - ys[0]) : 1;
-  const bool moderate_centres = std::all_of(xs.begin(), xs.end(), moderate) &&
-                                std::all_of(ys.begin(), ys.end(), moderate) &&
-                                std::all_of(zs.begin(), zs.end(), moderate);
+  // Whether all centres, and all vertices (one pass here instead of nine tests per triangle:
+  // those were ~4% of the call at 512³), are moderate().
+  bool moderate_centres = true, moderate_vertices = true;
+  for (int i = 0; i < n; ++i)
+    moderate_centres &= moderate(xs[i]) & moderate(ys[i]) & moderate(zs[i]);
+  for (const Vec3& v : solid.vertices) moderate_vertices &= moderate(v);
   const size_t words = g.words_per_column();
   // No zeroing pass here: step 2 writes every word of every band (a reused grid keeps its memory).
   g.bits.resize(static_cast<size_t>(n) * n * words);
@@ -364,9 +368,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
         tri = {{index(0), index(k), index(k + 1)}, solid.face_leaf[f], 1, 0, 1, 0, 0, false};
         const Vec3 &a = solid.vertices[tri.v[0]], &b = solid.vertices[tri.v[1]],
                    &c = solid.vertices[tri.v[2]];
-        tri.moderate = moderate(a.x) && moderate(a.y) && moderate(a.z) && moderate(b.x) &&
-                       moderate(b.y) && moderate(b.z) && moderate(c.x) && moderate(c.y) &&
-                       moderate(c.z);
+        tri.moderate = moderate_vertices || (moderate(a) && moderate(b) && moderate(c));
         const int nz = orient2d(a, b, c, 2);
         if (nz == 0) continue;  // parallel to z (or degenerate): no perturbed column line crosses
         const auto [i0, i1] =
