@@ -70,8 +70,7 @@ std::vector<double> centres(double min, double h, int n) {
 /// Indices [first, last] of the centres inside [lo, hi], or first > last: a floating-point
 /// guess, then exact comparisons with the centre coordinates.
 /// inv_h: 1 / (c[1] − c[0]) (1 when N = 1), computed once by the caller.
-std::pair<int, int> centre_range(const std::vector<double>& c, double inv_h, double lo,
-                                 double hi) {
+std::pair<int, int> centre_range(const std::vector<double>& c, double inv_h, double lo, double hi) {
   const int n = static_cast<int>(c.size());
   // A guess only (the loops below make it exact): truncation instead of floor (std::floor is a
   // library call without SSE4.1), NaN and out-of-range values clamped before the conversion.
@@ -99,12 +98,12 @@ v2d vabs(v2d v) { return reinterpret_cast<v2d>(reinterpret_cast<v2u>(v) & (~uint
 
 /// One covering triangle as a band needs it (computed once, before the bands).
 struct BandTriangle {
-  uint32_t v[3];        ///< vertex indices, leaf orientation
+  uint32_t v[3];  ///< vertex indices, leaf orientation
   uint32_t leaf;
-  uint16_t i0, i1;      ///< rows whose centre x lies in the triangle's x range (N ≤ 4096)
-  uint16_t j0, j1;      ///< the same for columns and y
-  int8_t nz;            ///< orient2d(a, b, c, 2) ≠ 0: winding contribution to the centres below
-  bool moderate;        ///< every coordinate of a, b, c is moderate()
+  uint16_t i0, i1;  ///< rows whose centre x lies in the triangle's x range (N ≤ 4096)
+  uint16_t j0, j1;  ///< the same for columns and y
+  int8_t nz;        ///< orient2d(a, b, c, 2) ≠ 0: winding contribution to the centres below
+  bool moderate;    ///< every coordinate of a, b, c is moderate()
 };
 
 /// Whether v is 0 or of magnitude in [2^-100, 2^100]. When every coordinate a filter sees
@@ -257,8 +256,7 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
           // Below: orient3d = −n_z, i.e. n_z·det > bound; above: n_z·det < −bound.
           const v2d sdet = snz * det;
           if ((kModerate || (in_range(permanent[0]) & in_range(permanent[1]))) &
-              (sdet[0] > bound[0]) &
-              (sdet[1] < -bound[1])) {
+              (sdet[0] > bound[0]) & (sdet[1] < -bound[1])) {
             out.push_back({static_cast<uint32_t>((i - band_first_row) * n + j), leaf,
                            static_cast<uint32_t>(below), nz});
             continue;
