@@ -199,20 +199,23 @@ VisibleHit first_visible(const RayResult& result, double lo, double hi) {
 }
 
 VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray,
-                         double lo, double hi) {
+                         double lo, double hi, std::optional<bool> outside_in_result) {
   VisibleHit v;
   if (bvh.nodes().empty() || !(lo < hi)) return v;
   // Front-to-back needs the windings at the origin: 0 for a closed leaf whose box does not hold
   // the origin. Otherwise (or when the expression holds the all-outside point) cast all hits.
+  // The scene box is tested first: a camera outside it skips the per-leaf boxes.
   thread_local std::vector<uint8_t> inside;
   inside.assign(leaves, 0);
-  bool origin_outside = !tree.evaluate(inside);
-  for (size_t l = 0; l < leaves && origin_outside; ++l) {
-    const Bbox& b = bvh.leaf_bounds()[l];
-    origin_outside = b.empty() || ray.origin.x < b.min.x || ray.origin.x > b.max.x ||
-                     ray.origin.y < b.min.y || ray.origin.y > b.max.y ||
-                     ray.origin.z < b.min.z || ray.origin.z > b.max.z;
-  }
+  if (!outside_in_result) outside_in_result = tree.evaluate(inside);
+  auto holds = [&](const Bbox& b) {
+    return !b.empty() && ray.origin.x >= b.min.x && ray.origin.x <= b.max.x &&
+           ray.origin.y >= b.min.y && ray.origin.y <= b.max.y && ray.origin.z >= b.min.z &&
+           ray.origin.z <= b.max.z;
+  };
+  bool origin_outside = !*outside_in_result;
+  if (origin_outside && holds(bvh.bounds()))
+    for (size_t l = 0; l < leaves && origin_outside; ++l) origin_outside = !holds(bvh.leaf_bounds()[l]);
   if (!origin_outside) return first_visible(cast(bvh, tree, leaves, ray), lo, hi);
 
   // When every node not yet visited enters at τ or later, every hit with t < τ has been found

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <span>
+#include <optional>
 #include <vector>
 
 #include "covering/bvh.h"
@@ -75,9 +76,10 @@ VisibleHit first_visible(const RayResult& result, double lo, double hi);
 /// The same as first_visible(cast(bvh, tree, leaves, ray), lo, hi), computed front to back: only
 /// the hits up to the visible point are found. Precondition (as for cast()): closed leaves. Falls
 /// back to cast() when the origin lies in a leaf's box or the expression contains the point
-/// outside every leaf.
+/// outside every leaf. `outside_in_result`, when given, must be tree.evaluate() with every leaf
+/// outside (a per-frame constant that render() computes once instead of once per ray).
 VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray,
-                         double lo, double hi);
+                         double lo, double hi, std::optional<bool> outside_in_result = {});
 
 struct CastOptions {
   size_t grain = 256;  ///< rays per parallel chunk (results never depend on it)

@@ -34,12 +34,14 @@ std::pair<double, double> allowed(const Ray& ray, const std::optional<Section>& 
   return s > 0 ? std::pair{0.0, ts} : std::pair{std::max(0.0, ts), kInf};
 }
 
+/// `outside_in_result`: the expression's value with every leaf outside (once per frame).
 Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
-              const std::optional<Section>& section) {
+              const std::optional<Section>& section, bool outside_in_result) {
   Sample out;
   const auto [lo, hi] = allowed(ray, section);
   if (lo > hi) return out;
-  const VisibleHit v = first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi);
+  const VisibleHit v =
+      first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi, outside_in_result);
   if (!v.hit) return out;
   out.hit = true;
   out.t = v.t;
@@ -94,6 +96,8 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
   // A key light from the upper left of the camera plus a headlight and ambient.
   const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
   const int tile = std::max(1, o.tile);
+  const bool outside_in_result = !solid.tree.nodes.empty() &&
+                                 solid.tree.evaluate(std::vector<uint8_t>(solid.leaves.size(), 0));
   const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
   parallel_for(static_cast<size_t>(tiles_x) * tiles_y, 1, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
@@ -102,7 +106,7 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
         for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
           const size_t i = static_cast<size_t>(py) * cam.width + px;
           const Ray ray = cam.ray(px, py);
-          const Sample s = sample(solid, bvh, ray, o.section);
+          const Sample s = sample(solid, bvh, ray, o.section, outside_in_result);
           std::array<uint8_t, 3> c = o.background;
           if (s.hit) {
             const std::array<uint8_t, 3> base = s.cap ? cap_colour() : leaf_colour(s.leaf);
