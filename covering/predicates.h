@@ -16,6 +16,9 @@ int orient3d_exact(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 int orient2d_exact(const Vec3& a, const Vec3& b, const Vec3& c, int axis);
 // Below kFilterMin the bound could fail through underflow; above kFilterMax through overflow.
 inline constexpr double kFilterMin = 1e-200;
+/// Shewchuk's stage-A error factors: orient2d (3 + 16ε)ε, orient3d (7 + 56ε)ε.
+inline constexpr double kOrient2dErr = 3.3306690738754716e-16;
+inline constexpr double kOrient3dErr = 7.7715611723761027e-16;
 inline constexpr double kFilterMax = 1e200;
 }  // namespace detail
 
@@ -33,7 +36,7 @@ inline int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) 
   const double permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * std::abs(adz) +
                            (std::abs(cdxady) + std::abs(adxcdy)) * std::abs(bdz) +
                            (std::abs(adxbdy) + std::abs(bdxady)) * std::abs(cdz);
-  const double bound = 7.7715611723761027e-16 * permanent;  // (7 + 56ε)ε
+  const double bound = detail::kOrient3dErr * permanent;
   if (permanent > detail::kFilterMin && permanent < detail::kFilterMax) {
     if (det > bound) return -1;
     if (det < -bound) return 1;
@@ -51,7 +54,7 @@ inline int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
   const double det = left - right;
   const double sum = std::abs(left) + std::abs(right);
   if (sum > detail::kFilterMin && sum < detail::kFilterMax) {
-    const double bound = 3.3306690738754716e-16 * sum;  // (3 + 16ε)ε
+    const double bound = detail::kOrient2dErr * sum;
     if (det > bound) return 1;
     if (det < -bound) return -1;
   }

@@ -53,7 +53,7 @@ int perturbed_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
 /// calls the exact predicate). sum = |left| + |right|.
 int filtered_orient2d(double det, double sum) {
   if (sum > detail::kFilterMin && sum < detail::kFilterMax) {
-    const double bound = 3.3306690738754716e-16 * sum;  // (3 + 16ε)ε, as in orient2d
+    const double bound = detail::kOrient2dErr * sum;
     if (det > bound) return 1;
     if (det < -bound) return -1;
   }
@@ -172,7 +172,7 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
   // rather than a division per crossing.
   const Vec3 nrm = cross(b - a, c - a);
   const double k0 = (a.z - zs[0]) * inv_h, kx = -nrm.x / nrm.z * inv_h, ky = -nrm.y / nrm.z * inv_h;
-  constexpr double kEps2 = 3.3306690738754716e-16;  // orient2d's (3 + 16ε)ε
+  constexpr double kEps2 = detail::kOrient2dErr;
   auto in_range = [](auto sum) { return (sum > detail::kFilterMin) & (sum < detail::kFilterMax); };
   constexpr int kBlock = 64;
   int inside[kBlock];
@@ -230,7 +230,7 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
           const double det = adz * ma + bdz * mb + cdz * mc;
           const double permanent = pa * std::abs(adz) + pb * std::abs(bdz) + pc * std::abs(cdz);
           if (in_range(permanent)) {
-            const double bound = 7.7715611723761027e-16 * permanent;  // (7 + 56ε)ε, as orient3d
+            const double bound = detail::kOrient3dErr * permanent;
             if (det > bound) return -1;  // orient3d's sign is the negation of Shewchuk's det
             if (det < -bound) return 1;
           }
@@ -252,7 +252,7 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
           const v2d adz = v2d{a.z, a.z} - z, bdz = v2d{b.z, b.z} - z, cdz = v2d{c.z, c.z} - z;
           const v2d det = adz * ma + bdz * mb + cdz * mc;
           const v2d permanent = pa * vabs(adz) + pb * vabs(bdz) + pc * vabs(cdz);
-          const v2d bound = 7.7715611723761027e-16 * permanent;
+          const v2d bound = detail::kOrient3dErr * permanent;
           // Below: orient3d = −n_z, i.e. n_z·det > bound; above: n_z·det < −bound.
           const v2d sdet = snz * det;
           if ((kModerate || (in_range(permanent[0]) & in_range(permanent[1]))) &
