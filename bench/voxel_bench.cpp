@@ -4,7 +4,8 @@
 //              floor): "cold" = mapped memory not in cache (a 256 MiB sweep evicts it first: the
 //              memory-bandwidth floor proper), "warm" = right after another pass (at 512³ the
 //              16 MiB grid sits in the 32 MiB L3: a cache-bandwidth figure), "fresh" = newly
-//              allocated memory (page faults included, as a new grid pays them)
+//              allocated memory (page faults included, as a new grid pays them; huge pages as a
+//              grid's, solid/large_vector.h)
 //   openvdb    tools::meshToVolume at the same voxel size, through its world-space wrappers:
 //              meshToLevelSet (narrow band, half width 3) and, up to 512³,
 //              meshToSignedDistanceField with the interior band unlimited (the filled volume that
@@ -46,7 +47,7 @@ double peak_mib() {
 }
 
 /// memset + XOR prefix pass over `words` (the same traffic a presence buffer needs at least).
-uint64_t floor_pass(std::vector<uint64_t>& words) {
+uint64_t floor_pass(cover::LargeVector<uint64_t>& words) {
   std::memset(words.data(), 0, words.size() * sizeof(uint64_t));
   uint64_t acc = 0x9e3779b97f4a7c15ULL;
   for (uint64_t& w : words) w = acc ^= w;
@@ -106,7 +107,7 @@ int main(int argc, char** argv) {
       sink ^= floor_pass(grid.bits);
       t_warm.push_back(since(t0));
       t0 = Clock::now();
-      std::vector<uint64_t> fresh(grid.bits.size());
+      cover::LargeVector<uint64_t> fresh(grid.bits.size());  // allocated as a grid is
       sink ^= floor_pass(fresh);
       t_fresh.push_back(since(t0));
     }

@@ -29,7 +29,7 @@ struct Ref {
   uint32_t index;
 };
 
-constexpr int kBins = 16;          // SAH bins over the centroid extent of the widest axis
+constexpr int kBins = 16;           // SAH bins over the centroid extent of the widest axis
 constexpr uint32_t kSahDepth = 64;  // deeper nodes use median splits: depth ≤ 64 + log2(n) + 1
 
 /// Half the surface area of a box (the SAH weight of a node).
@@ -48,7 +48,7 @@ struct Piece {
 };
 
 struct Builder {
-  std::vector<Ref>& refs;
+  LargeVector<Ref>& refs;
   const BvhOptions& options;
 
   /// Sets node's bounds over refs[begin, end); false for a leaf, else partitions the range into
@@ -99,7 +99,8 @@ struct Builder {
       uint32_t rn = 0;
       for (int b = kBins - 1; b > 0; --b) {
         rn += count[b];
-        for (int a = 0; a < 3; ++a) rlo[a] = std::min(rlo[a], lo[b][a]), rhi[a] = std::max(rhi[a], hi[b][a]);
+        for (int a = 0; a < 3; ++a)
+          rlo[a] = std::min(rlo[a], lo[b][a]), rhi[a] = std::max(rhi[a], hi[b][a]);
         right_cost[b] = rn > 0 ? half_area(rlo, rhi) * rn : 0;
       }
       float llo[3] = {INFINITY, INFINITY, INFINITY}, lhi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -108,23 +109,24 @@ struct Builder {
       double best_cost = INFINITY;
       for (int b = 0; b + 1 < kBins; ++b) {
         ln += count[b];
-        for (int a = 0; a < 3; ++a) llo[a] = std::min(llo[a], lo[b][a]), lhi[a] = std::max(lhi[a], hi[b][a]);
+        for (int a = 0; a < 3; ++a)
+          llo[a] = std::min(llo[a], lo[b][a]), lhi[a] = std::max(lhi[a], hi[b][a]);
         if (ln == 0 || ln == n) continue;
         const double cost = half_area(llo, lhi) * ln + right_cost[b + 1];
         if (cost < best_cost) best_cost = cost, best = b;
       }
       if (best >= 0) {
-        mid = static_cast<uint32_t>(
-            std::partition(refs.begin() + begin, refs.begin() + end,
-                           [&](const Ref& r) { return bin(r) <= best; }) -
-            refs.begin());
+        mid = static_cast<uint32_t>(std::partition(refs.begin() + begin, refs.begin() + end,
+                                                   [&](const Ref& r) { return bin(r) <= best; }) -
+                                    refs.begin());
         return true;
       }
     }
     mid = begin + n / 2;
     std::nth_element(refs.begin() + begin, refs.begin() + mid, refs.begin() + end,
                      [axis](const Ref& l, const Ref& r) {
-                       return l.c[axis] < r.c[axis] || (l.c[axis] == r.c[axis] && l.index < r.index);
+                       return l.c[axis] < r.c[axis] ||
+                              (l.c[axis] == r.c[axis] && l.index < r.index);
                      });
     return true;
   }
@@ -165,7 +167,7 @@ struct Builder {
   }
 
   /// Copies `piece` into nodes[at, at + piece.size), making its child indices global.
-  static void place(const Piece& piece, std::vector<Bvh::Node>& nodes, uint32_t at) {
+  static void place(const Piece& piece, LargeVector<Bvh::Node>& nodes, uint32_t at) {
     if (!piece.left) {
       for (size_t i = 0; i < piece.nodes.size(); ++i) {
         Bvh::Node node = piece.nodes[i];
@@ -184,87 +186,128 @@ struct Builder {
 
 }  // namespace
 
-std::vector<Bvh::Tri> leaf_triangles(const Solid& solid) {
-  const size_t faces = solid.face_count();
-  // Covering triangles per face, counted first so faces can be processed in parallel.
-  std::vector<uint32_t> start(faces + 1, 0);
-  for (size_t f = 0; f < faces; ++f) {
-    const size_t k = solid.face(f).size();
-    start[f + 1] = start[f] + static_cast<uint32_t>(k >= 3 ? k - 2 : 0);
-  }
-  std::vector<Bvh::Tri> all(start[faces]);
-  std::vector<uint8_t> keep(all.size(), 0);
-  parallel_for(faces, 1024, [&](size_t begin, size_t end) {
-    for (size_t f = begin; f < end; ++f) {
-      auto face = solid.face(f);
-      const bool rev = solid.face_sign[f] < 0;  // back to the leaf's own orientation
-      auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
-      for (size_t i = 1; i + 1 < face.size(); ++i) {
-        Bvh::Tri t{vtx(0), vtx(i), vtx(i + 1), solid.face_leaf[f], static_cast<uint32_t>(f)};
-        const size_t slot = start[f] + i - 1;
-        keep[slot] = orient2d(t.a, t.b, t.c, 0) != 0 || orient2d(t.a, t.b, t.c, 1) != 0 ||
-                     orient2d(t.a, t.b, t.c, 2) != 0;
-        all[slot] = t;
-      }
+namespace {
+
+/// The covering triangles of `solid` as the build sees them: triangle g (numbered face by face,
+/// fan order, degenerate ones included) is (v0, v_k, v_k+1) of face face_of[g], k = g − start + 1.
+struct FanTriangles {
+  LargeVector<uint32_t> start;    ///< first triangle of each face (#faces + 1)
+  LargeVector<uint32_t> face_of;  ///< face of each triangle
+  explicit FanTriangles(const Solid& solid) : start(solid.face_count() + 1, 0) {
+    const size_t faces = solid.face_count();
+    for (size_t f = 0; f < faces; ++f) {
+      const size_t k = solid.face(f).size();
+      start[f + 1] = start[f] + static_cast<uint32_t>(k >= 3 ? k - 2 : 0);
     }
-  });
-  size_t kept = 0;
-  for (size_t i = 0; i < all.size(); ++i)
-    if (keep[i]) all[kept++] = all[i];
-  all.resize(kept);
-  return all;
+    face_of.resize(start[faces]);
+    parallel_for(faces, 4096, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f)
+        for (uint32_t g = start[f]; g < start[f + 1]; ++g) face_of[g] = static_cast<uint32_t>(f);
+    });
+  }
+  size_t size() const { return face_of.size(); }
+  /// Triangle g in its leaf's own orientation (outward).
+  Bvh::Tri get(const Solid& solid, uint32_t g) const {
+    const uint32_t f = face_of[g];
+    const auto face = solid.face(f);
+    const bool rev = solid.face_sign[f] < 0;  // back to the leaf's own orientation
+    auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
+    const size_t k = g - start[f] + 1;
+    return {vtx(0), vtx(k), vtx(k + 1), solid.face_leaf[f], f};
+  }
+};
+
+/// Whether t bounds volume (not collinear: some projected orientation is nonzero).
+bool non_degenerate(const Bvh::Tri& t) {
+  return orient2d(t.a, t.b, t.c, 0) != 0 || orient2d(t.a, t.b, t.c, 1) != 0 ||
+         orient2d(t.a, t.b, t.c, 2) != 0;
+}
+
+}  // namespace
+
+std::vector<Bvh::Tri> leaf_triangles(const Solid& solid) {
+  const FanTriangles fan(solid);
+  std::vector<Bvh::Tri> out;
+  for (uint32_t g = 0; g < fan.size(); ++g)
+    if (Bvh::Tri t = fan.get(solid, g); non_degenerate(t)) out.push_back(t);
+  return out;
 }
 
 Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
+  // The triangles are read from the faces three times (plane/keep/bounds, refs, final order)
+  // instead of being copied into an intermediate array: at 606k triangles that copy was 48 MB
+  // of fresh memory, ~0.13 s of page faults on the benchmark machine (solid/large_vector.h).
   const size_t faces = solid.face_count();
+  const size_t leaves = solid.leaves.size();
+  const FanTriangles fan(solid);
   planes_.resize(faces);
-  parallel_for(faces, 1024, [&](size_t begin, size_t end) {
+  leaf_bounds_.resize(leaves);
+  // 1. Face planes, the non-degenerate triangles, and each leaf's exact box (per chunk, then
+  //    merged in chunk order).
+  constexpr size_t kChunk = 4096;  // faces
+  const size_t chunks = (faces + kChunk - 1) / kChunk;
+  std::vector<uint8_t> keep(fan.size(), 0);
+  std::vector<Bbox> chunk_bounds(chunks * leaves);
+  parallel_for(faces, kChunk, [&](size_t begin, size_t end) {
+    Bbox* boxes = chunk_bounds.data() + begin / kChunk * leaves;
     for (size_t f = begin; f < end; ++f) {
       auto face = solid.face(f);
       if (face.size() < 3) continue;
-      const bool rev = solid.face_sign[f] < 0;
-      auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
       Vec3 n{};
-      for (size_t i = 1; i + 1 < face.size(); ++i) n = n + cross(vtx(i) - vtx(0), vtx(i + 1) - vtx(0));
-      planes_[f] = {vtx(0), n};
+      for (uint32_t g = fan.start[f]; g < fan.start[f + 1]; ++g) {
+        const Tri t = fan.get(solid, g);
+        n = n + cross(t.b - t.a, t.c - t.a);
+        if (!non_degenerate(t)) continue;
+        keep[g] = 1;
+        Bbox& box = boxes[t.leaf];
+        box.add(t.a);
+        box.add(t.b);
+        box.add(t.c);
+      }
+      planes_[f] = {fan.get(solid, fan.start[f]).a, n};
     }
   });
-  const std::vector<Tri> all = leaf_triangles(solid);
-  leaf_bounds_.resize(solid.leaves.size());
-  if (all.empty()) return;
-  // Widen node bounds by 1e-9 of the scene's scale: a ray slab test in doubles then errs far less
-  // than the widening, so it can drop no box the exact ray meets (ray.cpp needs no padding).
-  for (const Tri& t : all) {
-    Bbox& leaf = leaf_bounds_[t.leaf];
-    leaf.add(t.a);
-    leaf.add(t.b);
-    leaf.add(t.c);
-  }
+  for (size_t c = 0; c < chunks; ++c)
+    for (size_t l = 0; l < leaves; ++l)
+      if (const Bbox& b = chunk_bounds[c * leaves + l]; !b.empty()) {
+        leaf_bounds_[l].add(b.min);
+        leaf_bounds_[l].add(b.max);
+      }
+  // Kept triangles numbered in order: kept[g] = number of kept triangles before g.
+  LargeVector<uint32_t> kept(fan.size() + 1, 0);
+  for (size_t g = 0; g < fan.size(); ++g) kept[g + 1] = kept[g] + keep[g];
+  const uint32_t n = kept[fan.size()];
+  if (n == 0) return;
   for (const Bbox& b : leaf_bounds_)
     if (!b.empty()) {
       bounds_.add(b.min);
       bounds_.add(b.max);
     }
+  // Widen node bounds by 1e-9 of the scene's scale: a ray slab test in doubles then errs far less
+  // than the widening, so it can drop no box the exact ray meets (ray.cpp needs no padding).
   double scale = 0;
   for (int a = 0; a < 3; ++a)
     scale = std::max({scale, std::abs(bounds_.min[a]), std::abs(bounds_.max[a])});
   const double margin = 1e-9 * scale;
-  std::vector<Ref> refs(all.size());
-  parallel_for(all.size(), 4096, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      const Tri& t = all[i];
-      Ref& r = refs[i];
+  // 2. One Ref per kept triangle, in triangle order; index = the triangle number g (increasing
+  //    with the position, the tie-breaker of median splits).
+  LargeVector<Ref> refs(n);
+  parallel_for(faces, kChunk, [&](size_t begin, size_t end) {
+    for (uint32_t g = fan.start[begin]; g < fan.start[end]; ++g) {
+      if (!keep[g]) continue;
+      const Tri t = fan.get(solid, g);
+      Ref& r = refs[kept[g]];
       for (int a = 0; a < 3; ++a) {
         r.lo[a] = round_down(std::min({t.a[a], t.b[a], t.c[a]}) - margin);
         r.hi[a] = round_up(std::max({t.a[a], t.b[a], t.c[a]}) + margin);
         r.c[a] = static_cast<float>((t.a[a] + t.b[a] + t.c[a]) / 3);
       }
-      r.index = static_cast<uint32_t>(i);
+      r.index = g;
     }
   });
+  // 3. The tree, then the triangles in leaf-node order.
   BvhOptions o = options;
   o.leaf_size = std::max<uint32_t>(1, o.leaf_size);
-  const auto n = static_cast<uint32_t>(refs.size());
   Builder builder{refs, o};
   Piece root;
   builder.build(root, 0, n, 0);
@@ -272,7 +315,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   Builder::place(root, nodes_, 0);
   tris_.resize(n);
   parallel_for(n, 4096, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) tris_[i] = all[refs[i].index];
+    for (size_t i = begin; i < end; ++i) tris_[i] = fan.get(solid, refs[i].index);
   });
   for (const Node& node : nodes_) leaves_ += node.count > 0;
 }

@@ -4,24 +4,24 @@
 // Why hand-written: queries need exact culling on double boxes for an axis-aligned half-line
 // (classification) and for general rays, plus the triangle's leaf and face; CGAL's AABB_tree
 // (the peer) stores a primitive per node with slower traversal (bench/compare_cgal measures both).
-// Layout: 32-byte nodes in depth-first order; an inner node's left child is the next node, its right
-// child is `first`. Leaves own triangles [first, first + count). Boxes are exact min/max of the
-// double coordinates, so "box misses ⇒ triangle misses" holds exactly.
-// Build: binned SAH (16 bins over the centroid extent of the widest axis), the centroid median
-// where SAH finds no split or below depth 64; subtrees above a size threshold are built in
-// parallel into separate pieces and then placed in depth-first order, so the tree does not
-// depend on the thread count.
+// Layout: 32-byte nodes in depth-first order; an inner node's left child is the next node, its
+// right child is `first`. Leaves own triangles [first, first + count). Boxes are exact min/max of
+// the double coordinates, so "box misses ⇒ triangle misses" holds exactly. Build: binned SAH (16
+// bins over the centroid extent of the widest axis), the centroid median where SAH finds no split
+// or below depth 64; subtrees above a size threshold are built in parallel into separate pieces and
+// then placed in depth-first order, so the tree does not depend on the thread count.
 
 #include <cstdint>
 #include <vector>
 
+#include "solid/large_vector.h"
 #include "solid/solid.h"
 
 namespace cover {
 
 struct BvhOptions {
-  uint32_t leaf_size = 4;           ///< max triangles per leaf node
-  size_t parallel_threshold = 8192; ///< subtrees at least this large are built in parallel
+  uint32_t leaf_size = 4;            ///< max triangles per leaf node
+  size_t parallel_threshold = 8192;  ///< subtrees at least this large are built in parallel
 };
 
 class Bvh {
@@ -37,8 +37,9 @@ class Bvh {
     uint32_t face = 0;  ///< face index in the Solid
   };
   /// 32 bytes. Bounds are floats rounded outwards from the exact double box widened by 1e-9 of
-  /// the scene's largest coordinate, so they contain it with room for a ray slab test's rounding: a half-line or ray that misses them misses every triangle below (culling only; every
-  /// decision on a triangle uses its double coordinates).
+  /// the scene's largest coordinate, so they contain it with room for a ray slab test's rounding: a
+  /// half-line or ray that misses them misses every triangle below (culling only; every decision on
+  /// a triangle uses its double coordinates).
   struct Node {
     float lo[3];
     float hi[3];
@@ -58,9 +59,9 @@ class Bvh {
     Vec3 normal;
   };
 
-  const std::vector<Tri>& triangles() const { return tris_; }
-  const std::vector<FacePlane>& face_planes() const { return planes_; }
-  const std::vector<Node>& nodes() const { return nodes_; }
+  const LargeVector<Tri>& triangles() const { return tris_; }
+  const LargeVector<FacePlane>& face_planes() const { return planes_; }
+  const LargeVector<Node>& nodes() const { return nodes_; }
   /// Exact bounding box of all triangles (empty when there are none).
   const Bbox& bounds() const { return bounds_; }
   /// Exact bounding box of each leaf's triangles, by leaf id (#leaves; empty for a leaf without
@@ -71,9 +72,9 @@ class Bvh {
   size_t memory_bytes() const;
 
  private:
-  std::vector<Tri> tris_;
-  std::vector<Node> nodes_;
-  std::vector<FacePlane> planes_;
+  LargeVector<Tri> tris_;
+  LargeVector<Node> nodes_;
+  LargeVector<FacePlane> planes_;
   Bbox bounds_;
   std::vector<Bbox> leaf_bounds_;
   size_t leaves_ = 0;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solid/large_vector.h"
 #include "solid/types.h"
 
 namespace cover {
@@ -28,7 +29,7 @@ VoxelBounds default_voxel_bounds(const Bbox& box, int n);
 struct VoxelGrid {
   int n = 0;
   VoxelBounds bounds;
-  std::vector<uint64_t> bits;
+  LargeVector<uint64_t> bits;
 
   size_t words_per_column() const { return (static_cast<size_t>(n) + 63) / 64; }
   size_t column_word(int i, int j) const {
