@@ -195,8 +195,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::filesystem::path folder = argv[1];
-  const std::filesystem::path png = argc > 2 ? argv[2] : "/tmp/render_vs_cgal.png";
-  const bool cover_only = argc > 3 && std::string(argv[3]) == "--cover-only";
+  std::filesystem::path png = "/tmp/render_vs_cgal.png";
+  bool cover_only = false;
+  for (int i = 2; i < argc; ++i) {
+    if (std::string(argv[i]) == "--cover-only")
+      cover_only = true;
+    else
+      png = argv[i];
+  }
   // ((A ∪ B ∪ C) − (D ∪ E)) ∪ ((F ∩ G) − H) ∪ (I − J)
   const Expr expr = node(
       Op::kUnion, {node(Op::kDifference, {node(Op::kUnion, {leaf(0), leaf(1), leaf(2)}),

@@ -47,15 +47,18 @@ bool encode(const std::filesystem::path& tmp, int width, int height, int bit_dep
 void write_atomic(const std::filesystem::path& path, int width, int height, int bit_depth,
                   int color, const std::vector<std::vector<uint8_t>>& rows) {
   if (width <= 0 || height <= 0) throw InputError(path.string() + ": empty image");
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    return encode(tmp, width, height, bit_depth, color, rows);
-  }, "PNG");
+  write_atomically(
+      path,
+      [&](const std::filesystem::path& tmp) {
+        return encode(tmp, width, height, bit_depth, color, rows);
+      },
+      "PNG");
 }
 
 }  // namespace
 
 void write_png_rgb(const std::filesystem::path& path, int width, int height,
-                   const std::vector<uint8_t>& rgb) {
+                   std::span<const uint8_t> rgb) {
   std::vector<std::vector<uint8_t>> rows(static_cast<size_t>(std::max(0, height)));
   for (int y = 0; y < height; ++y)
     rows[y].assign(rgb.begin() + 3L * y * width, rgb.begin() + 3L * (y + 1) * width);
@@ -63,7 +66,7 @@ void write_png_rgb(const std::filesystem::path& path, int width, int height,
 }
 
 void write_png_gray16(const std::filesystem::path& path, int width, int height,
-                      const std::vector<uint16_t>& values) {
+                      std::span<const uint16_t> values) {
   std::vector<std::vector<uint8_t>> rows(static_cast<size_t>(std::max(0, height)));
   for (int y = 0; y < height; ++y) {
     rows[y].resize(2 * static_cast<size_t>(width));
@@ -84,8 +87,8 @@ PngImage read_png(const std::filesystem::path& path) {
   PngImage out;
   out.width = static_cast<int>(image.width);
   out.height = static_cast<int>(image.height);
-  const bool gray16 = (image.format & PNG_FORMAT_FLAG_COLOR) == 0 &&
-                      (image.format & PNG_FORMAT_FLAG_LINEAR) != 0;
+  const bool gray16 =
+      (image.format & PNG_FORMAT_FLAG_COLOR) == 0 && (image.format & PNG_FORMAT_FLAG_LINEAR) != 0;
   // The simplified API converts; for 16-bit grey we ask for linear 16-bit grey samples.
   image.format = gray16 ? PNG_FORMAT_LINEAR_Y : PNG_FORMAT_RGB;
   out.channels = gray16 ? 1 : 3;

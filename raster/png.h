@@ -4,17 +4,18 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <vector>
 
 namespace cover {
 
 /// 8-bit RGB, 3·width·height bytes, rows from the top.
 void write_png_rgb(const std::filesystem::path& path, int width, int height,
-                   const std::vector<uint8_t>& rgb);
+                   std::span<const uint8_t> rgb);
 
 /// 16-bit grey, width·height values, rows from the top.
 void write_png_gray16(const std::filesystem::path& path, int width, int height,
-                      const std::vector<uint16_t>& values);
+                      std::span<const uint16_t> values);
 
 /// Reads a PNG back (tests): channels = 3 for RGB8 or 1 for GRAY16; values widened to uint16.
 struct PngImage {

@@ -63,14 +63,28 @@ std::array<uint8_t, 3> hsv(double h, double s, double v) {
   const double c = v * s, x = c * (1 - std::abs(std::fmod(h * 6, 2.0) - 1)), m = v - c;
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(h * 6) % 6) {
-    case 0: r = c, g = x; break;
-    case 1: r = x, g = c; break;
-    case 2: g = c, b = x; break;
-    case 3: g = x, b = c; break;
-    case 4: r = x, b = c; break;
-    default: r = c, b = x; break;
+    case 0:
+      r = c, g = x;
+      break;
+    case 1:
+      r = x, g = c;
+      break;
+    case 2:
+      g = c, b = x;
+      break;
+    case 3:
+      g = x, b = c;
+      break;
+    case 4:
+      r = x, b = c;
+      break;
+    default:
+      r = c, b = x;
+      break;
   }
-  auto byte = [](double f) { return static_cast<uint8_t>(std::lround(std::clamp(f, 0.0, 1.0) * 255)); };
+  auto byte = [](double f) {
+    return static_cast<uint8_t>(std::lround(std::clamp(f, 0.0, 1.0) * 255));
+  };
   return {byte(r + m), byte(g + m), byte(b + m)};
 }
 
@@ -92,7 +106,7 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
   img.rgb.assign(3 * n, 0);
   img.depth.assign(n, Image::kFarDepth);
   img.ids.assign(n, Image::kBackgroundId);
-  std::vector<Vec3> normals(n);
+  LargeVector<Vec3> normals(n);  // for the outline (24 MiB at 1024²: on huge pages)
   // A key light from the upper left of the camera plus a headlight and ambient.
   const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
   const int tile = std::max(1, o.tile);
@@ -101,7 +115,8 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
   const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
   parallel_for(static_cast<size_t>(tiles_x) * tiles_y, 1, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
-      const int x0 = static_cast<int>(t % tiles_x) * tile, y0 = static_cast<int>(t / tiles_x) * tile;
+      const int x0 = static_cast<int>(t % tiles_x) * tile,
+                y0 = static_cast<int>(t / tiles_x) * tile;
       for (int py = y0; py < std::min(cam.height, y0 + tile); ++py)
         for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
           const size_t i = static_cast<size_t>(py) * cam.width + px;
@@ -117,7 +132,8 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
               c[ch] = static_cast<uint8_t>(std::lround(std::min(255.0, base[ch] * k)));
             const double f = (s.t - cam.near) / (cam.far - cam.near);
             img.depth[i] = static_cast<uint16_t>(std::lround(std::clamp(f, 0.0, 1.0) * 65534));
-            img.ids[i] = s.cap ? Image::kCapId : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
+            img.ids[i] = s.cap ? Image::kCapId
+                               : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
             normals[i] = s.normal;
           }
           std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);
@@ -126,22 +142,27 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
   });
   if (!o.outline) return img;
   // Outline: a pixel whose right or lower neighbour shows another leaf (or background) or a
-  // normal more than ~35° apart (silhouettes, leaf boundaries, creases) is darkened.
-  std::vector<uint8_t> edge(n, 0);
-  for (int py = 0; py < cam.height; ++py)
-    for (int px = 0; px < cam.width; ++px) {
-      const size_t i = static_cast<size_t>(py) * cam.width + px;
-      for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
-        if (px + dx >= cam.width || py + dy >= cam.height) continue;
-        const size_t j = static_cast<size_t>(py + dy) * cam.width + px + dx;
-        if (img.ids[i] == Image::kBackgroundId && img.ids[j] == Image::kBackgroundId) continue;
-        const bool differ = img.ids[i] != img.ids[j] || dot(normals[i], normals[j]) < 0.82;
-        if (differ) edge[img.ids[i] == Image::kBackgroundId ? j : i] = 1;
+  // normal more than ~35° apart (silhouettes, leaf boundaries, creases) is darkened; where one
+  // of the two is background, the surface pixel is. As a pull per pixel (so rows run in
+  // parallel, each writing only its own pixels): surface pixel p is darkened iff it differs from
+  // its right or lower neighbour, or its left or upper neighbour is background.
+  auto differ = [&](size_t i, size_t j) {
+    return img.ids[i] != img.ids[j] || dot(normals[i], normals[j]) < 0.82;
+  };
+  parallel_for(static_cast<size_t>(cam.height), 16, [&](size_t begin, size_t end) {
+    for (size_t py = begin; py < end; ++py)
+      for (int px = 0; px < cam.width; ++px) {
+        const size_t i = py * cam.width + px;
+        if (img.ids[i] == Image::kBackgroundId) continue;
+        const bool edge = (px + 1 < cam.width && differ(i, i + 1)) ||
+                          (py + 1 < static_cast<size_t>(cam.height) && differ(i, i + cam.width)) ||
+                          (px > 0 && img.ids[i - 1] == Image::kBackgroundId) ||
+                          (py > 0 && img.ids[i - cam.width] == Image::kBackgroundId);
+        if (edge)
+          for (int ch = 0; ch < 3; ++ch)
+            img.rgb[3 * i + ch] = static_cast<uint8_t>(img.rgb[3 * i + ch] * 0.35);
       }
-    }
-  for (size_t i = 0; i < n; ++i)
-    if (edge[i])
-      for (int ch = 0; ch < 3; ++ch) img.rgb[3 * i + ch] = static_cast<uint8_t>(img.rgb[3 * i + ch] * 0.35);
+  });
   return img;
 }
 

@@ -185,7 +185,7 @@ TEST(Render, SameImageWithOneAndTwoThreadsAndPngRoundTrip) {
     const PngImage c = read_png(dir / "c.png"), d = read_png(dir / "d.png");
     EXPECT_EQ(c.width, 160);
     EXPECT_EQ(std::vector<uint16_t>(one.rgb.begin(), one.rgb.end()), c.values);
-    EXPECT_EQ(d.values, one.depth);
+    EXPECT_EQ(d.values, std::vector<uint16_t>(one.depth.begin(), one.depth.end()));
     std::filesystem::remove_all(dir);
   }
 }
