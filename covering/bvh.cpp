@@ -47,78 +47,94 @@ struct Piece {
   uint32_t size = 0;  ///< nodes of the subtree
 };
 
+/// A node's box and the box of its triangles' centroids.
+struct Extent {
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  float clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  void add(const Ref& r) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], r.lo[a]);
+      hi[a] = std::max(hi[a], r.hi[a]);
+      clo[a] = std::min(clo[a], r.c[a]);
+      chi[a] = std::max(chi[a], r.c[a]);
+    }
+  }
+  void add(const Extent& e) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], e.lo[a]);
+      hi[a] = std::max(hi[a], e.hi[a]);
+      clo[a] = std::min(clo[a], e.clo[a]);
+      chi[a] = std::max(chi[a], e.chi[a]);
+    }
+  }
+};
+
 struct Builder {
   LargeVector<Ref>& refs;
   const BvhOptions& options;
 
-  /// Sets node's bounds over refs[begin, end); false for a leaf, else partitions the range into
-  /// [begin, mid) and [mid, end), both non-empty: binned SAH on the widest centroid axis, or the
-  /// centroid median when SAH finds no split (all centroids in one bin) or the node is deep.
-  bool split(Bvh::Node& node, uint32_t begin, uint32_t end, uint32_t depth, uint32_t& mid) {
+  Extent extent(uint32_t begin, uint32_t end) const {
+    Extent e;
+    for (uint32_t i = begin; i < end; ++i) e.add(refs[i]);
+    return e;
+  }
+
+  /// Sets node's bounds to `e` (the extent of refs[begin, end)); false for a leaf, else
+  /// partitions the range into [begin, mid) and [mid, end), both non-empty, and sets the
+  /// halves' extents: binned SAH on the widest centroid axis (the halves' extents are unions of
+  /// the bins': min and max are exact, so they equal a pass over the halves, which is saved), or
+  /// the centroid median when SAH finds no split (all centroids in one bin) or the node is deep.
+  bool split(const Extent& e, Bvh::Node& node, uint32_t begin, uint32_t end, uint32_t depth,
+             uint32_t& mid, Extent& left, Extent& right) {
     const uint32_t n = end - begin;
-    float clo[3], chi[3];
-    for (int a = 0; a < 3; ++a) {
-      node.lo[a] = clo[a] = INFINITY;
-      node.hi[a] = chi[a] = -INFINITY;
-    }
-    for (uint32_t i = begin; i < end; ++i)
-      for (int a = 0; a < 3; ++a) {
-        node.lo[a] = std::min(node.lo[a], refs[i].lo[a]);
-        node.hi[a] = std::max(node.hi[a], refs[i].hi[a]);
-        clo[a] = std::min(clo[a], refs[i].c[a]);
-        chi[a] = std::max(chi[a], refs[i].c[a]);
-      }
+    for (int a = 0; a < 3; ++a) node.lo[a] = e.lo[a], node.hi[a] = e.hi[a];
     node.count = 0;
     if (n <= options.leaf_size) return false;
-    const float ex = chi[0] - clo[0], ey = chi[1] - clo[1], ez = chi[2] - clo[2];
+    const float ex = e.chi[0] - e.clo[0], ey = e.chi[1] - e.clo[1], ez = e.chi[2] - e.clo[2];
     const int axis = ex >= ey && ex >= ez ? 0 : (ey >= ez ? 1 : 2);
-    const float extent = chi[axis] - clo[axis];
-    if (depth < kSahDepth && extent > 0) {
-      // In double: kBins / extent stays finite even for a denormal float extent, and
+    const float width = e.chi[axis] - e.clo[axis];
+    if (depth < kSahDepth && width > 0) {
+      // In double: kBins / width stays finite even for a denormal float width, and
       // (c - clo) * scale lies in [0, kBins] up to rounding, so the int conversion is defined.
-      const double scale = kBins / double{extent};
+      const double scale = kBins / double{width};
+      const float clo = e.clo[axis];
       auto bin = [&](const Ref& r) {
-        return std::clamp(static_cast<int>((double{r.c[axis]} - clo[axis]) * scale), 0, kBins - 1);
+        return std::clamp(static_cast<int>((double{r.c[axis]} - clo) * scale), 0, kBins - 1);
       };
       uint32_t count[kBins] = {};
-      float lo[kBins][3], hi[kBins][3];
-      for (int b = 0; b < kBins; ++b)
-        for (int a = 0; a < 3; ++a) lo[b][a] = INFINITY, hi[b][a] = -INFINITY;
+      Extent bins[kBins];
       for (uint32_t i = begin; i < end; ++i) {
         const Ref& r = refs[i];
         const int b = bin(r);
         ++count[b];
-        for (int a = 0; a < 3; ++a) {
-          lo[b][a] = std::min(lo[b][a], r.lo[a]);
-          hi[b][a] = std::max(hi[b][a], r.hi[a]);
-        }
+        bins[b].add(r);
       }
       // cost[b]: SAH cost of splitting after bin b (area × count on each side); least b on ties.
       double right_cost[kBins];
-      float rlo[3] = {INFINITY, INFINITY, INFINITY}, rhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+      Extent suffix;
       uint32_t rn = 0;
       for (int b = kBins - 1; b > 0; --b) {
         rn += count[b];
-        for (int a = 0; a < 3; ++a)
-          rlo[a] = std::min(rlo[a], lo[b][a]), rhi[a] = std::max(rhi[a], hi[b][a]);
-        right_cost[b] = rn > 0 ? half_area(rlo, rhi) * rn : 0;
+        suffix.add(bins[b]);
+        right_cost[b] = rn > 0 ? half_area(suffix.lo, suffix.hi) * rn : 0;
       }
-      float llo[3] = {INFINITY, INFINITY, INFINITY}, lhi[3] = {-INFINITY, -INFINITY, -INFINITY};
+      Extent prefix;
       uint32_t ln = 0;
       int best = -1;
       double best_cost = INFINITY;
       for (int b = 0; b + 1 < kBins; ++b) {
         ln += count[b];
-        for (int a = 0; a < 3; ++a)
-          llo[a] = std::min(llo[a], lo[b][a]), lhi[a] = std::max(lhi[a], hi[b][a]);
+        prefix.add(bins[b]);
         if (ln == 0 || ln == n) continue;
-        const double cost = half_area(llo, lhi) * ln + right_cost[b + 1];
+        const double cost = half_area(prefix.lo, prefix.hi) * ln + right_cost[b + 1];
         if (cost < best_cost) best_cost = cost, best = b;
       }
       if (best >= 0) {
         mid = static_cast<uint32_t>(std::partition(refs.begin() + begin, refs.begin() + end,
                                                    [&](const Ref& r) { return bin(r) <= best; }) -
                                     refs.begin());
+        left = right = Extent{};
+        for (int b = 0; b < kBins; ++b) (b <= best ? left : right).add(bins[b]);
         return true;
       }
     }
@@ -128,41 +144,47 @@ struct Builder {
                        return l.c[axis] < r.c[axis] ||
                               (l.c[axis] == r.c[axis] && l.index < r.index);
                      });
+    left = extent(begin, mid);
+    right = extent(mid, end);
     return true;
   }
 
-  /// Appends the subtree of refs[begin, end) to `out` in depth-first order.
-  void build_serial(std::vector<Bvh::Node>& out, uint32_t begin, uint32_t end, uint32_t depth) {
+  /// Appends the subtree of refs[begin, end) (extent e) to `out` in depth-first order.
+  void build_serial(std::vector<Bvh::Node>& out, uint32_t begin, uint32_t end, uint32_t depth,
+                    const Extent& e) {
     const auto slot = static_cast<uint32_t>(out.size());
     out.emplace_back();
     Bvh::Node node;
     uint32_t mid = 0;
-    if (!split(node, begin, end, depth, mid)) {
+    Extent left, right;
+    if (!split(e, node, begin, end, depth, mid, left, right)) {
       node.first = begin;
       node.count = end - begin;
       out[slot] = node;
       return;
     }
-    build_serial(out, begin, mid, depth + 1);
+    build_serial(out, begin, mid, depth + 1, left);
     node.first = static_cast<uint32_t>(out.size());
     out[slot] = node;
-    build_serial(out, mid, end, depth + 1);
+    build_serial(out, mid, end, depth + 1, right);
   }
 
-  /// Builds the subtree of refs[begin, end) into `piece`, both halves in parallel above the
-  /// threshold (the tree does not depend on which thread builds what).
-  void build(Piece& piece, uint32_t begin, uint32_t end, uint32_t depth) {
+  /// Builds the subtree of refs[begin, end) (extent e) into `piece`, both halves in parallel
+  /// above the threshold (the tree does not depend on which thread builds what).
+  void build(Piece& piece, uint32_t begin, uint32_t end, uint32_t depth, const Extent& e) {
     uint32_t mid = 0;
-    if (end - begin < options.parallel_threshold || !split(piece.node, begin, end, depth, mid)) {
+    Extent left, right;
+    if (end - begin < options.parallel_threshold ||
+        !split(e, piece.node, begin, end, depth, mid, left, right)) {
       piece.nodes.reserve(2 * (end - begin) / options.leaf_size + 1);
-      build_serial(piece.nodes, begin, end, depth);
+      build_serial(piece.nodes, begin, end, depth, e);
       piece.size = static_cast<uint32_t>(piece.nodes.size());
       return;
     }
     piece.left = std::make_unique<Piece>();
     piece.right = std::make_unique<Piece>();
-    parallel_invoke([&] { build(*piece.left, begin, mid, depth + 1); },
-                    [&] { build(*piece.right, mid, end, depth + 1); });
+    parallel_invoke([&] { build(*piece.left, begin, mid, depth + 1, left); },
+                    [&] { build(*piece.right, mid, end, depth + 1, right); });
     piece.size = 1 + piece.left->size + piece.right->size;
   }
 
@@ -240,8 +262,16 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   const size_t faces = solid.face_count();
   const size_t leaves = solid.leaves.size();
   const FanTriangles fan(solid);
-  planes_.resize(faces);
   leaf_bounds_.resize(leaves);
+  size_t polygons = 0;  // faces with more than one fan triangle: they get a stored plane
+  for (size_t f = 0; f < faces; ++f) polygons += fan.start[f + 1] - fan.start[f] > 1;
+  if (polygons > 0) {
+    plane_of_.assign(faces, UINT32_MAX);
+    uint32_t next = 0;
+    for (size_t f = 0; f < faces; ++f)
+      if (fan.start[f + 1] - fan.start[f] > 1) plane_of_[f] = next++;
+    planes_.resize(polygons);
+  }
   // 1. Face planes, the non-degenerate triangles, and each leaf's exact box (per chunk, then
   //    merged in chunk order).
   constexpr size_t kChunk = 4096;  // faces
@@ -251,8 +281,6 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   parallel_for(faces, kChunk, [&](size_t begin, size_t end) {
     Bbox* boxes = chunk_bounds.data() + begin / kChunk * leaves;
     for (size_t f = begin; f < end; ++f) {
-      auto face = solid.face(f);
-      if (face.size() < 3) continue;
       Vec3 n{};
       for (uint32_t g = fan.start[f]; g < fan.start[f + 1]; ++g) {
         const Tri t = fan.get(solid, g);
@@ -264,7 +292,8 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
         box.add(t.b);
         box.add(t.c);
       }
-      planes_[f] = {fan.get(solid, fan.start[f]).a, n};
+      if (!plane_of_.empty() && plane_of_[f] != UINT32_MAX)
+        planes_[plane_of_[f]] = {fan.get(solid, fan.start[f]).a, n};
     }
   });
   for (size_t c = 0; c < chunks; ++c)
@@ -310,7 +339,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   o.leaf_size = std::max<uint32_t>(1, o.leaf_size);
   Builder builder{refs, o};
   Piece root;
-  builder.build(root, 0, n, 0);
+  builder.build(root, 0, n, 0, builder.extent(0, n));
   nodes_.resize(root.size);
   Builder::place(root, nodes_, 0);
   tris_.resize(n);
@@ -322,7 +351,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
 
 size_t Bvh::memory_bytes() const {
   return tris_.capacity() * sizeof(Tri) + nodes_.capacity() * sizeof(Node) +
-         planes_.capacity() * sizeof(FacePlane);
+         planes_.capacity() * sizeof(FacePlane) + plane_of_.capacity() * sizeof(uint32_t);
 }
 
 }  // namespace cover
