@@ -42,7 +42,7 @@ namespace {
 /// BVH over it holds exactly those triangles with face = tri index.
 Solid tri_solid(const Solid& solid, const Arrangement& arr) {
   Solid s;
-  s.vertices = arr.originals;
+  s.vertices.assign(arr.originals.begin(), arr.originals.end());
   s.leaves.resize(solid.leaves.size());
   s.tree = solid.tree;
   s.face_vertices.reserve(arr.tris.size() * 3);
@@ -70,8 +70,8 @@ constexpr double kDirections[][3] = {
 };
 
 struct Sides {
-  std::vector<int> minus, plus;    ///< winding per leaf on the − / + side of n_t
-  std::vector<uint8_t> coincident; ///< leaf has a triangle containing c
+  std::vector<int> minus, plus;     ///< winding per leaf on the − / + side of n_t
+  std::vector<uint8_t> coincident;  ///< leaf has a triangle containing c
 };
 
 /// Windings of every leaf on both sides of tri `t` at the exact point c (see notation).
@@ -196,8 +196,7 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
   const Bvh bvh(ts);
   const Bbox box = bvh.bounds();
   double reach = 1;
-  for (int a = 0; a < 3; ++a)
-    reach = std::max({reach, std::abs(box.min[a]), std::abs(box.max[a])});
+  for (int a = 0; a < 3; ++a) reach = std::max({reach, std::abs(box.min[a]), std::abs(box.max[a])});
   reach *= 8;  // |D| ≥ reach ≥ 4·(scene diameter): c + D leaves the box
 
   // Decision per patch: 0 drop, 1 keep, 2 keep reversed.
@@ -216,9 +215,10 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
       bool found = false;
       for (const auto& wgt : kWeights) {
         const K::FT sum(wgt[0] + wgt[1] + wgt[2]);
-        const Point c = CGAL::ORIGIN + ((p0 - CGAL::ORIGIN) * K::FT(wgt[0]) +
-                                        (p1 - CGAL::ORIGIN) * K::FT(wgt[1]) +
-                                        (p2 - CGAL::ORIGIN) * K::FT(wgt[2])) / sum;
+        const Point c = CGAL::ORIGIN +
+                        ((p0 - CGAL::ORIGIN) * K::FT(wgt[0]) + (p1 - CGAL::ORIGIN) * K::FT(wgt[1]) +
+                         (p2 - CGAL::ORIGIN) * K::FT(wgt[2])) /
+                            sum;
         try {
           sides = windings(arr, bvh, leaves, piece.tri, c, reach);
           found = true;

@@ -76,7 +76,8 @@ void triangulate_face(HalfedgeMesh& m, uint32_t f) {
   // out[i]: the remainder's half-edge leaving corner i. Cutting ear (a, b, c) splits off the
   // chain a → b → c; the remainder keeps the new half-edge a → c.
   std::vector<uint32_t> out = he;
-  for (size_t t = 0; t + 1 < tris.size(); ++t) out[tris[t][0]] = m.split_face(out[tris[t][0]], out[tris[t][2]]);
+  for (size_t t = 0; t + 1 < tris.size(); ++t)
+    out[tris[t][0]] = m.split_face(out[tris[t][0]], out[tris[t][2]]);
 }
 
 }  // namespace
@@ -97,7 +98,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   ctx.plane = plane;
   ctx.axis = dominant_axis(n);
   ctx.original_vertices = m.vertex_slots();
-  ctx.input_points = mesh.vertices;
+  ctx.input_points.assign(mesh.vertices.begin(), mesh.vertices.end());
   ctx.triangulate = options.triangulate_caps;
   const uint32_t n0 = m.vertex_slots();
 

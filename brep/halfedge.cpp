@@ -12,7 +12,7 @@ HalfedgeMesh HalfedgeMesh::from_polygon_mesh(const PolygonMesh& mesh) {
   HalfedgeMesh m;
   const uint32_t nv = static_cast<uint32_t>(mesh.vertices.size());
   const size_t nc = mesh.face_vertices.size();  // corners = directed face sides
-  m.position_ = mesh.vertices;
+  m.position_.assign(mesh.vertices.begin(), mesh.vertices.end());
   m.vertex_halfedge_.assign(nv, kNone);
   m.vertex_deleted_.assign(nv, 0);
   // Corner c of face f goes face_vertices[c] → the next index of the same face.
@@ -34,7 +34,8 @@ HalfedgeMesh HalfedgeMesh::from_polygon_mesh(const PolygonMesh& mesh) {
   for (uint32_t v = 0; v < nv; ++v) start[v + 1] += start[v];
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t c = 0; c < nc; ++c) bucket[fill[mesh.face_vertices[c]]++] = static_cast<uint32_t>(c);
+    for (size_t c = 0; c < nc; ++c)
+      bucket[fill[mesh.face_vertices[c]]++] = static_cast<uint32_t>(c);
   }
   std::vector<uint32_t> corner_he(nc, kNone);
   m.origin_.reserve(2 * nc);

@@ -13,6 +13,7 @@
 // "always"; otherwise they are ordinary pages). Smaller blocks, and every block off Linux, use
 // operator new. Stateless: all instances are equal.
 
+#include <algorithm>
 #include <cstddef>
 #include <new>
 #include <vector>
@@ -60,5 +61,12 @@ struct LargeAllocator {
 /// A std::vector whose large buffers live on huge pages (see above).
 template <typename T>
 using LargeVector = std::vector<T, LargeAllocator<T>>;
+
+/// Element-wise equality with a plain std::vector (found by argument-dependent lookup through
+/// the allocator; C++20 also provides the reversed form).
+template <typename T>
+bool operator==(const LargeVector<T>& a, const std::vector<T>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end());
+}
 
 }  // namespace cover

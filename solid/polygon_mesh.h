@@ -2,7 +2,8 @@
 // PolygonMesh: the plain indexed polygon soup every reader produces and every writer takes.
 //   vertices      #V points
 //   face_start    #F+1 offsets into face_vertices (face_start[0] == 0, non-decreasing)
-//   face_vertices concatenated vertex indices; face f is face_vertices[face_start[f] .. face_start[f+1])
+//   face_vertices concatenated vertex indices; face f is face_vertices[face_start[f] ..
+//   face_start[f+1])
 // A face is a closed polygon, counter-clockwise seen from outside. A face may hold several loops
 // joined by false edges (an index pair that appears once in each direction inside the face,
 // paper §3 Fig. 1); such faces are kept as one index list.
@@ -11,14 +12,15 @@
 #include <span>
 #include <vector>
 
+#include "solid/large_vector.h"
 #include "solid/types.h"
 
 namespace cover {
 
 struct PolygonMesh {
-  std::vector<Vec3> vertices;
-  std::vector<uint32_t> face_start{0};
-  std::vector<uint32_t> face_vertices;
+  LargeVector<Vec3> vertices;
+  LargeVector<uint32_t> face_start{0};
+  LargeVector<uint32_t> face_vertices;
 
   size_t face_count() const { return face_start.size() - 1; }
   std::span<const uint32_t> face(size_t f) const {

@@ -249,7 +249,7 @@ struct FoundIntersection {};
 
 namespace detail {
 
-bool all_collinear(const std::vector<Vec3>& vertices, std::span<const uint32_t> loop) {
+bool all_collinear(std::span<const Vec3> vertices, std::span<const uint32_t> loop) {
   if (loop.empty()) return true;
   const Vec3& a = vertices[loop[0]];
   size_t i = 1;

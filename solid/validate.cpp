@@ -66,8 +66,8 @@ class HalfEdges {
     return h > start_[face_of_[h]] ? h - 1 : start_[face_of_[h] + 1] - 1;
   }
 
-  const std::vector<uint32_t>& fv_;
-  const std::vector<uint32_t>& start_;
+  const LargeVector<uint32_t>& fv_;
+  const LargeVector<uint32_t>& start_;
   std::vector<uint32_t> face_of_;
 };
 

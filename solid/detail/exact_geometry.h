@@ -14,6 +14,6 @@ namespace cover::detail {
 /// True when the points vertices[loop[i]] lie on one line, decided exactly on the input doubles.
 /// Fewer than three distinct points (coincident coordinates count once) are collinear.
 /// Precondition: every loop[i] < vertices.size().
-bool all_collinear(const std::vector<Vec3>& vertices, std::span<const uint32_t> loop);
+bool all_collinear(std::span<const Vec3> vertices, std::span<const uint32_t> loop);
 
 }  // namespace cover::detail
