@@ -247,14 +247,6 @@ bool non_degenerate(const Bvh::Tri& t) {
 
 }  // namespace
 
-std::vector<Bvh::Tri> leaf_triangles(const Solid& solid) {
-  const FanTriangles fan(solid);
-  std::vector<Bvh::Tri> out;
-  for (uint32_t g = 0; g < fan.size(); ++g)
-    if (Bvh::Tri t = fan.get(solid, g); non_degenerate(t)) out.push_back(t);
-  return out;
-}
-
 Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   // The triangles are read from the faces three times (plane/keep/bounds, refs, final order)
   // instead of being copied into an intermediate array: at 606k triangles that copy was 48 MB

@@ -113,8 +113,4 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
   }
 }
 
-/// Every non-degenerate covering triangle (v0, vi, vi+1) of every face of `solid`, in face
-/// order, in its leaf's own orientation (the triangles a Bvh is built over).
-std::vector<Bvh::Tri> leaf_triangles(const Solid& solid);
-
 }  // namespace cover

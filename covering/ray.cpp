@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "covering/detail/exact.h"
+#include "covering/detail/simd.h"
 #include "covering/predicates.h"
 #include "solid/parallel.h"
 
@@ -48,9 +49,7 @@ int perturbed_plane_side(const Bvh::Tri& t, const Vec3& o, Axes ax) {
 struct Interval {
   double t0, t1;
 };
-/// Two doubles in one SSE2 register (GCC/Clang vector extension): element-wise IEEE
-/// operations, the same results as the scalar ones.
-using v2d = double __attribute__((vector_size(16)));
+using detail::v2d;
 
 /// The slab test with the per-ray work done once: which bound each axis enters through (no
 /// swap) and which axes are parallel. Computes exactly the values of the plain loop

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "covering/bounds.h"
+#include "covering/detail/simd.h"
 #include "covering/predicates.h"
 #include "solid/parallel.h"
 
@@ -89,12 +90,8 @@ std::pair<int, int> centre_range(const std::vector<double>& c, double inv_h, dou
   return {first, last};
 }
 
-/// Two doubles in one SSE register (GCC/Clang vector extension): element-wise IEEE operations,
-/// the same results as the scalar ones.
-using v2d = double __attribute__((vector_size(16)));
-using v2u = uint64_t __attribute__((vector_size(16)));
-/// |v| element-wise by clearing the sign bits (as std::abs).
-v2d vabs(v2d v) { return reinterpret_cast<v2d>(reinterpret_cast<v2u>(v) & (~uint64_t{0} >> 1)); }
+using detail::v2d;
+using detail::vabs;
 
 /// One covering triangle as a band needs it (computed once, before the bands).
 struct BandTriangle {
@@ -327,9 +324,9 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
   g.bits.resize(static_cast<size_t>(n) * n * words);
 
   // The covering triangles are the fan triangles (v0, v_k, v_k+1) of each face in its leaf's own
-  // orientation, numbered face by face (those of leaf_triangles(); degenerate ones have n_z = 0
+  // orientation, numbered face by face (those a Bvh is built over; degenerate ones have n_z = 0
   // and cross no column). They are read straight from the faces: materializing
-  // leaf_triangles() cost 3–5 ms at 512³ (a 6 MB copy, a serial compaction, page faults).
+  // them cost 3–5 ms at 512³ (a 6 MB copy, a serial compaction, page faults).
   const size_t faces = solid.face_count();
   std::vector<uint32_t> first_tri(faces + 1, 0);
   for (size_t f = 0; f < faces; ++f) {
