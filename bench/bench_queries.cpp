@@ -12,7 +12,8 @@
 //   BM_ClassifyBulk    classify() of 1,000,000 points in one call, BVH prebuilt, 1 thread, grid
 //                      off: per-query cost of the BVH path in bulk (spatially ordered) use.
 //   BM_CastRay         cast() of one ray (all hits + CSG spans) from outside the bounding sphere
-//                      toward a uniform point in the box, BVH prebuilt; time per ray.
+//                      toward a uniform point in the box, BVH prebuilt; time per ray (latency).
+//   BM_CastRays        the same rays through the batch cast(), 1000 per call; time per ray.
 // Usage: bench_queries [--benchmark_min_time=0.2] [--benchmark_filter=REGEX]
 #include <benchmark/benchmark.h>
 
@@ -232,6 +233,25 @@ void BM_CastRay(benchmark::State& state) {  // NOLINT(readability-identifier-nam
   state.counters["time_per_ray"] = time_per(kBatch);
 }
 
+// The batch cast() of 1000 rays per iteration (the API `cover volume`, `cover cast` and callers
+// with many rays use: rays walk the BVH together), BVH prebuilt, one thread.
+void BM_CastRays(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
+  const Model& m = model(state.range(0));
+  const std::vector<cover::Ray> rays = random_rays(m.solid, kBatch * kBatches, kSeed);
+  cover::ThreadLimit limit(1);
+  size_t batch = 0, hits = 0, cast = 0;
+  for (auto _ : state) {
+    const auto results = cover::cast(*m.bvh, m.solid, std::span(rays).subspan(batch * kBatch, kBatch));
+    for (const cover::RayResult& r : results) hits += r.hits.size();
+    cast += kBatch;
+    batch = (batch + 1) % kBatches;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(cast));
+  state.counters["triangles"] = static_cast<double>(m.solid.face_count());
+  state.counters["hits_per_ray"] = static_cast<double>(hits) / static_cast<double>(cast);
+  state.counters["time_per_ray"] = time_per(kBatch);
+}
+
 // Targets 10k, 100k, 1M triangles; wall-clock time (the TBB workers' CPU time is not the
 // calling thread's).
 void sizes(benchmark::internal::Benchmark* b) {
@@ -243,6 +263,7 @@ BENCHMARK(BM_ClassifyPoint)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ClassifyMillion)->Apply(sizes)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ClassifyBulk)->Apply(sizes)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CastRay)->Apply(sizes)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CastRays)->Apply(sizes)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <functional>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <mutex>
 #include <optional>
 
 #include "covering/detail/cell_grid.h"
 #include "covering/detail/local.h"
+#include "covering/detail/simd.h"
 #include "covering/detail/triangles.h"
 #include "covering/predicates.h"
 #include "solid/parallel.h"
@@ -98,6 +101,82 @@ void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
       [&](uint32_t i) {
         const Bvh::Tri& t = tris[i];
         on_surface[t.leaf] |= visit(t.a, t.b, t.c, q, r, winding[t.leaf]);
+      });
+}
+
+/// A classification query: the point, its half-line, and the half-line's bounding box (a point
+/// in u and w, unbounded along s·e_k) as float bounds rounded outward (simd.h float_down /
+/// float_up) in the lane order of a node's first and second 16 bytes, (lo0, lo1, lo2, hi0) and
+/// (hi0, hi1, hi2, first): a node box meets the half-line iff lo <= hi_q and hi >= lo_q on every
+/// axis — exactly bvh_windings's test, in four-lane single precision.
+struct alignas(16) HalfLineQuery {
+  detail::v4f hi_q, lo_q;
+  Vec3 q;
+  AxisRay r;
+};
+
+HalfLineQuery half_line_query(const Bvh& bvh, const Vec3& q) {
+  const Bbox& all = bvh.bounds();
+  HalfLineQuery h{};
+  h.q = q;
+  h.r = axis_ray(0, 1);
+  double shortest = all.max.x - q.x;
+  for (int k = 0; k < 3; ++k)
+    for (int s : {1, -1}) {
+      const double len = s > 0 ? all.max[k] - q[k] : q[k] - all.min[k];
+      if (len < shortest) {
+        shortest = len;
+        h.r = axis_ray(k, s);
+      }
+    }
+  const float inf = INFINITY;
+  for (int a = 0; a < 3; ++a) {
+    const bool along = a == h.r.k;
+    h.hi_q[a] = along && h.r.s > 0 ? inf : detail::float_down(q[a]);
+    h.lo_q[a] = along && h.r.s < 0 ? -inf : detail::float_up(q[a]);
+  }
+  h.hi_q[3] = inf;   // lane 3 of the first load is hi0: hi0 <= ∞ always holds
+  h.lo_q[3] = -inf;  // lane 3 of the second is `first` (not a bound): masked below
+  return h;
+}
+
+/// Whether node's box meets the query's half-line (see HalfLineQuery).
+bool meets(const HalfLineQuery& h, const Bvh::Node& node) {
+  static_assert(offsetof(Bvh::Node, lo) == 0 && offsetof(Bvh::Node, hi) == 12 &&
+                sizeof(Bvh::Node) == 32);
+  detail::v4f a, b;
+  std::memcpy(&a, reinterpret_cast<const char*>(&node), sizeof a);
+  std::memcpy(&b, reinterpret_cast<const char*>(&node) + 12, sizeof b);
+  const detail::v4i ignore_first = {0, 0, 0, -1};
+  return detail::all_lanes((a <= h.hi_q) & ((b >= h.lo_q) | ignore_first));
+}
+
+/// bvh_windings for a batch of points (walk_batch: their node loads overlap). winding and
+/// on_surface hold ids.size() rows of `leaves` entries.
+void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points,
+                        std::span<const uint32_t> ids, size_t leaves, std::vector<int>& winding,
+                        std::vector<uint8_t>& on_surface,
+                        std::vector<HalfLineQuery>& queries) {
+  winding.assign(ids.size() * leaves, 0);
+  on_surface.assign(ids.size() * leaves, 0);
+  queries.resize(ids.size());
+  for (size_t j = 0; j < ids.size(); ++j) queries[j] = half_line_query(bvh, points[ids[j]]);
+  const auto& tris = bvh.triangles();
+  walk_batch(
+      bvh, static_cast<uint32_t>(ids.size()),
+      [&](uint32_t j, const Bvh::Node& node) { return meets(queries[j], node); },
+      [&](uint32_t j, const Bvh::Node& l, const Bvh::Node& r) {
+        return unsigned{meets(queries[j], l)} | unsigned{meets(queries[j], r)} << 1;
+      },
+      [&](uint32_t j, const Bvh::Node& node) {
+        const HalfLineQuery& h = queries[j];
+        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+          const Bvh::Tri& t = tris[i];
+          const size_t at = j * leaves + t.leaf;
+          int w = winding[at];
+          on_surface[at] |= visit(t.a, t.b, t.c, h.q, h.r, w);
+          winding[at] = w;
+        }
       });
 }
 
@@ -192,13 +271,21 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
     for (size_t i = 0; i < todo.size(); ++i) todo[i] = static_cast<uint32_t>(i);
   }
   if (todo.size() >= 4096 && !bvh.nodes().empty()) bucket_order(points, bvh.bounds(), todo);
+  // Batches of points walk the BVH together (walk_batch); per-point results are the same.
+  const size_t leaves = solid.leaves.size();
+  const size_t batch = std::clamp<size_t>(16384 / std::max<size_t>(leaves, 1), 1, 256);
   parallel_for(todo.size(), options.grain, [&](size_t begin, size_t end) {
-    std::vector<int> winding(solid.leaves.size());
-    std::vector<uint8_t> on_surface(solid.leaves.size()), inside;
-    for (size_t j = begin; j < end; ++j) {
-      const size_t i = todo[j];
-      bvh_windings(bvh, points[i], winding, on_surface);
-      out[i] = finish(points[i], solid.tree, winding, on_surface, inside, triangles);
+    std::vector<int> winding, w(leaves);
+    std::vector<uint8_t> on_surface, on(leaves), inside;
+    std::vector<HalfLineQuery> queries;
+    for (size_t b = begin; b < end; b += batch) {
+      const std::span<const uint32_t> ids(todo.data() + b, std::min(end, b + batch) - b);
+      bvh_windings_batch(bvh, points, ids, leaves, winding, on_surface, queries);
+      for (size_t j = 0; j < ids.size(); ++j) {
+        std::copy_n(winding.begin() + static_cast<ptrdiff_t>(j * leaves), leaves, w.begin());
+        std::copy_n(on_surface.begin() + static_cast<ptrdiff_t>(j * leaves), leaves, on.begin());
+        out[ids[j]] = finish(points[ids[j]], solid.tree, w, on, inside, triangles);
+      }
     }
   });
   return out;

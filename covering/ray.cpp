@@ -154,28 +154,12 @@ bool hit_before(const RayHit& a, const RayHit& b) {
 
 }  // namespace
 
-RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray) {
-  RayResult out;
-  if (bvh.nodes().empty()) return out;
-  const Axes ax = axes_for(ray.dir);
-  const Slab slab(ray.origin, ray.dir);
-  const auto& tris = bvh.triangles();
-  Interval leaf{0, 0};  // walk() visits a leaf's triangles right after meets() accepted it
-  walk(
-      bvh,
-      [&](const Bvh::Node& node) {
-        leaf = slab(node);
-        return leaf.t0 <= leaf.t1;
-      },
-      [&](uint32_t i) {
-        const Bvh::Tri& t = tris[i];
-        int sign;
-        if (crosses(t, ray, ax, sign))
-          out.hits.push_back(
-              {hit_t(bvh, t, ray, leaf), i, t.leaf, t.face, static_cast<int8_t>(sign)});
-      });
+namespace {
+
+/// Sorts result.hits and sweeps them into the CSG inside spans: the winding at the origin is the
+/// sum of the signs; per-leaf counters and the expression evaluated on each interval (paper §6).
+void sweep_spans(RayResult& out, const CsgTree& tree, size_t leaves) {
   std::sort(out.hits.begin(), out.hits.end(), hit_before);
-  // Winding at the origin = Σ signs; sweep and evaluate the expression on each interval.
   thread_local std::vector<int> winding;  // per-thread scratch: no allocation per ray
   thread_local std::vector<uint8_t> inside;
   winding.assign(leaves, 0);
@@ -206,6 +190,67 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
     open.t1 = INFINITY;
     out.spans.push_back(open);
   }
+}
+
+/// The hits of the rays of one batch (walk_batch: their node loads overlap), then their spans.
+/// Each ray gets the same hits (same t: the same leaf interval) as from cast() of that ray.
+void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<const Ray> rays,
+                std::span<RayResult> out) {
+  struct PerRay {
+    Slab slab;
+    Axes ax;
+  };
+  thread_local std::vector<PerRay> per;
+  per.clear();
+  for (const Ray& r : rays) per.push_back({Slab(r.origin, r.dir), axes_for(r.dir)});
+  const auto& tris = bvh.triangles();
+  walk_batch(
+      bvh, static_cast<uint32_t>(rays.size()),
+      [&](uint32_t j, const Bvh::Node& node) {
+        const Interval i = per[j].slab(node);
+        return i.t0 <= i.t1;
+      },
+      [&](uint32_t j, const Bvh::Node& l, const Bvh::Node& r) {
+        Interval il, ir;
+        per[j].slab(l, r, il, ir);
+        return unsigned{il.t0 <= il.t1} | unsigned{ir.t0 <= ir.t1} << 1;
+      },
+      [&](uint32_t j, const Bvh::Node& node) {
+        const Interval in = per[j].slab(node);
+        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+          const Bvh::Tri& t = tris[i];
+          int sign;
+          if (crosses(t, rays[j], per[j].ax, sign))
+            out[j].hits.push_back(
+                {hit_t(bvh, t, rays[j], in), i, t.leaf, t.face, static_cast<int8_t>(sign)});
+        }
+      });
+  for (RayResult& r : out) sweep_spans(r, tree, leaves);
+}
+
+}  // namespace
+
+RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray) {
+  RayResult out;
+  if (bvh.nodes().empty()) return out;
+  const Axes ax = axes_for(ray.dir);
+  const Slab slab(ray.origin, ray.dir);
+  const auto& tris = bvh.triangles();
+  Interval leaf{0, 0};  // walk() visits a leaf's triangles right after meets() accepted it
+  walk(
+      bvh,
+      [&](const Bvh::Node& node) {
+        leaf = slab(node);
+        return leaf.t0 <= leaf.t1;
+      },
+      [&](uint32_t i) {
+        const Bvh::Tri& t = tris[i];
+        int sign;
+        if (crosses(t, ray, ax, sign))
+          out.hits.push_back(
+              {hit_t(bvh, t, ray, leaf), i, t.leaf, t.face, static_cast<int8_t>(sign)});
+      });
+  sweep_spans(out, tree, leaves);
   return out;
 }
 
@@ -373,9 +418,14 @@ FirstHit first_hit(const Bvh& bvh, const RayResult& result) {
 std::vector<RayResult> cast(const Bvh& bvh, const Solid& solid, std::span<const Ray> rays,
                             const CastOptions& options) {
   std::vector<RayResult> out(rays.size());
+  if (bvh.nodes().empty()) return out;
+  constexpr size_t kBatch = 256;  // rays walking the BVH together (walk_batch)
   parallel_for(rays.size(), options.grain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      out[i] = cast(bvh, solid.tree, solid.leaves.size(), rays[i]);
+    for (size_t b = begin; b < end; b += kBatch) {
+      const size_t e = std::min(end, b + kBatch);
+      cast_batch(bvh, solid.tree, solid.leaves.size(), rays.subspan(b, e - b),
+                 std::span(out).subspan(b, e - b));
+    }
   });
   return out;
 }

@@ -2,7 +2,8 @@
 // the brute-force covering path on random points and on points exactly on faces, edges and
 // vertices; vol(A∪B) + vol(A∩B) = vol(A) + vol(B) within the reported error bounds; and scaled
 // copies of a scene (by powers of two, so the doubles scale exactly) classify identically; the
-// front-to-back first visible point of a ray equals the one from all of cast()'s spans.
+// front-to-back first visible point of a ray equals the one from all of cast()'s spans; the
+// batch cast() (rays walking the BVH together) gives every ray exactly its single-ray result.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -124,6 +125,58 @@ TEST(RandomCsg, FrontToBackFirstVisibleEqualsAllHits) {
   }
   EXPECT_GT(compared, 10000);
   EXPECT_GT(caps, 1000);
+}
+
+TEST(RandomCsg, BatchCastEqualsSingleRays) {
+  const PolygonMesh knot = read_mesh(test::cgal_mesh("knot1.off"));
+  std::mt19937_64 rng(4242);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> grid(-6, 6), axis(0, 2);
+  size_t hits = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const Solid s = random_tree(rng, knot, 1 + trial % 3);
+    const Bvh bvh(s);
+    std::vector<Ray> rays(700);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      Ray& r = rays[i];
+      if (i % 3 == 0) {  // axis-aligned through the box lattice: along faces, edges, vertices
+        double o[3] = {grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25}, d[3] = {0, 0, 0};
+        o[axis(rng)] = -4;
+        d[i % 2 ? 0 : 2] = i % 4 ? 1 : -1;
+        r.origin = {o[0], o[1], o[2]};
+        r.dir = {d[0], d[1], d[2]};
+      } else {  // from far outside, or from inside the scene
+        const double reach = i % 3 == 1 ? 4 : 1;
+        r.origin = {reach * u(rng), reach * u(rng), reach * u(rng)};
+        r.dir = Vec3{u(rng), u(rng), u(rng)} - r.origin;
+      }
+    }
+    for (const size_t grain : {size_t{1}, size_t{97}, size_t{256}}) {
+      const std::vector<RayResult> batch = cast(bvh, s, rays, CastOptions{grain});
+      ASSERT_EQ(batch.size(), rays.size());
+      for (size_t i = 0; i < rays.size(); ++i) {
+        const RayResult one = cast(bvh, s.tree, s.leaves.size(), rays[i]);
+        const RayResult& got = batch[i];
+        ASSERT_EQ(got.hits.size(), one.hits.size()) << "trial " << trial << " ray " << i;
+        for (size_t h = 0; h < one.hits.size(); ++h) {
+          EXPECT_EQ(got.hits[h].t, one.hits[h].t) << "trial " << trial << " ray " << i;
+          EXPECT_EQ(got.hits[h].tri, one.hits[h].tri) << "trial " << trial << " ray " << i;
+          EXPECT_EQ(got.hits[h].leaf, one.hits[h].leaf);
+          EXPECT_EQ(got.hits[h].face, one.hits[h].face);
+          EXPECT_EQ(got.hits[h].sign, one.hits[h].sign);
+        }
+        ASSERT_EQ(got.spans.size(), one.spans.size()) << "trial " << trial << " ray " << i;
+        for (size_t k = 0; k < one.spans.size(); ++k) {
+          EXPECT_EQ(got.spans[k].t0, one.spans[k].t0);
+          EXPECT_EQ(got.spans[k].t1, one.spans[k].t1);
+          EXPECT_EQ(got.spans[k].enter, one.spans[k].enter);
+          EXPECT_EQ(got.spans[k].exit, one.spans[k].exit);
+        }
+        hits += one.hits.size();
+      }
+    }
+  }
+  EXPECT_GT(hits, 10000u);
 }
 
 TEST(RandomCsg, UnionIntersectionVolumeIdentity) {
