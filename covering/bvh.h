@@ -137,14 +137,25 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
   constexpr size_t kAhead = 8;  // entries between a prefetch and the use of what it fetched
   thread_local Scratch scratch;  // reused across calls; one TLS lookup, not one per access
   auto& [level, next, leaves] = scratch;
+  auto prefetch_triangles = [&](const Bvh::Node& leaf_node) {
+    const auto begin = reinterpret_cast<uintptr_t>(&tris[leaf_node.first]);
+    const auto end = reinterpret_cast<uintptr_t>(&tris[leaf_node.first] + leaf_node.count);
+    for (uintptr_t p = begin & ~uintptr_t{63}; p < end; p += 64)
+      __builtin_prefetch(reinterpret_cast<const void*>(p));
+  };
   level.clear();
   leaves.clear();
   for (uint32_t j = 0; j < n; ++j)
     if (meets(j, nodes[0])) (nodes[0].count > 0 ? leaves : level).push_back({j, 0});
   while (!level.empty()) {
-    // Every entry is an inner node: test its two children, keep the ones that meet.
+    // Every entry is an inner node: test its two children, keep the ones that meet. The
+    // children are written unconditionally and the counts advanced by the outcome (no branch
+    // on it: it is unpredictable, and mispredictions cost more than the box tests).
     next.resize(2 * level.size());
-    size_t kept = 0;
+    const size_t leaf_base = leaves.size();
+    leaves.resize(leaf_base + 2 * level.size());
+    Entry* inner_out = next.data();
+    Entry* leaf_out = leaves.data() + leaf_base;
     for (size_t e = 0; e < level.size(); ++e) {
       if (e + kAhead < level.size()) {
         const uint32_t ahead = level[e + kAhead].node;  // loaded when it was tested: cached
@@ -152,27 +163,27 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
         __builtin_prefetch(&nodes[nodes[ahead].first]);
       }
       const Entry x = level[e];
-      const uint32_t c[2] = {x.node + 1, nodes[x.node].first};
-      const unsigned both = meets_both(x.query, nodes[c[0]], nodes[c[1]]);
-      for (int side = 0; side < 2; ++side) {
-        if (!(both >> side & 1)) continue;
-        if (nodes[c[side]].count > 0)
-          leaves.push_back({x.query, c[side]});
-        else
-          next[kept++] = {x.query, c[side]};
-      }
+      const uint32_t l = x.node + 1, r = nodes[x.node].first;
+      const unsigned both = meets_both(x.query, nodes[l], nodes[r]);
+      const bool l_leaf = nodes[l].count > 0, r_leaf = nodes[r].count > 0;
+      *inner_out = {x.query, l};
+      inner_out += (both & 1) & !l_leaf;
+      *leaf_out = {x.query, l};
+      leaf_out += (both & 1) & l_leaf;
+      *inner_out = {x.query, r};
+      inner_out += (both >> 1) & !r_leaf;
+      *leaf_out = {x.query, r};
+      leaf_out += (both >> 1) & r_leaf;
+      // A leaf that meets: fetch its triangles now; they wait in L2 for the leaf pass below.
+      if ((both & 1) & l_leaf) prefetch_triangles(nodes[l]);
+      if ((both >> 1) & r_leaf) prefetch_triangles(nodes[r]);
     }
-    next.resize(kept);
+    next.resize(static_cast<size_t>(inner_out - next.data()));
+    leaves.resize(static_cast<size_t>(leaf_out - leaves.data()));
     level.swap(next);
   }
   for (size_t e = 0; e < leaves.size(); ++e) {
-    if (e + kAhead < leaves.size()) {
-      const Bvh::Node& ahead = nodes[leaves[e + kAhead].node];
-      const auto begin = reinterpret_cast<uintptr_t>(&tris[ahead.first]);
-      const auto end = reinterpret_cast<uintptr_t>(&tris[ahead.first] + ahead.count);
-      for (uintptr_t p = begin & ~uintptr_t{63}; p < end; p += 64)
-        __builtin_prefetch(reinterpret_cast<const void*>(p));
-    }
+    if (e + kAhead < leaves.size()) prefetch_triangles(nodes[leaves[e + kAhead].node]);
     leaf(leaves[e].query, nodes[leaves[e].node]);
   }
 }
