@@ -153,8 +153,8 @@ double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& po
       if (p[u] < n.lo[u] || p[u] > n.hi[u] || p[w] < n.lo[w] || p[w] > n.hi[w] ||
           (s > 0 ? p[k] > n.hi[k] : p[k] < n.lo[k]) || n.count > 0)
         continue;
+      stack.push_back(n.first + 1);
       stack.push_back(n.first);
-      stack.push_back(id + 1);
     }
   }
   return static_cast<double>(visited) / static_cast<double>(points.size());

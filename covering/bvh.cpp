@@ -149,11 +149,10 @@ struct Builder {
     return true;
   }
 
-  /// Appends the subtree of refs[begin, end) (extent e) to `out` in depth-first order.
-  void build_serial(std::vector<Bvh::Node>& out, uint32_t begin, uint32_t end, uint32_t depth,
-                    const Extent& e) {
-    const auto slot = static_cast<uint32_t>(out.size());
-    out.emplace_back();
+  /// Builds the subtree of refs[begin, end) (extent e) with its root written to out[slot] and
+  /// its other nodes appended to `out`, children pairs in depth-first order.
+  void build_serial(std::vector<Bvh::Node>& out, uint32_t slot, uint32_t begin, uint32_t end,
+                    uint32_t depth, const Extent& e) {
     Bvh::Node node;
     uint32_t mid = 0;
     Extent left, right;
@@ -163,10 +162,11 @@ struct Builder {
       out[slot] = node;
       return;
     }
-    build_serial(out, begin, mid, depth + 1, left);
     node.first = static_cast<uint32_t>(out.size());
     out[slot] = node;
-    build_serial(out, mid, end, depth + 1, right);
+    out.resize(out.size() + 2);
+    build_serial(out, node.first, begin, mid, depth + 1, left);
+    build_serial(out, node.first + 1, mid, end, depth + 1, right);
   }
 
   /// Builds the subtree of refs[begin, end) (extent e) into `piece`, both halves in parallel
@@ -177,7 +177,8 @@ struct Builder {
     if (end - begin < options.parallel_threshold ||
         !split(e, piece.node, begin, end, depth, mid, left, right)) {
       piece.nodes.reserve(2 * (end - begin) / options.leaf_size + 1);
-      build_serial(piece.nodes, begin, end, depth, e);
+      piece.nodes.resize(1);
+      build_serial(piece.nodes, 0, begin, end, depth, e);
       piece.size = static_cast<uint32_t>(piece.nodes.size());
       return;
     }
@@ -188,21 +189,25 @@ struct Builder {
     piece.size = 1 + piece.left->size + piece.right->size;
   }
 
-  /// Copies `piece` into nodes[at, at + piece.size), making its child indices global.
-  static void place(const Piece& piece, LargeVector<Bvh::Node>& nodes, uint32_t at) {
+  /// Copies `piece` into the tree: its root to nodes[slot], its other nodes (piece.size − 1,
+  /// an even number: children pairs) to nodes[at, ...), making child indices global. A serial
+  /// piece's local pairs start at index 1, so local i > 0 goes to at + i − 1.
+  static void place(const Piece& piece, LargeVector<Bvh::Node>& nodes, uint32_t slot,
+                    uint32_t at) {
     if (!piece.left) {
       for (size_t i = 0; i < piece.nodes.size(); ++i) {
         Bvh::Node node = piece.nodes[i];
-        if (node.count == 0) node.first += at;
-        nodes[at + i] = node;
+        if (node.count == 0) node.first += at - 1;
+        nodes[i == 0 ? slot : at + i - 1] = node;
       }
       return;
     }
-    Bvh::Node& node = nodes[at];
+    Bvh::Node& node = nodes[slot];
     node = piece.node;
-    node.first = at + 1 + piece.left->size;
-    parallel_invoke([&] { place(*piece.left, nodes, at + 1); },
-                    [&] { place(*piece.right, nodes, node.first); });
+    node.first = at;
+    const uint32_t left_at = at + 2, right_at = left_at + piece.left->size - 1;
+    parallel_invoke([&] { place(*piece.left, nodes, at, left_at); },
+                    [&] { place(*piece.right, nodes, at + 1, right_at); });
   }
 };
 
@@ -332,8 +337,12 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   Builder builder{refs, o};
   Piece root;
   builder.build(root, 0, n, 0, builder.extent(0, n));
-  nodes_.resize(root.size);
-  Builder::place(root, nodes_, 0);
+  // The root, an unused node (so that every children pair starts at an even index: one 64-byte
+  // cache line when the array is 64-byte aligned, as LargeVector's mapped blocks are), the pairs.
+  nodes_.resize(root.size + 1);
+  Builder::place(root, nodes_, 0, 2);
+  nodes_[1] = Node{};
+  for (int a = 0; a < 3; ++a) nodes_[1].lo[a] = INFINITY, nodes_[1].hi[a] = -INFINITY;
   tris_.resize(n);
   parallel_for(n, 4096, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) tris_[i] = fan.get(solid, refs[i].index);

@@ -4,8 +4,10 @@
 // Why hand-written: queries need exact culling on double boxes for an axis-aligned half-line
 // (classification) and for general rays, plus the triangle's leaf and face; CGAL's AABB_tree
 // (the peer) stores a primitive per node with slower traversal (bench/compare_cgal measures both).
-// Layout: 32-byte nodes in depth-first order; an inner node's left child is the next node, its
-// right child is `first`. Leaves own triangles [first, first + count). Boxes are exact min/max of
+// Layout: 32-byte nodes; the root is node 0 (node 1 is unused), and the two children of an inner
+// node are nodes `first` and `first + 1`, a pair at an even index (one 64-byte cache line for
+// both boxes a traversal step tests), pairs in depth-first order. Leaves own triangles
+// [first, first + count). Boxes are exact min/max of
 // the double coordinates, so "box misses ⇒ triangle misses" holds exactly. Build: binned SAH (16
 // bins over the centroid extent of the widest axis), the centroid median where SAH finds no split
 // or below depth 64; subtrees above a size threshold are built in parallel into separate pieces and
@@ -43,7 +45,7 @@ class Bvh {
   struct Node {
     float lo[3];
     float hi[3];
-    uint32_t first = 0;  ///< leaf: first triangle; inner: index of the right child
+    uint32_t first = 0;  ///< leaf: first triangle; inner: index of the left child (right: + 1)
     uint32_t count = 0;  ///< leaf: number of triangles; inner: 0
   };
 
@@ -102,11 +104,10 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
     const Bvh::Node& node = nodes[id];
     if (!meets(node)) continue;
     if (node.count == 0) {
-      // The left child (id + 1) is next in memory; the right one is far and taken after the
-      // left subtree: prefetching it now overlaps its cache miss with that work.
+      // Both children share one cache line; fetch it while the stack is updated.
       __builtin_prefetch(&nodes[node.first]);
+      stack[top++] = node.first + 1;
       stack[top++] = node.first;
-      stack[top++] = id + 1;
       continue;
     }
     for (uint32_t i = node.first; i < node.first + node.count; ++i) visit(i);
@@ -157,13 +158,10 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
     Entry* inner_out = next.data();
     Entry* leaf_out = leaves.data() + leaf_base;
     for (size_t e = 0; e < level.size(); ++e) {
-      if (e + kAhead < level.size()) {
-        const uint32_t ahead = level[e + kAhead].node;  // loaded when it was tested: cached
-        __builtin_prefetch(&nodes[ahead + 1]);
-        __builtin_prefetch(&nodes[nodes[ahead].first]);
-      }
+      if (e + kAhead < level.size())  // the children pair of a node tested (so cached) earlier
+        __builtin_prefetch(&nodes[nodes[level[e + kAhead].node].first]);
       const Entry x = level[e];
-      const uint32_t l = x.node + 1, r = nodes[x.node].first;
+      const uint32_t l = nodes[x.node].first, r = l + 1;
       const unsigned both = meets_both(x.query, nodes[l], nodes[r]);
       const bool l_leaf = nodes[l].count > 0, r_leaf = nodes[r].count > 0;
       *inner_out = {x.query, l};

@@ -371,14 +371,14 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
     const Bvh::Node& node = nodes[cur.node];
     if (node.count == 0) {
       Interval l, r;
-      slab(nodes[cur.node + 1], nodes[node.first], l, r);
+      slab(nodes[node.first], nodes[node.first + 1], l, r);
       const bool l_in = l.t0 <= l.t1, r_in = r.t0 <= r.t1;
       if (r.t0 < l.t0) {  // right child nearer: pushed last, popped first
-        if (l_in) stack[top++] = {l.t0, l.t1, cur.node + 1};
-        if (r_in) stack[top++] = {r.t0, r.t1, node.first};
+        if (l_in) stack[top++] = {l.t0, l.t1, node.first};
+        if (r_in) stack[top++] = {r.t0, r.t1, node.first + 1};
       } else {
-        if (r_in) stack[top++] = {r.t0, r.t1, node.first};
-        if (l_in) stack[top++] = {l.t0, l.t1, cur.node + 1};
+        if (r_in) stack[top++] = {r.t0, r.t1, node.first + 1};
+        if (l_in) stack[top++] = {l.t0, l.t1, node.first};
       }
       continue;
     }
