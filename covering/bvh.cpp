@@ -4,22 +4,12 @@
 #include <cmath>
 #include <memory>
 
+#include "covering/detail/float_bounds.h"
 #include "covering/predicates.h"
 #include "solid/parallel.h"
 
 namespace cover {
 namespace {
-
-/// The largest float <= v and the smallest float >= v (for doubles beyond the float range:
-/// ±infinity, still conservative).
-float round_down(double v) {
-  float f = static_cast<float>(v);
-  return static_cast<double>(f) > v ? std::nextafter(f, -INFINITY) : f;
-}
-float round_up(double v) {
-  float f = static_cast<float>(v);
-  return static_cast<double>(f) < v ? std::nextafter(f, INFINITY) : f;
-}
 
 /// What the build moves around (40 bytes instead of a 104-byte triangle): the triangle's box as
 /// outward-rounded floats (already widened by the margin, see Bvh::Node), its centroid, and its
@@ -324,8 +314,8 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
       const Tri t = fan.get(solid, g);
       Ref& r = refs[kept[g]];
       for (int a = 0; a < 3; ++a) {
-        r.lo[a] = round_down(std::min({t.a[a], t.b[a], t.c[a]}) - margin);
-        r.hi[a] = round_up(std::max({t.a[a], t.b[a], t.c[a]}) + margin);
+        r.lo[a] = detail::float_down(std::min({t.a[a], t.b[a], t.c[a]}) - margin);
+        r.hi[a] = detail::float_up(std::max({t.a[a], t.b[a], t.c[a]}) + margin);
         r.c[a] = static_cast<float>((t.a[a] + t.b[a] + t.c[a]) / 3);
       }
       r.index = g;

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "covering/detail/cell_grid.h"
+#include "covering/detail/float_bounds.h"
 #include "covering/detail/local.h"
 #include "covering/detail/simd.h"
 #include "covering/detail/triangles.h"
@@ -105,8 +106,8 @@ void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
 }
 
 /// A classification query: the point, its half-line, and the half-line's bounding box (a point
-/// in u and w, unbounded along s·e_k) as float bounds rounded outward (simd.h float_down /
-/// float_up) in the lane order of a node's first and second 16 bytes, (lo0, lo1, lo2, hi0) and
+/// in u and w, unbounded along s·e_k) as float bounds rounded outward (float_bounds.h float_down
+/// / float_up) in the lane order of a node's first and second 16 bytes, (lo0, lo1, lo2, hi0) and
 /// (hi0, hi1, hi2, first): a node box meets the half-line iff lo <= hi_q and hi >= lo_q on every
 /// axis — exactly bvh_windings's test, in four-lane single precision.
 struct alignas(16) HalfLineQuery {

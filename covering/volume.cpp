@@ -106,16 +106,18 @@ double integrate_rays(const Solid& s, const Bvh& bvh, const Bbox& box, Vec3 d, i
   const Vec3 corner = c - (radius * 1.5) * d - radius * e1 - radius * e2;
   std::vector<NeumaierSum> rows(static_cast<size_t>(n));
   parallel_for(static_cast<size_t>(n), 1, [&](size_t begin, size_t end) {
+    std::vector<Ray> row(static_cast<size_t>(n));
     for (size_t i = begin; i < end; ++i) {
-      for (int j = 0; j < n; ++j) {
-        const Ray ray{corner + ((i + 0.5) * h) * e1 + ((j + 0.5) * h) * e2, d};
-        for (const Span& span : cast(bvh, s.tree, s.leaves.size(), ray).spans) {
+      for (int j = 0; j < n; ++j)
+        row[static_cast<size_t>(j)] = {corner + ((i + 0.5) * h) * e1 + ((j + 0.5) * h) * e2, d};
+      // One row as one batch (ray.h: its rays walk the BVH together), serial within the row.
+      for (const RayResult& result : cast(bvh, s, row, CastOptions{row.size()}))
+        for (const Span& span : result.spans) {
           // The origin lies outside the result's box: a span there means an unbounded result.
           if (span.t1 == INFINITY || span.enter == Span::kNone)
             throw NotComputable("the solid is unbounded (a complement of a bounded solid)");
           rows[i].add(span.t1 - span.t0);
         }
-      }
     }
   });
   NeumaierSum total;

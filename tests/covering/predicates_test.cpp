@@ -1,6 +1,6 @@
 // Exact predicates (covering/predicates.h): sign conventions and exactness where doubles fail;
 // the outward float rounding that lets classification compare a double point with float node
-// bounds in single precision (covering/detail/simd.h).
+// bounds in single precision (covering/detail/float_bounds.h).
 #include "covering/predicates.h"
 
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <random>
 
-#include "covering/detail/simd.h"
+#include "covering/detail/float_bounds.h"
 
 namespace cover {
 namespace {
@@ -55,7 +55,9 @@ TEST(FloatRounding, DownAndUpAreTheNeighbouringFloats) {
     // No float lies strictly between d and x, or between x and u.
     EXPECT_TRUE(std::isinf(d) || static_cast<double>(std::nextafter(d, INFINITY)) > x) << x;
     EXPECT_TRUE(std::isinf(u) || static_cast<double>(std::nextafter(u, -INFINITY)) < x) << x;
-    if (static_cast<double>(static_cast<float>(x)) == x) EXPECT_EQ(d, u) << x;
+    if (static_cast<double>(static_cast<float>(x)) == x) {
+      EXPECT_EQ(d, u) << x;
+    }
   };
   for (const double x : {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-40, -1e-40, 1e-46, -1e-46,
                          static_cast<double>(FLT_MAX), -static_cast<double>(FLT_MAX), 1e39, -1e39,
