@@ -130,12 +130,13 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
   const auto& tris = bvh.triangles();
   if (nodes.empty() || n == 0) return;
   struct Entry {
-    uint32_t query, node;  ///< a node that meets the query
+    uint32_t query;
+    uint32_t node;  ///< level: the first of the children pair of a node that meets; leaves: the leaf
   };
   struct Scratch {
     std::vector<Entry> level, next, leaves;
   };
-  constexpr size_t kAhead = 8;  // entries between a prefetch and the use of what it fetched
+  constexpr size_t kAhead = 16;  // entries between a prefetch and the use of what it fetched
   thread_local Scratch scratch;  // reused across calls; one TLS lookup, not one per access
   auto& [level, next, leaves] = scratch;
   auto prefetch_triangles = [&](const Bvh::Node& leaf_node) {
@@ -146,8 +147,9 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
   };
   level.clear();
   leaves.clear();
+  const bool root_leaf = nodes[0].count > 0;
   for (uint32_t j = 0; j < n; ++j)
-    if (meets(j, nodes[0])) (nodes[0].count > 0 ? leaves : level).push_back({j, 0});
+    if (meets(j, nodes[0])) (root_leaf ? leaves : level).push_back({j, root_leaf ? 0 : nodes[0].first});
   while (!level.empty()) {
     // Every entry is an inner node: test its two children, keep the ones that meet. The
     // children are written unconditionally and the counts advanced by the outcome (no branch
@@ -158,23 +160,19 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
     Entry* inner_out = next.data();
     Entry* leaf_out = leaves.data() + leaf_base;
     for (size_t e = 0; e < level.size(); ++e) {
-      if (e + kAhead < level.size())  // the children pair of a node tested (so cached) earlier
-        __builtin_prefetch(&nodes[nodes[level[e + kAhead].node].first]);
+      if (e + kAhead < level.size()) __builtin_prefetch(&nodes[level[e + kAhead].node]);
       const Entry x = level[e];
-      const uint32_t l = nodes[x.node].first, r = l + 1;
+      const uint32_t l = x.node, r = l + 1;
       const unsigned both = meets_both(x.query, nodes[l], nodes[r]);
       const bool l_leaf = nodes[l].count > 0, r_leaf = nodes[r].count > 0;
-      *inner_out = {x.query, l};
+      *inner_out = {x.query, nodes[l].first};
       inner_out += (both & 1) & !l_leaf;
       *leaf_out = {x.query, l};
       leaf_out += (both & 1) & l_leaf;
-      *inner_out = {x.query, r};
+      *inner_out = {x.query, nodes[r].first};
       inner_out += (both >> 1) & !r_leaf;
       *leaf_out = {x.query, r};
       leaf_out += (both >> 1) & r_leaf;
-      // A leaf that meets: fetch its triangles now; they wait in L2 for the leaf pass below.
-      if ((both & 1) & l_leaf) prefetch_triangles(nodes[l]);
-      if ((both >> 1) & r_leaf) prefetch_triangles(nodes[r]);
     }
     next.resize(static_cast<size_t>(inner_out - next.data()));
     leaves.resize(static_cast<size_t>(leaf_out - leaves.data()));
