@@ -13,10 +13,12 @@
 //                      off: per-query cost of the BVH path in bulk (spatially ordered) use.
 //   BM_CastRay         cast() of one ray (all hits + CSG spans) from outside the bounding sphere
 //                      toward a uniform point in the box, BVH prebuilt; time per ray (latency).
-//   BM_CastRays        the same rays through the batch cast(), 1000 per call; time per ray.
+//   BM_CastRays        the same rays through the batch cast(), 1000 per call; time per ray, and
+//                      the nodes a ray's walk tests.
 // Usage: bench_queries [--benchmark_min_time=0.2] [--benchmark_filter=REGEX]
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -233,6 +235,38 @@ void BM_CastRay(benchmark::State& state) {  // NOLINT(readability-identifier-nam
   state.counters["time_per_ray"] = time_per(kBatch);
 }
 
+/// BVH nodes whose box a ray's walk tests (the algorithmic cost of a ray, free of cache effects):
+/// the slab test of covering/ray.cpp (the same formula and slack), over the public node array.
+double nodes_per_ray(const cover::Bvh& bvh, const std::vector<cover::Ray>& rays) {
+  size_t tested = 0;
+  for (const cover::Ray& r : rays) {
+    auto meets = [&](const cover::Bvh::Node& n) {
+      double enter = -INFINITY, leave = INFINITY;
+      for (int a = 0; a < 3; ++a) {
+        const double inv = 1.0 / r.dir[a];
+        if (std::isinf(inv)) {
+          if (r.origin[a] < n.lo[a] || r.origin[a] > n.hi[a]) return false;
+          continue;
+        }
+        const double ta = (n.lo[a] - r.origin[a]) * inv, tb = (n.hi[a] - r.origin[a]) * inv;
+        enter = std::max(enter, std::min(ta, tb));
+        leave = std::min(leave, std::max(ta, tb));
+      }
+      return std::max(0.0, enter * (1 - 1e-12)) <= leave * (1 + 1e-12);
+    };
+    std::vector<uint32_t> stack{0};
+    while (!stack.empty()) {
+      const cover::Bvh::Node& n = bvh.nodes()[stack.back()];
+      stack.pop_back();
+      ++tested;
+      if (!meets(n) || n.count > 0) continue;
+      stack.push_back(n.first + 1);
+      stack.push_back(n.first);
+    }
+  }
+  return static_cast<double>(tested) / static_cast<double>(rays.size());
+}
+
 // The batch cast() of 1000 rays per iteration (the API `cover volume`, `cover cast` and callers
 // with many rays use: rays walk the BVH together), BVH prebuilt, one thread.
 void BM_CastRays(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
@@ -250,6 +284,7 @@ void BM_CastRays(benchmark::State& state) {  // NOLINT(readability-identifier-na
   state.counters["triangles"] = static_cast<double>(m.solid.face_count());
   state.counters["hits_per_ray"] = static_cast<double>(hits) / static_cast<double>(cast);
   state.counters["time_per_ray"] = time_per(kBatch);
+  state.counters["nodes_per_ray"] = nodes_per_ray(*m.bvh, rays);
 }
 
 // Targets 10k, 100k, 1M triangles; wall-clock time (the TBB workers' CPU time is not the
