@@ -131,9 +131,25 @@ void BM_BvhBuild(benchmark::State& state) {  // NOLINT(readability-identifier-na
   state.counters["time_per_triangle"] = time_per(triangles);
 }
 
-// classify() of 1000 points per iteration, BVH prebuilt, empty-cell grid off, one thread.
+/// Nodes a depth-first walk tests when `meets` decides which nodes it enters (each node reached
+/// is tested once, as in covering/bvh.h's walk and walk_batch).
+template <typename Meets>
+size_t nodes_tested(const cover::Bvh& bvh, Meets&& meets) {
+  size_t tested = 0;
+  std::vector<uint32_t> stack{0};
+  while (!stack.empty()) {
+    const cover::Bvh::Node& n = bvh.nodes()[stack.back()];
+    stack.pop_back();
+    ++tested;
+    if (!meets(n) || n.count > 0) continue;
+    stack.push_back(n.first + 1);
+    stack.push_back(n.first);
+  }
+  return tested;
+}
+
 /// BVH nodes a classification query visits (the algorithmic cost, free of cache effects):
-/// the same half-line walk as covering/classify.cpp, counted over the public node array.
+/// the same half-line test as covering/classify.cpp, over the public node array.
 double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& points) {
   const cover::Bbox& all = bvh.bounds();
   size_t visited = 0;
@@ -146,22 +162,15 @@ double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& po
         if (len < shortest) shortest = len, k = a, s = sa;
       }
     const int u = (k + 1) % 3, w = (k + 2) % 3;
-    std::vector<uint32_t> stack{0};
-    while (!stack.empty()) {
-      const uint32_t id = stack.back();
-      stack.pop_back();
-      ++visited;
-      const cover::Bvh::Node& n = bvh.nodes()[id];
-      if (p[u] < n.lo[u] || p[u] > n.hi[u] || p[w] < n.lo[w] || p[w] > n.hi[w] ||
-          (s > 0 ? p[k] > n.hi[k] : p[k] < n.lo[k]) || n.count > 0)
-        continue;
-      stack.push_back(n.first + 1);
-      stack.push_back(n.first);
-    }
+    visited += nodes_tested(bvh, [&](const cover::Bvh::Node& n) {
+      return !(p[u] < n.lo[u] || p[u] > n.hi[u] || p[w] < n.lo[w] || p[w] > n.hi[w] ||
+               (s > 0 ? p[k] > n.hi[k] : p[k] < n.lo[k]));
+    });
   }
   return static_cast<double>(visited) / static_cast<double>(points.size());
 }
 
+// classify() of 1000 points per iteration, BVH prebuilt, empty-cell grid off, one thread.
 void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
   const Model& m = model(state.range(0));
   const std::vector<cover::Vec3> points = random_points(m.solid, kBatch * kBatches, kSeed);
@@ -214,27 +223,6 @@ void BM_ClassifyBulk(benchmark::State& state) {  // NOLINT(readability-identifie
   state.counters["time_per_point"] = time_per(kMillion);
 }
 
-// cast() of 1000 rays per iteration (all hits and CSG spans), BVH prebuilt, one thread.
-void BM_CastRay(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
-  const Model& m = model(state.range(0));
-  const std::vector<cover::Ray> rays = random_rays(m.solid, kBatch * kBatches, kSeed);
-  cover::ThreadLimit limit(1);
-  size_t batch = 0, hits = 0, cast = 0;
-  for (auto _ : state) {
-    for (size_t i = batch * kBatch; i < (batch + 1) * kBatch; ++i) {
-      const cover::RayResult result =
-          cover::cast(*m.bvh, m.solid.tree, m.solid.leaves.size(), rays[i]);
-      hits += result.hits.size();
-    }
-    cast += kBatch;
-    batch = (batch + 1) % kBatches;
-  }
-  state.SetItemsProcessed(static_cast<int64_t>(cast));
-  state.counters["triangles"] = static_cast<double>(m.solid.face_count());
-  state.counters["hits_per_ray"] = static_cast<double>(hits) / static_cast<double>(cast);
-  state.counters["time_per_ray"] = time_per(kBatch);
-}
-
 /// BVH nodes whose box a ray's walk tests (the algorithmic cost of a ray, free of cache effects):
 /// the slab test of covering/ray.cpp (the same formula and slack), over the public node array.
 double nodes_per_ray(const cover::Bvh& bvh, const std::vector<cover::Ray>& rays) {
@@ -254,29 +242,28 @@ double nodes_per_ray(const cover::Bvh& bvh, const std::vector<cover::Ray>& rays)
       }
       return std::max(0.0, enter * (1 - 1e-12)) <= leave * (1 + 1e-12);
     };
-    std::vector<uint32_t> stack{0};
-    while (!stack.empty()) {
-      const cover::Bvh::Node& n = bvh.nodes()[stack.back()];
-      stack.pop_back();
-      ++tested;
-      if (!meets(n) || n.count > 0) continue;
-      stack.push_back(n.first + 1);
-      stack.push_back(n.first);
-    }
+    tested += nodes_tested(bvh, meets);
   }
   return static_cast<double>(tested) / static_cast<double>(rays.size());
 }
 
-// The batch cast() of 1000 rays per iteration (the API `cover volume`, `cover cast` and callers
-// with many rays use: rays walk the BVH together), BVH prebuilt, one thread.
-void BM_CastRays(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
+// cast() of 1000 rays per iteration (all hits and CSG spans), BVH prebuilt, one thread: one call
+// per ray (BM_CastRay: a ray's latency) or one batch call (BM_CastRays: the API for many rays,
+// which `cover volume` uses; the rays walk the BVH together).
+void cast_rays(benchmark::State& state, bool batch_api) {
   const Model& m = model(state.range(0));
   const std::vector<cover::Ray> rays = random_rays(m.solid, kBatch * kBatches, kSeed);
   cover::ThreadLimit limit(1);
   size_t batch = 0, hits = 0, cast = 0;
   for (auto _ : state) {
-    const auto results = cover::cast(*m.bvh, m.solid, std::span(rays).subspan(batch * kBatch, kBatch));
-    for (const cover::RayResult& r : results) hits += r.hits.size();
+    if (batch_api) {
+      const auto results =
+          cover::cast(*m.bvh, m.solid, std::span(rays).subspan(batch * kBatch, kBatch));
+      for (const cover::RayResult& r : results) hits += r.hits.size();
+    } else {
+      for (size_t i = batch * kBatch; i < (batch + 1) * kBatch; ++i)
+        hits += cover::cast(*m.bvh, m.solid.tree, m.solid.leaves.size(), rays[i]).hits.size();
+    }
     cast += kBatch;
     batch = (batch + 1) % kBatches;
   }
@@ -286,6 +273,8 @@ void BM_CastRays(benchmark::State& state) {  // NOLINT(readability-identifier-na
   state.counters["time_per_ray"] = time_per(kBatch);
   state.counters["nodes_per_ray"] = nodes_per_ray(*m.bvh, rays);
 }
+void BM_CastRay(benchmark::State& state) { cast_rays(state, false); }  // NOLINT(readability-identifier-naming)
+void BM_CastRays(benchmark::State& state) { cast_rays(state, true); }  // NOLINT(readability-identifier-naming)
 
 // Targets 10k, 100k, 1M triangles; wall-clock time (the TBB workers' CPU time is not the
 // calling thread's).

@@ -72,44 +72,12 @@ void brute_windings(const LeafTriangles& lt, const Vec3& q, std::vector<int>& wi
     }
 }
 
-/// The same from the BVH: only nodes whose box meets the half-line. The half-line runs along
-/// the axis direction that leaves the solid's box soonest (fewer nodes to visit); the winding
-/// number does not depend on that choice.
-void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
-                  std::vector<uint8_t>& on_surface) {
-  std::fill(winding.begin(), winding.end(), 0);
-  std::fill(on_surface.begin(), on_surface.end(), 0);
-  if (bvh.nodes().empty()) return;
-  const auto& tris = bvh.triangles();
-  const Bbox& all = bvh.bounds();
-  AxisRay r = axis_ray(0, 1);
-  double shortest = all.max.x - q.x;
-  for (int k = 0; k < 3; ++k)
-    for (int s : {1, -1}) {
-      const double len = s > 0 ? all.max[k] - q[k] : q[k] - all.min[k];
-      if (len < shortest) {
-        shortest = len;
-        r = axis_ray(k, s);
-      }
-    }
-  const int k = r.k, u = r.u, w = r.w;
-  walk(
-      bvh,
-      [&](const Bvh::Node& node) {
-        return !(q[u] < node.lo[u] || q[u] > node.hi[u] || q[w] < node.lo[w] ||
-                 q[w] > node.hi[w] || (r.s > 0 ? q[k] > node.hi[k] : q[k] < node.lo[k]));
-      },
-      [&](uint32_t i) {
-        const Bvh::Tri& t = tris[i];
-        on_surface[t.leaf] |= visit(t.a, t.b, t.c, q, r, winding[t.leaf]);
-      });
-}
-
-/// A classification query: the point, its half-line, and the half-line's bounding box (a point
-/// in u and w, unbounded along s·e_k) as float bounds rounded outward (float_bounds.h float_down
-/// / float_up) in the lane order of a node's first and second 16 bytes, (lo0, lo1, lo2, hi0) and
-/// (hi0, hi1, hi2, first): a node box meets the half-line iff lo <= hi_q and hi >= lo_q on every
-/// axis — exactly bvh_windings's test, in four-lane single precision.
+/// A classification query: the point, its half-line — along the axis direction that leaves the
+/// solid's box soonest (fewer nodes to visit; the winding number does not depend on the choice)
+/// — and the half-line's bounding box (a point in u and w, unbounded along s·e_k) as float
+/// bounds rounded outward (float_bounds.h) in the lane order of a node's first and second 16
+/// bytes, (lo0, lo1, lo2, hi0) and (hi0, hi1, hi2, first): a node box meets the half-line iff
+/// lo <= hi_q and hi >= lo_q on every axis, which these float bounds decide exactly.
 struct alignas(16) HalfLineQuery {
   detail::v4f hi_q, lo_q;
   Vec3 q;
@@ -150,6 +118,23 @@ bool meets(const HalfLineQuery& h, const Bvh::Node& node) {
   std::memcpy(&b, reinterpret_cast<const char*>(&node) + 12, sizeof b);
   const detail::v4i ignore_first = {0, 0, 0, -1};
   return detail::all_lanes((a <= h.hi_q) & ((b >= h.lo_q) | ignore_first));
+}
+
+/// The same from the BVH: only nodes whose box meets the half-line (a depth-first walk; the
+/// cell grid's queries, one at a time).
+void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
+                  std::vector<uint8_t>& on_surface) {
+  std::fill(winding.begin(), winding.end(), 0);
+  std::fill(on_surface.begin(), on_surface.end(), 0);
+  if (bvh.nodes().empty()) return;
+  const auto& tris = bvh.triangles();
+  const HalfLineQuery h = half_line_query(bvh, q);
+  walk(
+      bvh, [&](const Bvh::Node& node) { return meets(h, node); },
+      [&](uint32_t i) {
+        const Bvh::Tri& t = tris[i];
+        on_surface[t.leaf] |= visit(t.a, t.b, t.c, q, h.r, winding[t.leaf]);
+      });
 }
 
 /// bvh_windings for a batch of points (walk_batch: their node loads overlap). winding and
