@@ -1,11 +1,13 @@
 // Exact classification (covering/classify.h): boxes' corners, edges, faces; triangulated faces;
-// false-edge holes; non-convex faces; result-level rules; nested expressions vs a truth table.
+// false-edge holes; non-convex faces; result-level rules; nested expressions vs a truth table; a
+// solid whose whole BVH is one leaf.
 #include "covering/classify.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "covering/ray.h"
 #include "helpers.h"
 #include "solid/parallel.h"
 #include "solid/primitives.h"
@@ -177,6 +179,40 @@ TEST(Classify, SameResultsWithOneAndTwoThreads) {
     two_threads = classify(s, pts);
   }
   EXPECT_EQ(one_thread, two_threads);
+}
+
+TEST(Classify, TetrahedronWholeBvhIsOneLeaf) {
+  // Four triangles: the BVH root is itself a leaf (the batch walk's first case).
+  PolygonMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.add_face({0, 2, 1});
+  m.add_face({0, 1, 3});
+  m.add_face({0, 3, 2});
+  m.add_face({1, 2, 3});
+  const Solid s = make_leaf(m, "tetra");
+  const Bvh bvh(s);
+  ASSERT_EQ(bvh.nodes().size(), 2u);  // the root and the unused pair padding
+  ASSERT_GT(bvh.nodes()[0].count, 0u);
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int> grid(-1, 5);  // eighths: on faces, edges, vertices too
+  std::vector<Vec3> pts(500);
+  for (Vec3& p : pts) p = {grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25};
+  const std::vector<PC> got = classify(s, bvh, pts);
+  EXPECT_EQ(got, classify_brute_force(s, pts));
+  EXPECT_EQ(one(s, {0.1, 0.1, 0.1}), PC::kInside);
+  EXPECT_EQ(one(s, {0.5, 0.5, 0}), PC::kEdge);
+  EXPECT_EQ(one(s, {0, 0, 0}), PC::kVertex);
+  EXPECT_EQ(one(s, {0.6, 0.6, 0.6}), PC::kOutside);
+  // Rays: the batch cast() walks the same one-leaf tree.
+  std::vector<Ray> rays;
+  for (int i = 0; i < 40; ++i) rays.push_back({{-1, 0.02 * i, 0.1}, {1, 0.01 * i, 0.05}});
+  const std::vector<RayResult> batch = cast(bvh, s, rays);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const RayResult single = cast(bvh, s.tree, s.leaves.size(), rays[i]);
+    ASSERT_EQ(batch[i].hits.size(), single.hits.size()) << i;
+    for (size_t h = 0; h < single.hits.size(); ++h) EXPECT_EQ(batch[i].hits[h].t, single.hits[h].t);
+  }
+  EXPECT_EQ(batch[0].hits.size(), 2u);
 }
 
 TEST(Classify, WindingOfNestedShells) {
