@@ -273,8 +273,10 @@ void cast_rays(benchmark::State& state, bool batch_api) {
   state.counters["time_per_ray"] = time_per(kBatch);
   state.counters["nodes_per_ray"] = nodes_per_ray(*m.bvh, rays);
 }
-void BM_CastRay(benchmark::State& state) { cast_rays(state, false); }  // NOLINT(readability-identifier-naming)
-void BM_CastRays(benchmark::State& state) { cast_rays(state, true); }  // NOLINT(readability-identifier-naming)
+// NOLINTNEXTLINE(readability-identifier-naming)
+void BM_CastRay(benchmark::State& state) { cast_rays(state, false); }
+// NOLINTNEXTLINE(readability-identifier-naming)
+void BM_CastRays(benchmark::State& state) { cast_rays(state, true); }
 
 // Targets 10k, 100k, 1M triangles; wall-clock time (the TBB workers' CPU time is not the
 // calling thread's).

@@ -189,12 +189,14 @@ int main(int argc, char** argv) {
               boundary, disagree);
   std::printf(" \"brute_points\": %zu, \"brute_s\": %.3f, \"disagreements_vs_brute\": %ld,\n", nb, brute_time,
               brute_disagree);
-  std::printf(" \"rays\": %ld, \"cover_rays_s\": %.4f, \"cgal_rays_s\": %.4f, \"ray_speedup\": %.2f, "
-              "\"hits_cover\": %ld, \"hits_cgal\": %ld, \"ray_disagreements\": %ld,\n",
-              n_rays, cover_rays, cgal_rays, cgal_rays / cover_rays, ray_hits_ours, ray_hits_cgal,
-              ray_disagree);
-  std::printf(" \"cover_rays_batch_s\": %.4f, \"ray_batch_speedup\": %.2f, "
-              "\"batch_vs_single_disagreements\": %ld}\n",
-              cover_rays_batch, cgal_rays / cover_rays_batch, batch_disagree);
+  std::printf(
+      " \"rays\": %ld, \"cover_rays_s\": %.4f, \"cgal_rays_s\": %.4f, \"ray_speedup\": %.2f, "
+      "\"hits_cover\": %ld, \"hits_cgal\": %ld, \"ray_disagreements\": %ld,\n",
+      n_rays, cover_rays, cgal_rays, cgal_rays / cover_rays, ray_hits_ours, ray_hits_cgal,
+      ray_disagree);
+  std::printf(
+      " \"cover_rays_batch_s\": %.4f, \"ray_batch_speedup\": %.2f, "
+      "\"batch_vs_single_disagreements\": %ld}\n",
+      cover_rays_batch, cgal_rays / cover_rays_batch, batch_disagree);
   return disagree == 0 && brute_disagree == 0 && batch_disagree == 0 ? 0 : 1;
 }

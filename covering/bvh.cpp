@@ -182,8 +182,7 @@ struct Builder {
   /// Copies `piece` into the tree: its root to nodes[slot], its other nodes (piece.size − 1,
   /// an even number: children pairs) to nodes[at, ...), making child indices global. A serial
   /// piece's local pairs start at index 1, so local i > 0 goes to at + i − 1.
-  static void place(const Piece& piece, LargeVector<Bvh::Node>& nodes, uint32_t slot,
-                    uint32_t at) {
+  static void place(const Piece& piece, LargeVector<Bvh::Node>& nodes, uint32_t slot, uint32_t at) {
     if (!piece.left) {
       for (size_t i = 0; i < piece.nodes.size(); ++i) {
         Bvh::Node node = piece.nodes[i];

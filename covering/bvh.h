@@ -7,11 +7,11 @@
 // Layout: 32-byte nodes; the root is node 0 (node 1 is unused), and the two children of an inner
 // node are nodes `first` and `first + 1`, a pair at an even index (one 64-byte cache line for
 // both boxes a traversal step tests), pairs in depth-first order. Leaves own triangles
-// [first, first + count). Boxes are exact min/max of
-// the double coordinates, so "box misses ⇒ triangle misses" holds exactly. Build: binned SAH (16
-// bins over the centroid extent of the widest axis), the centroid median where SAH finds no split
-// or below depth 64; subtrees above a size threshold are built in parallel into separate pieces and
-// then placed in depth-first order, so the tree does not depend on the thread count.
+// [first, first + count). Boxes are exact min/max of the double coordinates, so "box misses ⇒
+// triangle misses" holds exactly. Build: binned SAH (16 bins over the centroid extent of the
+// widest axis), the centroid median where SAH finds no split or below depth 64; subtrees above a
+// size threshold are built in parallel into separate pieces and then placed in depth-first
+// order, so the tree does not depend on the thread count.
 
 #include <cstdint>
 #include <vector>
@@ -118,7 +118,7 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
 /// reached — and leaf(j, node) for every leaf node that meets, made breadth first over the whole
 /// batch with prefetching: a node's children are fetched a few entries before they are tested,
 /// and a leaf's triangles a few entries before leaf() reads them. Why: one query's walk is a
-/// chain of dependent loads, and once the structure outgrows the cache (97 MB at 1M triangles)
+/// chain of dependent loads, and once the structure outgrows the cache (100 MB at 1M triangles)
 /// each is a miss; across a batch the loads are independent, so their misses overlap. Measured
 /// in bench/bench_queries (BM_ClassifyPoint, batches of 1000 random points, 1 thread): see README
 /// "Scaling". Each query's calls are walk()'s, in another order: callers must not depend on it.
@@ -131,7 +131,8 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
   if (nodes.empty() || n == 0) return;
   struct Entry {
     uint32_t query;
-    uint32_t node;  ///< level: the first of the children pair of a node that meets; leaves: the leaf
+    /// In `level`: the first of the children pair of a node that meets; in `leaves`: the leaf.
+    uint32_t node;
   };
   struct Scratch {
     std::vector<Entry> level, next, leaves;
@@ -152,7 +153,8 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
   leaves.clear();
   const bool root_leaf = nodes[0].count > 0;
   for (uint32_t j = 0; j < n; ++j)
-    if (meets(j, nodes[0])) (root_leaf ? leaves : level).push_back({j, root_leaf ? 0 : nodes[0].first});
+    if (meets(j, nodes[0]))
+      (root_leaf ? leaves : level).push_back({j, root_leaf ? 0 : nodes[0].first});
   while (!level.empty()) {
     // Every entry is an inner node: test its two children, keep the ones that meet. The
     // children are written unconditionally and the counts advanced by the outcome (no branch

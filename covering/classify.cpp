@@ -1,10 +1,10 @@
 #include "covering/classify.h"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <functional>
 #include <mutex>
 #include <optional>
 
@@ -139,9 +139,8 @@ void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
 
 /// bvh_windings for a batch of points (walk_batch: their node loads overlap). winding and
 /// on_surface hold ids.size() rows of `leaves` entries.
-void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points,
-                        std::span<const uint32_t> ids, size_t leaves, std::vector<int>& winding,
-                        std::vector<uint8_t>& on_surface,
+void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<const uint32_t> ids,
+                        size_t leaves, std::vector<int>& winding, std::vector<uint8_t>& on_surface,
                         std::vector<HalfLineQuery>& queries) {
   winding.assign(ids.size() * leaves, 0);
   on_surface.assign(ids.size() * leaves, 0);

@@ -59,9 +59,9 @@ TEST(FloatRounding, DownAndUpAreTheNeighbouringFloats) {
       EXPECT_EQ(d, u) << x;
     }
   };
-  for (const double x : {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-40, -1e-40, 1e-46, -1e-46,
-                         static_cast<double>(FLT_MAX), -static_cast<double>(FLT_MAX), 1e39, -1e39,
-                         static_cast<double>(FLT_MIN), 3.0000001, -7.25})
+  for (const double x :
+       {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-40, -1e-40, 1e-46, -1e-46, static_cast<double>(FLT_MAX),
+        -static_cast<double>(FLT_MAX), 1e39, -1e39, static_cast<double>(FLT_MIN), 3.0000001, -7.25})
     check(x);
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> mant(-1, 1);

@@ -1,5 +1,5 @@
-// Seeded random CSG trees (in the spirit of Manifold's fuzz test): the accelerated classifier equals
-// the brute-force covering path on random points and on points exactly on faces, edges and
+// Seeded random CSG trees (in the spirit of Manifold's fuzz test): the accelerated classifier
+// equals the brute-force covering path on random points and on points exactly on faces, edges and
 // vertices; vol(A∪B) + vol(A∩B) = vol(A) + vol(B) within the reported error bounds; and scaled
 // copies of a scene (by powers of two, so the doubles scale exactly) classify identically; the
 // front-to-back first visible point of a ray equals the one from all of cast()'s spans; the
