@@ -114,18 +114,18 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
   }
 }
 
-/// The same node tests as walk() for each query j < n of a batch — meets(j, node) for every node
-/// reached — and leaf(j, node) for every leaf node that meets, made breadth first over the whole
+/// The same node tests as walk() for each query j < n of a batch and leaf(j, node) for every leaf
+/// node that meets, made breadth first over the whole
 /// batch with prefetching: a node's children are fetched a few entries before they are tested,
 /// and a leaf's triangles a few entries before leaf() reads them. Why: one query's walk is a
 /// chain of dependent loads, and once the structure outgrows the cache (100 MB at 1M triangles)
 /// each is a miss; across a batch the loads are independent, so their misses overlap. Measured
 /// in bench/bench_queries (BM_ClassifyPoint, batches of 1000 random points, 1 thread): see README
 /// "Scaling". Each query's calls are walk()'s, in another order: callers must not depend on it.
-/// meets_both(j, left, right) answers meets for a node's two children at once (bit 0: left, bit
-/// 1: right), so that a caller can test them in SIMD lanes.
-template <typename Meets, typename MeetsBoth, typename Leaf>
-void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_both, Leaf&& leaf) {
+/// meets_both(j, a, b) tests two boxes at once (bit 0: a meets query j, bit 1: b does), so that a
+/// caller can test a node's children in SIMD lanes; the root is tested as (root, root).
+template <typename MeetsBoth, typename Leaf>
+void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf) {
   const auto& nodes = bvh.nodes();
   const auto& tris = bvh.triangles();
   if (nodes.empty() || n == 0) return;
@@ -153,7 +153,7 @@ void walk_batch(const Bvh& bvh, uint32_t n, Meets&& meets, MeetsBoth&& meets_bot
   leaves.clear();
   const bool root_leaf = nodes[0].count > 0;
   for (uint32_t j = 0; j < n; ++j)
-    if (meets(j, nodes[0]))
+    if (meets_both(j, nodes[0], nodes[0]) & 1)
       (root_leaf ? leaves : level).push_back({j, root_leaf ? 0 : nodes[0].first});
   while (!level.empty()) {
     // Every entry is an inner node: test its two children, keep the ones that meet. The

@@ -149,7 +149,6 @@ void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<
   const auto& tris = bvh.triangles();
   walk_batch(
       bvh, static_cast<uint32_t>(ids.size()),
-      [&](uint32_t j, const Bvh::Node& node) { return meets(queries[j], node); },
       [&](uint32_t j, const Bvh::Node& l, const Bvh::Node& r) {
         return unsigned{meets(queries[j], l)} | unsigned{meets(queries[j], r)} << 1;
       },
@@ -166,8 +165,8 @@ void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<
 }
 
 /// Leaf memberships → result class; on-surface points go to the exact local analysis.
-PointClass finish(const Vec3& q, const CsgTree& tree, const std::vector<int>& winding,
-                  const std::vector<uint8_t>& on_surface, std::vector<uint8_t>& inside,
+PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> winding,
+                  std::span<const uint8_t> on_surface, std::vector<uint8_t>& inside,
                   const std::function<const LeafTriangles&()>& triangles) {
   inside.resize(winding.size());
   bool any_on = false;
@@ -260,17 +259,17 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
   const size_t leaves = solid.leaves.size();
   const size_t batch = std::clamp<size_t>(16384 / std::max<size_t>(leaves, 1), 1, 256);
   parallel_for(todo.size(), options.grain, [&](size_t begin, size_t end) {
-    std::vector<int> winding, w(leaves);
-    std::vector<uint8_t> on_surface, on(leaves), inside;
+    std::vector<int> winding;
+    std::vector<uint8_t> on_surface, inside;
     std::vector<HalfLineQuery> queries;
     for (size_t b = begin; b < end; b += batch) {
       const std::span<const uint32_t> ids(todo.data() + b, std::min(end, b + batch) - b);
       bvh_windings_batch(bvh, points, ids, leaves, winding, on_surface, queries);
-      for (size_t j = 0; j < ids.size(); ++j) {
-        std::copy_n(winding.begin() + static_cast<ptrdiff_t>(j * leaves), leaves, w.begin());
-        std::copy_n(on_surface.begin() + static_cast<ptrdiff_t>(j * leaves), leaves, on.begin());
-        out[ids[j]] = finish(points[ids[j]], solid.tree, w, on, inside, triangles);
-      }
+      for (size_t j = 0; j < ids.size(); ++j)  // point j's row of each table
+        out[ids[j]] = finish(points[ids[j]], solid.tree,
+                             std::span<const int>(winding).subspan(j * leaves, leaves),
+                             std::span<const uint8_t>(on_surface).subspan(j * leaves, leaves),
+                             inside, triangles);
     }
   });
   return out;

@@ -206,10 +206,6 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
   const auto& tris = bvh.triangles();
   walk_batch(
       bvh, static_cast<uint32_t>(rays.size()),
-      [&](uint32_t j, const Bvh::Node& node) {
-        const Interval i = per[j].slab(node);
-        return i.t0 <= i.t1;
-      },
       [&](uint32_t j, const Bvh::Node& l, const Bvh::Node& r) {
         Interval il, ir;
         per[j].slab(l, r, il, ir);

@@ -68,6 +68,17 @@ inline RunResult run_cover(const std::string& args, const std::string& stdin_tex
 
 namespace cover::test {
 
+/// The tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1), outward, volume 1/6.
+inline PolygonMesh unit_tetrahedron() {
+  PolygonMesh m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.add_face({0, 2, 1});
+  m.add_face({0, 1, 3});
+  m.add_face({0, 3, 2});
+  m.add_face({1, 2, 3});
+  return m;
+}
+
 /// Fan-triangulates every face (for faces without false edges).
 inline PolygonMesh triangulate(const PolygonMesh& m) {
   PolygonMesh t;

@@ -183,13 +183,7 @@ TEST(Classify, SameResultsWithOneAndTwoThreads) {
 
 TEST(Classify, TetrahedronWholeBvhIsOneLeaf) {
   // Four triangles: the BVH root is itself a leaf (the batch walk's first case).
-  PolygonMesh m;
-  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  m.add_face({0, 2, 1});
-  m.add_face({0, 1, 3});
-  m.add_face({0, 3, 2});
-  m.add_face({1, 2, 3});
-  const Solid s = make_leaf(m, "tetra");
+  const Solid s = make_leaf(test::unit_tetrahedron(), "tetra");
   const Bvh bvh(s);
   ASSERT_EQ(bvh.nodes().size(), 2u);  // the root and the unused pair padding
   ASSERT_GT(bvh.nodes()[0].count, 0u);

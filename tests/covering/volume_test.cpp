@@ -20,13 +20,7 @@ Solid leaf(PolygonMesh m) { return make_leaf(std::move(m), "leaf"); }
 TEST(Volume, BoxAndTetrahedron) {
   EXPECT_DOUBLE_EQ(volume(leaf(make_box({0, 0, 0}, {1, 2, 3}))).volume, 6.0);
   EXPECT_DOUBLE_EQ(*volume(leaf(make_box({0, 0, 0}, {1, 2, 3}))).area, 22.0);
-  PolygonMesh t;
-  t.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  t.add_face({0, 2, 1});
-  t.add_face({0, 1, 3});
-  t.add_face({0, 3, 2});
-  t.add_face({1, 2, 3});
-  EXPECT_DOUBLE_EQ(volume(leaf(t)).volume, 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(volume(leaf(test::unit_tetrahedron())).volume, 1.0 / 6.0);
 }
 
 TEST(Volume, FrameBoxWithFalseEdges) {
