@@ -105,8 +105,7 @@ Sides windings(const Arrangement& arr, const Bvh& bvh, size_t leaves, uint32_t t
       return lo <= hi;
     };
     try {
-      walk(bvh, meets, [&](uint32_t i) {
-        const Bvh::Tri& w = bvh.triangles()[i];
+      walk(bvh, meets, [&](const Bvh::Tri& w, uint32_t) {
         const Tri& wt = arr.tris[w.face];
         const Point& a = arr.points[wt.v[0]];
         const Point& b = arr.points[wt.v[1]];

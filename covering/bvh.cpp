@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
+#include <stdexcept>
 
 #include "covering/detail/float_bounds.h"
 #include "covering/predicates.h"
@@ -322,7 +324,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   });
   // 3. The tree, then the triangles in leaf-node order.
   BvhOptions o = options;
-  o.leaf_size = std::max<uint32_t>(1, o.leaf_size);
+  o.leaf_size = std::clamp<uint32_t>(o.leaf_size, 1, 64);  // vertex slots of a block fit a byte
   Builder builder{refs, o};
   Piece root;
   builder.build(root, 0, n, 0, builder.extent(0, n));
@@ -332,16 +334,76 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   Builder::place(root, nodes_, 0, 2);
   nodes_[1] = Node{};
   for (int a = 0; a < 3; ++a) nodes_[1].lo[a] = INFINITY, nodes_[1].hi[a] = -INFINITY;
-  tris_.resize(n);
-  parallel_for(n, 4096, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) tris_[i] = fan.get(solid, refs[i].index);
+  // 4. The leaf blocks (Bvh::LeafBlock), in node order: sizes (distinct vertices per leaf),
+  //    offsets, then the blocks, each leaf's triangles read from the faces again.
+  std::vector<uint32_t> leaf_nodes;
+  for (uint32_t i = 0; i < nodes_.size(); ++i)
+    if (nodes_[i].count > 0) leaf_nodes.push_back(i);
+  leaves_ = leaf_nodes.size();
+  // Gathers a leaf node's triangles and distinct vertices (bit-identical coordinates: 0 and −0
+  // stay apart, so every triangle reads back exactly the doubles of its face's vertices).
+  auto gather = [&](const Node& node, Tri* tris, Vec3* verts, uint8_t* slots) {
+    uint32_t nv = 0;
+    for (uint32_t k = 0; k < node.count; ++k) {
+      tris[k] = fan.get(solid, refs[node.first + k].index);
+      for (int c = 0; c < 3; ++c) {
+        const Vec3& v = c == 0 ? tris[k].a : (c == 1 ? tris[k].b : tris[k].c);
+        uint32_t s = 0;
+        while (s < nv && std::memcmp(&verts[s], &v, sizeof(Vec3)) != 0) ++s;
+        if (s == nv) verts[nv++] = v;
+        slots[3 * k + c] = static_cast<uint8_t>(s);
+      }
+    }
+    return nv;
+  };
+  constexpr uint32_t kMaxLeaf = 64;  // o.leaf_size is clamped to it: vertex slots fit a byte
+  auto words = [](uint32_t count, uint32_t verts) {
+    return (LeafBlock::vertices_offset(count) + sizeof(Vec3) * verts) / 8;
+  };
+  LargeVector<uint64_t> offset(leaf_nodes.size() + 1, 0);
+  parallel_for(leaf_nodes.size(), 1024, [&](size_t begin, size_t end) {
+    Tri tris[kMaxLeaf];
+    Vec3 verts[3 * kMaxLeaf];
+    uint8_t slots[3 * kMaxLeaf];
+    for (size_t l = begin; l < end; ++l) {
+      const Node& node = nodes_[leaf_nodes[l]];
+      offset[l + 1] = words(node.count, gather(node, tris, verts, slots));
+    }
   });
-  for (const Node& node : nodes_) leaves_ += node.count > 0;
+  for (size_t l = 0; l < leaf_nodes.size(); ++l) offset[l + 1] += offset[l];
+  if (offset[leaf_nodes.size()] > UINT32_MAX)
+    throw std::length_error("BVH leaf blocks exceed 32 GB (too many triangles for one BVH)");
+  blocks_.resize(offset[leaf_nodes.size()]);
+  block_of_.resize(n);
+  parallel_for(leaf_nodes.size(), 1024, [&](size_t begin, size_t end) {
+    Tri tris[kMaxLeaf];
+    Vec3 verts[3 * kMaxLeaf];
+    uint8_t slots[3 * kMaxLeaf];
+    for (size_t l = begin; l < end; ++l) {
+      Node& node = nodes_[leaf_nodes[l]];
+      const uint32_t nv = gather(node, tris, verts, slots);
+      auto* p = reinterpret_cast<unsigned char*>(&blocks_[offset[l]]);
+      std::memset(p, 0, 8 * words(node.count, nv));
+      const uint32_t first = node.first;  // the leaf's first triangle (refs order)
+      std::memcpy(p, &first, 4);
+      p[4] = static_cast<uint8_t>(node.count);
+      for (uint32_t k = 0; k < node.count; ++k) {
+        unsigned char* r = p + 8 + 12 * k;
+        std::memcpy(r, &tris[k].leaf, 4);
+        std::memcpy(r + 4, &tris[k].face, 4);
+        std::memcpy(r + 8, &slots[3 * k], 3);
+        block_of_[first + k] = static_cast<uint32_t>(offset[l]);
+      }
+      std::memcpy(p + LeafBlock::vertices_offset(node.count), verts, sizeof(Vec3) * nv);
+      node.first = static_cast<uint32_t>(offset[l]);
+    }
+  });
 }
 
 size_t Bvh::memory_bytes() const {
-  return tris_.capacity() * sizeof(Tri) + nodes_.capacity() * sizeof(Node) +
-         planes_.capacity() * sizeof(FacePlane) + plane_of_.capacity() * sizeof(uint32_t);
+  return blocks_.capacity() * sizeof(uint64_t) + block_of_.capacity() * sizeof(uint32_t) +
+         nodes_.capacity() * sizeof(Node) + planes_.capacity() * sizeof(FacePlane) +
+         plane_of_.capacity() * sizeof(uint32_t);
 }
 
 }  // namespace cover

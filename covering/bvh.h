@@ -6,14 +6,16 @@
 // (the peer) stores a primitive per node with slower traversal (bench/compare_cgal measures both).
 // Layout: 32-byte nodes; the root is node 0 (node 1 is unused), and the two children of an inner
 // node are nodes `first` and `first + 1`, a pair at an even index (one 64-byte cache line for
-// both boxes a traversal step tests), pairs in depth-first order. Leaves own triangles
-// [first, first + count). Boxes are exact min/max of the double coordinates, so "box misses ⇒
-// triangle misses" holds exactly. Build: binned SAH (16 bins over the centroid extent of the
-// widest axis), the centroid median where SAH finds no split or below depth 64; subtrees above a
-// size threshold are built in parallel into separate pieces and then placed in depth-first
+// both boxes a traversal step tests), pairs in depth-first order. A leaf node's triangles are
+// stored in one leaf block (see LeafBlock: its distinct vertices once, then 12 bytes per
+// triangle), blocks in node order. Boxes contain the exact min/max of the double coordinates, so
+// "box misses ⇒ triangle misses" holds exactly. Build: binned SAH (16 bins over the centroid extent
+// of the widest axis), the centroid median where SAH finds no split or below depth 64; subtrees
+// above a size threshold are built in parallel into separate pieces and then placed in depth-first
 // order, so the tree does not depend on the thread count.
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "solid/large_vector.h"
@@ -22,7 +24,7 @@
 namespace cover {
 
 struct BvhOptions {
-  uint32_t leaf_size = 4;            ///< max triangles per leaf node
+  uint32_t leaf_size = 4;            ///< max triangles per leaf node (clamped to [1, 64])
   size_t parallel_threshold = 8192;  ///< subtrees at least this large are built in parallel
 };
 
@@ -45,8 +47,47 @@ class Bvh {
   struct Node {
     float lo[3];
     float hi[3];
-    uint32_t first = 0;  ///< leaf: first triangle; inner: index of the left child (right: + 1)
+    uint32_t first = 0;  ///< leaf: its block's offset in 8-byte words; inner: the left child
     uint32_t count = 0;  ///< leaf: number of triangles; inner: 0
+  };
+
+  /// A leaf node's triangles as stored, a view of its block of 8-byte words: a header {uint32
+  /// index of its first triangle, uint8 triangles}, one 12-byte record per triangle {uint32
+  /// leaf, uint32 face, uint8 slots of its vertices a, b, c}, padded to 8 bytes, then the
+  /// distinct vertices of the block's triangles (24 bytes each, exact doubles). Why: a query reads
+  /// whole leaves, and a 4-triangle leaf of a mesh has about 6 distinct vertices: 200 bytes
+  /// (4 cache lines) instead of 320 (5–6 lines) as separate triangles. Once the structure
+  /// outgrows the cache, those lines are most of a point query's memory traffic (README
+  /// "Scaling"). Fields are read with memcpy (the words hold bytes of several types).
+  class LeafBlock {
+   public:
+    explicit LeafBlock(const uint64_t* words) : p_(reinterpret_cast<const unsigned char*>(words)) {}
+    /// Index of the block's first triangle; its triangles are first() .. first() + size() − 1.
+    uint32_t first() const {
+      uint32_t f;
+      std::memcpy(&f, p_, 4);
+      return f;
+    }
+    uint32_t size() const { return p_[4]; }
+    /// Triangle k < size() of the block.
+    Tri operator[](uint32_t k) const {
+      const unsigned char* r = p_ + 8 + 12 * k;
+      const unsigned char* v = p_ + vertices_offset(size());
+      Tri t;
+      std::memcpy(&t.a, v + 24 * r[8], sizeof(Vec3));
+      std::memcpy(&t.b, v + 24 * r[9], sizeof(Vec3));
+      std::memcpy(&t.c, v + 24 * r[10], sizeof(Vec3));
+      std::memcpy(&t.leaf, r, 4);
+      std::memcpy(&t.face, r + 4, 4);
+      return t;
+    }
+    /// Byte offset of the vertices in a block of `triangles` triangles.
+    static constexpr size_t vertices_offset(size_t triangles) {
+      return (8 + 12 * triangles + 7) & ~size_t{7};
+    }
+
+   private:
+    const unsigned char* p_;
   };
 
   /// Builds over every non-degenerate covering triangle of `solid` (collinear ones are dropped:
@@ -63,7 +104,16 @@ class Bvh {
     Vec3 normal;
   };
 
-  const LargeVector<Tri>& triangles() const { return tris_; }
+  /// Number of triangles (the non-degenerate covering triangles, numbered leaf block by block).
+  size_t triangle_count() const { return block_of_.size(); }
+  /// Triangle i < triangle_count() (through its block: for random access off the hot paths).
+  Tri triangle(uint32_t i) const {
+    const LeafBlock b(&blocks_[block_of_[i]]);
+    return b[i - b.first()];
+  }
+  /// The block of a leaf node (node.count > 0).
+  LeafBlock block(const Node& leaf) const { return LeafBlock(&blocks_[leaf.first]); }
+  const uint64_t* block_words() const { return blocks_.data(); }
   /// The stored plane of face f, or nullptr for a triangular face (use the triangle's plane).
   const FacePlane* face_plane(uint32_t face) const {
     if (plane_of_.empty() || plane_of_[face] == UINT32_MAX) return nullptr;
@@ -76,11 +126,12 @@ class Bvh {
   /// triangles).
   const std::vector<Bbox>& leaf_bounds() const { return leaf_bounds_; }
   size_t leaf_count() const { return leaves_; }
-  /// Bytes held by the structure (triangles + nodes).
+  /// Bytes held by the structure (leaf blocks, nodes, face planes, triangle index).
   size_t memory_bytes() const;
 
  private:
-  LargeVector<Tri> tris_;
+  LargeVector<uint64_t> blocks_;    ///< the leaf blocks, in node order
+  LargeVector<uint32_t> block_of_;  ///< per triangle: its block's offset (for triangle(i))
   LargeVector<Node> nodes_;
   LargeVector<FacePlane> planes_;   ///< of the faces with more than three vertices, in order
   LargeVector<uint32_t> plane_of_;  ///< per face: index into planes_ or UINT32_MAX; empty if none
@@ -90,8 +141,8 @@ class Bvh {
 };
 
 /// Depth-first walk: for every leaf node reached through nodes whose bounds satisfy
-/// `meets(node)`, calls `visit(i)` for each of its triangle indices i. The one traversal loop of
-/// every BVH query (classification half-lines, rays, octree boxes).
+/// `meets(node)`, calls `visit(t, i)` for each of its triangles t (index i). The one traversal
+/// loop of the single-query paths (cell grid half-lines, rays, octree boxes).
 template <typename Meets, typename Visit>
 void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
   const auto& nodes = bvh.nodes();
@@ -110,7 +161,8 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
       stack[top++] = node.first;
       continue;
     }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) visit(i);
+    const Bvh::LeafBlock block = bvh.block(node);
+    for (uint32_t k = 0; k < node.count; ++k) visit(block[k], block.first() + k);
   }
 }
 
@@ -127,7 +179,6 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
 template <typename MeetsBoth, typename Leaf>
 void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf) {
   const auto& nodes = bvh.nodes();
-  const auto& tris = bvh.triangles();
   if (nodes.empty() || n == 0) return;
   struct Entry {
     uint32_t query;
@@ -138,14 +189,17 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
     std::vector<Entry> level, next, leaves;
   };
   // Entries between a prefetch and the use of what it fetched: a node pair is one cache line, a
-  // leaf's triangles five or six, so leaves are fetched fewer entries ahead (the core tracks a
-  // few dozen outstanding misses; prefetches beyond that stall).
+  // leaf block about four, so leaves are fetched fewer entries ahead (the core tracks a few
+  // dozen outstanding misses; prefetches beyond that stall).
   constexpr size_t kAhead = 16, kLeafAhead = 4;
   thread_local Scratch scratch;  // reused across calls; one TLS lookup, not one per access
   auto& [level, next, leaves] = scratch;
+  // A block's size is not in the node: fetch its records and count + 2 vertices (a mesh patch
+  // of count triangles has about that many; more are read without prefetch).
   auto prefetch_triangles = [&](const Bvh::Node& leaf_node) {
-    const auto begin = reinterpret_cast<uintptr_t>(&tris[leaf_node.first]);
-    const auto end = reinterpret_cast<uintptr_t>(&tris[leaf_node.first] + leaf_node.count);
+    const auto begin = reinterpret_cast<uintptr_t>(&bvh.block_words()[leaf_node.first]);
+    const uintptr_t end = begin + Bvh::LeafBlock::vertices_offset(leaf_node.count) +
+                          sizeof(Vec3) * (leaf_node.count + 2);
     for (uintptr_t p = begin & ~uintptr_t{63}; p < end; p += 64)
       __builtin_prefetch(reinterpret_cast<const void*>(p));
   };

@@ -26,7 +26,8 @@ CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(cons
     scale_[a] = box.max[a] > box.min[a] ? n_ / (box.max[a] - box.min[a]) : 0;
   }
   state_.assign(static_cast<size_t>(n_) * n_ * n_, 2);  // 2: empty, not yet labelled
-  for (const Bvh::Tri& t : bvh.triangles()) {
+  for (uint32_t i = 0; i < bvh.triangle_count(); ++i) {
+    const Bvh::Tri t = bvh.triangle(i);
     std::array<std::pair<int, int>, 3> r;
     for (int a = 0; a < 3; ++a)
       r[a] = cell_range(planes_[a], std::min({t.a[a], t.b[a], t.c[a]}), std::max({t.a[a], t.b[a], t.c[a]}));

@@ -127,12 +127,10 @@ void bvh_windings(const Bvh& bvh, const Vec3& q, std::vector<int>& winding,
   std::fill(winding.begin(), winding.end(), 0);
   std::fill(on_surface.begin(), on_surface.end(), 0);
   if (bvh.nodes().empty()) return;
-  const auto& tris = bvh.triangles();
   const HalfLineQuery h = half_line_query(bvh, q);
   walk(
       bvh, [&](const Bvh::Node& node) { return meets(h, node); },
-      [&](uint32_t i) {
-        const Bvh::Tri& t = tris[i];
+      [&](const Bvh::Tri& t, uint32_t) {
         on_surface[t.leaf] |= visit(t.a, t.b, t.c, q, h.r, winding[t.leaf]);
       });
 }
@@ -146,7 +144,6 @@ void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<
   on_surface.assign(ids.size() * leaves, 0);
   queries.resize(ids.size());
   for (size_t j = 0; j < ids.size(); ++j) queries[j] = half_line_query(bvh, points[ids[j]]);
-  const auto& tris = bvh.triangles();
   walk_batch(
       bvh, static_cast<uint32_t>(ids.size()),
       [&](uint32_t j, const Bvh::Node& l, const Bvh::Node& r) {
@@ -154,8 +151,9 @@ void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<
       },
       [&](uint32_t j, const Bvh::Node& node) {
         const HalfLineQuery& h = queries[j];
-        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-          const Bvh::Tri& t = tris[i];
+        const Bvh::LeafBlock block = bvh.block(node);
+        for (uint32_t k = 0; k < node.count; ++k) {
+          const Bvh::Tri t = block[k];
           const size_t at = j * leaves + t.leaf;
           int w = winding[at];
           on_surface[at] |= visit(t.a, t.b, t.c, h.q, h.r, w);

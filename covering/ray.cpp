@@ -203,7 +203,6 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
   thread_local std::vector<PerRay> per;
   per.clear();
   for (const Ray& r : rays) per.push_back({Slab(r.origin, r.dir), axes_for(r.dir)});
-  const auto& tris = bvh.triangles();
   walk_batch(
       bvh, static_cast<uint32_t>(rays.size()),
       [&](uint32_t j, const Bvh::Node& l, const Bvh::Node& r) {
@@ -213,12 +212,13 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
       },
       [&](uint32_t j, const Bvh::Node& node) {
         const Interval in = per[j].slab(node);
-        for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-          const Bvh::Tri& t = tris[i];
+        const Bvh::LeafBlock block = bvh.block(node);
+        for (uint32_t k = 0; k < node.count; ++k) {
+          const Bvh::Tri t = block[k];
           int sign;
           if (crosses(t, rays[j], per[j].ax, sign))
-            out[j].hits.push_back(
-                {hit_t(bvh, t, rays[j], in), i, t.leaf, t.face, static_cast<int8_t>(sign)});
+            out[j].hits.push_back({hit_t(bvh, t, rays[j], in), block.first() + k, t.leaf, t.face,
+                                   static_cast<int8_t>(sign)});
         }
       });
   for (RayResult& r : out) sweep_spans(r, tree, leaves);
@@ -231,7 +231,6 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
   if (bvh.nodes().empty()) return out;
   const Axes ax = axes_for(ray.dir);
   const Slab slab(ray.origin, ray.dir);
-  const auto& tris = bvh.triangles();
   Interval leaf{0, 0};  // walk() visits a leaf's triangles right after meets() accepted it
   walk(
       bvh,
@@ -239,8 +238,7 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
         leaf = slab(node);
         return leaf.t0 <= leaf.t1;
       },
-      [&](uint32_t i) {
-        const Bvh::Tri& t = tris[i];
+      [&](const Bvh::Tri& t, uint32_t i) {
         int sign;
         if (crosses(t, ray, ax, sign))
           out.hits.push_back(
@@ -297,7 +295,6 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
   const Axes ax = axes_for(ray.dir);
   const Slab slab(ray.origin, ray.dir);
   const auto& nodes = bvh.nodes();
-  const auto& tris = bvh.triangles();
   struct Entry {
     double t0, t1;
     uint32_t node;
@@ -378,12 +375,13 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
       }
       continue;
     }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-      const Bvh::Tri& t = tris[i];
+    const Bvh::LeafBlock block = bvh.block(node);
+    for (uint32_t k = 0; k < node.count; ++k) {
+      const Bvh::Tri t = block[k];
       int sign;
       if (!crosses(t, ray, ax, sign)) continue;
-      pending.push_back(
-          {hit_t(bvh, t, ray, {cur.t0, cur.t1}), i, t.leaf, t.face, static_cast<int8_t>(sign)});
+      pending.push_back({hit_t(bvh, t, ray, {cur.t0, cur.t1}), block.first() + k, t.leaf, t.face,
+                         static_cast<int8_t>(sign)});
       pending_min = std::min(pending_min, pending.back().t);
     }
   }
@@ -397,7 +395,7 @@ FirstHit first_hit(const Bvh& bvh, const RayResult& result) {
   for (const Span& s : result.spans) {
     if (s.enter == Span::kNone) continue;  // starts at the origin: no visible surface
     const RayHit& h = result.hits[s.enter];
-    const Bvh::Tri& t = bvh.triangles()[h.tri];
+    const Bvh::Tri t = bvh.triangle(h.tri);
     const Vec3 n = cross(t.b - t.a, t.c - t.a);
     f.hit = true;
     f.t = s.t0;

@@ -28,7 +28,7 @@ struct Ray {
 
 struct RayHit {
   double t = 0;
-  uint32_t tri = 0;  ///< index into Bvh::triangles()
+  uint32_t tri = 0;  ///< triangle index: Bvh::triangle(tri)
   uint32_t leaf = 0;
   uint32_t face = 0;
   int8_t sign = 0;  ///< +1 leaving the leaf, −1 entering it

@@ -90,7 +90,7 @@ void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out)
           if (node.lo[a] > box.max[a] || node.hi[a] < box.min[a]) return false;
         return true;
       },
-      [&](uint32_t i) { out.push_back(i); });
+      [&](const Bvh::Tri&, uint32_t i) { out.push_back(i); });
 }
 
 /// Groups `points` (all in `box`) by their sides of the planes of `tris`: equal side vectors
@@ -108,7 +108,7 @@ void group_by_sides(const Bvh& bvh, std::span<const uint32_t> tris, const Bbox& 
   }
   s.planes.clear();
   for (uint32_t t : tris) {
-    const Bvh::Tri& tri = bvh.triangles()[t];
+    const Bvh::Tri tri = bvh.triangle(t);
     s.planes.emplace_back(tri.a, tri.b, tri.c, box);
   }
   s.sides.resize(n * k);
@@ -254,7 +254,7 @@ class Builder {
               planes[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
           for (auto& list : octant) list.clear();
           for (uint32_t t : parent_lists_[parent]) {
-            const Bvh::Tri& tri = bvh_.triangles()[t];
+            const Bvh::Tri tri = bvh_.triangle(t);
             detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
             for (int c = 0; c < 8; ++c)
               if (overlap.meets(c)) octant[c].push_back(t);
@@ -271,7 +271,7 @@ class Builder {
           bvh_candidates(bvh_, b, candidates);
           const size_t before = out.size();
           for (uint32_t t : candidates) {
-            const Bvh::Tri& tri = bvh_.triangles()[t];
+            const Bvh::Tri tri = bvh_.triangle(t);
             if (detail::triangle_meets_box(tri.a, tri.b, tri.c, b)) out.push_back(t);
           }
           count[i] = static_cast<uint32_t>(out.size() - before);

@@ -46,7 +46,7 @@ Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
   out.hit = true;
   out.t = v.t;
   if (!v.cap) {
-    const Bvh::Tri& t = bvh.triangles()[v.enter.tri];
+    const Bvh::Tri t = bvh.triangle(v.enter.tri);
     const Vec3 n = unit(cross(t.b - t.a, t.c - t.a));
     // Entering a leaf shows its outward normal; leaving one (a subtrahend) the reverse.
     out.normal = v.enter.sign < 0 ? n : -1.0 * n;

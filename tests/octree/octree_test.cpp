@@ -138,7 +138,8 @@ void check_leaves(const Solid& s, const Octree& t, size_t max_cells = 2000) {
   for (size_t id : sample(leaves_of(t, CellState::kPartial), max_cells / 10, rng)) {
     const Bbox b = cell_box(t, t.nodes[id]);
     bool crossed = false;
-    for (const Bvh::Tri& tri : bvh.triangles()) crossed = crossed || cgal_meets(tri, b);
+    for (uint32_t i = 0; i < bvh.triangle_count(); ++i)
+      crossed = crossed || cgal_meets(bvh.triangle(i), b);
     EXPECT_TRUE(crossed) << "partial node " << id;
   }
 }
