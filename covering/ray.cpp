@@ -89,6 +89,18 @@ struct Slab {
     const double t0 = std::max(0.0, enter * kShrink), t1 = leave * kGrow;
     return t0 <= t1 ? Interval{t0, t1} : Interval{1, 0};
   }
+  /// The same for a box of doubles (a triangle's exact box): monotone in the box as above, so
+  /// a triangle's interval lies inside the interval of every node box that contains it.
+  Interval operator()(const Vec3& lo, const Vec3& hi) const {
+    const double b[6] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z};
+    double enter = -INFINITY, leave = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      if (any_parallel && std::isinf(inv[i])) continue;  // the ray meets the triangle: o is in
+      enter = std::max(enter, (b[near[i]] - o[i]) * inv[i]);
+      leave = std::min(leave, (b[far[i]] - o[i]) * inv[i]);
+    }
+    return {std::max(0.0, enter * kShrink), leave * kGrow};
+  }
   /// The intervals of two nodes (a node's children), the same values as two calls above.
   void operator()(const Bvh::Node& l, const Bvh::Node& r, Interval& il, Interval& ir) const {
     if (any_parallel) {
@@ -116,11 +128,18 @@ struct Slab {
 
 /// Distance parameter of the hit, from the face's shared plane (bit-identical for all fan
 /// triangles of a face); the triangle's own plane when the face plane is parallel to the ray.
-/// Clamped into the slab interval `in` of the BVH leaf holding the triangle, where the exact
-/// crossing lies: this changes only hits whose computed t was off (grazing rays, non-planar
-/// faces, NaN for a ray in the triangle's plane), and it guarantees t >= the entry parameter of
-/// every node above the triangle, which makes front-to-back traversal exact.
-double hit_t(const Bvh& bvh, const Bvh::Tri& t, const Ray& r, Interval in) {
+/// Clamped into the slab interval of the triangle's own exact box, where the exact crossing
+/// lies: this changes only hits whose computed t was off (grazing rays, non-planar faces, NaN
+/// for a ray in the triangle's plane), and it guarantees t >= the entry parameter of every node
+/// above the triangle (Slab is monotone in the box), which makes front-to-back traversal exact.
+/// The interval depends on the triangle alone, so every traversal (single ray, batch, front to
+/// back) gives the same t.
+double hit_t(const Bvh& bvh, const Bvh::Tri& t, const Ray& r, const Slab& slab) {
+  const Interval in =
+      slab({std::min({t.a.x, t.b.x, t.c.x}), std::min({t.a.y, t.b.y, t.c.y}),
+            std::min({t.a.z, t.b.z, t.c.z})},
+           {std::max({t.a.x, t.b.x, t.c.x}), std::max({t.a.y, t.b.y, t.c.y}),
+            std::max({t.a.z, t.b.z, t.c.z})});
   double v;
   const Bvh::FacePlane* p = bvh.face_plane(t.face);
   const double nd = p ? dot(p->normal, r.dir) : 0;
@@ -211,13 +230,12 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
         return unsigned{il.t0 <= il.t1} | unsigned{ir.t0 <= ir.t1} << 1;
       },
       [&](uint32_t j, const Bvh::Node& node) {
-        const Interval in = per[j].slab(node);
         const Bvh::LeafBlock block = bvh.block(node);
         for (uint32_t k = 0; k < node.count; ++k) {
           const Bvh::Tri t = block[k];
           int sign;
           if (crosses(t, rays[j], per[j].ax, sign))
-            out[j].hits.push_back({hit_t(bvh, t, rays[j], in), block.first() + k, t.leaf, t.face,
+            out[j].hits.push_back({hit_t(bvh, t, rays[j], per[j].slab), block.first() + k, t.leaf, t.face,
                                    static_cast<int8_t>(sign)});
         }
       });
@@ -231,18 +249,17 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
   if (bvh.nodes().empty()) return out;
   const Axes ax = axes_for(ray.dir);
   const Slab slab(ray.origin, ray.dir);
-  Interval leaf{0, 0};  // walk() visits a leaf's triangles right after meets() accepted it
   walk(
       bvh,
       [&](const Bvh::Node& node) {
-        leaf = slab(node);
-        return leaf.t0 <= leaf.t1;
+        const Interval in = slab(node);
+        return in.t0 <= in.t1;
       },
       [&](const Bvh::Tri& t, uint32_t i) {
         int sign;
         if (crosses(t, ray, ax, sign))
           out.hits.push_back(
-              {hit_t(bvh, t, ray, leaf), i, t.leaf, t.face, static_cast<int8_t>(sign)});
+              {hit_t(bvh, t, ray, slab), i, t.leaf, t.face, static_cast<int8_t>(sign)});
       });
   sweep_spans(out, tree, leaves);
   return out;
@@ -284,7 +301,7 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
   if (!origin_outside) return first_visible(cast(bvh, tree, leaves, ray), lo, hi);
 
   // When every node not yet visited enters at τ or later, every hit with t < τ has been found
-  // (hit_t clamps t into the leaf's interval, and a child's interval lies in its parent's), so
+  // (hit_t clamps t into its triangle's interval, which lies in every enclosing node's), so
   // those hits are final: they are sorted and swept with per-leaf winding counters exactly as
   // in cast(), and the sweep stops at the first span that shows inside [lo, hi]. Why: the
   // frame of bench/render_vs_cgal (1024², 606k triangles, 2 threads) spent its time in cast()
@@ -380,7 +397,7 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
       const Bvh::Tri t = block[k];
       int sign;
       if (!crosses(t, ray, ax, sign)) continue;
-      pending.push_back({hit_t(bvh, t, ray, {cur.t0, cur.t1}), block.first() + k, t.leaf, t.face,
+      pending.push_back({hit_t(bvh, t, ray, slab), block.first() + k, t.leaf, t.face,
                          static_cast<int8_t>(sign)});
       pending_min = std::min(pending_min, pending.back().t);
     }
