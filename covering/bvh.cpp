@@ -1,6 +1,7 @@
 #include "covering/bvh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -224,14 +225,21 @@ struct FanTriangles {
     });
   }
   size_t size() const { return face_of.size(); }
-  /// Triangle g in its leaf's own orientation (outward).
-  Bvh::Tri get(const Solid& solid, uint32_t g) const {
+  /// The vertex indices of triangle g in its leaf's own orientation (outward).
+  std::array<uint32_t, 3> corners(const Solid& solid, uint32_t g) const {
     const uint32_t f = face_of[g];
     const auto face = solid.face(f);
     const bool rev = solid.face_sign[f] < 0;  // back to the leaf's own orientation
-    auto vtx = [&](size_t i) { return solid.vertices[face[rev ? face.size() - 1 - i : i]]; };
+    auto at = [&](size_t i) { return face[rev ? face.size() - 1 - i : i]; };
     const size_t k = g - start[f] + 1;
-    return {vtx(0), vtx(k), vtx(k + 1), solid.face_leaf[f], f};
+    return {at(0), at(k), at(k + 1)};
+  }
+  /// Triangle g in its leaf's own orientation (outward).
+  Bvh::Tri get(const Solid& solid, uint32_t g) const {
+    const uint32_t f = face_of[g];
+    const auto c = corners(solid, g);
+    return {solid.vertices[c[0]], solid.vertices[c[1]], solid.vertices[c[2]], solid.face_leaf[f],
+            f};
   }
 };
 
@@ -244,7 +252,7 @@ bool non_degenerate(const Bvh::Tri& t) {
 }  // namespace
 
 Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
-  // The triangles are read from the faces three times (plane/keep/bounds, refs, final order)
+  // The triangles are read from the faces several times (plane/keep/bounds, refs, leaf blocks)
   // instead of being copied into an intermediate array: at 606k triangles that copy was 48 MB
   // of fresh memory, ~0.13 s of page faults on the benchmark machine (solid/large_vector.h).
   const size_t faces = solid.face_count();
@@ -334,24 +342,24 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   Builder::place(root, nodes_, 0, 2);
   nodes_[1] = Node{};
   for (int a = 0; a < 3; ++a) nodes_[1].lo[a] = INFINITY, nodes_[1].hi[a] = -INFINITY;
-  // 4. The leaf blocks (Bvh::LeafBlock), in node order: sizes (distinct vertices per leaf),
-  //    offsets, then the blocks, each leaf's triangles read from the faces again.
+  // 4. The leaf blocks (Bvh::LeafBlock), in node order: sizes (distinct vertex indices per
+  //    leaf), offsets, then the blocks, each leaf's triangles read from the faces again.
   std::vector<uint32_t> leaf_nodes;
   for (uint32_t i = 0; i < nodes_.size(); ++i)
     if (nodes_[i].count > 0) leaf_nodes.push_back(i);
   leaves_ = leaf_nodes.size();
-  // Gathers a leaf node's triangles and distinct vertices (bit-identical coordinates: 0 and −0
-  // stay apart, so every triangle reads back exactly the doubles of its face's vertices).
-  auto gather = [&](const Node& node, Tri* tris, Vec3* verts, uint8_t* slots) {
+  // A leaf node's distinct vertices (by index: a vertex is stored once per block) and each
+  // triangle's slots among them; returns their number. Indices only: the first pass (sizes)
+  // reads no coordinates.
+  auto gather = [&](const Node& node, uint32_t* verts, uint8_t* slots) {
     uint32_t nv = 0;
     for (uint32_t k = 0; k < node.count; ++k) {
-      tris[k] = fan.get(solid, refs[node.first + k].index);
-      for (int c = 0; c < 3; ++c) {
-        const Vec3& v = c == 0 ? tris[k].a : (c == 1 ? tris[k].b : tris[k].c);
+      const auto c = fan.corners(solid, refs[node.first + k].index);
+      for (int i = 0; i < 3; ++i) {
         uint32_t s = 0;
-        while (s < nv && std::memcmp(&verts[s], &v, sizeof(Vec3)) != 0) ++s;
-        if (s == nv) verts[nv++] = v;
-        slots[3 * k + c] = static_cast<uint8_t>(s);
+        while (s < nv && verts[s] != c[i]) ++s;
+        if (s == nv) verts[nv++] = c[i];
+        slots[3 * k + i] = static_cast<uint8_t>(s);
       }
     }
     return nv;
@@ -362,12 +370,11 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   };
   LargeVector<uint64_t> offset(leaf_nodes.size() + 1, 0);
   parallel_for(leaf_nodes.size(), 1024, [&](size_t begin, size_t end) {
-    Tri tris[kMaxLeaf];
-    Vec3 verts[3 * kMaxLeaf];
+    uint32_t verts[3 * kMaxLeaf];
     uint8_t slots[3 * kMaxLeaf];
     for (size_t l = begin; l < end; ++l) {
       const Node& node = nodes_[leaf_nodes[l]];
-      offset[l + 1] = words(node.count, gather(node, tris, verts, slots));
+      offset[l + 1] = words(node.count, gather(node, verts, slots));
     }
   });
   for (size_t l = 0; l < leaf_nodes.size(); ++l) offset[l + 1] += offset[l];
@@ -376,25 +383,28 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   blocks_.resize(offset[leaf_nodes.size()]);
   block_of_.resize(n);
   parallel_for(leaf_nodes.size(), 1024, [&](size_t begin, size_t end) {
-    Tri tris[kMaxLeaf];
-    Vec3 verts[3 * kMaxLeaf];
+    uint32_t verts[3 * kMaxLeaf];
     uint8_t slots[3 * kMaxLeaf];
     for (size_t l = begin; l < end; ++l) {
       Node& node = nodes_[leaf_nodes[l]];
-      const uint32_t nv = gather(node, tris, verts, slots);
+      const uint32_t nv = gather(node, verts, slots);
       auto* p = reinterpret_cast<unsigned char*>(&blocks_[offset[l]]);
       std::memset(p, 0, 8 * words(node.count, nv));
       const uint32_t first = node.first;  // the leaf's first triangle (refs order)
       std::memcpy(p, &first, 4);
       p[4] = static_cast<uint8_t>(node.count);
       for (uint32_t k = 0; k < node.count; ++k) {
+        const uint32_t face = fan.face_of[refs[first + k].index];
+        const uint32_t leaf = solid.face_leaf[face];
         unsigned char* r = p + 8 + 12 * k;
-        std::memcpy(r, &tris[k].leaf, 4);
-        std::memcpy(r + 4, &tris[k].face, 4);
+        std::memcpy(r, &leaf, 4);
+        std::memcpy(r + 4, &face, 4);
         std::memcpy(r + 8, &slots[3 * k], 3);
         block_of_[first + k] = static_cast<uint32_t>(offset[l]);
       }
-      std::memcpy(p + LeafBlock::vertices_offset(node.count), verts, sizeof(Vec3) * nv);
+      unsigned char* v = p + LeafBlock::vertices_offset(node.count);
+      for (uint32_t i = 0; i < nv; ++i)
+        std::memcpy(v + sizeof(Vec3) * i, &solid.vertices[verts[i]], sizeof(Vec3));
       node.first = static_cast<uint32_t>(offset[l]);
     }
   });
