@@ -6,7 +6,8 @@
 // Measured (single thread unless stated, so the numbers show algorithmic scaling):
 //   BM_BvhBuild        cover::Bvh construction; time per triangle and BVH bytes per triangle.
 //   BM_ClassifyPoint   classify() of batches of 1000 uniform points in the bounding box with the
-//                      BVH prebuilt and the empty-cell grid off (pure BVH path); time per point.
+//                      BVH prebuilt and the empty-cell grid off (pure BVH path); time per point,
+//                      and the BVH nodes a point's walk tests and the leaves it reaches.
 //   BM_ClassifyMillion end to end on 2 threads: BVH build + classify() of 1,000,000 points with
 //                      default options (grid on).
 //   BM_ClassifyBulk    classify() of 1,000,000 points in one call, BVH prebuilt, 1 thread, grid
@@ -149,10 +150,12 @@ size_t nodes_tested(const cover::Bvh& bvh, Meets&& meets) {
 }
 
 /// BVH nodes a classification query visits (the algorithmic cost, free of cache effects):
-/// the same half-line test as covering/classify.cpp, over the public node array.
-double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& points) {
+/// the same half-line test as covering/classify.cpp, over the public node array; `leaves` gets
+/// the leaf nodes it reaches per query.
+double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& points,
+                       double& leaves) {
   const cover::Bbox& all = bvh.bounds();
-  size_t visited = 0;
+  size_t visited = 0, reached = 0;
   for (const cover::Vec3& p : points) {
     int k = 0, s = 1;
     double shortest = all.max.x - p.x;
@@ -163,10 +166,13 @@ double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& po
       }
     const int u = (k + 1) % 3, w = (k + 2) % 3;
     visited += nodes_tested(bvh, [&](const cover::Bvh::Node& n) {
-      return !(p[u] < n.lo[u] || p[u] > n.hi[u] || p[w] < n.lo[w] || p[w] > n.hi[w] ||
-               (s > 0 ? p[k] > n.hi[k] : p[k] < n.lo[k]));
+      const bool m = !(p[u] < n.lo[u] || p[u] > n.hi[u] || p[w] < n.lo[w] || p[w] > n.hi[w] ||
+                       (s > 0 ? p[k] > n.hi[k] : p[k] < n.lo[k]));
+      reached += m && n.count > 0;
+      return m;
     });
   }
+  leaves = static_cast<double>(reached) / static_cast<double>(points.size());
   return static_cast<double>(visited) / static_cast<double>(points.size());
 }
 
@@ -188,7 +194,9 @@ void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifi
   state.counters["triangles"] = static_cast<double>(m.solid.face_count());
   state.counters["inside_fraction"] = static_cast<double>(inside) / static_cast<double>(classified);
   state.counters["time_per_point"] = time_per(kBatch);
-  state.counters["nodes_per_query"] = nodes_per_query(*m.bvh, points);
+  double leaves = 0;
+  state.counters["nodes_per_query"] = nodes_per_query(*m.bvh, points, leaves);
+  state.counters["leaves_per_query"] = leaves;
 }
 
 // End to end on 2 threads: BVH build + classify() of 1M points, default options (grid on).

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <random>
 #include <string>
 
@@ -51,8 +52,10 @@ long arg(int argc, char** argv, const char* name, long fallback) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: compare_cgal MESH [--points N] [--brute N] [--rays N] [--threads T]\n");
+  if (argc < 2 || argv[1][0] == '-') {
+    std::fprintf(stderr,
+                 "usage: compare_cgal MESH [--points N] [--brute N] [--rays N] [--threads T] "
+                 "[--seed S] [--repeat R]\n");
     return 2;
   }
   const std::string path = argv[1];
@@ -62,7 +65,13 @@ int main(int argc, char** argv) {
   const int threads = static_cast<int>(arg(argc, argv, "--threads", 2));
   const auto seed = static_cast<uint64_t>(arg(argc, argv, "--seed", 1));
 
-  const cover::Solid solid = cover::load_input(path).solid;
+  cover::Solid solid;
+  try {
+    solid = cover::load_input(path).solid;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "compare_cgal: %s\n", e.what());
+    return 2;
+  }
   Mesh mesh;
   if (!CGAL::IO::read_polygon_mesh(path, mesh)) {
     std::fprintf(stderr, "CGAL cannot read %s\n", path.c_str());
