@@ -332,7 +332,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   });
   // 3. The tree, then the triangles in leaf-node order.
   BvhOptions o = options;
-  o.leaf_size = std::clamp<uint32_t>(o.leaf_size, 1, 64);  // vertex slots of a block fit a byte
+  o.leaf_size = std::clamp<uint32_t>(o.leaf_size, 1, kMaxLeafSize);
   Builder builder{refs, o};
   Piece root;
   builder.build(root, 0, n, 0, builder.extent(0, n));
@@ -364,14 +364,13 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
     }
     return nv;
   };
-  constexpr uint32_t kMaxLeaf = 64;  // o.leaf_size is clamped to it: vertex slots fit a byte
   auto words = [](uint32_t count, uint32_t verts) {
     return (LeafBlock::vertices_offset(count) + sizeof(Vec3) * verts) / 8;
   };
   LargeVector<uint64_t> offset(leaf_nodes.size() + 1, 0);
   parallel_for(leaf_nodes.size(), 1024, [&](size_t begin, size_t end) {
-    uint32_t verts[3 * kMaxLeaf];
-    uint8_t slots[3 * kMaxLeaf];
+    uint32_t verts[3 * kMaxLeafSize];
+    uint8_t slots[3 * kMaxLeafSize];
     for (size_t l = begin; l < end; ++l) {
       const Node& node = nodes_[leaf_nodes[l]];
       offset[l + 1] = words(node.count, gather(node, verts, slots));
@@ -383,8 +382,8 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   blocks_.resize(offset[leaf_nodes.size()]);
   block_of_.resize(n);
   parallel_for(leaf_nodes.size(), 1024, [&](size_t begin, size_t end) {
-    uint32_t verts[3 * kMaxLeaf];
-    uint8_t slots[3 * kMaxLeaf];
+    uint32_t verts[3 * kMaxLeafSize];
+    uint8_t slots[3 * kMaxLeafSize];
     for (size_t l = begin; l < end; ++l) {
       Node& node = nodes_[leaf_nodes[l]];
       const uint32_t nv = gather(node, verts, slots);
@@ -396,7 +395,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
       for (uint32_t k = 0; k < node.count; ++k) {
         const uint32_t face = fan.face_of[refs[first + k].index];
         const uint32_t leaf = solid.face_leaf[face];
-        unsigned char* r = p + 8 + 12 * k;
+        unsigned char* r = p + LeafBlock::record_offset(k);
         std::memcpy(r, &leaf, 4);
         std::memcpy(r + 4, &face, 4);
         std::memcpy(r + 8, &slots[3 * k], 3);

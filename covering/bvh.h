@@ -24,7 +24,7 @@
 namespace cover {
 
 struct BvhOptions {
-  uint32_t leaf_size = 4;            ///< max triangles per leaf node (clamped to [1, 64])
+  uint32_t leaf_size = 4;            ///< max triangles per leaf node (clamped to [1, Bvh::kMaxLeafSize])
   size_t parallel_threshold = 8192;  ///< subtrees at least this large are built in parallel
 };
 
@@ -34,6 +34,8 @@ class Bvh {
   /// holds at most depth + 1 entries, and the depth is ≤ 64 (SAH) + 32 (median splits of at most
   /// 2^32 triangles) + 1 (bvh.cpp).
   static constexpr int kMaxStack = 128;
+  /// Largest leaf (BvhOptions::leaf_size is clamped to it): a block's vertex slots fit a byte.
+  static constexpr uint32_t kMaxLeafSize = 64;
   /// A covering triangle (v0, vi, vi+1) of a face, in its LEAF's own orientation (outward).
   struct Tri {
     Vec3 a, b, c;
@@ -71,7 +73,7 @@ class Bvh {
     uint32_t size() const { return p_[4]; }
     /// Triangle k < size() of the block.
     Tri operator[](uint32_t k) const {
-      const unsigned char* r = p_ + 8 + 12 * k;
+      const unsigned char* r = p_ + record_offset(k);
       const unsigned char* v = p_ + vertices_offset(size());
       Tri t;
       std::memcpy(&t.a, v + 24 * r[8], sizeof(Vec3));
@@ -81,9 +83,11 @@ class Bvh {
       std::memcpy(&t.face, r + 4, 4);
       return t;
     }
+    /// Byte offset of triangle k's record (after the 8-byte header; 12 bytes each).
+    static constexpr size_t record_offset(size_t k) { return 8 + 12 * k; }
     /// Byte offset of the vertices in a block of `triangles` triangles.
     static constexpr size_t vertices_offset(size_t triangles) {
-      return (8 + 12 * triangles + 7) & ~size_t{7};
+      return (record_offset(triangles) + 7) & ~size_t{7};
     }
 
    private:
@@ -140,6 +144,13 @@ class Bvh {
   size_t leaves_ = 0;
 };
 
+/// Calls visit(t, i) for each triangle t (index i) of a leaf node.
+template <typename Visit>
+void for_each_triangle(const Bvh& bvh, const Bvh::Node& leaf, Visit&& visit) {
+  const Bvh::LeafBlock block = bvh.block(leaf);
+  for (uint32_t k = 0; k < leaf.count; ++k) visit(block[k], block.first() + k);
+}
+
 /// Depth-first walk: for every leaf node reached through nodes whose bounds satisfy
 /// `meets(node)`, calls `visit(t, i)` for each of its triangles t (index i). The one traversal
 /// loop of the single-query paths (cell grid half-lines, rays, octree boxes).
@@ -161,8 +172,7 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
       stack[top++] = node.first;
       continue;
     }
-    const Bvh::LeafBlock block = bvh.block(node);
-    for (uint32_t k = 0; k < node.count; ++k) visit(block[k], block.first() + k);
+    for_each_triangle(bvh, node, visit);
   }
 }
 
@@ -170,7 +180,7 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
 /// node that meets, made breadth first over the whole
 /// batch with prefetching: a node's children are fetched a few entries before they are tested,
 /// and a leaf's triangles a few entries before leaf() reads them. Why: one query's walk is a
-/// chain of dependent loads, and once the structure outgrows the cache (100 MB at 1M triangles)
+/// chain of dependent loads, and once the structure outgrows the cache (80 MB at 1M triangles)
 /// each is a miss; across a batch the loads are independent, so their misses overlap. Measured
 /// in bench/bench_queries (BM_ClassifyPoint, batches of 1000 random points, 1 thread): see README
 /// "Scaling". Each query's calls are walk()'s, in another order: callers must not depend on it.

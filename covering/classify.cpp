@@ -151,14 +151,12 @@ void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<
       },
       [&](uint32_t j, const Bvh::Node& node) {
         const HalfLineQuery& h = queries[j];
-        const Bvh::LeafBlock block = bvh.block(node);
-        for (uint32_t k = 0; k < node.count; ++k) {
-          const Bvh::Tri t = block[k];
+        for_each_triangle(bvh, node, [&](const Bvh::Tri& t, uint32_t) {
           const size_t at = j * leaves + t.leaf;
           int w = winding[at];
           on_surface[at] |= visit(t.a, t.b, t.c, h.q, h.r, w);
           winding[at] = w;
-        }
+        });
       });
 }
 

@@ -73,33 +73,37 @@ struct Slab {
       far[i] = inv[i] < 0 ? i : 3 + i;
     }
   }
-  Interval operator()(const Bvh::Node& node) const {
-    static_assert(offsetof(Bvh::Node, lo) == 0 && offsetof(Bvh::Node, hi) == 3 * sizeof(float));
-    float b[6];  // lo then hi (copied so that the offsets index one array)
-    std::memcpy(b, &node, sizeof b);
+  /// [t0, t1] over the non-parallel axes of the box b = {lo[3], hi[3]} (empty or not);
+  /// `outside`: o lies outside the slab of some parallel axis.
+  template <typename T>
+  Interval bounds(const T* b, bool& outside) const {
+    outside = false;
     double enter = -INFINITY, leave = INFINITY;
     for (int i = 0; i < 3; ++i) {
       if (any_parallel && std::isinf(inv[i])) {
-        if (o[i] < b[i] || o[i] > b[3 + i]) return {1, 0};
+        outside |= o[i] < b[i] || o[i] > b[3 + i];
         continue;
       }
       enter = std::max(enter, (b[near[i]] - o[i]) * inv[i]);
       leave = std::min(leave, (b[far[i]] - o[i]) * inv[i]);
     }
-    const double t0 = std::max(0.0, enter * kShrink), t1 = leave * kGrow;
-    return t0 <= t1 ? Interval{t0, t1} : Interval{1, 0};
-  }
-  /// The same for a box of doubles (a triangle's exact box): monotone in the box as above, so
-  /// a triangle's interval lies inside the interval of every node box that contains it.
-  Interval operator()(const Vec3& lo, const Vec3& hi) const {
-    const double b[6] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z};
-    double enter = -INFINITY, leave = INFINITY;
-    for (int i = 0; i < 3; ++i) {
-      if (any_parallel && std::isinf(inv[i])) continue;  // the ray meets the triangle: o is in
-      enter = std::max(enter, (b[near[i]] - o[i]) * inv[i]);
-      leave = std::min(leave, (b[far[i]] - o[i]) * inv[i]);
-    }
     return {std::max(0.0, enter * kShrink), leave * kGrow};
+  }
+  Interval operator()(const Bvh::Node& node) const {
+    static_assert(offsetof(Bvh::Node, lo) == 0 && offsetof(Bvh::Node, hi) == 3 * sizeof(float));
+    float b[6];  // lo then hi (copied so that the offsets index one array)
+    std::memcpy(b, &node, sizeof b);
+    bool outside;
+    const Interval in = bounds(b, outside);
+    return !outside && in.t0 <= in.t1 ? in : Interval{1, 0};
+  }
+  /// The same for a box of doubles (a triangle's exact box), as computed: monotone in the box as
+  /// above, so a triangle's interval lies inside the interval of every node box that contains
+  /// it. A ray that crosses the triangle has o inside its parallel axes' slabs.
+  Interval operator()(const Bbox& box) const {
+    const double b[6] = {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z};
+    bool outside;
+    return bounds(b, outside);
   }
   /// The intervals of two nodes (a node's children), the same values as two calls above.
   void operator()(const Bvh::Node& l, const Bvh::Node& r, Interval& il, Interval& ir) const {
@@ -135,11 +139,11 @@ struct Slab {
 /// The interval depends on the triangle alone, so every traversal (single ray, batch, front to
 /// back) gives the same t.
 double hit_t(const Bvh& bvh, const Bvh::Tri& t, const Ray& r, const Slab& slab) {
-  const Interval in =
-      slab({std::min({t.a.x, t.b.x, t.c.x}), std::min({t.a.y, t.b.y, t.c.y}),
-            std::min({t.a.z, t.b.z, t.c.z})},
-           {std::max({t.a.x, t.b.x, t.c.x}), std::max({t.a.y, t.b.y, t.c.y}),
-            std::max({t.a.z, t.b.z, t.c.z})});
+  Bbox box;
+  box.add(t.a);
+  box.add(t.b);
+  box.add(t.c);
+  const Interval in = slab(box);
   double v;
   const Bvh::FacePlane* p = bvh.face_plane(t.face);
   const double nd = p ? dot(p->normal, r.dir) : 0;
@@ -230,14 +234,12 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
         return unsigned{il.t0 <= il.t1} | unsigned{ir.t0 <= ir.t1} << 1;
       },
       [&](uint32_t j, const Bvh::Node& node) {
-        const Bvh::LeafBlock block = bvh.block(node);
-        for (uint32_t k = 0; k < node.count; ++k) {
-          const Bvh::Tri t = block[k];
+        for_each_triangle(bvh, node, [&](const Bvh::Tri& t, uint32_t i) {
           int sign;
           if (crosses(t, rays[j], per[j].ax, sign))
-            out[j].hits.push_back({hit_t(bvh, t, rays[j], per[j].slab), block.first() + k, t.leaf, t.face,
-                                   static_cast<int8_t>(sign)});
-        }
+            out[j].hits.push_back(
+                {hit_t(bvh, t, rays[j], per[j].slab), i, t.leaf, t.face, static_cast<int8_t>(sign)});
+        });
       });
   for (RayResult& r : out) sweep_spans(r, tree, leaves);
 }
@@ -392,15 +394,12 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
       }
       continue;
     }
-    const Bvh::LeafBlock block = bvh.block(node);
-    for (uint32_t k = 0; k < node.count; ++k) {
-      const Bvh::Tri t = block[k];
+    for_each_triangle(bvh, node, [&](const Bvh::Tri& t, uint32_t i) {
       int sign;
-      if (!crosses(t, ray, ax, sign)) continue;
-      pending.push_back({hit_t(bvh, t, ray, slab), block.first() + k, t.leaf, t.face,
-                         static_cast<int8_t>(sign)});
+      if (!crosses(t, ray, ax, sign)) return;
+      pending.push_back({hit_t(bvh, t, ray, slab), i, t.leaf, t.face, static_cast<int8_t>(sign)});
       pending_min = std::min(pending_min, pending.back().t);
-    }
+    });
   }
   if (!pending.empty() && sweep(INFINITY)) return v;
   // After the last hit every winding is 0 again (closed leaves) and the result is outside.
