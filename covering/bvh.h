@@ -14,6 +14,7 @@
 // above a size threshold are built in parallel into separate pieces and then placed in depth-first
 // order, so the tree does not depend on the thread count.
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -144,11 +145,16 @@ class Bvh {
   size_t leaves_ = 0;
 };
 
-/// Calls visit(t, i) for each triangle t (index i) of a leaf node.
+/// Calls visit(t, i) for each triangle t (index i) of the leaf node whose `first` and `count`
+/// are given (its block's word offset and its number of triangles).
+template <typename Visit>
+void for_each_triangle(const Bvh& bvh, uint32_t first, uint32_t count, Visit&& visit) {
+  const Bvh::LeafBlock block(bvh.block_words() + first);
+  for (uint32_t k = 0; k < count; ++k) visit(block[k], block.first() + k);
+}
 template <typename Visit>
 void for_each_triangle(const Bvh& bvh, const Bvh::Node& leaf, Visit&& visit) {
-  const Bvh::LeafBlock block = bvh.block(leaf);
-  for (uint32_t k = 0; k < leaf.count; ++k) visit(block[k], block.first() + k);
+  for_each_triangle(bvh, leaf.first, leaf.count, visit);
 }
 
 /// Depth-first walk: for every leaf node reached through nodes whose bounds satisfy
@@ -176,13 +182,16 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
   }
 }
 
-/// The same node tests as walk() for each query j < n of a batch and leaf(j, node) for every leaf
-/// node that meets, made breadth first over the whole
-/// batch with prefetching: a node's children are fetched a few entries before they are tested,
-/// and a leaf's triangles a few entries before leaf() reads them. Why: one query's walk is a
-/// chain of dependent loads, and once the structure outgrows the cache (80 MB at 1M triangles)
-/// each is a miss; across a batch the loads are independent, so their misses overlap. Measured
-/// in bench/bench_queries (BM_ClassifyPoint, batches of 1000 random points, 1 thread): see README
+/// The same node tests as walk() for each query j < n of a batch, and leaf(j, first, count) for
+/// every leaf node that meets (its `first` and `count`, as for_each_triangle takes them), made
+/// breadth first over the whole batch with prefetching: a node's children are fetched a few
+/// entries before they are tested, and a leaf's triangles a few entries before leaf() reads them.
+/// Why: one query's walk is a chain of dependent loads, and once the structure outgrows the cache
+/// (80 MB at 1M triangles) each is a miss; across a batch the loads are independent, so their
+/// misses overlap. A leaf's first and count are copied when its node is tested (its line is in
+/// cache then), so the leaf pass reads no node: by then, at 1M triangles, most node lines have
+/// left the cache, and reading one to find the block to prefetch would stall. Measured in
+/// bench/bench_queries (BM_ClassifyPoint, batches of 1000 random points, 1 thread): see README
 /// "Scaling". Each query's calls are walk()'s, in another order: callers must not depend on it.
 /// meets_both(j, a, b) tests two boxes at once (bit 0: a meets query j, bit 1: b does), so that a
 /// caller can test a node's children in SIMD lanes; the root is tested as (root, root).
@@ -192,11 +201,15 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
   if (nodes.empty() || n == 0) return;
   struct Entry {
     uint32_t query;
-    /// In `level`: the first of the children pair of a node that meets; in `leaves`: the leaf.
-    uint32_t node;
+    uint32_t node;  ///< the first of the children pair of a node that meets
+  };
+  struct LeafEntry {
+    uint32_t query;
+    uint32_t first, count;  ///< the leaf node's
   };
   struct Scratch {
-    std::vector<Entry> level, next, leaves;
+    std::vector<Entry> level, next;
+    std::vector<LeafEntry> leaves;
   };
   // Entries between a prefetch and the use of what it fetched: a node pair is one cache line, a
   // leaf block about four, so leaves are fetched fewer entries ahead (the core tracks a few
@@ -206,19 +219,22 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
   auto& [level, next, leaves] = scratch;
   // A block's size is not in the node: fetch its records and count + 2 vertices (a mesh patch
   // of count triangles has about that many; more are read without prefetch).
-  auto prefetch_triangles = [&](const Bvh::Node& leaf_node) {
-    const auto begin = reinterpret_cast<uintptr_t>(&bvh.block_words()[leaf_node.first]);
-    const uintptr_t end = begin + Bvh::LeafBlock::vertices_offset(leaf_node.count) +
-                          sizeof(Vec3) * (leaf_node.count + 2);
+  auto prefetch_triangles = [&](const LeafEntry& x) {
+    const auto begin = reinterpret_cast<uintptr_t>(&bvh.block_words()[x.first]);
+    const uintptr_t end =
+        begin + Bvh::LeafBlock::vertices_offset(x.count) + sizeof(Vec3) * (x.count + 2);
     for (uintptr_t p = begin & ~uintptr_t{63}; p < end; p += 64)
       __builtin_prefetch(reinterpret_cast<const void*>(p));
   };
   level.clear();
   leaves.clear();
-  const bool root_leaf = nodes[0].count > 0;
   for (uint32_t j = 0; j < n; ++j)
-    if (meets_both(j, nodes[0], nodes[0]) & 1)
-      (root_leaf ? leaves : level).push_back({j, root_leaf ? 0 : nodes[0].first});
+    if (meets_both(j, nodes[0], nodes[0]) & 1) {
+      if (nodes[0].count > 0)
+        leaves.push_back({j, nodes[0].first, nodes[0].count});
+      else
+        level.push_back({j, nodes[0].first});
+    }
   while (!level.empty()) {
     // Every entry is an inner node: test its two children, keep the ones that meet. The
     // children are written unconditionally and the counts advanced by the outcome (no branch
@@ -227,7 +243,9 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
     const size_t leaf_base = leaves.size();
     leaves.resize(leaf_base + 2 * level.size());
     Entry* inner_out = next.data();
-    Entry* leaf_out = leaves.data() + leaf_base;
+    LeafEntry* leaf_out = leaves.data() + leaf_base;
+    for (size_t e = 0; e < std::min(kAhead, level.size()); ++e)
+      __builtin_prefetch(&nodes[level[e].node]);
     for (size_t e = 0; e < level.size(); ++e) {
       if (e + kAhead < level.size()) __builtin_prefetch(&nodes[level[e + kAhead].node]);
       const Entry x = level[e];
@@ -236,20 +254,21 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
       const bool l_leaf = nodes[l].count > 0, r_leaf = nodes[r].count > 0;
       *inner_out = {x.query, nodes[l].first};
       inner_out += (both & 1) & !l_leaf;
-      *leaf_out = {x.query, l};
+      *leaf_out = {x.query, nodes[l].first, nodes[l].count};
       leaf_out += (both & 1) & l_leaf;
       *inner_out = {x.query, nodes[r].first};
       inner_out += (both >> 1) & !r_leaf;
-      *leaf_out = {x.query, r};
+      *leaf_out = {x.query, nodes[r].first, nodes[r].count};
       leaf_out += (both >> 1) & r_leaf;
     }
     next.resize(static_cast<size_t>(inner_out - next.data()));
     leaves.resize(static_cast<size_t>(leaf_out - leaves.data()));
     level.swap(next);
   }
+  for (size_t e = 0; e < std::min(kLeafAhead, leaves.size()); ++e) prefetch_triangles(leaves[e]);
   for (size_t e = 0; e < leaves.size(); ++e) {
-    if (e + kLeafAhead < leaves.size()) prefetch_triangles(nodes[leaves[e + kLeafAhead].node]);
-    leaf(leaves[e].query, nodes[leaves[e].node]);
+    if (e + kLeafAhead < leaves.size()) prefetch_triangles(leaves[e + kLeafAhead]);
+    leaf(leaves[e].query, leaves[e].first, leaves[e].count);
   }
 }
 

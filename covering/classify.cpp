@@ -149,9 +149,9 @@ void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<
       [&](uint32_t j, const Bvh::Node& l, const Bvh::Node& r) {
         return unsigned{meets(queries[j], l)} | unsigned{meets(queries[j], r)} << 1;
       },
-      [&](uint32_t j, const Bvh::Node& node) {
+      [&](uint32_t j, uint32_t first, uint32_t count) {
         const HalfLineQuery& h = queries[j];
-        for_each_triangle(bvh, node, [&](const Bvh::Tri& t, uint32_t) {
+        for_each_triangle(bvh, first, count, [&](const Bvh::Tri& t, uint32_t) {
           const size_t at = j * leaves + t.leaf;
           int w = winding[at];
           on_surface[at] |= visit(t.a, t.b, t.c, h.q, h.r, w);

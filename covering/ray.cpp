@@ -233,8 +233,8 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
         per[j].slab(l, r, il, ir);
         return unsigned{il.t0 <= il.t1} | unsigned{ir.t0 <= ir.t1} << 1;
       },
-      [&](uint32_t j, const Bvh::Node& node) {
-        for_each_triangle(bvh, node, [&](const Bvh::Tri& t, uint32_t i) {
+      [&](uint32_t j, uint32_t first, uint32_t count) {
+        for_each_triangle(bvh, first, count, [&](const Bvh::Tri& t, uint32_t i) {
           int sign;
           if (crosses(t, rays[j], per[j].ax, sign))
             out[j].hits.push_back(
@@ -247,6 +247,13 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
 }  // namespace
 
 RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray) {
+  RayResult out;
+  if (bvh.nodes().empty()) return out;
+  cast_batch(bvh, tree, leaves, std::span<const Ray>(&ray, 1), std::span<RayResult>(&out, 1));
+  return out;
+}
+
+RayResult cast_depth_first(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray) {
   RayResult out;
   if (bvh.nodes().empty()) return out;
   const Axes ax = axes_for(ray.dir);

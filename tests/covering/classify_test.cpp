@@ -202,9 +202,10 @@ TEST(Classify, TetrahedronWholeBvhIsOneLeaf) {
   for (int i = 0; i < 40; ++i) rays.push_back({{-1, 0.02 * i, 0.1}, {1, 0.01 * i, 0.05}});
   const std::vector<RayResult> batch = cast(bvh, s, rays);
   for (size_t i = 0; i < rays.size(); ++i) {
-    const RayResult single = cast(bvh, s.tree, s.leaves.size(), rays[i]);
+    const RayResult single = cast_depth_first(bvh, s.tree, s.leaves.size(), rays[i]);
     ASSERT_EQ(batch[i].hits.size(), single.hits.size()) << i;
     for (size_t h = 0; h < single.hits.size(); ++h) EXPECT_EQ(batch[i].hits[h].t, single.hits[h].t);
+    EXPECT_EQ(cast(bvh, s.tree, s.leaves.size(), rays[i]).hits.size(), single.hits.size()) << i;
   }
   EXPECT_EQ(batch[0].hits.size(), 2u);
 }

@@ -3,7 +3,8 @@
 // vertices; vol(A∪B) + vol(A∩B) = vol(A) + vol(B) within the reported error bounds; and scaled
 // copies of a scene (by powers of two, so the doubles scale exactly) classify identically; the
 // front-to-back first visible point of a ray equals the one from all of cast()'s spans; the
-// batch cast() (rays walking the BVH together) gives every ray exactly its single-ray result.
+// batch cast() (rays walking the BVH together) and the single-ray cast() give every ray exactly
+// the result of the depth-first walk (cast_depth_first).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -151,11 +152,19 @@ TEST(RandomCsg, BatchCastEqualsSingleRays) {
         r.dir = Vec3{u(rng), u(rng), u(rng)} - r.origin;
       }
     }
-    for (const size_t grain : {size_t{1}, size_t{97}, size_t{256}}) {
-      const std::vector<RayResult> batch = cast(bvh, s, rays, CastOptions{grain});
+    // The depth-first walk is the reference; the single-ray cast() (a batch of one) and the
+    // batches at several grains must give every ray exactly its result.
+    std::vector<RayResult> want(rays.size()), single(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+      want[i] = cast_depth_first(bvh, s.tree, s.leaves.size(), rays[i]);
+      single[i] = cast(bvh, s.tree, s.leaves.size(), rays[i]);
+    }
+    for (const size_t grain : {size_t{0}, size_t{1}, size_t{97}, size_t{256}}) {
+      const std::vector<RayResult> batch =
+          grain == 0 ? single : cast(bvh, s, rays, CastOptions{grain});
       ASSERT_EQ(batch.size(), rays.size());
       for (size_t i = 0; i < rays.size(); ++i) {
-        const RayResult one = cast(bvh, s.tree, s.leaves.size(), rays[i]);
+        const RayResult& one = want[i];
         const RayResult& got = batch[i];
         ASSERT_EQ(got.hits.size(), one.hits.size()) << "trial " << trial << " ray " << i;
         for (size_t h = 0; h < one.hits.size(); ++h) {
