@@ -188,11 +188,13 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
 /// entries before they are tested, and a leaf's triangles a few entries before leaf() reads them.
 /// Why: one query's walk is a chain of dependent loads, and once the structure outgrows the cache
 /// (80 MB at 1M triangles) each is a miss; across a batch the loads are independent, so their
-/// misses overlap. A leaf's first and count are copied when its node is tested (its line is in
-/// cache then), so the leaf pass reads no node: by then, at 1M triangles, most node lines have
-/// left the cache, and reading one to find the block to prefetch would stall. Measured in
-/// bench/bench_queries (BM_ClassifyPoint, batches of 1000 random points, 1 thread): see README
-/// "Scaling". Each query's calls are walk()'s, in another order: callers must not depend on it.
+/// misses overlap. Each level (and the leaf pass) first prefetches its first few entries, so a
+/// small batch gets its loads overlapped too: cast() of one ray is this walk with n = 1 (a level
+/// of one ray holds a few nodes). A leaf's first and count are copied when its node is tested,
+/// so the leaf pass reads blocks only, no node lines. Measured in bench/bench_queries
+/// (BM_ClassifyPoint, batches of 1000 random points; BM_CastRay, one ray per call; 1 thread): see
+/// README "Scaling". Each query's calls are walk()'s, in another order: callers must not depend
+/// on it.
 /// meets_both(j, a, b) tests two boxes at once (bit 0: a meets query j, bit 1: b does), so that a
 /// caller can test a node's children in SIMD lanes; the root is tested as (root, root).
 template <typename MeetsBoth, typename Leaf>
