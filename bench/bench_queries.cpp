@@ -15,7 +15,7 @@
 //   BM_CastRay         cast() of one ray (all hits + CSG spans) from outside the bounding sphere
 //                      toward a uniform point in the box, BVH prebuilt; time per ray (latency).
 //   BM_CastRays        the same rays through the batch cast(), 1000 per call; time per ray, and
-//                      the nodes a ray's walk tests.
+//                      the nodes a ray's walk tests and the leaves it reaches.
 // Usage: bench_queries [--benchmark_min_time=0.2] [--benchmark_filter=REGEX]
 #include <benchmark/benchmark.h>
 
@@ -232,9 +232,10 @@ void BM_ClassifyBulk(benchmark::State& state) {  // NOLINT(readability-identifie
 }
 
 /// BVH nodes whose box a ray's walk tests (the algorithmic cost of a ray, free of cache effects):
-/// the slab test of covering/ray.cpp (the same formula and slack), over the public node array.
-double nodes_per_ray(const cover::Bvh& bvh, const std::vector<cover::Ray>& rays) {
-  size_t tested = 0;
+/// the slab test of covering/ray.cpp (the same formula and slack), over the public node array;
+/// `leaves` gets the leaf nodes it reaches per ray.
+double nodes_per_ray(const cover::Bvh& bvh, const std::vector<cover::Ray>& rays, double& leaves) {
+  size_t tested = 0, reached = 0;
   for (const cover::Ray& r : rays) {
     auto meets = [&](const cover::Bvh::Node& n) {
       double enter = -INFINITY, leave = INFINITY;
@@ -248,10 +249,13 @@ double nodes_per_ray(const cover::Bvh& bvh, const std::vector<cover::Ray>& rays)
         enter = std::max(enter, std::min(ta, tb));
         leave = std::min(leave, std::max(ta, tb));
       }
-      return std::max(0.0, enter * (1 - 1e-12)) <= leave * (1 + 1e-12);
+      const bool m = std::max(0.0, enter * (1 - 1e-12)) <= leave * (1 + 1e-12);
+      reached += m && n.count > 0;
+      return m;
     };
     tested += nodes_tested(bvh, meets);
   }
+  leaves = static_cast<double>(reached) / static_cast<double>(rays.size());
   return static_cast<double>(tested) / static_cast<double>(rays.size());
 }
 
@@ -279,7 +283,9 @@ void cast_rays(benchmark::State& state, bool batch_api) {
   state.counters["triangles"] = static_cast<double>(m.solid.face_count());
   state.counters["hits_per_ray"] = static_cast<double>(hits) / static_cast<double>(cast);
   state.counters["time_per_ray"] = time_per(kBatch);
-  state.counters["nodes_per_ray"] = nodes_per_ray(*m.bvh, rays);
+  double leaves = 0;
+  state.counters["nodes_per_ray"] = nodes_per_ray(*m.bvh, rays, leaves);
+  state.counters["leaves_per_ray"] = leaves;
 }
 // NOLINTNEXTLINE(readability-identifier-naming)
 void BM_CastRay(benchmark::State& state) { cast_rays(state, false); }
