@@ -203,6 +203,58 @@ struct Builder {
   }
 };
 
+/// Reorders the children pairs (depth-first from Builder::place) into treelets: the pairs of
+/// Bvh::kTreeletLevels consecutive levels below a treelet's root pair are stored contiguously,
+/// breadth first, and the treelets in depth-first order; a treelet's root pairs lie at pair
+/// depths 0, kTreeletLevels, 2·kTreeletLevels, ... (pair depth 0: the root's children). Why:
+/// a walk that reaches a treelet's root pair can fetch the whole treelet at once (walk_batch
+/// does for small batches), so one ray waits for memory once per kTreeletLevels levels instead
+/// of once per level. Child links are remapped; nodes 0 and 1 stay.
+void treelet_order(LargeVector<Bvh::Node>& nodes) {
+  if (nodes.size() < 4 || nodes[0].count > 0) return;
+  const size_t pairs = (nodes.size() - 2) / 2;
+  auto pair_of = [](uint32_t node) { return (node - 2) / 2; };  // node index → pair number
+  LargeVector<uint32_t> order;  // pair numbers in the new order
+  order.reserve(pairs);
+  std::vector<uint32_t> roots{pair_of(nodes[0].first)}, level, below;
+  while (!roots.empty()) {
+    level.assign(1, roots.back());
+    roots.pop_back();
+    for (int d = 0; d < Bvh::kTreeletLevels && !level.empty(); ++d) {
+      below.clear();
+      for (const uint32_t p : level) {
+        order.push_back(p);
+        for (const uint32_t c : {2 + 2 * p, 3 + 2 * p})
+          if (nodes[c].count == 0) below.push_back(pair_of(nodes[c].first));
+      }
+      level.swap(below);
+    }
+    roots.insert(roots.end(), level.rbegin(), level.rend());  // leftmost treelet next
+  }
+  if (order.size() != pairs) throw std::logic_error("BVH: children pairs do not form one tree");
+  LargeVector<uint32_t> to(pairs);  // pair number → its new pair number
+  for (uint32_t k = 0; k < pairs; ++k) to[order[k]] = k;
+  // Child links first, then the pairs moved in place along the permutation's cycles (no second
+  // node array: at 10k triangles its fresh pages cost more than the whole reordering).
+  for (Bvh::Node& node : nodes)
+    if (node.count == 0 && node.first >= 2) node.first = 2 + 2 * to[pair_of(node.first)];
+  for (uint32_t start = 0; start < pairs; ++start) {
+    if (to[start] == start) continue;
+    Bvh::Node carry[2] = {nodes[2 + 2 * start], nodes[3 + 2 * start]};
+    uint32_t at = start;
+    while (to[at] != start) {  // put carry at its place, pick up what was there
+      const uint32_t dest = to[at];
+      std::swap(carry[0], nodes[2 + 2 * dest]);
+      std::swap(carry[1], nodes[3 + 2 * dest]);
+      to[at] = at;  // done
+      at = dest;
+    }
+    nodes[2 + 2 * start] = carry[0];
+    nodes[3 + 2 * start] = carry[1];
+    to[at] = at;
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -342,6 +394,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   Builder::place(root, nodes_, 0, 2);
   nodes_[1] = Node{};
   for (int a = 0; a < 3; ++a) nodes_[1].lo[a] = INFINITY, nodes_[1].hi[a] = -INFINITY;
+  treelet_order(nodes_);
   // 4. The leaf blocks (Bvh::LeafBlock), in node order: sizes (distinct vertex indices per
   //    leaf), offsets, then the blocks, each leaf's triangles read from the faces again.
   std::vector<uint32_t> leaf_nodes;

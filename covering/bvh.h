@@ -6,7 +6,8 @@
 // (the peer) stores a primitive per node with slower traversal (bench/compare_cgal measures both).
 // Layout: 32-byte nodes; the root is node 0 (node 1 is unused), and the two children of an inner
 // node are nodes `first` and `first + 1`, a pair at an even index (one 64-byte cache line for
-// both boxes a traversal step tests), pairs in depth-first order. A leaf node's triangles are
+// both boxes a traversal step tests), pairs in treelets of kTreeletLevels levels (breadth first
+// inside a treelet, treelets depth first; bvh.cpp treelet_order). A leaf node's triangles are
 // stored in one leaf block (see LeafBlock: its distinct vertices once, then 12 bytes per
 // triangle), blocks in node order. Boxes contain the exact min/max of the double coordinates, so
 // "box misses ⇒ triangle misses" holds exactly. Build: binned SAH (16 bins over the centroid extent
@@ -37,6 +38,8 @@ class Bvh {
   static constexpr int kMaxStack = 128;
   /// Largest leaf (BvhOptions::leaf_size is clamped to it): a block's vertex slots fit a byte.
   static constexpr uint32_t kMaxLeafSize = 64;
+  /// Levels of children pairs stored together as one treelet (bvh.cpp treelet_order).
+  static constexpr int kTreeletLevels = 3;
   /// A covering triangle (v0, vi, vi+1) of a face, in its LEAF's own orientation (outward).
   struct Tri {
     Vec3 a, b, c;
@@ -190,8 +193,10 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
 /// (80 MB at 1M triangles) each is a miss; across a batch the loads are independent, so their
 /// misses overlap. Each level (and the leaf pass) first prefetches its first few entries, so a
 /// small batch gets its loads overlapped too: cast() of one ray is this walk with n = 1 (a level
-/// of one ray holds a few nodes). A leaf's first and count are copied when its node is tested,
-/// so the leaf pass reads blocks only, no node lines. Measured in bench/bench_queries
+/// of one ray holds a few nodes). A small level also fetches whole treelets at their top (one
+/// wait for memory per kTreeletLevels levels) and its leaves' blocks as soon as they meet. A
+/// leaf's first and count are copied when its node is tested, so the leaf pass reads blocks
+/// only, no node lines. Measured in bench/bench_queries
 /// (BM_ClassifyPoint, batches of 1000 random points; BM_CastRay, one ray per call; 1 thread): see
 /// README "Scaling". Each query's calls are walk()'s, in another order: callers must not depend
 /// on it.
@@ -237,6 +242,7 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
       else
         level.push_back({j, nodes[0].first});
     }
+  int depth = 0;  // of the pairs in `level` (0: the root's children)
   while (!level.empty()) {
     // Every entry is an inner node: test its two children, keep the ones that meet. The
     // children are written unconditionally and the counts advanced by the outcome (no branch
@@ -248,6 +254,14 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
     LeafEntry* leaf_out = leaves.data() + leaf_base;
     for (size_t e = 0; e < std::min(kAhead, level.size()); ++e)
       __builtin_prefetch(&nodes[level[e].node]);
+    // A small level (one ray's walk) at a treelet's top fetches the whole treelets: their lines
+    // are contiguous (bvh.cpp treelet_order), at most 2^kTreeletLevels − 1 pairs each (the
+    // first is the entry's own, fetched above).
+    if (level.size() <= kAhead && depth % Bvh::kTreeletLevels == 0)
+      for (const Entry& x : level)
+        for (uint32_t i = 1; i < (1u << Bvh::kTreeletLevels) - 1; ++i)
+          __builtin_prefetch(&nodes[std::min<size_t>(x.node + 2 * i, nodes.size() - 1)]);
+    ++depth;
     for (size_t e = 0; e < level.size(); ++e) {
       if (e + kAhead < level.size()) __builtin_prefetch(&nodes[level[e + kAhead].node]);
       const Entry x = level[e];
@@ -263,6 +277,11 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
       *leaf_out = {x.query, nodes[r].first, nodes[r].count};
       leaf_out += (both >> 1) & r_leaf;
     }
+    // A small level's leaves are fetched now, while the walk goes on (a large batch fetches
+    // them kLeafAhead entries ahead in the leaf pass: issued all at once they would stall).
+    if (level.size() <= kAhead)
+      for (const LeafEntry* p = leaves.data() + leaf_base; p < leaf_out; ++p)
+        prefetch_triangles(*p);
     next.resize(static_cast<size_t>(inner_out - next.data()));
     leaves.resize(static_cast<size_t>(leaf_out - leaves.data()));
     level.swap(next);

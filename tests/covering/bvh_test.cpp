@@ -1,5 +1,6 @@
 // The BVH's storage (covering/bvh.h): the leaf blocks hold exactly the solid's non-degenerate
-// covering triangles, each once, bit for bit, inside its leaf node's box, for every leaf size.
+// covering triangles, each once, bit for bit, inside its leaf node's box, for every leaf size;
+// the children pairs form one tree in treelet order.
 #include "covering/bvh.h"
 
 #include <gtest/gtest.h>
@@ -93,6 +94,48 @@ TEST(Bvh, LeafBlocksHoldEveryCoveringTriangleOnce) {
       EXPECT_EQ(got, expected);
     }
   }
+}
+
+TEST(Bvh, TreeletLayout) {
+  // Every children pair is reached once from the root, at an even index, its boxes inside its
+  // parent's; the pairs of a treelet (kTreeletLevels levels below a root pair at a pair depth
+  // that is a multiple of kTreeletLevels) lie within the 2^kTreeletLevels − 1 pairs from its
+  // root's, which walk_batch prefetches as one range.
+  constexpr uint32_t kSpan = 2 * ((1u << Bvh::kTreeletLevels) - 1);
+  for (const auto& [name, solid] : solids())
+    for (uint32_t leaf_size : {1u, 4u}) {
+      SCOPED_TRACE(name + " leaf_size " + std::to_string(leaf_size));
+      const Bvh bvh(solid, {.leaf_size = leaf_size});
+      const auto& nodes = bvh.nodes();
+      ASSERT_EQ(nodes[0].count, 0u);
+      struct Item {
+        uint32_t pair, parent, depth, treelet;
+      };
+      std::vector<int> reached(nodes.size(), 0);
+      std::vector<Item> stack{{nodes[0].first, 0, 0, nodes[0].first}};
+      size_t pairs = 0;
+      while (!stack.empty()) {
+        const Item it = stack.back();
+        stack.pop_back();
+        ++pairs;
+        ASSERT_EQ(it.pair % 2, 0u);
+        ASSERT_LT(it.pair + 1, nodes.size());
+        ASSERT_EQ(reached[it.pair]++, 0);
+        EXPECT_GE(it.pair, it.treelet);
+        EXPECT_LT(it.pair, it.treelet + kSpan);
+        for (const uint32_t c : {it.pair, it.pair + 1}) {
+          for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(nodes[c].lo[a], nodes[it.parent].lo[a]);
+            EXPECT_LE(nodes[c].hi[a], nodes[it.parent].hi[a]);
+          }
+          if (nodes[c].count > 0) continue;
+          const uint32_t d = it.depth + 1;
+          const uint32_t child = nodes[c].first;
+          stack.push_back({child, c, d, d % Bvh::kTreeletLevels == 0 ? child : it.treelet});
+        }
+      }
+      EXPECT_EQ(2 + 2 * pairs, nodes.size());
+    }
 }
 
 }  // namespace
