@@ -38,8 +38,10 @@ class Bvh {
   static constexpr int kMaxStack = 128;
   /// Largest leaf (BvhOptions::leaf_size is clamped to it): a block's vertex slots fit a byte.
   static constexpr uint32_t kMaxLeafSize = 64;
-  /// Levels of children pairs stored together as one treelet (bvh.cpp treelet_order).
+  /// Levels of children pairs stored together as one treelet (bvh.cpp treelet_order), and the
+  /// most pairs a treelet holds (contiguous from its root pair).
   static constexpr int kTreeletLevels = 3;
+  static constexpr uint32_t kTreeletPairs = (1u << kTreeletLevels) - 1;
   /// A covering triangle (v0, vi, vi+1) of a face, in its LEAF's own orientation (outward).
   struct Tri {
     Vec3 a, b, c;
@@ -256,11 +258,11 @@ void walk_batch(const Bvh& bvh, uint32_t n, MeetsBoth&& meets_both, Leaf&& leaf)
     for (size_t e = 0; e < std::min(kAhead, level.size()); ++e)
       __builtin_prefetch(&nodes[level[e].node]);
     // A small level (one ray's walk) at a treelet's top fetches the whole treelets: their lines
-    // are contiguous (bvh.cpp treelet_order), at most 2^kTreeletLevels − 1 pairs each (the
-    // first is the entry's own, fetched above).
+    // are contiguous (bvh.cpp treelet_order), at most kTreeletPairs pairs each (the first is
+    // the entry's own, fetched above).
     if (level.size() <= kAhead && depth % Bvh::kTreeletLevels == 0)
       for (const Entry& x : level)
-        for (uint32_t i = 1; i < (1u << Bvh::kTreeletLevels) - 1; ++i)
+        for (uint32_t i = 1; i < Bvh::kTreeletPairs; ++i)
           __builtin_prefetch(&nodes[std::min<size_t>(x.node + 2 * i, nodes.size() - 1)]);
     ++depth;
     for (size_t e = 0; e < level.size(); ++e) {

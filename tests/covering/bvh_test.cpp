@@ -99,9 +99,9 @@ TEST(Bvh, LeafBlocksHoldEveryCoveringTriangleOnce) {
 TEST(Bvh, TreeletLayout) {
   // Every children pair is reached once from the root, at an even index, its boxes inside its
   // parent's; the pairs of a treelet (kTreeletLevels levels below a root pair at a pair depth
-  // that is a multiple of kTreeletLevels) lie within the 2^kTreeletLevels − 1 pairs from its
-  // root's, which walk_batch prefetches as one range.
-  constexpr uint32_t kSpan = 2 * ((1u << Bvh::kTreeletLevels) - 1);
+  // that is a multiple of kTreeletLevels) lie within the kTreeletPairs pairs from its root's,
+  // which walk_batch prefetches as one range.
+  constexpr uint32_t kSpan = 2 * Bvh::kTreeletPairs;
   for (const auto& [name, solid] : solids())
     for (uint32_t leaf_size : {1u, 4u}) {
       SCOPED_TRACE(name + " leaf_size " + std::to_string(leaf_size));
