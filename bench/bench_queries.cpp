@@ -24,14 +24,13 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <random>
 #include <vector>
 
+#include "bench_models.h"
 #include "covering/bvh.h"
 #include "covering/classify.h"
 #include "covering/ray.h"
 #include "solid/parallel.h"
-#include "solid/primitives.h"
 
 namespace {
 
@@ -39,29 +38,6 @@ constexpr size_t kBatch = 1000;       ///< points or rays per timed iteration
 constexpr size_t kBatches = 64;       ///< distinct batches cycled through (64k queries)
 constexpr size_t kMillion = 1000000;  ///< points of BM_ClassifyMillion
 constexpr uint64_t kSeed = 20240601;  ///< every random input is seeded
-
-/// Longitudes of make_sphere whose triangulation has about `target` triangles: s longitudes and
-/// s/2 bands give 2s pole triangles + s(s/2 − 2) quads of 2 triangles = s² − 2s (s even).
-int segments_for(int64_t target) {
-  const int s = static_cast<int>(std::lround(1 + std::sqrt(1.0 + static_cast<double>(target))));
-  return s + (s % 2);
-}
-
-/// Closed, outward, star-shaped bumpy sphere of radius ≈ 1 (0.85 to 1.15) at the origin, triangles
-/// only. The displacement depends on the direction alone, so it is well defined at the poles.
-cover::PolygonMesh bumpy_sphere(int segments) {
-  const cover::PolygonMesh sphere = cover::make_sphere({0, 0, 0}, 1.0, segments);
-  cover::PolygonMesh mesh;
-  mesh.vertices.reserve(sphere.vertices.size());
-  for (const cover::Vec3& u : sphere.vertices)
-    mesh.vertices.push_back((1 + 0.15 * std::sin(6 * u.x) * std::sin(6 * u.y) * std::sin(6 * u.z)) *
-                            u);
-  for (size_t f = 0; f < sphere.face_count(); ++f) {
-    const auto loop = sphere.face(f);
-    for (size_t i = 1; i + 1 < loop.size(); ++i) mesh.add_face({loop[0], loop[i], loop[i + 1]});
-  }
-  return mesh;
-}
 
 /// The solid and its BVH for one target size, built once and shared by every benchmark.
 struct Model {
@@ -73,40 +49,10 @@ const Model& model(int64_t target) {
   static std::map<int64_t, Model> cache;
   Model& m = cache[target];
   if (!m.bvh) {
-    m.solid = cover::make_leaf(bumpy_sphere(segments_for(target)), "sphere");
+    m.solid = cover::make_leaf(bench::bumpy_sphere(bench::segments_for(target)), "sphere");
     m.bvh = std::make_unique<cover::Bvh>(m.solid);
   }
   return m;
-}
-
-/// `n` uniform random points in the solid's bounding box.
-std::vector<cover::Vec3> random_points(const cover::Solid& solid, size_t n, uint64_t seed) {
-  const cover::Bbox box = solid.bbox();
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> ux(box.min.x, box.max.x), uy(box.min.y, box.max.y),
-      uz(box.min.z, box.max.z);
-  std::vector<cover::Vec3> points(n);
-  for (auto& p : points) p = {ux(rng), uy(rng), uz(rng)};
-  return points;
-}
-
-/// `n` rays from uniform points on the sphere (center of the box, radius = box diagonal), which
-/// encloses the solid, aimed at uniform points in the box (as bench/compare_cgal does).
-std::vector<cover::Ray> random_rays(const cover::Solid& solid, size_t n, uint64_t seed) {
-  const cover::Bbox box = solid.bbox();
-  const cover::Vec3 center = 0.5 * (box.min + box.max);
-  const double radius = std::sqrt(cover::dot(box.max - box.min, box.max - box.min));
-  const std::vector<cover::Vec3> targets = random_points(solid, n, seed);
-  std::mt19937_64 rng(seed + 1);
-  std::normal_distribution<double> nd;
-  std::vector<cover::Ray> rays(n);
-  for (size_t i = 0; i < n; ++i) {
-    cover::Vec3 u{nd(rng), nd(rng), nd(rng)};
-    u = (radius / std::sqrt(cover::dot(u, u))) * u;
-    rays[i].origin = center + u;
-    rays[i].dir = targets[i] - rays[i].origin;
-  }
-  return rays;
 }
 
 /// Counter: seconds per item (printed as e.g. "45.3ns"), `items` processed per iteration.
@@ -179,7 +125,7 @@ double nodes_per_query(const cover::Bvh& bvh, const std::vector<cover::Vec3>& po
 // classify() of 1000 points per iteration, BVH prebuilt, empty-cell grid off, one thread.
 void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
   const Model& m = model(state.range(0));
-  const std::vector<cover::Vec3> points = random_points(m.solid, kBatch * kBatches, kSeed);
+  const std::vector<cover::Vec3> points = bench::random_points(m.solid, kBatch * kBatches, kSeed);
   const cover::ClassifyOptions options{.grid_min_points = SIZE_MAX};
   cover::ThreadLimit limit(1);
   size_t batch = 0, inside = 0, classified = 0;
@@ -202,7 +148,7 @@ void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifi
 // End to end on 2 threads: BVH build + classify() of 1M points, default options (grid on).
 void BM_ClassifyMillion(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
   const Model& m = model(state.range(0));
-  const std::vector<cover::Vec3> points = random_points(m.solid, kMillion, kSeed);
+  const std::vector<cover::Vec3> points = bench::random_points(m.solid, kMillion, kSeed);
   cover::ThreadLimit limit(2);
   for (auto _ : state) {
     const cover::Bvh bvh(m.solid);
@@ -218,7 +164,7 @@ void BM_ClassifyMillion(benchmark::State& state) {  // NOLINT(readability-identi
 // the per-query cost of the BVH path in bulk use (queries processed in spatial order).
 void BM_ClassifyBulk(benchmark::State& state) {  // NOLINT(readability-identifier-naming)
   const Model& m = model(state.range(0));
-  const std::vector<cover::Vec3> points = random_points(m.solid, kMillion, kSeed);
+  const std::vector<cover::Vec3> points = bench::random_points(m.solid, kMillion, kSeed);
   cover::ThreadLimit limit(1);
   cover::ClassifyOptions options;
   options.grid_min_points = SIZE_MAX;
@@ -264,7 +210,7 @@ double nodes_per_ray(const cover::Bvh& bvh, const std::vector<cover::Ray>& rays,
 // which `cover volume` uses; the rays walk the BVH together).
 void cast_rays(benchmark::State& state, bool batch_api) {
   const Model& m = model(state.range(0));
-  const std::vector<cover::Ray> rays = random_rays(m.solid, kBatch * kBatches, kSeed);
+  const std::vector<cover::Ray> rays = bench::random_rays(m.solid, kBatch * kBatches, kSeed);
   cover::ThreadLimit limit(1);
   size_t batch = 0, hits = 0, cast = 0;
   for (auto _ : state) {
