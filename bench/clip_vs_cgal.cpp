@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_cli.h"
 #include "brep/clip.h"
 #include "solid/measure.h"
 #include "solid/mesh_io.h"
@@ -30,10 +31,9 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<K::Point_3>;
-using Clock = std::chrono::steady_clock;
+using bench::Clock;
+using bench::since;
 namespace PMP = CGAL::Polygon_mesh_processing;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -105,8 +105,10 @@ int main(int argc, char** argv) {
         const Mesh sm = to_surface_mesh(mesh);
         Mesh below = sm, above = sm;
         const cover::Vec3 n = plane.normal;
-        PMP::clip(below, K::Plane_3(n.x, n.y, n.z, -plane.offset), CGAL::parameters::clip_volume(true));
-        PMP::clip(above, K::Plane_3(-n.x, -n.y, -n.z, plane.offset), CGAL::parameters::clip_volume(true));
+        PMP::clip(below, K::Plane_3(n.x, n.y, n.z, -plane.offset),
+                  CGAL::parameters::clip_volume(true));
+        PMP::clip(above, K::Plane_3(-n.x, -n.y, -n.z, plane.offset),
+                  CGAL::parameters::clip_volume(true));
         tg.push_back(since(t0));
         cgal_volume = CGAL::to_double(PMP::volume(below));
       }
@@ -119,7 +121,7 @@ int main(int argc, char** argv) {
     }
   }
   std::sort(ratios.begin(), ratios.end());
-  std::printf("ratio (CGAL time / Cover time): min %.1fx, median %.1fx, max %.1fx\n", ratios.front(),
-              ratios[ratios.size() / 2], ratios.back());
+  std::printf("ratio (CGAL time / Cover time): min %.1fx, median %.1fx, max %.1fx\n",
+              ratios.front(), ratios[ratios.size() / 2], ratios.back());
   return 0;
 }

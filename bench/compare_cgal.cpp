@@ -7,12 +7,6 @@
 // Timings are the median of --repeat runs (default 3) of each side, interleaved.
 // Usage: compare_cgal MESH [--points N] [--brute N] [--rays N] [--threads T] [--seed S]
 //                          [--repeat R]
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,6 +17,8 @@
 #include <random>
 #include <string>
 
+#include "bench_cli.h"
+#include "cgal_query_types.h"
 #include "covering/classify.h"
 #include "covering/ray.h"
 #include "solid/parallel.h"
@@ -30,23 +26,16 @@
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Mesh = CGAL::Surface_mesh<K::Point_3>;
-using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using bench::arg;
+using bench::Clock;
+using bench::K;
+using bench::Mesh;
+using bench::since;
+using bench::Tree;
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
-}
-
-long arg(int argc, char** argv, const char* name, long fallback) {
-  for (int i = 2; i + 1 < argc; ++i)
-    if (std::strcmp(argv[i], name) == 0) return std::atol(argv[i + 1]);
-  return fallback;
 }
 
 }  // namespace
@@ -100,7 +89,8 @@ int main(int argc, char** argv) {
     // CGAL: tree build + queries on one thread.
     const auto t1 = Clock::now();
     CGAL::Side_of_triangle_mesh<Mesh, K> side(mesh);
-    for (size_t i = 0; i < pts.size(); ++i) theirs[i] = side(K::Point_3(pts[i].x, pts[i].y, pts[i].z));
+    for (size_t i = 0; i < pts.size(); ++i)
+      theirs[i] = side(K::Point_3(pts[i].x, pts[i].y, pts[i].z));
     cgal_totals.push_back(since(t1));
   }
   const double cover_build = median(cover_builds), cover_total = median(cover_totals),
@@ -190,14 +180,17 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::printf("{\"mesh\": \"%s\", \"triangles\": %zu, \"points\": %ld, \"threads\": %d,\n", path.c_str(),
-              solid.face_count(), n_points, threads);
-  std::printf(" \"cover_bvh_build_s\": %.4f, \"cover_classify_total_s\": %.4f, \"cgal_side_total_s\": %.4f, "
-              "\"speedup\": %.2f,\n", cover_build, cover_total, cgal_total, cgal_total / cover_total);
-  std::printf(" \"inside\": %ld, \"cgal_on_boundary\": %ld, \"disagreements_vs_cgal\": %ld,\n", inside,
-              boundary, disagree);
-  std::printf(" \"brute_points\": %zu, \"brute_s\": %.3f, \"disagreements_vs_brute\": %ld,\n", nb, brute_time,
-              brute_disagree);
+  std::printf("{\"mesh\": \"%s\", \"triangles\": %zu, \"points\": %ld, \"threads\": %d,\n",
+              path.c_str(), solid.face_count(), n_points, threads);
+  std::printf(
+      " \"cover_bvh_build_s\": %.4f, \"cover_classify_total_s\": %.4f, \"cgal_side_total_s\": "
+      "%.4f, "
+      "\"speedup\": %.2f,\n",
+      cover_build, cover_total, cgal_total, cgal_total / cover_total);
+  std::printf(" \"inside\": %ld, \"cgal_on_boundary\": %ld, \"disagreements_vs_cgal\": %ld,\n",
+              inside, boundary, disagree);
+  std::printf(" \"brute_points\": %zu, \"brute_s\": %.3f, \"disagreements_vs_brute\": %ld,\n", nb,
+              brute_time, brute_disagree);
   std::printf(
       " \"rays\": %ld, \"cover_rays_s\": %.4f, \"cgal_rays_s\": %.4f, \"ray_speedup\": %.2f, "
       "\"hits_cover\": %ld, \"hits_cgal\": %ld, \"ray_disagreements\": %ld,\n",

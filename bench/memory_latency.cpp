@@ -15,9 +15,12 @@
 #include <random>
 #include <vector>
 
+#include "bench_cli.h"
 #include "solid/large_vector.h"
 
 namespace {
+
+using bench::arg;
 
 struct Line {     // 64 bytes; LargeVector blocks start on a 2 MiB boundary, so each is one line
   uint32_t next;  ///< index of the next line of the cycle
@@ -44,12 +47,6 @@ double chase(cover::LargeVector<Line>& mem, size_t lines, int chains, uint64_t s
   for (uint32_t a : at) sink ^= a;
   if (sink == UINT32_MAX) std::puts("");  // keeps the loads
   return s * 1e9 / static_cast<double>(steps * chains);
-}
-
-long arg(int argc, char** argv, const char* name, long fallback) {
-  for (int i = 1; i + 1 < argc; ++i)
-    if (std::strcmp(argv[i], name) == 0) return std::atol(argv[i + 1]);
-  return fallback;
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_cli.h"
 #include "covering/bounds.h"
 #include "covering/volume.h"
 #include "raster/png.h"
@@ -41,11 +42,8 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<K::Point_3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using bench::Clock;
+using bench::since;
 
 /// A leaf: `file` scaled so that its largest box side is 2·half_size, centred, rotated by
 /// `degrees` about `axis`, then moved to `centre`.
@@ -248,9 +246,10 @@ int main(int argc, char** argv) {
   }
   cover::write_png_rgb(png, image.width, image.height, image.rgb);
   if (cover_only) {
-    std::printf("{\"cover_first_frame_s\": %.4f, \"cover_csg_s\": %.4f, \"cover_bvh_s\": %.4f, "
-                "\"cover_render_s\": %.4f, \"cover_refresh_s\": %.4f}\n",
-                first_s, csg_s, bvh_s, first_s - csg_s - bvh_s, refresh_s);
+    std::printf(
+        "{\"cover_first_frame_s\": %.4f, \"cover_csg_s\": %.4f, \"cover_bvh_s\": %.4f, "
+        "\"cover_render_s\": %.4f, \"cover_refresh_s\": %.4f}\n",
+        first_s, csg_s, bvh_s, first_s - csg_s - bvh_s, refresh_s);
     return 0;
   }
 

@@ -11,12 +11,6 @@
 // Hits are compared too: Cover's hit count per ray against CGAL's all_intersections (a ray
 // through an edge or vertex may differ: CGAL reports a point per triangle touched).
 // Usage: scaling_vs_cgal [--queries Q (64000)] [--rounds R (5)] [--max N (1000000)]
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
 #include <chrono>
@@ -29,7 +23,9 @@
 #include <string>
 #include <vector>
 
+#include "bench_cli.h"
 #include "bench_models.h"
+#include "cgal_query_types.h"
 #include "covering/bvh.h"
 #include "covering/classify.h"
 #include "covering/ray.h"
@@ -37,19 +33,13 @@
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Mesh = CGAL::Surface_mesh<K::Point_3>;
-using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-using Clock = std::chrono::steady_clock;
+using bench::arg;
+using bench::Clock;
+using bench::K;
+using bench::Mesh;
+using bench::Tree;
 constexpr uint64_t kSeed = 20240601;  ///< bench_queries' seed: the same points and rays
 constexpr size_t kBatch = 1000;       ///< queries per Cover call in the batch columns
-
-long arg(int argc, char** argv, const char* name, long fallback) {
-  for (int i = 1; i + 1 < argc; ++i)
-    if (std::strcmp(argv[i], name) == 0) return std::atol(argv[i + 1]);
-  return fallback;
-}
 
 /// One size: the Cover solid and BVH, the same mesh in CGAL with both peer structures, queries.
 struct Size {
@@ -184,8 +174,7 @@ int main(int argc, char** argv) {
         const size_t n = methods[m].rays ? sizes[z]->rays.size() : sizes[z]->points.size();
         const auto t0 = Clock::now();
         check[m][z] = methods[m].pass(*sizes[z]);
-        t[m][z].push_back(std::chrono::duration<double>(Clock::now() - t0).count() /
-                          static_cast<double>(n));
+        t[m][z].push_back(bench::since(t0) / static_cast<double>(n));
       }
   }
   auto min_of = [](std::vector<double> v) { return *std::min_element(v.begin(), v.end()); };

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_cli.h"
 #include "octree/octree.h"
 #include "raster/voxelize.h"
 #include "solid/parallel.h"
@@ -34,8 +35,8 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using bench::Clock;
+using bench::since;
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
@@ -117,15 +118,18 @@ int main(int argc, char** argv) {
       std::vector<openvdb::Vec3s> points;
       std::vector<openvdb::Vec3I> triangles;
       for (const cover::Vec3& p : solid.vertices)
-        points.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
+        points.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y),
+                            static_cast<float>(p.z));
       for (size_t f = 0; f < solid.face_count(); ++f) {
         const auto face = solid.face(f);
-        for (size_t i = 1; i + 1 < face.size(); ++i) triangles.emplace_back(face[0], face[i], face[i + 1]);
+        for (size_t i = 1; i + 1 < face.size(); ++i)
+          triangles.emplace_back(face[0], face[i], face[i + 1]);
       }
       // World-space points; the transform sets the voxel size (the same as Cover's).
       const auto xform = openvdb::math::Transform::createLinearTransform(grid.voxel_size());
       auto t0 = Clock::now();
-      auto band = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, 3.0f);
+      auto band =
+          openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xform, points, triangles, 3.0f);
       vdb_band = since(t0);
       sink ^= band->activeVoxelCount();
       band.reset();
@@ -137,15 +141,19 @@ int main(int argc, char** argv) {
         sink ^= filled->activeVoxelCount();
       }
     }
-    const double c = median(t_cover), w = median(t_warm), f = median(t_fresh), cold = median(t_cold);
-    std::printf("  {\"res\": %d, \"cover_s\": %.4f, \"floor_cold_s\": %.4f, \"x_floor_cold\": %.1f, "
-                "\"floor_warm_s\": %.4f, \"floor_fresh_s\": %.4f, "
-                "\"x_floor_warm\": %.1f, \"x_floor_fresh\": %.1f, \"openvdb_band_s\": %.3f, "
-                "\"openvdb_filled_s\": %.3f, \"openvdb_band_over_cover\": %.1f, "
-                "\"openvdb_filled_over_cover\": %.1f, \"occupied\": %llu, \"peak_mib\": %.1f, \"sink\": %llu}%s\n",
-                n, c, cold, c / cold, w, f, c / w, c / f, vdb_band, vdb_filled, vdb_band / c, vdb_filled / c,
-                static_cast<unsigned long long>(occupied), cover_peak,
-                static_cast<unsigned long long>(sink & 1), r + 1 < resolutions.size() || !depths.empty() ? "," : "");
+    const double c = median(t_cover), w = median(t_warm), f = median(t_fresh),
+                 cold = median(t_cold);
+    std::printf(
+        "  {\"res\": %d, \"cover_s\": %.4f, \"floor_cold_s\": %.4f, \"x_floor_cold\": %.1f, "
+        "\"floor_warm_s\": %.4f, \"floor_fresh_s\": %.4f, "
+        "\"x_floor_warm\": %.1f, \"x_floor_fresh\": %.1f, \"openvdb_band_s\": %.3f, "
+        "\"openvdb_filled_s\": %.3f, \"openvdb_band_over_cover\": %.1f, "
+        "\"openvdb_filled_over_cover\": %.1f, \"occupied\": %llu, \"peak_mib\": %.1f, \"sink\": "
+        "%llu}%s\n",
+        n, c, cold, c / cold, w, f, c / w, c / f, vdb_band, vdb_filled, vdb_band / c,
+        vdb_filled / c, static_cast<unsigned long long>(occupied), cover_peak,
+        static_cast<unsigned long long>(sink & 1),
+        r + 1 < resolutions.size() || !depths.empty() ? "," : "");
   }
   for (size_t d = 0; d < depths.size(); ++d) {
     cover::OctreeOptions oo;
@@ -156,10 +164,13 @@ int main(int argc, char** argv) {
     const cover::Octree tree = cover::build_octree(solid, bounds, oo);
     const double t = since(t0);
     const auto counts = tree.leaf_counts();
-    std::printf("  {\"octree_depth\": %d, \"seconds\": %.3f, \"nodes\": %zu, \"full\": %llu, \"empty\": %llu, "
-                "\"partial\": %llu}%s\n", depths[d], t, tree.nodes.size(),
-                static_cast<unsigned long long>(counts[1]), static_cast<unsigned long long>(counts[0]),
-                static_cast<unsigned long long>(counts[2]), d + 1 < depths.size() ? "," : "");
+    std::printf(
+        "  {\"octree_depth\": %d, \"seconds\": %.3f, \"nodes\": %zu, \"full\": %llu, \"empty\": "
+        "%llu, "
+        "\"partial\": %llu}%s\n",
+        depths[d], t, tree.nodes.size(), static_cast<unsigned long long>(counts[1]),
+        static_cast<unsigned long long>(counts[0]), static_cast<unsigned long long>(counts[2]),
+        d + 1 < depths.size() ? "," : "");
   }
   std::printf("]}\n");
   return 0;
