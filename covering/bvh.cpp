@@ -63,7 +63,7 @@ struct Extent {
 };
 
 struct Builder {
-  LargeVector<Ref>& refs;
+  LargeBuffer<Ref>& refs;
   const BvhOptions& options;
 
   Extent extent(uint32_t begin, uint32_t end) const {
@@ -368,7 +368,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   const double margin = 1e-9 * scale;
   // 2. One Ref per kept triangle, in triangle order; index = the triangle number g (increasing
   //    with the position, the tie-breaker of median splits).
-  LargeVector<Ref> refs(n);
+  LargeBuffer<Ref> refs(n);  // written in full by the parallel loop below (first touch too)
   parallel_for(faces, kChunk, [&](size_t begin, size_t end) {
     for (uint32_t g = fan.start[begin]; g < fan.start[end]; ++g) {
       if (!keep[g]) continue;

@@ -140,8 +140,8 @@ class Bvh {
   size_t memory_bytes() const;
 
  private:
-  LargeVector<uint64_t> blocks_;    ///< the leaf blocks, in node order
-  LargeVector<uint32_t> block_of_;  ///< per triangle: its block's offset (for triangle(i))
+  LargeBuffer<uint64_t> blocks_;    ///< the leaf blocks, in node order
+  LargeBuffer<uint32_t> block_of_;  ///< per triangle: its block's offset (for triangle(i))
   LargeVector<Node> nodes_;
   LargeVector<FacePlane> planes_;   ///< of the faces with more than three vertices, in order
   LargeVector<uint32_t> plane_of_;  ///< per face: index into planes_ or UINT32_MAX; empty if none

@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace cover {
@@ -61,6 +63,34 @@ struct LargeAllocator {
 /// A std::vector whose large buffers live on huge pages (see above).
 template <typename T>
 using LargeVector = std::vector<T, LargeAllocator<T>>;
+
+/// LargeAllocator that default-initializes: `resize(n)` and `LargeBuffer<T>(n)` of a trivial T
+/// write nothing, so the first write to a fresh page can come from a parallel loop instead of
+/// one thread's zero fill. Only for arrays a parallel loop then writes in full (elements are
+/// indeterminate until written). Why: a fresh page's first touch is what costs here (above),
+/// and two threads touching halves of an array fault in parallel.
+template <typename T>
+struct LargeUninitAllocator : LargeAllocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = LargeUninitAllocator<U>;
+  };
+  LargeUninitAllocator() = default;
+  template <typename U>
+  LargeUninitAllocator(const LargeUninitAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A LargeVector whose new elements are default-initialized (see LargeUninitAllocator).
+template <typename T>
+using LargeBuffer = std::vector<T, LargeUninitAllocator<T>>;
 
 /// Element-wise equality with a plain std::vector (found by argument-dependent lookup through
 /// the allocator; C++20 also provides the reversed form).
