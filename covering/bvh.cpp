@@ -432,6 +432,8 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   for (size_t l = 0; l < leaf_nodes.size(); ++l) offset[l + 1] += offset[l];
   if (offset[leaf_nodes.size()] > UINT32_MAX)
     throw std::length_error("BVH leaf blocks exceed 32 GB (too many triangles for one BVH)");
+  // Not zero-filled (LargeBuffer): the loop below writes every word of every block (its memset
+  // included) and every triangle's block_of_ entry, from both threads.
   blocks_.resize(offset[leaf_nodes.size()]);
   block_of_.resize(n);
   parallel_for(leaf_nodes.size(), 1024, [&](size_t begin, size_t end) {
