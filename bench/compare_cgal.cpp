@@ -183,9 +183,8 @@ int main(int argc, char** argv) {
   std::printf("{\"mesh\": \"%s\", \"triangles\": %zu, \"points\": %ld, \"threads\": %d,\n",
               path.c_str(), solid.face_count(), n_points, threads);
   std::printf(
-      " \"cover_bvh_build_s\": %.4f, \"cover_classify_total_s\": %.4f, \"cgal_side_total_s\": "
-      "%.4f, "
-      "\"speedup\": %.2f,\n",
+      " \"cover_bvh_build_s\": %.4f, \"cover_classify_total_s\": %.4f, "
+      "\"cgal_side_total_s\": %.4f, \"speedup\": %.2f,\n",
       cover_build, cover_total, cgal_total, cgal_total / cover_total);
   std::printf(" \"inside\": %ld, \"cgal_on_boundary\": %ld, \"disagreements_vs_cgal\": %ld,\n",
               inside, boundary, disagree);

@@ -17,7 +17,6 @@
 #include <cstddef>
 #include <new>
 #include <type_traits>
-#include <utility>
 #include <vector>
 
 namespace cover {
@@ -71,20 +70,14 @@ using LargeVector = std::vector<T, LargeAllocator<T>>;
 /// and two threads touching halves of an array fault in parallel.
 template <typename T>
 struct LargeUninitAllocator : LargeAllocator<T> {
-  template <typename U>
-  struct rebind {
-    using other = LargeUninitAllocator<U>;
-  };
   LargeUninitAllocator() = default;
   template <typename U>
   LargeUninitAllocator(const LargeUninitAllocator<U>&) noexcept {}
+  /// Default-initializes; construction with arguments falls back to allocator_traits'
+  /// construct_at (this overload does not take them).
   template <typename U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 };
 
