@@ -9,6 +9,7 @@
 
 #include "boolean/detail/arrangement.h"
 #include "brep/halfedge.h"
+#include "covering/bounds.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
 #include "solid/validate.h"
@@ -21,6 +22,9 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
   EvaluateResult r;
+  if (!is_bounded(solid))
+    throw NotComputable("evaluate: the result is unbounded (a complement at the root); a B-rep "
+                        "needs a bounded solid");
   auto t = Clock::now();
   if (options.check_leaves) {
     // One leaf per task (the test itself is serial); the first bad leaf by index is reported.

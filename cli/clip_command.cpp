@@ -8,6 +8,7 @@
 
 #include "boolean/evaluate.h"
 #include "brep/clip.h"
+#include "covering/bounds.h"
 #include "brep/halfedge.h"
 #include "cli/commands.h"
 #include "cli/output.h"
@@ -99,13 +100,15 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   const LoadedInput in = load_input(o.input);
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   const Solid& s = in.solid;
+  if (!is_bounded(s)) throw InputError(unbounded_message(o.input));
   brep::ClipOptions co;
   co.triangulate_caps = o.triangulate;
   HalfSummary above, below;
   if (!scene_out) {
     // CONTRACT.md: a scene of several leaves is evaluated first (boolean/evaluate.h: one closed
     // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly.
-    const PolygonMesh mesh = s.leaves.size() == 1 ? leaf_mesh(s, 0) : evaluate(s).mesh;
+    const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
+    const PolygonMesh mesh = one_leaf ? leaf_mesh(s, 0) : evaluate(s).mesh;
     const brep::ClipResult r = brep::clip(mesh, plane, co);
     add(above, r.above);
     add(below, r.below);

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "boolean/evaluate.h"
 #include "brep/halfedge.h"
 #include "cli/output.h"
 #include "cli/points.h"
@@ -95,6 +96,7 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
   LoadOptions lo;
   lo.require_closed = false;  // info reports open leaves instead of rejecting them
   lo.orient_outward = false;  // and reports orientation as found in the input
+  lo.repair = false;          // and the faces as found (no loop collapse, no re-orientation)
   const LoadedInput in = load_input(o.input, lo);
   const Solid& s = in.solid;
   json j;
@@ -152,10 +154,33 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   const auto start = Clock::now();
   const LoadedInput in = load_input(o.input);
   print_warnings(in);
+  if (!is_bounded(in.solid)) throw InputError(unbounded_message(o.input));
   VolumeOptions vo;
-  vo.exact = o.exact;
   vo.rays = static_cast<int>(o.rays);
-  const VolumeResult r = volume(in.solid, vo);
+  Progress progress("volume", common.quiet);
+  vo.progress = [&](double fraction) { progress.update(static_cast<size_t>(1000 * fraction), 1000); };
+  // --exact, and a ray estimate whose proven bound misses the target: the evaluated B-rep's
+  // exact volume and area (boolean/evaluate.h), when its leaves allow evaluation.
+  VolumeResult r;
+  const bool covering_exact = !covering_inexact_reason(in.solid);
+  if (!o.exact || covering_exact) r = volume(in.solid, vo);
+  progress.finish();
+  if ((o.exact && !covering_exact) || (!r.target_met && o.rays == 0)) {
+    try {
+      const EvaluateResult e = evaluate(in.solid);
+      r = VolumeResult{};
+      r.volume = e.volume;
+      r.area = e.area;
+      r.method = "brep";
+    } catch (const InputError& e) {
+      if (o.exact) throw InputError(o.input + ": --exact: " + e.what());
+    }
+  }
+  if (!r.target_met && r.method == "rays")
+    std::fprintf(stderr,
+                 "cover: warning: %s: the ray volume's proven error bound %g is above the target "
+                 "(relative %g) after %zu rays, and B-rep evaluation is not available for it\n",
+                 o.input.c_str(), r.error_bound, vo.target_relative_error, r.rays);
   json j;
   j["volume"] = r.volume;
   j["area"] = r.area ? json(*r.area) : json(nullptr);

@@ -10,6 +10,7 @@
 #include "boolean/evaluate.h"
 #include "cli/commands.h"
 #include "cli/output.h"
+#include "covering/bounds.h"
 #include "solid/errors.h"
 #include "solid/mesh_io.h"
 #include "solid/scene.h"
@@ -22,6 +23,7 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
   const LoadedInput in = load_input(o.input);
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  if (!is_bounded(in.solid)) throw InputError(unbounded_message(o.input));
   const EvaluateResult r = evaluate(in.solid);
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");

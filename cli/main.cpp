@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
   CLI::App* vol_cmd = app.add_subcommand("volume", "Volume (and area where exact) of the solid");
   vol_cmd->add_option("INPUT", vol.input, "Mesh or scene")->required();
   vol_cmd->add_flag("--exact", vol.exact, "Require an exact method (B-rep evaluation)");
-  vol_cmd->add_option("--rays", vol.rays, "Rays per axis for ray integration")->check(CLI::PositiveNumber);
+  vol_cmd->add_option("--rays", vol.rays, "Ray integration on a fixed grid: finest cells 1/N of the square (N from 1 to 2048, rounded up to a power of two)")
+      ->check(CLI::Range(1, 2048));
   add_common(vol_cmd, common);
 
   cover::cli::ClassifyCommandOptions cls;

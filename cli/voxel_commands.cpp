@@ -23,10 +23,13 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-/// --bounds xmin,ymin,zmin,size, or the default cube around the result's box.
-VoxelBounds bounds_option(const std::string& text, const Solid& solid, int n) {
+/// --bounds xmin,ymin,zmin,size, or the default cube around the result's box (an unbounded
+/// result has none: it needs --bounds).
+VoxelBounds bounds_option(const std::string& text, const Solid& solid, int n,
+                          const std::string& input) {
   if (text.empty()) {
     const std::optional<Bbox> box = result_bounds(solid);
+    if (!box) throw InputError(unbounded_message(input) + " (or give --bounds)");
     // One voxel of margin per side needs N >= 3; coarser grids get the margin of N = 3.
     return default_voxel_bounds(box && !box->empty() ? *box : solid.bbox(), std::max(n, 3));
   }
@@ -61,7 +64,7 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   VoxelizeOptions vo;
   vo.resolution = o.res;
-  vo.bounds = bounds_option(o.bounds, in.solid, o.res);
+  vo.bounds = bounds_option(o.bounds, in.solid, o.res, o.input);
   Progress progress("voxelize", common.quiet);
   vo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   const VoxelGrid grid = voxelize(in.solid, vo);
@@ -97,7 +100,7 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   oo.depth = o.depth;
   Progress progress("octree", common.quiet);
   oo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
-  const Octree tree = build_octree(in.solid, bounds_option(o.bounds, in.solid, 1 << o.depth), oo);
+  const Octree tree = build_octree(in.solid, bounds_option(o.bounds, in.solid, 1 << o.depth, o.input), oo);
   progress.finish();
   write_octree(o.output, tree, o.threshold);
   const auto counts = tree.leaf_counts();

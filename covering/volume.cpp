@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "covering/bounds.h"
+#include "covering/detail/ray_volume.h"
 #include "covering/ray.h"
 #include "solid/errors.h"
 #include "solid/measure.h"
@@ -48,7 +49,7 @@ std::optional<std::string> collect(const Solid& s, uint32_t node, std::vector<ui
       leaves.push_back(n.leaf);
       return std::nullopt;
     case CsgOp::kComplement:
-      return std::string("a complement is unbounded");
+      return std::string("a complement below the root");
     case CsgOp::kUnion:
       for (size_t i = 0; i < n.children.size(); ++i) {
         for (size_t j = 0; j < i; ++j)
@@ -94,65 +95,27 @@ double face_sum(const Solid& s, PerFace per_face) {
   return total.value();
 }
 
-/// Volume of the result along N×N parallel rays in direction d through `box`'s bounding sphere.
-double integrate_rays(const Solid& s, const Bvh& bvh, const Bbox& box, Vec3 d, int n) {
-  const Vec3 c = 0.5 * (box.min + box.max);
-  const double radius = 0.5 * std::sqrt(dot(box.max - box.min, box.max - box.min));
-  d = (1.0 / std::sqrt(dot(d, d))) * d;
-  Vec3 e1 = cross(d, Vec3{1, 0, 0});
-  e1 = (1.0 / std::sqrt(dot(e1, e1))) * e1;
-  const Vec3 e2 = cross(d, e1);
-  const double h = 2 * radius / n;
-  const Vec3 corner = c - (radius * 1.5) * d - radius * e1 - radius * e2;
-  std::vector<NeumaierSum> rows(static_cast<size_t>(n));
-  parallel_for(static_cast<size_t>(n), 1, [&](size_t begin, size_t end) {
-    std::vector<Ray> row(static_cast<size_t>(n));
-    for (size_t i = begin; i < end; ++i) {
-      for (int j = 0; j < n; ++j)
-        row[static_cast<size_t>(j)] = {corner + ((i + 0.5) * h) * e1 + ((j + 0.5) * h) * e2, d};
-      // One row as one batch (ray.h: its rays walk the BVH together), serial within the row.
-      for (const RayResult& result : cast(bvh, s, row, CastOptions{row.size()}))
-        for (const Span& span : result.spans) {
-          // The origin lies outside the result's box: a span there means an unbounded result.
-          if (span.t1 == INFINITY || span.enter == Span::kNone)
-            throw NotComputable("the solid is unbounded (a complement of a bounded solid)");
-          rows[i].add(span.t1 - span.t0);
-        }
-    }
-  });
-  NeumaierSum total;
-  for (const NeumaierSum& row : rows) total.add(row);
-  return total.value() * h * h;
-}
-
 VolumeResult ray_volume(const Solid& s, const VolumeOptions& options) {
   const std::optional<Bbox> box = result_bounds(s);
-  if (!box) throw NotComputable("the solid is unbounded (a complement of a bounded solid)");
+  if (!box) throw NotComputable("the result is unbounded (a complement at the root)");
   VolumeResult r;
   r.method = "rays";
+  r.target_met = true;
   if (box->empty() || box->min.x >= box->max.x || box->min.y >= box->max.y ||
       box->min.z >= box->max.z)
     return r;  // operands' boxes share no interior: empty result
   const Bvh bvh(s);
-  // Two fixed generic directions (no axis-aligned face is parallel to either): their lattices
-  // err independently, so their difference estimates the error of their mean.
-  const Vec3 d1{0.3141592653589793, 0.2718281828459045, 1.0};
-  const Vec3 d2{-0.5772156649015329, 1.0, 0.4142135623730951};
-  const int first = options.rays > 0 ? options.rays : 256;
-  double previous = integrate_rays(s, bvh, *box, d1, std::max(1, first / 2));
-  for (int n = first;; n *= 2) {
-    const double a = integrate_rays(s, bvh, *box, d1, n);
-    const double b = integrate_rays(s, bvh, *box, d2, n);
-    r.volume = 0.5 * (a + b);
-    // Two independent estimates of the error, added: the two lattices' disagreement and the
-    // change from the previous resolution.
-    r.error_bound = std::abs(a - b) + std::abs(a - previous);
-    r.rays = n;
-    previous = a;
-    if (options.rays > 0 || 2 * n > options.max_rays ||
-        r.error_bound <= options.target_relative_error * std::abs(r.volume))
-      return r;
-  }
+  detail::RayVolumeOptions ro;
+  ro.target_relative_error = options.target_relative_error;
+  ro.max_rays = options.max_rays;
+  ro.progress = options.progress;
+  if (options.rays > 0) ro.fixed_level = static_cast<int>(std::ceil(std::log2(options.rays)));
+  const detail::RayVolume v = detail::ray_volume(s, bvh, *box, ro);
+  r.volume = v.volume;
+  r.error_bound = v.error_bound;
+  r.rays = v.rays;
+  r.target_met = v.target_met;
+  return r;
 }
 
 }  // namespace
@@ -176,6 +139,7 @@ std::optional<std::string> covering_inexact_reason(const Solid& s) {
 }
 
 VolumeResult volume(const Solid& s, const VolumeOptions& options) {
+  if (!is_bounded(s)) throw NotComputable("the result is unbounded (a complement at the root)");
   VolumeResult r;
   r.method = "covering";
   if (empty_intersection(s, s.tree.root)) {
@@ -186,8 +150,8 @@ VolumeResult volume(const Solid& s, const VolumeOptions& options) {
   std::vector<uint32_t> leaves;
   if (auto why = collect(s, s.tree.root, leaves)) {
     if (options.exact)
-      throw NotComputable("--exact: the covering volume is not exact for this expression (" +
-                          *why + ") and B-rep evaluation is not available yet");
+      throw NotComputable("the covering volume is not exact for this expression (" + *why +
+                          "); evaluate() gives the exact volume of its B-rep");
     return ray_volume(s, options);
   }
   // Σ of the contributing leaves' covering volumes (each in its own, outward orientation).

@@ -11,14 +11,15 @@
 //                   (it removes nothing)
 //   intersection    one child: that child; children whose boxes share no interior: empty (0)
 //   complement      unbounded: never
-// Everything else is integrated over parallel rays (covering/ray.h spans): N×N rays over the
-// bounding sphere of a box known to contain the result, along a fixed generic direction (no face
-// of a typical model is parallel to it, so the span length is a continuous piecewise-linear
-// function of the ray and the midpoint rule converges as O(h²)). Two such directions are used;
-// volume is their mean and error_bound the a-posteriori estimate |V_d1 − V_d2| + |V_d1(N) −
-// V_d1(N/2)| (the lattices err independently; an estimate, not a proof). N doubles from 256 until error_bound ≤ target_relative_error·V or
-// N reaches max_rays. Unbounded results (a complement at the root) throw NotComputable.
+// Everything else is integrated over parallel rays (detail/ray_volume.h): a quadtree of ray
+// cells in the plane orthogonal to a generic direction, refined where the span length is not
+// provably affine, with an error bound that bounds the error (not an estimate). The adaptive
+// method refines until error_bound ≤ target_relative_error·|volume| or max_rays rays are spent
+// (then target_met is false and the bound still holds); `rays` = N fixes the finest cells at
+// 1/2^⌈log2 N⌉ of the square. Unbounded results throw NotComputable.
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -27,18 +28,20 @@
 namespace cover {
 
 struct VolumeOptions {
-  bool exact = false;                   ///< require an exact method (B-rep: not available yet)
-  int rays = 0;                         ///< rays per side for the ray method (0: adaptive)
-  double target_relative_error = 1e-4;  ///< adaptive ray method stops below this
-  int max_rays = 2048;                  ///< adaptive ray method: largest N
+  bool exact = false;  ///< require the covering to be exact (else NotComputable; evaluate() is exact)
+  int rays = 0;        ///< ray method: finest cells 1/2^⌈log2 rays⌉ of the square (0: adaptive)
+  double target_relative_error = 1e-4;  ///< adaptive ray method stops once the bound is below
+  size_t max_rays = size_t{1} << 22;    ///< adaptive ray method: budget of rays cast
+  std::function<void(double fraction)> progress;  ///< called between refinement levels
 };
 
 struct VolumeResult {
   double volume = 0;
   std::optional<double> area;  ///< empty where it would need boundary evaluation
   std::string method;          ///< "covering" or "rays"
-  int rays = 0;                ///< rays per side used by the ray method
-  double error_bound = 0;      ///< 0 for exact methods
+  size_t rays = 0;             ///< rays cast by the ray method
+  double error_bound = 0;      ///< 0 for exact methods; |volume − exact| ≤ error_bound
+  bool target_met = true;      ///< ray method: error_bound ≤ target_relative_error·|volume|
 };
 
 /// Signed covering volume Σ over all stored faces (the paper's summed value; see above for

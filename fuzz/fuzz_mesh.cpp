@@ -8,6 +8,7 @@
 
 #include "solid/detail/mesh_io_detail.h"
 #include "solid/errors.h"
+#include "solid/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
@@ -16,6 +17,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Every index a reader returns must be in range.
     for (uint32_t v : mesh.face_vertices)
       if (v >= mesh.vertices.size()) __builtin_trap();
+    // The leaf preparation every command runs (range check, loop collapse, re-orientation).
+    std::vector<std::string> warnings;
+    cover::prepare_leaf(mesh, "fuzz-input", "fuzz-input", cover::LoadOptions{}, warnings);
   } catch (const cover::InputError&) {
   }
   return 0;

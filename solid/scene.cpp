@@ -1,6 +1,7 @@
 #include "solid/scene.h"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <Eigen/LU>
 #include <nlohmann/json.hpp>
@@ -9,6 +10,7 @@
 #include "solid/errors.h"
 #include "solid/measure.h"
 #include "solid/mesh_io.h"
+#include "solid/orient.h"
 #include "solid/primitives.h"
 #include "solid/transform.h"
 #include "solid/validate.h"
@@ -190,21 +192,43 @@ class SceneReader {
   }
 
   Solid leaf(PolygonMesh m, std::string name, const std::string& path) {
-    return prepare_leaf(std::move(m), std::move(name), path, options_, warnings_);
+    // Messages name the scene file and the leaf's JSON path; a mesh leaf also its file.
+    const std::string at = scene_.string() + ": " + path;
+    std::string where = name == "box" || name == "sphere" || name == "cylinder" ? at : name + " (" + at + ")";
+    return prepare_leaf(std::move(m), std::move(name), path, where, options_, warnings_);
   }
 
  public:
-  /// Checks closedness and orientation of one leaf; reverses an inside-out leaf.
+  /// Makes one mesh a leaf (orient.h, CONTRACT.md "Semantics"): coordinates within
+  /// ±kMaxCoordinate; repeated loops read once; a closed leaf re-oriented consistently; an
+  /// inside-out leaf reversed. `where` names the leaf in messages.
   static Solid prepare_leaf(PolygonMesh m, std::string name, const std::string& origin,
-                            const LoadOptions& options, std::vector<std::string>& warnings) {
-    const std::string where = origin.empty() ? name : name + " (" + origin + ")";
-    if (options.require_closed) {
-      ValidateOptions vo;
-      vo.check_self_intersection = false;
-      const MeshReport r = validate_mesh(m, vo);
-      if (r.boundary_edges > 0)
-        throw InputError(where + ": open mesh: " + std::to_string(r.boundary_edges) +
-                         " boundary edges (a leaf must be a closed solid)");
+                            const std::string& where, const LoadOptions& options,
+                            std::vector<std::string>& warnings) {
+    check_coordinate_range(m, where);
+    if (options.repair) {
+      size_t first = 0;
+      if (const size_t n = collapse_repeated_loops(m, &first))
+        warnings.push_back(where + ": " + std::to_string(n) + " face(s) (first: face " +
+                           std::to_string(first) +
+                           ", counting from 0) repeat one loop several times; read once");
+    }
+    ValidateOptions vo;
+    vo.check_self_intersection = false;
+    const MeshReport r = validate_mesh(m, vo);
+    if (options.require_closed && r.boundary_edges > 0)
+      throw InputError(where + ": open mesh: " + std::to_string(r.boundary_edges) +
+                       " boundary edges (a leaf must be a closed solid)");
+    if (options.repair && r.boundary_edges == 0) {
+      const OrientResult o = orient_consistently(m, where);
+      if (o.flipped_faces > 0)
+        warnings.push_back(where + ": faces not consistently oriented; " +
+                           std::to_string(o.flipped_faces) + " face(s) reversed in " +
+                           std::to_string(o.components) + " component(s)");
+      if (o.dropped_faces > 0)
+        warnings.push_back(where + ": " + std::to_string(o.dropped_faces) +
+                           " face(s) spanning edges of three or more faces dropped (an inner "
+                           "membrane) to make the surface closed");
     }
     bool flipped = false;
     if (options.orient_outward && signed_volume(m) < 0) {
@@ -220,6 +244,22 @@ class SceneReader {
   }
 
  private:
+  /// Refuses a vertex outside ±kMaxCoordinate (solid/types.h says why the range).
+  static void check_coordinate_range(const PolygonMesh& m, const std::string& where) {
+    for (size_t v = 0; v < m.vertices.size(); ++v) {
+      const Vec3 p = m.vertices[v];
+      for (int a = 0; a < 3; ++a)
+        if (!(std::abs(p[a]) <= kMaxCoordinate)) {
+          char value[32];
+          std::snprintf(value, sizeof value, "%.17g", p[a]);
+          throw InputError(where + ": vertex " + std::to_string(v) + " (counting from 0): " +
+                           "xyz"[a] + " coordinate " + value +
+                           " is outside the supported range [-2^64, 2^64] (about ±1.8e19)");
+        }
+    }
+  }
+
+ private:
   std::filesystem::path scene_;
   LoadOptions options_;
   std::vector<std::string>& warnings_;
@@ -232,6 +272,11 @@ std::string line_of(const std::string& text, size_t byte) {
 }
 
 }  // namespace
+
+Solid prepare_leaf(PolygonMesh mesh, std::string name, const std::string& where,
+                   const LoadOptions& options, std::vector<std::string>& warnings) {
+  return SceneReader::prepare_leaf(std::move(mesh), std::move(name), "", where, options, warnings);
+}
 
 LoadedInput parse_scene(const std::string& text, const std::filesystem::path& scene_path,
                         const LoadOptions& options) {
@@ -264,7 +309,8 @@ LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& opt
     return parse_scene(ss.str(), path, options);
   }
   LoadedInput out;
-  out.solid = SceneReader::prepare_leaf(read_mesh(path), path.string(), "", options, out.warnings);
+  out.solid = SceneReader::prepare_leaf(read_mesh(path), path.string(), "", path.string(), options,
+                                        out.warnings);
   return out;
 }
 

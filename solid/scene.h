@@ -13,6 +13,9 @@ namespace cover {
 struct LoadOptions {
   bool require_closed = true;  ///< reject leaves with boundary edges (commands that need solids)
   bool orient_outward = true;  ///< reverse inside-out leaves (negative covering volume), warning
+  /// read repeated loops once and re-orient inconsistently oriented closed leaves, with a
+  /// warning each; refuse non-orientable ones (orient.h). Off only for reports (`cover info`).
+  bool repair = true;
 };
 
 struct LoadedInput {
@@ -23,8 +26,15 @@ struct LoadedInput {
 /// Loads a mesh (by extension, see mesh_io.h) or a `.json` scene.
 /// Throws InputError naming the file and line / JSON path: unknown keys, wrong types, missing
 /// files, non-finite numbers, empty operations, singular transforms, open leaves (when
-/// require_closed: "FILE: open mesh: N boundary edges"), unsupported extensions.
+/// require_closed: "FILE: open mesh: N boundary edges"), non-orientable or unbalanced closed
+/// leaves (orient.h), vertices outside ±kMaxCoordinate, unsupported extensions.
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options = {});
+
+/// Makes one mesh a leaf as load_input() does (coordinate range, repeated loops, consistent
+/// orientation, inside-out reversal, closedness per `options`); `where` names it in messages,
+/// warnings are appended. \throws InputError as load_input().
+Solid prepare_leaf(PolygonMesh mesh, std::string name, const std::string& where,
+                   const LoadOptions& options, std::vector<std::string>& warnings);
 
 /// Parses scene JSON text; `scene_path` names the file in messages and anchors relative mesh paths.
 LoadedInput parse_scene(const std::string& text, const std::filesystem::path& scene_path,

@@ -9,6 +9,16 @@
 
 namespace cover {
 
+/// The supported coordinate range: every vertex (after transforms) and every query point has
+/// |x|, |y|, |z| ≤ 2^64 (about 1.8e19); loaders refuse anything outside it. Why this bound: the
+/// exact predicates' floating-point filters stay finite up to degree 15 in the coordinates
+/// ((2^65)^15 < 2^1023), so a filter never sees an infinity or a NaN and the exact fallback
+/// (CGAL) only ever receives finite doubles; the float BVH boxes, squared lengths in cameras and
+/// normals (degree ≤ 4) and the covering volume sums (degree 3) stay far from overflow. Tiny
+/// coordinates need no bound: products that underflow fall below the filters' lower limit and
+/// are decided exactly.
+inline constexpr double kMaxCoordinate = 0x1p64;
+
 /// A point or vector in R^3 (plain aggregate, 24 bytes, no invariants).
 struct Vec3 {
   double x = 0, y = 0, z = 0;
