@@ -172,11 +172,13 @@ TEST_F(Cli, InfoAndVolumeJson) {
   EXPECT_EQ(j["method"], "rays");
   EXPECT_NEAR(j["volume"].get<double>(), 15.0, 15e-4);
   EXPECT_LE(j["error_bound"].get<double>(), 15e-4);
-  // --exact cannot be honoured yet: exit 2 with a reason, never a wrong number.
+  // --exact: the evaluated B-rep's exact volume and area.
   r = run_cover("volume --exact --json " + q(dir_ / "overlap.json"));
-  EXPECT_EQ(r.status, 2);
-  EXPECT_TRUE(r.out.empty());
-  EXPECT_EQ(lines(r.err).size(), 1u);
+  ASSERT_EQ(r.status, 0) << r.err;
+  j = json::parse(r.out);
+  EXPECT_EQ(j["method"], "brep");
+  EXPECT_DOUBLE_EQ(j["volume"].get<double>(), 15.0);
+  EXPECT_EQ(j["error_bound"].get<double>(), 0.0);
 }
 
 TEST_F(Cli, OpenAndInsideOutLeaves) {
