@@ -332,7 +332,14 @@ RayVolume ray_volume(const Solid& s, const Bvh& bvh, const Bbox& box,
       options.progress(fixed ? double(level) / max_level
                              : std::min(1.0, double(out.rays) / double(options.max_rays)));
     if (open.empty() || (!fixed && out.target_met)) break;
-    if (!fixed && out.rays + 4 * open.size() > options.max_rays) break;
+    if (!fixed) {
+      // The bound shrinks about 4× per level while the open cells (along curves) about double:
+      // stop as soon as the levels still needed would overrun the budget.
+      const double goal = options.target_relative_error * std::abs(out.volume);
+      const double levels = goal > 0 ? std::ceil(std::log(out.error_bound / goal) / std::log(4.0)) : 1;
+      const double needed = 4.0 * open.size() * (std::exp2(std::max(levels, 1.0)) - 1);
+      if (static_cast<double>(out.rays) + needed > static_cast<double>(options.max_rays)) break;
+    }
     cells = std::move(open);
     lists = std::move(open_lists);
   }
