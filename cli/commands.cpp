@@ -96,6 +96,7 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
   lo.require_closed = false;  // info reports open leaves instead of rejecting them
   lo.orient_outward = false;  // and reports orientation as found in the input
   const LoadedInput in = load_input(o.input, lo);
+  print_warnings(in);
   const Solid& s = in.solid;
   json j;
   j["input"] = o.input;
@@ -155,7 +156,17 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   VolumeOptions vo;
   vo.exact = o.exact;
   vo.rays = static_cast<int>(o.rays);
-  const VolumeResult r = volume(in.solid, vo);
+  Progress progress("volume", common.quiet);
+  vo.progress = [&progress](double done) {
+    progress.update(static_cast<size_t>(done * 1000), 1000);
+  };
+  VolumeResult r;
+  try {
+    r = volume(in.solid, vo);
+  } catch (const NotComputable& e) {  // "the solid is unbounded ...": name the input
+    throw NotComputable(o.input + ": " + e.what());
+  }
+  progress.finish();
   json j;
   j["volume"] = r.volume;
   j["area"] = r.area ? json(*r.area) : json(nullptr);
@@ -220,6 +231,8 @@ namespace cover::cli {
 
 int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const auto start = Clock::now();
+  for (const std::string& image : {o.output, o.depth, o.ids})
+    if (!image.empty()) check_png_path(image);
   const LoadedInput in = load_input(o.input);
   print_warnings(in);
   CameraOptions co;
@@ -247,7 +260,10 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const std::optional<Bbox> bounds = result_bounds(in.solid);
   const Camera camera = frame_camera(bounds && !bounds->empty() ? *bounds : in.solid.bbox(), co);
   const Bvh bvh(in.solid);
+  Progress progress("render", common.quiet);
+  ro.progress = [&progress](size_t done, size_t total) { progress.update(done, total); };
   const Image image = render(in.solid, bvh, camera, ro);
+  progress.finish();
   write_png_rgb(o.output, image.width, image.height, image.rgb);
   if (!o.depth.empty()) write_png_gray16(o.depth, image.width, image.height, image.depth);
   if (!o.ids.empty()) write_png_gray16(o.ids, image.width, image.height, image.ids);

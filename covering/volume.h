@@ -19,6 +19,7 @@
 // V_d1(N/2)| (the lattices err independently; an estimate, not a proof). N doubles from 256 until error_bound ≤ target_relative_error·V or
 // N reaches max_rays. Unbounded results (a complement at the root) throw NotComputable.
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -31,6 +32,9 @@ struct VolumeOptions {
   int rays = 0;                         ///< rays per side for the ray method (0: adaptive)
   double target_relative_error = 1e-4;  ///< adaptive ray method stops below this
   int max_rays = 2048;                  ///< adaptive ray method: largest N
+  /// Called on the calling thread with the estimated share of the work done, 0..1
+  /// (non-decreasing); default: none. The result does not depend on it.
+  std::function<void(double fraction)> progress;
 };
 
 struct VolumeResult {
