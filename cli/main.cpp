@@ -48,7 +48,7 @@ CLI::Validator whole_number(long long lo, long long hi = std::numeric_limits<int
         text = std::to_string(value);
         return "";
       },
-      positive ? "POSITIVE INT" : "INT " + std::to_string(lo) + ".." + std::to_string(hi));
+      positive ? "POSITIVE" : "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
 }
 
 /// Check for a real option: a finite number from lo to hi ("--threshold: expected a number from
@@ -57,6 +57,8 @@ CLI::Validator real_number(double lo, double hi) {
   std::ostringstream range;
   range << lo << " to " << hi;
   const std::string expected = "a number from " + range.str();
+  std::ostringstream help;
+  help << "FLOAT in [" << lo << " - " << hi << "]";
   return CLI::Validator(
       [lo, hi, expected](std::string& text) -> std::string {
         std::string_view digits = text;
@@ -68,7 +70,7 @@ CLI::Validator real_number(double lo, double hi) {
           return "expected " + expected + ", got " + shown(text);
         return "";
       },
-      "NUMBER " + range.str());
+      help.str());
 }
 
 void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
