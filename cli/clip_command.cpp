@@ -1,10 +1,12 @@
 // `cover clip` (CONTRACT.md): the exact plane clip and patch of brep/clip.h.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 
 #include "boolean/evaluate.h"
 #include "brep/clip.h"
@@ -62,8 +64,8 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
     if (!leaf_files[n.leaf]) return std::nullopt;
     return json{{"mesh", *leaf_files[n.leaf]}};
   }
-  if (n.op == CsgOp::kComplement)
-    throw InputError("clip: a scene with a complement cannot be clipped leaf by leaf");
+  if (n.op == CsgOp::kComplement)  // refused by run_clip before any file is written
+    throw std::logic_error("clipped_node: a complement cannot be clipped leaf by leaf");
   std::vector<json> kids;
   for (size_t k = 0; k < n.children.size(); ++k) {
     std::optional<json> c = clipped_node(tree, n.children[k], leaf_files);
@@ -79,6 +81,19 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
                     : n.op == CsgOp::kIntersection ? "intersection"
                                                    : "difference";
   return json{{key, kids}};
+}
+
+/// brep::clip with its messages ("edge 0-1 is used twice ...", "open mesh: ...") after `where`:
+/// the input file, and a leaf's JSON path in a scene.
+brep::ClipResult clip_named(const PolygonMesh& mesh, const brep::Plane& plane,
+                            const brep::ClipOptions& options, const std::string& where) {
+  try {
+    return brep::clip(mesh, plane, options);
+  } catch (const InputError& e) {
+    throw InputError(where + ": " + e.what());
+  } catch (const NotComputable& e) {
+    throw NotComputable(where + ": " + e.what());
+  }
 }
 
 }  // namespace
@@ -101,6 +116,10 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   const Solid& s = in.solid;
   if (!is_bounded(s)) throw InputError(unbounded_message(o.input));
+  if (scene_out && std::any_of(s.tree.nodes.begin(), s.tree.nodes.end(),
+                               [](const CsgNode& n) { return n.op == CsgOp::kComplement; }))
+    throw InputError(o.input + ": a scene with a complement cannot be clipped leaf by leaf " +
+                     "(use a mesh output)");
   brep::ClipOptions co;
   co.triangulate_caps = o.triangulate;
   HalfSummary above, below;
@@ -109,7 +128,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly.
     const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
     const PolygonMesh mesh = one_leaf ? leaf_mesh(s, 0) : evaluate(s).mesh;
-    const brep::ClipResult r = brep::clip(mesh, plane, co);
+    const brep::ClipResult r = clip_named(mesh, plane, co, o.input);
     add(above, r.above);
     add(below, r.below);
     above.volume = signed_volume(r.above.mesh);
@@ -122,7 +141,9 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     std::vector<std::optional<std::string>> files[2];
     double volume[2] = {0, 0};
     for (uint32_t l = 0; l < s.leaves.size(); ++l) {
-      const brep::ClipResult r = brep::clip(leaf_mesh(s, l), plane, co);
+      const std::string& origin = s.leaves[l].origin;
+      const brep::ClipResult r = clip_named(leaf_mesh(s, l), plane, co,
+                                            origin.empty() ? o.input : o.input + ": " + origin);
       add(above, r.above);
       add(below, r.below);
       for (int side = 0; side < 2; ++side) {

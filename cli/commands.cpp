@@ -98,6 +98,7 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
   lo.orient_outward = false;  // and reports orientation as found in the input
   lo.repair = false;          // and the faces as found (no loop collapse, no re-orientation)
   const LoadedInput in = load_input(o.input, lo);
+  print_warnings(in);
   const Solid& s = in.solid;
   json j;
   j["input"] = o.input;
@@ -245,6 +246,8 @@ namespace cover::cli {
 
 int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const auto start = Clock::now();
+  for (const std::string& image : {o.output, o.depth, o.ids})
+    if (!image.empty()) check_png_path(image);
   const LoadedInput in = load_input(o.input);
   print_warnings(in);
   CameraOptions co;
@@ -272,7 +275,10 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const std::optional<Bbox> bounds = result_bounds(in.solid);
   const Camera camera = frame_camera(bounds && !bounds->empty() ? *bounds : in.solid.bbox(), co);
   const Bvh bvh(in.solid);
+  Progress progress("render", common.quiet);
+  ro.progress = [&progress](size_t done, size_t total) { progress.update(done, total); };
   const Image image = render(in.solid, bvh, camera, ro);
+  progress.finish();
   write_png_rgb(o.output, image.width, image.height, image.rgb);
   if (!o.depth.empty()) write_png_gray16(o.depth, image.width, image.height, image.depth);
   if (!o.ids.empty()) write_png_gray16(o.ids, image.width, image.height, image.ids);

@@ -1,9 +1,14 @@
 // `cover`: command-line front end (CONTRACT.md). Exit status: 0 success, 2 bad input or usage
 // (one line "cover: error: ..." on stderr), 1 internal failure.
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <new>
+#include <sstream>
+#include <string>
+#include <string_view>
 
 #include "cli/commands.h"
 #include "solid/errors.h"
@@ -16,11 +21,77 @@ int fail(int status, const std::string& what) {
   return status;
 }
 
+/// A command-line value for a message: in single quotes, control bytes as '?' (one line).
+std::string shown(std::string text) {
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  return "'" + text + "'";
+}
+
+/// Transform for an integer option: a whole number from lo to hi (a leading '+' allowed, as in
+/// the readers), rewritten in plain decimal so that CLI11 never reads it as octal or hex. CLI11
+/// prefixes the message with the option's name: "--res: expected a whole number from 1 to
+/// 4096, got 'abc'"; with no upper limit, "--rays: expected a positive whole number, got '0'".
+CLI::Validator whole_number(long long lo, long long hi = std::numeric_limits<int>::max()) {
+  const bool positive = lo == 1 && hi == std::numeric_limits<int>::max();
+  const std::string expected =
+      positive ? "a positive whole number"
+               : "a whole number from " + std::to_string(lo) + " to " + std::to_string(hi);
+  return CLI::Validator(
+      [lo, hi, expected](std::string& text) -> std::string {
+        std::string_view digits = text;
+        if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+        long long value = 0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (ec != std::errc() || end != digits.data() + digits.size() || value < lo || value > hi)
+          return "expected " + expected + ", got " + shown(text);
+        text = std::to_string(value);
+        return "";
+      },
+      positive ? "POSITIVE" : "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
+}
+
+/// Check for a real option: a finite number from lo to hi ("--threshold: expected a number from
+/// 0 to 1, got 'x'").
+CLI::Validator real_number(double lo, double hi) {
+  std::ostringstream range;
+  range << lo << " to " << hi;
+  const std::string expected = "a number from " + range.str();
+  std::ostringstream help;
+  help << "FLOAT in [" << lo << " - " << hi << "]";
+  return CLI::Validator(
+      [lo, hi, expected](std::string& text) -> std::string {
+        std::string_view digits = text;
+        if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+        double value = 0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (ec != std::errc() || end != digits.data() + digits.size() ||
+            !(value >= lo && value <= hi))
+          return "expected " + expected + ", got " + shown(text);
+        return "";
+      },
+      help.str());
+}
+
 void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
   cmd->add_flag("--json", common.json, "Print exactly one JSON object on stdout");
   cmd->add_flag("--quiet", common.quiet, "No progress bars");
   cmd->add_option("--threads", common.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->transform(whole_number(1, 4096));
+}
+
+/// "unknown command 'bogus' (expected info, volume, ...)" when the first argument names no
+/// command (CLI11 would say only "A subcommand is required"); empty when it does or is an option.
+std::string unknown_command(const CLI::App& app, int argc, char** argv) {
+  std::string names;
+  bool known = false;
+  for (const CLI::App* cmd : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names += (names.empty() ? "" : ", ") + cmd->get_name();
+    known = known || (argc > 1 && cmd->check_name(argv[1]));
+  }
+  if (argc > 1 && (known || argv[1][0] == '-')) return "";
+  if (argc <= 1) return "no command given (expected " + names + "; try --help)";
+  return "unknown command " + shown(argv[1]) + " (expected " + names + ")";
 }
 
 }  // namespace
@@ -43,8 +114,8 @@ int main(int argc, char** argv) {
   CLI::App* vol_cmd = app.add_subcommand("volume", "Volume (and area where exact) of the solid");
   vol_cmd->add_option("INPUT", vol.input, "Mesh or scene")->required();
   vol_cmd->add_flag("--exact", vol.exact, "Require an exact method (B-rep evaluation)");
-  vol_cmd->add_option("--rays", vol.rays, "Ray integration on a fixed grid: finest cells 1/N of the square (N from 1 to 2048, rounded up to a power of two)")
-      ->check(CLI::Range(1, 2048));
+  vol_cmd->add_option("--rays", vol.rays, "Ray integration with fixed finest cells: 1/N of the square (N rounded up to a power of two)")
+      ->transform(whole_number(1, 2048));
   add_common(vol_cmd, common);
 
   cover::cli::ClassifyCommandOptions cls;
@@ -72,23 +143,30 @@ int main(int argc, char** argv) {
   cover::cli::VoxelizeCommandOptions vox;
   CLI::App* vox_cmd = app.add_subcommand("voxelize", "Voxelize the solid (presence buffer)");
   vox_cmd->add_option("INPUT", vox.input, "Mesh or scene")->required();
-  vox_cmd->add_option("--res", vox.res, "Voxels per axis")->required()->check(CLI::Range(1, 4096));
+  vox_cmd->add_option("--res", vox.res, "Voxels per axis")
+      ->required()
+      ->transform(whole_number(1, 4096));
   vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy or .raw")->required();
   vox_cmd->add_option("--bounds", vox.bounds, "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
   vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)");
   vox_cmd->add_option("--max-memory", vox.max_memory_mib, "Refuse grids needing more MiB")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_number(1));
   add_common(vox_cmd, common);
 
   cover::cli::OctreeCommandOptions oct;
   CLI::App* oct_cmd = app.add_subcommand("octree", "Direct octree generation (exact full/empty cells)");
   oct_cmd->add_option("INPUT", oct.input, "Mesh or scene")->required();
-  oct_cmd->add_option("--depth", oct.depth, "Maximum depth")->required()->check(CLI::Range(0, 16));
+  oct_cmd->add_option("--depth", oct.depth, "Maximum depth")
+      ->required()
+      ->transform(whole_number(0, 16));
   oct_cmd->add_option("-o,--output", oct.output, "OUT.htg, .bt or .json")->required();
   oct_cmd->add_option("--bounds", oct.bounds, "Octree cube xmin,ymin,zmin,size");
-  oct_cmd->add_option("--threshold", oct.threshold, "Occupancy deciding partial cells where a format needs yes/no")
-      ->capture_default_str();
+  oct_cmd
+      ->add_option("--threshold", oct.threshold,
+                   "Occupancy deciding partial cells where a format needs yes/no")
+      ->capture_default_str()
+      ->check(real_number(0, 1));
   add_common(oct_cmd, common);
 
   cover::cli::ClipCommandOptions clp;
@@ -108,6 +186,8 @@ int main(int argc, char** argv) {
   eva_cmd->add_option("-o,--output", eva.output, "OUT.off, .obj, .stl or .ply")->required();
   add_common(eva_cmd, common);
 
+  if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty())
+    return fail(2, unknown);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

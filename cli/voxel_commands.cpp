@@ -93,7 +93,6 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   const auto start = Clock::now();
   if (!is_octree_extension(o.output))
     throw InputError(o.output + ": unsupported octree format (expected .htg, .bt, .json)");
-  if (!(o.threshold >= 0 && o.threshold <= 1)) throw InputError("--threshold: expected a number from 0 to 1");
   const LoadedInput in = load_input(o.input);
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   OctreeOptions oo;

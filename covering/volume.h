@@ -32,7 +32,9 @@ struct VolumeOptions {
   int rays = 0;        ///< ray method: finest cells 1/2^⌈log2 rays⌉ of the square (0: adaptive)
   double target_relative_error = 1e-4;  ///< adaptive ray method stops once the bound is below
   size_t max_rays = size_t{1} << 22;    ///< adaptive ray method: budget of rays cast
-  std::function<void(double fraction)> progress;  ///< called between refinement levels
+  /// Called on the calling thread with the estimated share of the work done, 0..1
+  /// (non-decreasing); default: none. The result does not depend on it.
+  std::function<void(double fraction)> progress;
 };
 
 struct VolumeResult {

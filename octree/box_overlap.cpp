@@ -18,14 +18,37 @@ Bbox lattice_box(const double (&planes)[3][3]) {
   return box;
 }
 
-}  // namespace
-
-bool triangle_meets_box(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box) {
-  // The box as octant 0 of a lattice whose split planes are its high faces.
+/// The box as octant 0 of a lattice whose split planes are its high faces.
+OctantOverlap single_octant(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box) {
   const double planes[3][3] = {{box.min.x, box.max.x, box.max.x},
                                {box.min.y, box.max.y, box.max.y},
                                {box.min.z, box.max.z, box.max.z}};
-  return OctantOverlap(a, b, c, planes).meets(0);
+  return OctantOverlap(a, b, c, planes);
+}
+
+/// The side (+1 or −1) that all `count` values sign(0..count−1) lie on: strictly, or when `open`
+/// on that side or 0 (all zero: −1); 0 when there is none. Stops at the first value that rules a
+/// side out.
+template <typename Sign>
+int common_side(int count, bool open, Sign sign) {
+  int lo = 1, hi = -1;
+  for (int i = 0; i < count; ++i) {
+    const int s = sign(i);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+    if (open ? lo < 0 && hi > 0 : lo <= 0 && hi >= 0) return 0;
+  }
+  return hi <= 0 ? -1 : 1;
+}
+
+}  // namespace
+
+bool triangle_meets_box(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box) {
+  return single_octant(a, b, c, box).meets(0);
+}
+
+bool triangle_crosses_box(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box) {
+  return single_octant(a, b, c, box).crosses(0);
 }
 
 OctantOverlap::OctantOverlap(const Vec3& a, const Vec3& b, const Vec3& c,
@@ -59,33 +82,35 @@ int OctantOverlap::edge_sign(int e, int axis, int iu, int iw) {
   return s;
 }
 
-bool OctantOverlap::meets(int o) {
+bool OctantOverlap::separated(int o, bool open) {
   const int bit[3] = {o & 1, (o >> 1) & 1, (o >> 2) & 1};
   // Box normals: the triangle's box against the octant (exact comparisons).
-  for (int k = 0; k < 3; ++k)
-    if (lo_[k] > planes_[k][bit[k] + 1] || hi_[k] < planes_[k][bit[k]]) return false;
-  // The triangle's normal: all 8 corners strictly on one side.
-  const int first = plane_sign(bit[0], bit[1], bit[2]);
-  bool separated = first != 0;
-  for (int c = 1; c < 8 && separated; ++c)
-    separated = plane_sign(bit[0] + (c & 1), bit[1] + ((c >> 1) & 1), bit[2] + (c >> 2)) == first;
-  if (separated) return false;
-  // e_axis × edge: in the plane that drops `axis`, the octant's rectangle strictly on one side of
-  // the edge's line and the third vertex (hence the triangle) on the line or the other side.
+  for (int k = 0; k < 3; ++k) {
+    const double lo = planes_[k][bit[k]], hi = planes_[k][bit[k] + 1];
+    if (open ? lo_[k] >= hi || hi_[k] <= lo : lo_[k] > hi || hi_[k] < lo) return true;
+  }
+  // The triangle's normal: all 8 corners on one side of its plane.
+  const auto corner = [&](int c) {
+    return plane_sign(bit[0] + (c & 1), bit[1] + ((c >> 1) & 1), bit[2] + (c >> 2));
+  };
+  if (common_side(8, open, corner) != 0) return true;
+  // e_axis × edge: in the plane that drops `axis`, the octant's rectangle on one side of the
+  // edge's line and the third vertex (hence the triangle) on the line or the other side. An
+  // edge parallel to e_axis gives the zero axis, which separates nothing.
   for (int e = 0; e < 3; ++e)
     for (int axis = 0; axis < 3; ++axis) {
-      const int iu = bit[(axis + 1) % 3], iw = bit[(axis + 2) % 3];
-      const int side = edge_sign(e, axis, iu, iw);
-      bool strict = side != 0;
-      for (int c = 1; c < 4 && strict; ++c)
-        strict = edge_sign(e, axis, iu + (c & 1), iw + (c >> 1)) == side;
-      if (!strict) continue;
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
+      if (p[u] == q[u] && p[w] == q[w]) continue;
+      const int iu = bit[u], iw = bit[w];
+      const int side = common_side(
+          4, open, [&](int c) { return edge_sign(e, axis, iu + (c & 1), iw + (c >> 1)); });
+      if (side == 0) continue;
       int8_t& third = third_cache_[e * 3 + axis];
-      if (third == kUnknown)
-        third = static_cast<int8_t>(orient2d(v_[e], v_[(e + 1) % 3], v_[(e + 2) % 3], axis));
-      if (third != side) return false;
+      if (third == kUnknown) third = static_cast<int8_t>(orient2d(p, q, v_[(e + 2) % 3], axis));
+      if (third != side) return true;
     }
-  return true;
+  return false;
 }
 
 PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box)

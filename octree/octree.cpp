@@ -19,15 +19,19 @@
 //            parent exactly.
 //   coord    integer corner (i, j, k) of a cell at depth d: it spans planes i·2^(D−d) ..
 //            (i+1)·2^(D−d) along x, and so on.
-//   T_C      the covering triangles that meet the closed cell C (exact); C is crossed if T_C ≠ ∅.
+//   T_C      the covering triangles that meet the interior of cell C (exact); C is crossed if
+//            T_C ≠ ∅. A surface that only touches C's boundary (C beside a box face) leaves C
+//            uncrossed: C's interior is connected and no surface meets it, so C is full or empty.
 //   rank     index of a crossed cell among the crossed cells of its level (in node order); its
 //            children are the cells 8·rank .. 8·rank + 7 of the next level, in Morton order.
 // One level at a time, in blocks of cells:
 //   (A) T_C for every cell, testing the parent's list (or the BVH's candidates for the cell's box
-//       when that list is long) with the exact triangle / closed-box test;
-//   (B) the points to classify. Uncrossed siblings: their closed cells all hold the parent's
-//       centre, so together they form a connected set no surface meets, where every leaf's
-//       winding — hence membership — is constant: one centre is classified for all of them.
+//       when that list is long) with the exact triangle / open-box test;
+//   (B) the points to classify. Uncrossed siblings: each interior is connected and meets no
+//       surface; the parent's centre p is a corner of each, so when no surface passes through p,
+//       a small ball around p joins them all into one connected set no surface meets, where
+//       every leaf's winding — hence membership — is constant: one centre is classified for all
+//       of them (otherwise one per cell).
 //       Partial cells: the samples³ sub-points, grouped by their sides of the planes of T_C;
 //       every surface in the cell lies in those planes, so a side class is a convex region no
 //       surface meets: one point per class is classified, and a point ON a plane alone (it may
@@ -81,7 +85,7 @@ struct Scratch {
 };
 
 /// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
-/// closed box.
+/// closed box (a superset of those that meet its interior).
 void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out) {
   walk(
       bvh,
@@ -235,7 +239,8 @@ class Builder {
                          b.min.z + (k + 0.5) * step.z});
   }
 
-  /// (A) The triangles that meet each closed cell of [b0, b0 + m) at level d, one list per cell.
+  /// (A) The triangles that meet the interior of each cell of [b0, b0 + m) at level d, one list
+  /// per cell.
   Lists meeting(int d, size_t b0, size_t m) const {
     std::vector<std::vector<uint32_t>> chunk_tris((m + kGrain - 1) / kGrain);
     std::vector<uint32_t> count(m);
@@ -257,7 +262,7 @@ class Builder {
             const Bvh::Tri tri = bvh_.triangle(t);
             detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
             for (int c = 0; c < 8; ++c)
-              if (overlap.meets(c)) octant[c].push_back(t);
+              if (overlap.crosses(c)) octant[c].push_back(t);
           }
           for (int c = 0; c < 8; ++c) {
             out.insert(out.end(), octant[c].begin(), octant[c].end());
@@ -272,7 +277,7 @@ class Builder {
           const size_t before = out.size();
           for (uint32_t t : candidates) {
             const Bvh::Tri tri = bvh_.triangle(t);
-            if (detail::triangle_meets_box(tri.a, tri.b, tri.c, b)) out.push_back(t);
+            if (detail::triangle_crosses_box(tri.a, tri.b, tri.c, b)) out.push_back(t);
           }
           count[i] = static_cast<uint32_t>(out.size() - before);
         }
@@ -289,8 +294,30 @@ class Builder {
     return lists;
   }
 
+  /// True when some covering triangle passes through the centre of crossed cell `parent` (by
+  /// rank) of the previous level: its list holds every triangle through its interior.
+  bool centre_on_surface(size_t parent, int d, std::vector<uint32_t>& candidates) const {
+    double x[3];  // the children's common corner: the same grid planes as their boxes
+    for (int a = 0; a < 3; ++a)
+      x[a] = plane(a, (2 * uint64_t{parents_[parent][a]} + 1) << (depth_ - d));
+    Bbox point;
+    point.min = point.max = {x[0], x[1], x[2]};
+    std::span<const uint32_t> tris = parent_lists_[parent];
+    if (tris.size() > kInheritMax) {
+      candidates.clear();
+      bvh_candidates(bvh_, point, candidates);
+      tris = candidates;
+    }
+    for (uint32_t t : tris) {
+      const Bvh::Tri tri = bvh_.triangle(t);
+      if (detail::triangle_meets_box(tri.a, tri.b, tri.c, point)) return true;
+    }
+    return false;
+  }
+
   /// (B) The points to classify for the cells [b0, b0 + m) of level d, per chunk: one centre per
-  /// sibling set's uncrossed cells, one sub-point per side class of a partial cell.
+  /// sibling set's uncrossed cells (one per cell when the parent's centre is on a surface), one
+  /// sub-point per side class of a partial cell.
   void representatives(int d, size_t b0, size_t m, const Lists& lists,
                        std::vector<std::vector<Vec3>>& chunk_points,
                        std::vector<std::vector<Entry>>& chunk_entries) const {
@@ -299,12 +326,16 @@ class Builder {
       std::vector<Entry>& entries = chunk_entries[begin / kGrain];
       Scratch s;
       std::vector<Vec3> subs;
+      std::vector<uint32_t> candidates;
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
+        size_t uncrossed = 0;
+        for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += lists[i].empty();
+        const bool shared = uncrossed > 1 && !centre_on_surface((b0 + g0) / 8, d, candidates);
         uint32_t rep = UINT32_MAX;
         for (size_t i = g0; i < g0 + siblings; ++i) {
           if (!lists[i].empty()) continue;
-          if (rep == UINT32_MAX) {
+          if (rep == UINT32_MAX || !shared) {
             rep = static_cast<uint32_t>(points.size());
             points.push_back(centre(box(coord(d, b0 + i), d)));
           }

@@ -1,9 +1,10 @@
 #pragma once
 // Direct octree generation from a non-evaluated CSG solid (paper §7, DESIGN.md §5), exact and
-// conservative: a cell is kFull / kEmpty only if truly so — no leaf surface meets the CLOSED cell
-// (exact triangle–box overlap against every covering triangle that may meet the cell, found
-// through the BVH or the parent cell's list) and its centre classifies inside / outside
-// (covering/classify.h). Crossed cells
+// conservative: a cell is kFull / kEmpty only if truly so — no leaf surface meets the cell's
+// INTERIOR (exact triangle–open-box overlap against every covering triangle that may meet the
+// cell, found through the BVH or the parent cell's list) and its centre classifies inside /
+// outside (covering/classify.h). A surface that only touches the cell's boundary (a cell beside
+// a box face, from outside or inside) leaves it kEmpty / kFull. Crossed cells
 // split down to `depth`; crossed cells at that depth are kPartial with an occupancy fraction
 // (the share of `samples`³ regularly spaced sub-points classified inside).
 

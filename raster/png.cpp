@@ -46,6 +46,7 @@ bool encode(const std::filesystem::path& tmp, int width, int height, int bit_dep
 
 void write_atomic(const std::filesystem::path& path, int width, int height, int bit_depth,
                   int color, const std::vector<std::vector<uint8_t>>& rows) {
+  check_png_path(path);
   if (width <= 0 || height <= 0) throw InputError(path.string() + ": empty image");
   write_atomically(
       path,
@@ -56,6 +57,15 @@ void write_atomic(const std::filesystem::path& path, int width, int height, int 
 }
 
 }  // namespace
+
+void check_png_path(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  if (ext != ".png")
+    throw InputError(path.string() + ": unsupported image format '" + path.extension().string() +
+                     "' (expected .png)");
+}
 
 void write_png_rgb(const std::filesystem::path& path, int width, int height,
                    std::span<const uint8_t> rgb) {

@@ -9,6 +9,10 @@
 
 namespace cover {
 
+/// Throws InputError "PATH: unsupported image format '.jpg' (expected .png)" unless the extension
+/// is .png (any case). The writers check it; commands call it before doing any work.
+void check_png_path(const std::filesystem::path& path);
+
 /// 8-bit RGB, 3·width·height bytes, rows from the top.
 void write_png_rgb(const std::filesystem::path& path, int width, int height,
                    std::span<const uint8_t> rgb);

@@ -1,8 +1,10 @@
 #include "raster/render.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "solid/parallel.h"
 
@@ -113,7 +115,12 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
   const bool outside_in_result = !solid.tree.nodes.empty() &&
                                  solid.tree.evaluate(std::vector<uint8_t>(solid.leaves.size(), 0));
   const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
-  parallel_for(static_cast<size_t>(tiles_x) * tiles_y, 1, [&](size_t begin, size_t end) {
+  const size_t tiles = static_cast<size_t>(tiles_x) * tiles_y;
+  // Progress as in voxelize.cpp: a shared count, reported by the calling thread (which takes part
+  // in the loop) after each of its tiles, so the callback never runs concurrently.
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<size_t> tiles_done{0};
+  parallel_for(tiles, 1, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
       const int x0 = static_cast<int>(t % tiles_x) * tile,
                 y0 = static_cast<int>(t / tiles_x) * tile;
@@ -139,7 +146,10 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
           std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);
         }
     }
+    const size_t done = tiles_done.fetch_add(end - begin) + (end - begin);
+    if (o.progress && std::this_thread::get_id() == caller && done < tiles) o.progress(done, tiles);
   });
+  if (o.progress) o.progress(tiles, tiles);
   if (!o.outline) return img;
   // Outline: a pixel whose right or lower neighbour shows another leaf (or background) or a
   // normal more than ~35° apart (silhouettes, leaf boundaries, creases) is darkened; where one

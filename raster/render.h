@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct RenderOptions {
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
   bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
   int tile = 32;        ///< tile side for the parallel loop (results never depend on it)
+  /// Called on the calling thread after each tile it finishes and once at the end, with the
+  /// tiles done so far and the total (non-decreasing); default: none. The image does not
+  /// depend on it.
+  std::function<void(size_t done, size_t total)> progress;
 };
 
 /// Per-pixel buffers, row-major from the top row, all width × height.

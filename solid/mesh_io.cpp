@@ -96,15 +96,45 @@ void fail_file(const std::string& file, const std::string& message) {
   throw InputError(file + ": " + message);
 }
 
+bool literal_overflows(std::string_view literal) {
+  // The decimal exponent E of the first significant digit (value = d.ddd·10^E): overflow needs
+  // E ≥ 308 and underflow E ≤ −324, so its sign decides. The literal is valid (from_chars read
+  // all of it): [-] digits [. digits] [(e|E) [+|-] digits], with a nonzero digit.
+  size_t i = literal.starts_with('-') ? 1 : 0;
+  int64_t before_point = 0, digits = 0, first_significant = -1;
+  bool point = false;
+  for (; i < literal.size() && literal[i] != 'e' && literal[i] != 'E'; ++i) {
+    if (literal[i] == '.') {
+      point = true;
+      continue;
+    }
+    if (first_significant < 0 && literal[i] != '0') first_significant = digits;
+    ++digits;
+    before_point += !point;
+  }
+  int64_t exponent = 0;
+  bool negative = false;
+  if (i < literal.size()) {
+    ++i;
+    negative = i < literal.size() && literal[i] == '-';
+    if (i < literal.size() && (literal[i] == '-' || literal[i] == '+')) ++i;
+    for (; i < literal.size(); ++i)  // saturated: far beyond any double's exponent
+      exponent = std::min<int64_t>(10 * exponent + (literal[i] - '0'), int64_t{1} << 40);
+  }
+  return before_point - 1 - first_significant + (negative ? -exponent : exponent) > 0;
+}
+
 void fail_coordinate(std::string_view token, const std::string& file, uint64_t line, char axis) {
   const std::string what = std::string(1, axis) + " coordinate";
   if (token.empty()) fail_line(file, line, "missing " + what);
   double value;
-  if (!parse_double(token, value)) {
-    auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-    if (ec == std::errc::result_out_of_range && ptr == token.data() + token.size())
+  switch (parse_number(token, value)) {
+    case NumberStatus::kNotANumber:
+      fail_line(file, line, "expected a number for the " + what + ", found " + quote(token));
+    case NumberStatus::kOutOfRange:
       fail_line(file, line, "out-of-range " + what + " " + quote(token));
-    fail_line(file, line, "expected a number for the " + what + ", found " + quote(token));
+    case NumberStatus::kOk:
+      break;
   }
   fail_line(file, line, "non-finite " + what + " " + quote(token));
 }
@@ -112,7 +142,11 @@ void fail_coordinate(std::string_view token, const std::string& file, uint64_t l
 void check_numeric_tail(std::string_view rest, const std::string& file, uint64_t line) {
   for (std::string_view token = next_token(rest); !token.empty(); token = next_token(rest)) {
     double ignored;
-    if (!parse_double(token, ignored)) fail_line(file, line, "unexpected token " + quote(token));
+    const NumberStatus status = parse_number(token, ignored);
+    if (status == NumberStatus::kOutOfRange)
+      fail_line(file, line, "out-of-range number " + quote(token));
+    if (status == NumberStatus::kNotANumber)
+      fail_line(file, line, "unexpected token " + quote(token));
   }
 }
 
@@ -135,7 +169,7 @@ bool is_mesh_extension(const std::filesystem::path& path) {
   return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
 }
 
-PolygonMesh read_mesh(const std::filesystem::path& path) {
+PolygonMesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   const std::string file = path.string();
   const std::string ext = detail::lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
@@ -143,7 +177,7 @@ PolygonMesh read_mesh(const std::filesystem::path& path) {
   if (data.empty()) detail::fail_file(file, "empty file");
   if (ext == ".off") return detail::read_off(file, data);
   if (ext == ".obj") return detail::read_obj(file, data);
-  if (ext == ".stl") return detail::read_stl(file, data);
+  if (ext == ".stl") return detail::read_stl(file, data, warnings);
   return detail::read_ply(file, data);
 }
 

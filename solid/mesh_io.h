@@ -6,6 +6,8 @@
 // Readers are hand-written (see mesh_io.cpp for why and the measurement).
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "solid/polygon_mesh.h"
 
@@ -18,7 +20,11 @@ namespace cover {
 /// for any malformed input: empty, truncated, wrong counts, indices out of range, NaN/inf
 /// coordinates, absurd sizes (counts that cannot fit the file are refused before allocating),
 /// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file.
-PolygonMesh read_mesh(const std::filesystem::path& path);
+/// Numbers follow one rule in every text format (detail/mesh_io_detail.h): a leading '+' is
+/// allowed, overflow (1e400) is an error, underflow rounds to 0. Non-fatal problems (a binary
+/// STL's trailing bytes) are appended to `*warnings` when given, one line each naming the file.
+PolygonMesh read_mesh(const std::filesystem::path& path,
+                      std::vector<std::string>* warnings = nullptr);
 
 /// Writes a mesh atomically (temporary file in the same folder, then rename).
 /// Polygons are fan-triangulated for STL (coordinates rounded to float); .off/.obj/.ply round

@@ -34,7 +34,7 @@ bool is_reference_tail(std::string_view tail) {
 }  // namespace
 
 PolygonMesh read_obj(const std::string& file, std::string_view data) {
-  if (data.starts_with("\xEF\xBB\xBF")) data.remove_prefix(3);  // UTF-8 byte order mark
+  data = without_bom(data);
   PolygonMesh mesh;
   LineReader lines(data);
   std::string_view line;

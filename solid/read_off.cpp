@@ -62,7 +62,7 @@ uint64_t parse_count(std::string_view token, const std::string& file, uint64_t l
 }  // namespace
 
 PolygonMesh read_off(const std::string& file, std::string_view data) {
-  if (data.starts_with("\xEF\xBB\xBF")) data.remove_prefix(3);  // UTF-8 byte order mark
+  data = without_bom(data);
   ContentLines lines(data);
   std::string_view line;
   if (!lines.next(line)) fail_line(file, lines.line_number(), "no OFF header or counts");

@@ -1,5 +1,5 @@
 // PLY reader (Stanford polygon format): ascii, binary_little_endian and binary_big_endian.
-// Header (text, one statement per line):
+// Header (text, one statement per line; a UTF-8 byte order mark may precede "ply"):
 //   ply
 //   format <ascii|binary_little_endian|binary_big_endian> <version>
 //   comment ... | obj_info ...
@@ -88,7 +88,9 @@ Type expect_type(std::string_view token, const std::string& file, uint64_t line)
 Header parse_header(const std::string& file, std::string_view data) {
   LineReader lines(data);
   std::string_view line;
-  if (!lines.next(line) || next_token(line) != "ply" || !only_blanks(line))
+  const bool first = lines.next(line);
+  line = without_bom(line);  // byte offsets stay counted from the start of the file
+  if (!first || next_token(line) != "ply" || !only_blanks(line))
     fail_line(file, 1, "not a PLY file (the first line must be 'ply')");
   Header header;
   bool has_format = false;
@@ -386,17 +388,25 @@ class AsciiBody {
     return value;
   }
 
+  /// A value that is read past must still be a number.
+  void check_number(std::string_view token, const Element& element, uint64_t i) {
+    double ignored;
+    const NumberStatus status = parse_number(token, ignored);
+    if (status == NumberStatus::kOutOfRange)
+      fail_line(body_.file, line_,
+                "out-of-range number in " + instance_name(element, i) + ": " + quote(token));
+    if (status == NumberStatus::kNotANumber)
+      fail_line(body_.file, line_,
+                "expected a number in " + instance_name(element, i) + ", found " + quote(token));
+  }
+
   void read_instance(const Element& element, uint64_t i) {
     Vec3 p;
     for (const Property& prop : element.properties) {
       if (!prop.is_list) {
         std::string_view token = need(element, i);
         if (prop.role == Role::kSkip) {
-          double ignored;
-          if (!parse_double(token, ignored))
-            fail_line(
-                body_.file, line_,
-                "expected a number in " + instance_name(element, i) + ", found " + quote(token));
+          check_number(token, element, i);
           continue;
         }
         const char axis = prop.role == Role::kX ? 'x' : prop.role == Role::kY ? 'y' : 'z';
@@ -414,12 +424,7 @@ class AsciiBody {
                       " vertices (at least 3 needed)");
       for (int64_t k = 0; k < count; ++k) {
         if (prop.role != Role::kIndices) {
-          std::string_view token = need(element, i);
-          double ignored;
-          if (!parse_double(token, ignored))
-            fail_line(
-                body_.file, line_,
-                "expected a number in " + instance_name(element, i) + ", found " + quote(token));
+          check_number(need(element, i), element, i);
           continue;
         }
         const int64_t index = need_integer(element, i);

@@ -1,6 +1,9 @@
 // STL reader, binary and ASCII. A file is binary when its size is exactly 84 + 50·n where n is
 // the little-endian uint32 at byte 80 (a "solid" prefix alone does not make a file ASCII: many
-// binary writers start the 80-byte header with it). Otherwise it must be ASCII:
+// binary writers start the 80-byte header with it). Otherwise it is ASCII when it starts with
+// "solid" (after an optional UTF-8 byte order mark and blanks) and its first 84 bytes hold no NUL;
+// failing that, a file longer than 84 + 50·n is binary with trailing bytes, which are ignored
+// with a warning (some exporters pad or append metadata). ASCII:
 //   solid [name]
 //     facet normal nx ny nz        (the normal is checked to be numeric and ignored)
 //       outer loop
@@ -183,26 +186,32 @@ PolygonMesh read_ascii(const std::string& file, std::string_view data) {
 
 }  // namespace
 
-PolygonMesh read_stl(const std::string& file, std::string_view data) {
-  if (data.size() >= kHeaderBytes) {
-    const uint64_t count = load_u32(data.data() + 80);
-    if (data.size() - kHeaderBytes == count * kTriangleBytes) return read_binary(file, data, count);
-  }
-  std::string_view start = data;
+PolygonMesh read_stl(const std::string& file, std::string_view data,
+                     std::vector<std::string>* warnings) {
+  const uint64_t count = data.size() >= kHeaderBytes ? load_u32(data.data() + 80) : 0;
+  const uint64_t needed = kHeaderBytes + count * kTriangleBytes;
+  if (data.size() >= kHeaderBytes && data.size() == needed) return read_binary(file, data, count);
+  const std::string_view text = without_bom(data);
+  std::string_view start = text;
   while (!start.empty() && (is_blank(start.front()) || start.front() == '\n'))
     start.remove_prefix(1);
   // ASCII STL has no NUL byte; a binary header that starts with "solid" is followed by one in
-  // the (small) triangle count, so such a file is reported as a binary size mismatch below.
+  // the (small) triangle count, so such a file is read as binary below.
   const bool has_nul = data.substr(0, kHeaderBytes).find('\0') != std::string_view::npos;
   if (start.size() >= 5 && keyword_is(start.substr(0, 5), "solid") && !has_nul)
-    return read_ascii(file, data);
+    return read_ascii(file, text);
   if (data.size() < kHeaderBytes)
     fail_byte(file, data.size(), "truncated: neither ASCII STL nor a binary STL header (84 bytes)");
-  const uint64_t count = load_u32(data.data() + 80);
-  fail_byte(file, 80,
-            "binary STL declares " + std::to_string(count) + " triangles, which need " +
-                std::to_string(kHeaderBytes + count * kTriangleBytes) +
-                " bytes, but the file has " + std::to_string(data.size()));
+  if (data.size() < needed)
+    fail_byte(file, 80,
+              "binary STL declares " + std::to_string(count) + " triangles, which need " +
+                  std::to_string(needed) + " bytes, but the file has " +
+                  std::to_string(data.size()));
+  PolygonMesh mesh = read_binary(file, data, count);
+  if (warnings)
+    warnings->push_back(file + ": " + std::to_string(data.size() - needed) +
+                        " trailing bytes after the last triangle ignored");
+  return mesh;
 }
 
 }  // namespace cover::detail

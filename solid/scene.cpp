@@ -5,8 +5,9 @@
 #include <fstream>
 #include <Eigen/LU>
 #include <nlohmann/json.hpp>
-#include <sstream>
+#include <set>
 
+#include "solid/detail/mesh_io_detail.h"
 #include "solid/errors.h"
 #include "solid/measure.h"
 #include "solid/mesh_io.h"
@@ -181,12 +182,19 @@ class SceneReader {
     return m;
   }
 
+  /// The mesh file's own errors ("m.off:5: ...", "m.off: cannot open: ...") follow the path.
   Solid mesh_leaf(const json& v, const std::string& path, const Affine& world) {
     if (!v.is_string()) fail(path, "expected a file path string");
+    if (v.get_ref<const std::string&>().empty()) fail(path, "expected a non-empty file path");
     std::filesystem::path file = v.get<std::string>();
     if (file.is_relative()) file = scene_.parent_path() / file;
     if (file.extension() == ".json") fail(path, "a mesh leaf must be a mesh file, not a scene");
-    PolygonMesh m = read_mesh(file);
+    PolygonMesh m;
+    try {
+      m = read_mesh(file, &warnings_);
+    } catch (const InputError& e) {
+      fail(path, e.what());
+    }
     apply_transform(world, m);
     return leaf(std::move(m), file.string(), path);
   }
@@ -265,6 +273,65 @@ class SceneReader {
   std::vector<std::string>& warnings_;
 };
 
+/// json::parse callback that keeps the JSON pointer of the value being parsed (for errors in the
+/// text itself) and refuses duplicate keys, which nlohmann would silently resolve to the last.
+class JsonPath {
+ public:
+  explicit JsonPath(std::string scene) : scene_(std::move(scene)) {}
+
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
+        break;
+      case json::parse_event_t::key: {
+        Frame& top = frames_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second)
+          throw InputError(scene_ + ": " + pointer(frames_.size() - 1) + ": duplicate key " +
+                           detail::quote(top.key));
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        completed();
+        break;
+      case json::parse_event_t::value:
+        completed();
+        break;
+    }
+    return true;
+  }
+
+  /// The pointer of the value being parsed ("/" at the root).
+  std::string current() const { return pointer(frames_.size()); }
+
+ private:
+  struct Frame {
+    bool array = false;
+    size_t index = 0;            ///< arrays: elements completed so far
+    std::string key;             ///< objects: the last key
+    std::set<std::string> keys;  ///< objects: every key so far
+  };
+
+  /// The pointer through the first `n` open containers ("/" when n = 0).
+  std::string pointer(size_t n) const {
+    std::string out;
+    for (size_t i = 0; i < n; ++i)
+      out += "/" + (frames_[i].array ? std::to_string(frames_[i].index) : frames_[i].key);
+    return out.empty() ? "/" : out;
+  }
+
+  void completed() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+
+  std::string scene_;
+  std::vector<Frame> frames_;
+};
+
 std::string line_of(const std::string& text, size_t byte) {
   size_t line = 1;
   for (size_t i = 0; i < byte && i < text.size(); ++i) line += text[i] == '\n';
@@ -281,10 +348,19 @@ Solid prepare_leaf(PolygonMesh mesh, std::string name, const std::string& where,
 LoadedInput parse_scene(const std::string& text, const std::filesystem::path& scene_path,
                         const LoadOptions& options) {
   json j;
+  JsonPath where(scene_path.string());
   try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e400-like numbers
+    j = json::parse(text, [&where](int depth, json::parse_event_t event, json& parsed) {
+      return where(depth, event, parsed);
+    });
+  } catch (const json::exception& e) {
     std::string what = e.what();
+    if (e.id == 406) {  // "number overflow parsing 'TOKEN'": beyond a double (the number rule)
+      const size_t open = what.find('\''), close = what.rfind('\'');
+      const std::string token = open < close ? what.substr(open + 1, close - open - 1) : "";
+      throw InputError(scene_path.string() + ": " + where.current() + ": out-of-range number " +
+                       detail::quote(token));
+    }
     // nlohmann: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
     const auto colon = what.find("] ");
     const auto* parse = dynamic_cast<const json::parse_error*>(&e);
@@ -301,15 +377,10 @@ LoadedInput parse_scene(const std::string& text, const std::filesystem::path& sc
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".json") {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return parse_scene(ss.str(), path, options);
-  }
+  if (ext == ".json") return parse_scene(detail::load_file(path), path, options);
   LoadedInput out;
-  out.solid = SceneReader::prepare_leaf(read_mesh(path), path.string(), "", path.string(), options,
+  PolygonMesh mesh = read_mesh(path, &out.warnings);
+  out.solid = SceneReader::prepare_leaf(std::move(mesh), path.string(), "", path.string(), options,
                                         out.warnings);
   return out;
 }

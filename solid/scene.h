@@ -24,10 +24,12 @@ struct LoadedInput {
 };
 
 /// Loads a mesh (by extension, see mesh_io.h) or a `.json` scene.
-/// Throws InputError naming the file and line / JSON path: unknown keys, wrong types, missing
-/// files, non-finite numbers, empty operations, singular transforms, open leaves (when
-/// require_closed: "FILE: open mesh: N boundary edges"), non-orientable or unbalanced closed
-/// leaves (orient.h), vertices outside ±kMaxCoordinate, unsupported extensions.
+/// Throws InputError naming the file and line / JSON path: unknown or duplicate keys
+/// ("scene.json: /union/0/box: duplicate key 'min'"), wrong types, numbers beyond a double,
+/// empty operations, singular transforms, a mesh leaf's own errors after its path
+/// ("scene.json: /union/1/mesh: m.off: cannot open: ..."), open leaves (when require_closed:
+/// "FILE: open mesh: N boundary edges"), non-orientable or unbalanced closed leaves (orient.h),
+/// vertices outside ±kMaxCoordinate, unsupported extensions.
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options = {});
 
 /// Makes one mesh a leaf as load_input() does (coordinate range, repeated loops, consistent

@@ -1,5 +1,6 @@
 #pragma once
-// Internals shared by the mesh readers and the writer (mesh_io.cpp, read_*.cpp, write_mesh.cpp);
+// Internals shared by the mesh readers and the writer (mesh_io.cpp, read_*.cpp, write_mesh.cpp),
+// and by the other readers that follow the same text rules (solid/scene.cpp, cli/points.cpp);
 // not part of the public API.
 // Notation:
 //   file   the path as the caller gave it, used verbatim as the prefix of every error message
@@ -7,6 +8,18 @@
 //   line   1-based line number (text formats); byte: 0-based offset (binary formats)
 // Every error is a cover::InputError with a one-line what(): tokens copied from the file go
 // through quote(), which escapes control and non-ASCII bytes and truncates long tokens.
+//
+// One rule for every text reader — OFF, OBJ, ASCII PLY, ASCII STL and the points files of
+// `cover classify` (cli/points.cpp); JSON scenes (solid/scene.cpp) follow it where JSON's own
+// grammar allows:
+//   * a UTF-8 byte order mark at the start of the file is skipped;
+//   * a number is a whole token in std::from_chars' general format (decimal or scientific,
+//     "inf", "infinity", "nan" in any case), optionally with one leading '+' (JSON: none);
+//     hexadecimal and other forms are not numbers;
+//   * a literal whose value overflows a double (1e400) is an error, "out-of-range x coordinate"
+//     (other numbers: "out-of-range number"), never inf; one that underflows becomes a subnormal
+//     or ±0 and is accepted;
+//   * coordinates must be finite: inf and nan are refused as "non-finite x coordinate".
 
 #include <charconv>
 #include <cmath>
@@ -16,6 +29,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "solid/polygon_mesh.h"
 
@@ -106,13 +120,34 @@ inline bool only_blanks(std::string_view line) {
   return true;
 }
 
-/// Parses a whole token as a number (a leading '+' is allowed). False on syntax error or
-/// overflow; inf/nan are parsed (callers reject them with a specific message).
-inline bool parse_double(std::string_view token, double& value) {
+/// `data` without a leading UTF-8 byte order mark.
+inline std::string_view without_bom(std::string_view data) {
+  return data.starts_with("\xEF\xBB\xBF") ? data.substr(3) : data;
+}
+
+/// What parse_number() found in a token.
+enum class NumberStatus : uint8_t { kOk, kNotANumber, kOutOfRange };
+
+/// For a decimal literal std::from_chars found out of range: true when it overflows (its
+/// magnitude is above 1), false when it underflows. Out of line: the rare path.
+bool literal_overflows(std::string_view literal);
+
+/// Parses a whole token under the number rule (header comment): kOk with inf/nan parsed (callers
+/// reject them with a specific message) and underflow rounded to ±0.
+inline NumberStatus parse_number(std::string_view token, double& value) {
   if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
   const char* end = token.data() + token.size();
   auto [ptr, ec] = std::from_chars(token.data(), end, value);
-  return ec == std::errc() && ptr == end && !token.empty();
+  if (token.empty() || ptr != end) return NumberStatus::kNotANumber;
+  if (ec == std::errc()) return NumberStatus::kOk;
+  if (literal_overflows(token)) return NumberStatus::kOutOfRange;
+  value = token[0] == '-' ? -0.0 : 0.0;
+  return NumberStatus::kOk;
+}
+
+/// parse_number() == kOk.
+inline bool parse_double(std::string_view token, double& value) {
+  return parse_number(token, value) == NumberStatus::kOk;
 }
 
 /// Parses a whole token as an integer (a leading '+' is allowed).
@@ -124,8 +159,8 @@ inline bool parse_integer(std::string_view token, Int& value) {
   return ec == std::errc() && ptr == end && !token.empty();
 }
 
-/// Throws "FILE:LINE: ..." for a coordinate token that is missing, not a number or not finite;
-/// `axis` ('x', 'y', 'z') names it in the message.
+/// Throws "FILE:LINE: ..." for a coordinate token that is missing, not a number, out of range or
+/// not finite; `axis` ('x', 'y', 'z') names it in the message.
 [[noreturn]] void fail_coordinate(std::string_view token, const std::string& file, uint64_t line,
                                   char axis);
 
@@ -138,8 +173,8 @@ inline double parse_coordinate(std::string_view token, const std::string& file, 
   return value;
 }
 
-/// Throws "FILE:LINE: unexpected token ..." unless only blanks or numbers are left (trailing
-/// colours, normals, texture coordinates).
+/// Throws "FILE:LINE: unexpected token ..." (or "out-of-range number ...") unless only blanks or
+/// numbers are left (trailing colours, normals, texture coordinates).
 void check_numeric_tail(std::string_view rest, const std::string& file, uint64_t line);
 
 /// Exact-equality vertex welding for STL (−0 and +0 are the same point).
@@ -161,7 +196,9 @@ struct Vec3Hash {
 /// Reader entry points; `data` is the whole file, `file` the path for messages.
 PolygonMesh read_off(const std::string& file, std::string_view data);
 PolygonMesh read_obj(const std::string& file, std::string_view data);
-PolygonMesh read_stl(const std::string& file, std::string_view data);
+/// `warnings`, when given, receives the non-fatal problems (one line each, naming the file).
+PolygonMesh read_stl(const std::string& file, std::string_view data,
+                     std::vector<std::string>* warnings = nullptr);
 PolygonMesh read_ply(const std::string& file, std::string_view data);
 
 }  // namespace cover::detail

@@ -221,6 +221,49 @@ TEST(BoxOverlap, AgreesWithCgalOnTouchingAndRandomCases) {
   }
 }
 
+TEST(BoxOverlap, CrossesIsTheOpenBox) {
+  // Oracle: with vertices on a quarter grid, a triangle that enters the open unit box has points
+  // there at a distance from its faces far above 2^-20 (small-denominator fractions), so it meets
+  // the closed box shrunk by 2^-20 (CGAL, exact on these doubles). Random triangles: crossing
+  // implies meeting the box, and meeting the shrunk box implies crossing.
+  Bbox b, shrunk;
+  b.add(Vec3{0, 0, 0});
+  b.add(Vec3{1, 1, 1});
+  const double e = std::ldexp(1.0, -20);
+  shrunk.add(Vec3{e, e, e});
+  shrunk.add(Vec3{1 - e, 1 - e, 1 - e});
+  const auto crosses = [&](Vec3 a, Vec3 c, Vec3 d) {
+    return detail::triangle_crosses_box(a, c, d, b);
+  };
+  EXPECT_FALSE(crosses({1, 0, 0}, {2, 0, 0}, {1, 1, 0}));               // an edge on a box face
+  EXPECT_FALSE(crosses({1, -1, -1}, {1, 3, -1}, {1, -1, 3}));           // lying in a face plane
+  EXPECT_FALSE(crosses({0, 2, 0}, {2, 0, 0}, {2, 2, 5}));               // touches a corner only
+  EXPECT_FALSE(crosses({-1, 0.5, 1}, {2, 0.5, 1}, {0.5, 2, 1}));        // in the top face plane
+  EXPECT_TRUE(crosses({-1, 0.5, 2}, {2, 0.5, 2}, {0.5, 0.5, -1}));      // through the middle
+  EXPECT_TRUE(crosses({0.5, 0.5, 0.5}, {2, 0.5, 0.5}, {0.5, 2, 0.5}));  // a vertex inside
+  EXPECT_TRUE(crosses({1, 0, 0}, {0, 1, 0}, {0, 0, 1}));  // vertices on corners, face inside
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-0.6, 1.6);
+  std::uniform_int_distribution<int> grid(-2, 6);
+  for (int i = 0; i < 20000; ++i) {
+    const bool on_grid = i % 2 == 0;
+    const auto v = [&] {
+      return on_grid ? Vec3{grid(rng) / 4.0, grid(rng) / 4.0, grid(rng) / 4.0}
+                     : Vec3{u(rng), u(rng), u(rng)};
+    };
+    const Vec3 a = v(), c = v(), d = v();
+    if (orient2d(a, c, d, 0) == 0 && orient2d(a, c, d, 1) == 0 && orient2d(a, c, d, 2) == 0)
+      continue;  // collinear: never a covering triangle
+    const bool got = crosses(a, c, d), inner = cgal_meets({a, c, d}, shrunk);
+    if (on_grid) {
+      EXPECT_EQ(got, inner) << i;
+    } else {
+      EXPECT_TRUE(!got || cgal_meets({a, c, d}, b)) << i;
+      EXPECT_TRUE(!inner || got) << i;
+    }
+  }
+}
+
 TEST(BoxOverlap, PlaneSideIsExact) {
   Bbox b;
   b.add(Vec3{-1, -1, -1});
@@ -273,20 +316,26 @@ TEST(Octree, BoxSphereElephantAndDifferenceAreExactAndConservative) {
   expect_occupancy_by_points(hollow, th, 4, 30);
 }
 
-TEST(Octree, GridAlignedBoxHasWholeOccupancies) {
-  // Faces on grid planes touch the closed cells on both sides, which therefore split down to
-  // the maximum depth; no sub-point lies on a face, so each partial cell is wholly in or out.
+TEST(Octree, GridAlignedBoxHasNoPartialCells) {
+  // Faces on grid planes only touch the cells on either side (their boundaries), so no cell is
+  // crossed below the box's own level: every leaf is full or empty and the full ones tile it.
   const Solid box = box_solid({0.25, 0.25, 0.5}, {0.75, 0.625, 0.875});
   const Octree t = build(box, cube({0, 0, 0}, 1), 4);
   check_leaves(box, t, 1000);
-  expect_volume_bounds(t, 0.5 * 0.375 * 0.375);
-  double weighted = 0;
+  EXPECT_EQ(t.leaf_counts()[static_cast<size_t>(CellState::kPartial)], 0u);
+  double full = 0;
   for (const Octree::Node& n : t.nodes)
-    if (n.first_child == 0) {
-      EXPECT_TRUE(n.occupancy == 0.0f || n.occupancy == 1.0f);
-      weighted += n.occupancy * std::pow(t.cell_size(n.depth), 3);
-    }
-  EXPECT_DOUBLE_EQ(weighted, 0.5 * 0.375 * 0.375);
+    if (n.first_child == 0 && n.state == CellState::kFull)
+      full += std::pow(t.cell_size(n.depth), 3);
+  EXPECT_DOUBLE_EQ(full, 0.5 * 0.375 * 0.375);
+  // The box's corner at the root's centre: the 8 uncrossed children must not share one
+  // classification (the one full child is told apart from the 7 empty ones).
+  const Solid octant = box_solid({0.5, 0.5, 0.5}, {1, 1, 1});
+  const Octree o = build(octant, cube({0, 0, 0}, 1), 3);
+  check_leaves(octant, o);
+  ASSERT_EQ(o.nodes.size(), 9u);
+  EXPECT_EQ(o.leaf_counts(), (std::array<uint64_t, 3>{7, 1, 0}));
+  EXPECT_EQ(o.nodes[8].state, CellState::kFull);
 }
 
 TEST(Octree, UncrossedRootAndDepthZero) {

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "helpers.h"
 #include "raster/png.h"
@@ -188,6 +190,29 @@ TEST(Render, SameImageWithOneAndTwoThreadsAndPngRoundTrip) {
     EXPECT_EQ(d.values, std::vector<uint16_t>(one.depth.begin(), one.depth.end()));
     std::filesystem::remove_all(dir);
   }
+}
+
+// Issue 17, group 8: long renders showed no progress bar; the callback drives it.
+TEST(SmallDefects, RenderReportsProgressWithoutChangingTheImage) {
+  const Solid s =
+      subtract({box_solid({-1, -1, -1}, {1, 1, 1}), make_leaf(make_sphere({1, 1, 1}, 1, 16), "s")});
+  const Camera cam = front(unit_frame(), 100, 70);
+  RenderOptions o;
+  o.tile = 16;  // 7 × 5 tiles
+  std::vector<std::pair<size_t, size_t>> calls;
+  Image with, without;
+  {
+    ThreadLimit limit(2);
+    without = draw(s, cam, o);
+    o.progress = [&calls](size_t done, size_t total) { calls.emplace_back(done, total); };
+    with = draw(s, cam, o);
+  }
+  ASSERT_FALSE(calls.empty());
+  EXPECT_EQ(calls.back(), (std::pair<size_t, size_t>{35, 35}));
+  for (size_t i = 0; i < calls.size(); ++i) EXPECT_EQ(calls[i].second, 35u);
+  for (size_t i = 1; i < calls.size(); ++i) EXPECT_LE(calls[i - 1].first, calls[i].first);
+  EXPECT_EQ(with.rgb, without.rgb);
+  EXPECT_EQ(with.ids, without.ids);
 }
 
 }  // namespace

@@ -528,7 +528,6 @@ TEST(MeshIoTest, MalformedBinaryCorpus) {
   bad_file(dir, "count.stl", lying);
   bad_file(dir, "zero.stl", binary_stl({}, ""));
   bad_file(dir, "inf.stl", binary_stl({tri, {0, 0, 0, 1, 0, 0, 0, INFINITY, 0}}, ""));
-  bad_file(dir, "extra.stl", stl + "x");
   bad_file(dir, "short.stl", std::string(83, '\0'));
 
   const std::string header =
@@ -605,6 +604,120 @@ TEST(MeshIoTest, GarbageAndMutations) {
       expect_parses_or_throws(path);
     }
   }
+  fs::remove_all(dir);
+}
+
+// ---- small defects (issue 17, group 8) ------------------------------------------------------
+
+fs::path data_file(const std::string& name) { return test::source_dir() / "tests" / "data" / name; }
+
+/// The unit tetrahedron's 4 vertices and 4 faces, as read back.
+void expect_tetrahedron(const PolygonMesh& mesh) {
+  expect_consistent(mesh);
+  EXPECT_EQ(mesh.vertices.size(), 4u);
+  EXPECT_EQ(mesh.face_count(), 4u);
+}
+
+TEST(SmallDefects, BomInEveryTextFormat) {
+  // A UTF-8 byte order mark was refused in PLY and misread as binary in ASCII STL.
+  expect_tetrahedron(cover::read_mesh(data_file("bom_ascii.stl")));
+  expect_tetrahedron(cover::read_mesh(data_file("bom_ascii.ply")));
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::string bom = "\xEF\xBB\xBF";
+  const std::string v3 = "0 0 0\n1 0 0\n0 1 0\n";
+  EXPECT_EQ(read_text(dir, "b.off", bom + "OFF\n3 1 0\n" + v3 + "3 0 1 2\n").face_count(), 1u);
+  EXPECT_EQ(read_text(dir, "b.obj", bom + "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").face_count(), 1u);
+  // Binary PLY: the mark precedes the header, and byte offsets still count from the file start.
+  std::string body;
+  for (float c : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) body += le(c);
+  const std::string header =
+      bom +
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  EXPECT_EQ(
+      read_text(dir, "b.ply", header + body + le(uint8_t{3}) + le(0) + le(1) + le(2)).face_count(),
+      1u);
+  const std::string message =
+      bad_file(dir, "r.ply", header + body + le(uint8_t{3}) + le(0) + le(1) + le(3));
+  EXPECT_NE(message.find(": byte " + std::to_string(header.size() + body.size() + 9)),
+            std::string::npos)
+      << message;
+  fs::remove_all(dir);
+}
+
+TEST(SmallDefects, BinaryStlTrailingBytesWarns) {
+  // Refused before; now read, with one warning naming the file and the byte count.
+  std::vector<std::string> warnings;
+  const fs::path file = data_file("trailing_bytes.stl");
+  expect_tetrahedron(cover::read_mesh(file, &warnings));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], file.string() + ": 7 trailing bytes after the last triangle ignored");
+  expect_tetrahedron(cover::read_mesh(file));  // no list given: the warning is dropped
+  // Too short for its count is still an error, and an exact size gives no warning.
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::string exact = test::read_file(file).substr(0, 84 + 4 * 50);
+  warnings.clear();
+  test::write_file(dir / "exact.stl", exact);
+  expect_tetrahedron(cover::read_mesh(dir / "exact.stl", &warnings));
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_NE(
+      bad_file(dir, "short.stl", exact.substr(0, exact.size() - 1)).find("declares 4 triangles"),
+      std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(SmallDefects, NumberRuleSameInEveryReader) {
+  // A leading '+' and an underflowing literal (→ 0) are accepted everywhere; 1e-400 used to be
+  // refused as out of range. Overflow is "out-of-range <axis> coordinate" in every format.
+  const PolygonMesh off = cover::read_mesh(data_file("plus_and_underflow.off"));
+  expect_tetrahedron(off);
+  EXPECT_EQ(off.vertices[0], (Vec3{0, 0, 0}));
+  EXPECT_EQ(off.vertices[3], (Vec3{0, 0, 1}));
+  const fs::path dir = test::temp_dir("mesh-io");
+  const auto files = [](const std::string& a, const std::string& b, const std::string& c) {
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string stl = "solid s\nfacet normal 0 0 +1\nouter loop\n";
+    return std::vector<std::pair<std::string, std::string>>{
+        {"n.off", "OFF\n3 1 0\n" + a + "\n" + b + "\n" + c + "\n3 0 1 2\n"},
+        {"n.obj", "v " + a + "\nv " + b + "\nv " + c + "\nf 1 2 3\n"},
+        {"n.ply", ply + a + "\n" + b + "\n" + c + "\n3 0 1 2\n"},
+        {"n.stl", stl + "vertex " + a + "\nvertex " + b + "\nvertex " + c +
+                      "\nendloop\nendfacet\nendsolid s\n"}};
+  };
+  for (const auto& [name, bytes] : files("+0 -1e-400 0", "+1.5 0 0", "0 +1e+0 0")) {
+    SCOPED_TRACE(name);
+    const PolygonMesh mesh = read_text(dir, name, bytes);
+    ASSERT_EQ(mesh.vertices.size(), 3u);
+    EXPECT_EQ(mesh.vertices[0], (Vec3{0, 0, 0}));
+    EXPECT_EQ(mesh.vertices[1], (Vec3{1.5, 0, 0}));
+    EXPECT_EQ(mesh.vertices[2], (Vec3{0, 1, 0}));
+  }
+  for (const auto& [name, bytes] : files("0 0 0", "1 +1e400 0", "0 1 0")) {
+    const std::string message = bad_file(dir, name, bytes);
+    EXPECT_NE(message.find("out-of-range y coordinate '+1e400'"), std::string::npos) << message;
+  }
+  for (const auto& [name, bytes] : files("0 0 0", "1 0 +nan", "0 1 0")) {
+    const std::string message = bad_file(dir, name, bytes);
+    EXPECT_NE(message.find("non-finite z coordinate '+nan'"), std::string::npos) << message;
+  }
+  // Numbers that are read past (an OFF colour, an OBJ w, a skipped PLY property) obey it too.
+  const std::string tail =
+      bad_file(dir, "t.off", "OFF\n3 1 0\n0 0 0 1e999\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_NE(tail.find(":3: out-of-range number '1e999'"), std::string::npos) << tail;
+  EXPECT_EQ(read_text(dir, "w.obj", "v 0 0 0 +1e-999\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").face_count(),
+            1u);
+  const std::string skipped =
+      bad_file(dir, "s.ply",
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               "property float z\nproperty float w\nelement face 1\n"
+               "property list uchar int vertex_indices\nend_header\n0 0 0 1e400\n1 0 0 0\n0 1 0 0\n"
+               "3 0 1 2\n");
+  EXPECT_NE(skipped.find(":11: out-of-range number in element 'vertex' entry 0: '1e400'"),
+            std::string::npos)
+      << skipped;
   fs::remove_all(dir);
 }
 
