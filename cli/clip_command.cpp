@@ -102,6 +102,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   brep::ClipOptions co;
   co.triangulate_caps = o.triangulate;
   HalfSummary above, below;
+  OutputBatch outputs;
   if (!scene_out) {
     // CONTRACT.md: a scene of several leaves is evaluated first (boolean/evaluate.h: one closed
     // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly.
@@ -148,6 +149,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
       write_text(scene, root->dump(2) + "\n");
     }
   }
+  outputs.commit();
   const double seconds = seconds_since(start);
   if (common.json) {
     json j;

@@ -16,6 +16,7 @@
 #include "covering/volume.h"
 #include "raster/png.h"
 #include "raster/render.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/scene.h"
 #include "solid/validate.h"
@@ -248,9 +249,11 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const Camera camera = frame_camera(bounds && !bounds->empty() ? *bounds : in.solid.bbox(), co);
   const Bvh bvh(in.solid);
   const Image image = render(in.solid, bvh, camera, ro);
+  OutputBatch outputs;
   write_png_rgb(o.output, image.width, image.height, image.rgb);
   if (!o.depth.empty()) write_png_gray16(o.depth, image.width, image.height, image.depth);
   if (!o.ids.empty()) write_png_gray16(o.ids, image.width, image.height, image.ids);
+  outputs.commit();
   json j;
   j["width"] = image.width;
   j["height"] = image.height;

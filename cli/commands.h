@@ -1,6 +1,9 @@
 #pragma once
 // The `cover` subcommands (CONTRACT.md "Commands"). Each returns the process exit status and
-// throws InputError / NotComputable for bad input (exit 2, handled in main.cpp).
+// throws InputError / NotComputable for bad input (exit 2, handled in main.cpp). Convention: one
+// OutputBatch (solid/atomic_file.h) holds all of a command's output files, committed after the
+// last one is written and before anything is printed, so a failure leaves every existing file as
+// it was.
 
 #include <string>
 

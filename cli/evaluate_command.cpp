@@ -10,6 +10,7 @@
 #include "boolean/evaluate.h"
 #include "cli/commands.h"
 #include "cli/output.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/mesh_io.h"
 #include "solid/scene.h"
@@ -25,7 +26,9 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   const EvaluateResult r = evaluate(in.solid);
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
+  OutputBatch outputs;
   write_mesh(o.output, r.mesh);
+  outputs.commit();
   nlohmann::json j;
   j["volume"] = r.volume;
   j["area"] = r.area;

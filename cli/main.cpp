@@ -6,6 +6,7 @@
 #include <new>
 
 #include "cli/commands.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
 
@@ -26,6 +27,7 @@ void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cover::remove_temporaries_on_signals();  // first: threads started later inherit its mask
   CLI::App app{"cover: CSG solids by simplicial coverings (exact volume, classification)"};
   app.set_version_flag("--version", "cover " COVER_VERSION);
   app.require_subcommand(1);

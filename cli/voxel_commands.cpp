@@ -13,6 +13,7 @@
 #include "raster/voxel_io.h"
 #include "raster/voxel_surface.h"
 #include "raster/voxelize.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/mesh_io.h"
 #include "solid/scene.h"
@@ -66,8 +67,10 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   vo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   const VoxelGrid grid = voxelize(in.solid, vo);
   progress.finish();
+  OutputBatch outputs;
   write_voxels(o.output, grid);
   if (!o.surface.empty()) write_mesh(o.surface, voxel_surface(grid));
+  outputs.commit();
   const uint64_t occupied = grid.count();
   const double h = grid.voxel_size();
   json j;
@@ -99,7 +102,9 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   oo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   const Octree tree = build_octree(in.solid, bounds_option(o.bounds, in.solid, 1 << o.depth), oo);
   progress.finish();
+  OutputBatch outputs;
   write_octree(o.output, tree, o.threshold);
+  outputs.commit();
   const auto counts = tree.leaf_counts();
   json j;
   j["depth"] = o.depth;

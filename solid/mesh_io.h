@@ -20,7 +20,8 @@ namespace cover {
 /// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file.
 PolygonMesh read_mesh(const std::filesystem::path& path);
 
-/// Writes a mesh atomically (temporary file in the same folder, then rename).
+/// Writes a mesh atomically (solid/atomic_file.h: a temporary beside the target, then rename;
+/// inside an OutputBatch, renamed with the batch's other outputs).
 /// Polygons are fan-triangulated for STL (coordinates rounded to float); .off/.obj/.ply round
 /// trips are exact. Throws InputError on unsupported extension, I/O failure, or a mesh that
 /// cannot be written (index out of range, face with fewer than 3 vertices, non-finite vertex).
