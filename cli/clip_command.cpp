@@ -96,7 +96,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     if (!scene_out && !is_mesh_extension(out))
       throw InputError(out.string() + ": unsupported output format (use .off .obj .stl .ply or .json)");
   }
-  const LoadedInput in = load_input(o.input);
+  const LoadedInput in = load_input(o.input, common.load_options());
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   const Solid& s = in.solid;
   brep::ClipOptions co;

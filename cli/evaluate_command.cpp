@@ -21,7 +21,7 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   const auto start = std::chrono::steady_clock::now();
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
-  const LoadedInput in = load_input(o.input);
+  const LoadedInput in = load_input(o.input, common.load_options());
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   const EvaluateResult r = evaluate(in.solid);
   if (r.mesh.face_count() == 0)

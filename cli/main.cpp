@@ -22,6 +22,10 @@ void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
   cmd->add_flag("--quiet", common.quiet, "No progress bars");
   cmd->add_option("--threads", common.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
+  cmd->add_option("--max-memory", common.max_memory_mib,
+                  "Refuse work estimated to need more MiB (inputs, images, grids, octrees)")
+      ->capture_default_str()
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
 }
 
 }  // namespace
@@ -77,9 +81,6 @@ int main(int argc, char** argv) {
   vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy or .raw")->required();
   vox_cmd->add_option("--bounds", vox.bounds, "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
   vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)");
-  vox_cmd->add_option("--max-memory", vox.max_memory_mib, "Refuse grids needing more MiB")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
   add_common(vox_cmd, common);
 
   cover::cli::OctreeCommandOptions oct;

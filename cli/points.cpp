@@ -1,18 +1,20 @@
 #include "cli/points.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <iostream>
-#include <iterator>
-#include <sstream>
 
 #include "solid/errors.h"
+#include "solid/memory_limit.h"
 
 namespace cover::cli {
+namespace {
 
-std::vector<Vec3> parse_points(const std::string& text, const std::string& name) {
+/// `lines`: the text's line count, reserved as the most points it can hold.
+std::vector<Vec3> parse_points(const std::string& text, const std::string& name, size_t lines) {
   std::vector<Vec3> points;
+  points.reserve(lines);
   const char* p = text.data();
   const char* const end = p + text.size();
   size_t line = 0;
@@ -50,17 +52,17 @@ std::vector<Vec3> parse_points(const std::string& text, const std::string& name)
   return points;
 }
 
-std::vector<Vec3> read_points(const std::string& path) {
-  std::string text;
-  if (path == "-") {
-    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-    return parse_points(text, "<stdin>");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_points(ss.str(), path);
+}  // namespace
+
+std::vector<Vec3> read_points(const std::string& path, uint64_t max_bytes, size_t bytes_per_point) {
+  const std::string name = path == "-" ? "<stdin>" : path;
+  const std::string text =
+      path == "-" ? read_stream(std::cin, max_bytes, name) : read_regular_file(path, max_bytes);
+  // Every line may hold a point: at most newlines + 1 of them.
+  const size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+  check_memory(static_cast<double>(text.size()) + static_cast<double>(lines) * bytes_per_point,
+               max_bytes, name + ": classifying " + std::to_string(lines) + " lines of points");
+  return parse_points(text, name, lines);
 }
 
 }  // namespace cover::cli

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "solid/memory_limit.h"
 #include "solid/polygon_mesh.h"
 
 namespace cover {
@@ -17,8 +18,11 @@ namespace cover {
 /// "FILE: triangle N (byte B): ..."; whole-file problems: "FILE: empty file", "FILE: no faces")
 /// for any malformed input: empty, truncated, wrong counts, indices out of range, NaN/inf
 /// coordinates, absurd sizes (counts that cannot fit the file are refused before allocating),
-/// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file.
-PolygonMesh read_mesh(const std::filesystem::path& path);
+/// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file, and
+/// (read_regular_file, solid/memory_limit.h) a FIFO / device / directory ("FILE: not a regular
+/// file") or a file larger than `max_file_bytes` (refused before reading).
+PolygonMesh read_mesh(const std::filesystem::path& path,
+                      uint64_t max_file_bytes = kDefaultMaxMemoryBytes);
 
 /// Writes a mesh atomically (solid/atomic_file.h: a temporary beside the target, then rename;
 /// inside an OutputBatch, renamed with the batch's other outputs).

@@ -1,10 +1,8 @@
 #include "solid/scene.h"
 
 #include <cmath>
-#include <fstream>
 #include <Eigen/LU>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "solid/errors.h"
 #include "solid/measure.h"
@@ -184,7 +182,7 @@ class SceneReader {
     std::filesystem::path file = v.get<std::string>();
     if (file.is_relative()) file = scene_.parent_path() / file;
     if (file.extension() == ".json") fail(path, "a mesh leaf must be a mesh file, not a scene");
-    PolygonMesh m = read_mesh(file);
+    PolygonMesh m = read_mesh(file, options_.max_file_bytes);
     apply_transform(world, m);
     return leaf(std::move(m), file.string(), path);
   }
@@ -256,15 +254,11 @@ LoadedInput parse_scene(const std::string& text, const std::filesystem::path& sc
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".json") {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open file");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return parse_scene(ss.str(), path, options);
-  }
+  if (ext == ".json")
+    return parse_scene(read_regular_file(path, options.max_file_bytes), path, options);
   LoadedInput out;
-  out.solid = SceneReader::prepare_leaf(read_mesh(path), path.string(), "", options, out.warnings);
+  out.solid = SceneReader::prepare_leaf(read_mesh(path, options.max_file_bytes), path.string(), "",
+                                        options, out.warnings);
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "solid/memory_limit.h"
 #include "solid/solid.h"
 
 namespace cover {
@@ -13,6 +14,9 @@ namespace cover {
 struct LoadOptions {
   bool require_closed = true;  ///< reject leaves with boundary edges (commands that need solids)
   bool orient_outward = true;  ///< reverse inside-out leaves (negative covering volume), warning
+  /// Every input file (the scene and each mesh) must be a regular file of at most this size;
+  /// larger ones are refused before reading (the --max-memory of the command).
+  uint64_t max_file_bytes = kDefaultMaxMemoryBytes;
 };
 
 struct LoadedInput {
@@ -23,7 +27,8 @@ struct LoadedInput {
 /// Loads a mesh (by extension, see mesh_io.h) or a `.json` scene.
 /// Throws InputError naming the file and line / JSON path: unknown keys, wrong types, missing
 /// files, non-finite numbers, empty operations, singular transforms, open leaves (when
-/// require_closed: "FILE: open mesh: N boundary edges"), unsupported extensions.
+/// require_closed: "FILE: open mesh: N boundary edges"), unsupported extensions, inputs that are
+/// not regular files or exceed max_file_bytes (solid/memory_limit.h).
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options = {});
 
 /// Parses scene JSON text; `scene_path` names the file in messages and anchors relative mesh paths.

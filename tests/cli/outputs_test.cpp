@@ -1,6 +1,7 @@
-// Output files of every command (CONTRACT.md "Output conventions"), issue 17 group 6: all
-// outputs of a command are committed together or not at all, links and modes survive, signals
-// leave no temporary.
+// Output files and resource limits of every command (CONTRACT.md "Output conventions",
+// "--max-memory"), issue 17 groups 6 and 7: all outputs of a command are committed together or
+// not at all, links and modes survive, signals leave no temporary; estimates over --max-memory,
+// inputs that are not regular files and inputs over the limit are refused with exit 2.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -24,6 +25,13 @@ using test::run_cover;
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
+/// Runs `cover ARGS` on one thread with the address space capped at 2 GiB and the time at 20 s:
+/// a command that would read or allocate without bound fails fast instead of exhausting the
+/// machine.
+test::RunResult run_capped(const std::string& args) {
+  return run_cover(args + " --threads 1", "", "ulimit -v 2097152; timeout 20 ");
+}
+
 constexpr char kBox[] = R"({"box": {"min": [0, 0, 0], "max": [1, 1, 1]}})";
 
 /// The names in `dir` that look like a temporary output (FILE.tmp-PID-K).
@@ -33,6 +41,14 @@ std::vector<std::string> temporaries(const fs::path& dir) {
     if (entry.path().filename().string().find(".tmp-") != std::string::npos)
       out.push_back(entry.path().filename().string());
   return out;
+}
+
+/// The one stderr line of a refused command, which must exit 2.
+void expect_refused(const test::RunResult& r, const std::string& needle) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("cover: error: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
 }
 
 class Outputs : public ::testing::Test {
@@ -154,6 +170,83 @@ TEST_F(Outputs, SignalRemovesTemporary) {
     EXPECT_TRUE(temporaries(dir_).empty()) << "signal " << s << ": " << temporaries(dir_)[0];
     EXPECT_FALSE(fs::exists(out));
   }
+}
+
+class Limits : public Outputs {};
+
+TEST_F(Limits, InfoOfDevZeroRefused) {
+  const fs::path zero = dir_ / "zero.off";
+  fs::create_symlink("/dev/zero", zero);
+  expect_refused(run_capped("info " + q(zero)), "zero.off: not a regular file");
+  // A FIFO is refused without waiting for a writer, a folder before reading it.
+  const fs::path fifo = dir_ / "fifo.off";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_refused(run_capped("info " + q(fifo)), "fifo.off: not a regular file");
+  fs::create_directory(dir_ / "folder.json");
+  expect_refused(run_cover("volume " + q(dir_ / "folder.json")), "folder.json: not a regular file");
+  // A scene's mesh leaf and a points file are read the same way.
+  test::write_file(dir_ / "s.json", R"({"mesh": "zero.off"})");
+  expect_refused(run_capped("info " + q(dir_ / "s.json")), "not a regular file");
+  expect_refused(run_capped("classify " + q(box_) + " --points /dev/zero"),
+                 "/dev/zero: not a regular file");
+}
+
+TEST_F(Limits, InputOverMaxMemoryRefused) {
+  // 2 MiB of blank lines: refused before reading, from a file or from stdin.
+  const std::string blank(2 << 20, '\n');
+  test::write_file(dir_ / "big.off", blank);
+  expect_refused(run_cover("info " + q(dir_ / "big.off") + " --max-memory 1"),
+                 "big.off: the file needs 2 MiB, over --max-memory 1 MiB");
+  test::write_file(dir_ / "p.txt", blank);
+  expect_refused(
+      run_cover("classify " + q(box_) + " --points " + q(dir_ / "p.txt") + " --max-memory 1"),
+      "p.txt: the file needs 2 MiB");
+  expect_refused(run_cover("classify " + q(box_) + " --points - --max-memory 1", blank),
+                 "<stdin>: the input needs");
+  // 300 k points fit as text, not as points with their classes and output lines.
+  std::string points;
+  for (int i = 0; i < 300000; ++i) points += "0 0 0\n";
+  test::write_file(dir_ / "p.txt", points);
+  expect_refused(
+      run_cover("classify " + q(box_) + " --points " + q(dir_ / "p.txt") + " --max-memory 2"),
+      "p.txt: classifying 300001 lines of points needs");
+}
+
+TEST_F(Limits, OctreeDepth16Refused) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = run_capped("octree " + q(box_) + " --depth 16 -o " + q(dir_ / "o.bt"));
+  expect_refused(r, "--depth 16: the octree needs ");
+  EXPECT_NE(r.err.find(" MiB, over --max-memory 4096 MiB"), std::string::npos) << r.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  EXPECT_FALSE(fs::exists(dir_ / "o.bt"));
+  // The same limit allows what fits, and a smaller one refuses less.
+  EXPECT_EQ(run_cover("octree " + q(box_) + " --depth 6 -o " + q(dir_ / "o.bt")).status, 0);
+  expect_refused(
+      run_cover("octree " + q(box_) + " --depth 9 -o " + q(dir_ / "o.bt") + " --max-memory 16"),
+      "--depth 9: the octree needs ");
+}
+
+TEST_F(Limits, RenderHugeSizeRefused) {
+  expect_refused(run_capped("render " + q(box_) + " --size 16384x16384 -o " + q(dir_ / "r.png")),
+                 "--size 16384x16384: the image needs 7936 MiB, over --max-memory 4096 MiB");
+  expect_refused(
+      run_cover("render " + q(box_) + " --size 256x256 --max-memory 1 -o " + q(dir_ / "r.png")),
+      "the image needs 2 MiB, over --max-memory 1 MiB");
+  EXPECT_FALSE(fs::exists(dir_ / "r.png"));
+}
+
+TEST_F(Limits, MaxMemoryOnEveryCommand) {
+  const std::string in = q(box_), o = " -o " + q(dir_.string() + "/out");
+  test::write_file(dir_ / "p.txt", "0.5 0.5 0.5\n");
+  for (const std::string& c :
+       {"info " + in, "volume " + in, "classify " + in + " --points " + q(dir_ / "p.txt"),
+        "render " + in + " --size 16x16" + o + ".png", "voxelize " + in + " --res 8" + o + ".npy",
+        "octree " + in + " --depth 3" + o + ".json",
+        "clip " + in + " --plane 0,0,1,0.5" + o + ".off", "evaluate " + in + o + ".obj"}) {
+    const auto r = run_cover(c + " --max-memory 64");
+    EXPECT_EQ(r.status, 0) << c << ": " << r.err;
+  }
+  expect_refused(run_cover("volume " + in + " --max-memory 0"), "--max-memory");
 }
 
 }  // namespace
