@@ -112,7 +112,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     if (!scene_out && !is_mesh_extension(out))
       throw InputError(out.string() + ": unsupported output format (use .off .obj .stl .ply or .json)");
   }
-  const LoadedInput in = load_input(o.input);
+  const LoadedInput in = load_input(o.input, common.load_options());
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   const Solid& s = in.solid;
   if (!is_bounded(s)) throw InputError(unbounded_message(o.input));
@@ -123,6 +123,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   brep::ClipOptions co;
   co.triangulate_caps = o.triangulate;
   HalfSummary above, below;
+  OutputBatch outputs;
   if (!scene_out) {
     // CONTRACT.md: a scene of several leaves is evaluated first (boolean/evaluate.h: one closed
     // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly.
@@ -172,6 +173,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
       write_text(scene, root->dump(2) + "\n");
     }
   }
+  outputs.commit();
   const double seconds = seconds_since(start);
   if (common.json) {
     json j;

@@ -17,7 +17,9 @@
 #include "covering/volume.h"
 #include "raster/png.h"
 #include "raster/render.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
+#include "solid/memory_limit.h"
 #include "solid/scene.h"
 #include "solid/validate.h"
 
@@ -93,7 +95,7 @@ json camera_json(const Camera& c) {
 }  // namespace
 
 int run_info(const InfoOptions& o, const CommonOptions& common) {
-  LoadOptions lo;
+  LoadOptions lo = common.load_options();
   lo.require_closed = false;  // info reports open leaves instead of rejecting them
   lo.orient_outward = false;  // and reports orientation as found in the input
   lo.repair = false;          // and the faces as found (no loop collapse, no re-orientation)
@@ -153,7 +155,7 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
 
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   const auto start = Clock::now();
-  const LoadedInput in = load_input(o.input);
+  const LoadedInput in = load_input(o.input, common.load_options());
   print_warnings(in);
   if (!is_bounded(in.solid)) throw InputError(unbounded_message(o.input));
   VolumeOptions vo;
@@ -199,10 +201,14 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
 }
 
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
-  const LoadedInput in = load_input(o.input);
+  const LoadedInput in = load_input(o.input, common.load_options());
   print_warnings(in);
   const auto start = Clock::now();
-  const std::vector<Vec3> points = read_points(o.points);
+  // Per point: the point, its class, and its output: a line of at most 8 bytes ("outside\n"), or
+  // a JSON string value (16 bytes, its heap string ~48, room for the array's growth, the dump).
+  const size_t bytes_per_point = sizeof(Vec3) + sizeof(PointClass) + (common.json ? 96 : 8);
+  const std::vector<Vec3> points =
+      read_points(o.points, common.max_memory_bytes(), bytes_per_point);
   // Batches keep the progress bar moving; results do not depend on the batch size.
   constexpr size_t kBatch = 1 << 20;
   std::vector<PointClass> classes;
@@ -248,8 +254,6 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const auto start = Clock::now();
   for (const std::string& image : {o.output, o.depth, o.ids})
     if (!image.empty()) check_png_path(image);
-  const LoadedInput in = load_input(o.input);
-  print_warnings(in);
   CameraOptions co;
   co.view = parse_view(o.view);
   co.perspective = o.perspective;
@@ -259,6 +263,10 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
     throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got '" + o.size + "'");
   co.width = static_cast<int>(size[0]);
   co.height = static_cast<int>(size[1]);
+  check_memory(render_bytes(co.width, co.height), common.max_memory_bytes(),
+               "--size " + o.size + ": the image");
+  const LoadedInput in = load_input(o.input, common.load_options());
+  print_warnings(in);
   RenderOptions ro;
   ro.outline = o.outline;
   const std::vector<double> bg = parse_numbers(o.background, "--background", 3, ",");
@@ -279,9 +287,11 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   ro.progress = [&progress](size_t done, size_t total) { progress.update(done, total); };
   const Image image = render(in.solid, bvh, camera, ro);
   progress.finish();
+  OutputBatch outputs;
   write_png_rgb(o.output, image.width, image.height, image.rgb);
   if (!o.depth.empty()) write_png_gray16(o.depth, image.width, image.height, image.depth);
   if (!o.ids.empty()) write_png_gray16(o.ids, image.width, image.height, image.ids);
+  outputs.commit();
   json j;
   j["width"] = image.width;
   j["height"] = image.height;

@@ -1,8 +1,16 @@
 #pragma once
 // The `cover` subcommands (CONTRACT.md "Commands"). Each returns the process exit status and
-// throws InputError / NotComputable for bad input (exit 2, handled in main.cpp).
+// throws InputError / NotComputable for bad input (exit 2, handled in main.cpp). Conventions:
+// a command estimates what it allocates and refuses estimates over --max-memory first
+// (solid/memory_limit.h); one OutputBatch (solid/atomic_file.h) holds all of its output files,
+// committed after the last one is written and before anything is printed, so a failure leaves
+// every existing file as it was.
 
+#include <cstdint>
 #include <string>
+
+#include "solid/memory_limit.h"
+#include "solid/scene.h"
 
 namespace cover::cli {
 
@@ -10,6 +18,15 @@ struct CommonOptions {
   bool json = false;   ///< print exactly one JSON object on stdout
   bool quiet = false;  ///< no progress bars
   int threads = 0;     ///< 0: all cores
+  uint64_t max_memory_mib = kDefaultMaxMemoryMiB;  ///< --max-memory: refuse estimates above it
+
+  uint64_t max_memory_bytes() const { return max_memory_mib << 20; }
+  /// How every command loads INPUT: each input file within the memory limit.
+  LoadOptions load_options() const {
+    LoadOptions options;
+    options.max_file_bytes = max_memory_bytes();
+    return options;
+  }
 };
 
 struct InfoOptions {
@@ -47,7 +64,6 @@ struct VoxelizeCommandOptions {
   int res = 0;          ///< --res N
   std::string bounds;   ///< --bounds xmin,ymin,zmin,size
   std::string surface;  ///< --surface OUT.(obj|stl|off|ply)
-  long max_memory_mib = 4096;  ///< --max-memory: refuse grids needing more (MiB)
 };
 
 struct OctreeCommandOptions {

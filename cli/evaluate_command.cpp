@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/output.h"
 #include "covering/bounds.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/mesh_io.h"
 #include "solid/scene.h"
@@ -21,13 +22,15 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   const auto start = std::chrono::steady_clock::now();
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
-  const LoadedInput in = load_input(o.input);
+  const LoadedInput in = load_input(o.input, common.load_options());
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   if (!is_bounded(in.solid)) throw InputError(unbounded_message(o.input));
   const EvaluateResult r = evaluate(in.solid);
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
+  OutputBatch outputs;
   write_mesh(o.output, r.mesh);
+  outputs.commit();
   nlohmann::json j;
   j["volume"] = r.volume;
   j["area"] = r.area;

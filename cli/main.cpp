@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "cli/commands.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
 
@@ -78,6 +79,10 @@ void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
   cmd->add_flag("--quiet", common.quiet, "No progress bars");
   cmd->add_option("--threads", common.threads, "Worker threads (default: all cores)")
       ->transform(whole_number(1, 4096));
+  cmd->add_option("--max-memory", common.max_memory_mib,
+                  "Refuse work estimated to need more MiB (inputs, images, grids, octrees)")
+      ->capture_default_str()
+      ->transform(whole_number(1));
 }
 
 /// "unknown command 'bogus' (expected info, volume, ...)" when the first argument names no
@@ -97,6 +102,7 @@ std::string unknown_command(const CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cover::remove_temporaries_on_signals();  // first: threads started later inherit its mask
   CLI::App app{"cover: CSG solids by simplicial coverings (exact volume, classification)"};
   app.set_version_flag("--version", "cover " COVER_VERSION);
   app.require_subcommand(1);
@@ -149,9 +155,6 @@ int main(int argc, char** argv) {
   vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy or .raw")->required();
   vox_cmd->add_option("--bounds", vox.bounds, "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
   vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)");
-  vox_cmd->add_option("--max-memory", vox.max_memory_mib, "Refuse grids needing more MiB")
-      ->capture_default_str()
-      ->transform(whole_number(1));
   add_common(vox_cmd, common);
 
   cover::cli::OctreeCommandOptions oct;

@@ -1,14 +1,11 @@
 #include "cli/points.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
+#include <iostream>
 
 #include "solid/detail/mesh_io_detail.h"
 #include "solid/errors.h"
+#include "solid/memory_limit.h"
 
 namespace cover::cli {
 namespace {
@@ -25,28 +22,6 @@ std::string_view next_field(std::string_view& line) {
   std::string_view field = line.substr(start, i - start);
   line.remove_prefix(i);
   return field;
-}
-
-/// All of standard input, read in large blocks (an istream iterator is ~4× slower than a file).
-std::string read_stdin() {
-  struct stat info {};
-  size_t size_hint = 0;  // a redirected file: its size, plus one byte to see the end at once
-  if (::fstat(STDIN_FILENO, &info) == 0 && S_ISREG(info.st_mode))
-    size_hint = static_cast<size_t>(info.st_size) + 1;
-  std::string data(std::max(size_hint, size_t{1} << 20), '\0');
-  size_t used = 0;
-  for (;;) {
-    if (used == data.size()) data.resize(2 * data.size());
-    const ssize_t got = ::read(STDIN_FILENO, data.data() + used, data.size() - used);
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      throw InputError(std::string("<stdin>: cannot read: ") + std::strerror(errno));
-    }
-    if (got == 0) break;
-    used += static_cast<size_t>(got);
-  }
-  data.resize(used);
-  return data;
 }
 
 }  // namespace
@@ -74,9 +49,15 @@ std::vector<Vec3> parse_points(std::string_view text, const std::string& name) {
   return points;
 }
 
-std::vector<Vec3> read_points(const std::string& path) {
-  if (path == "-") return parse_points(read_stdin(), "<stdin>");
-  return parse_points(detail::load_file(path), path);
+std::vector<Vec3> read_points(const std::string& path, uint64_t max_bytes, size_t bytes_per_point) {
+  const std::string name = path == "-" ? "<stdin>" : path;
+  const std::string text =
+      path == "-" ? read_stream(std::cin, max_bytes, name) : read_regular_file(path, max_bytes);
+  // Every line may hold a point: at most newlines + 1 of them.
+  const size_t lines = static_cast<size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+  check_memory(static_cast<double>(text.size()) + static_cast<double>(lines) * bytes_per_point,
+               max_bytes, name + ": classifying " + std::to_string(lines) + " lines of points");
+  return parse_points(text, name);
 }
 
 }  // namespace cover::cli

@@ -13,7 +13,9 @@
 #include "raster/voxel_io.h"
 #include "raster/voxel_surface.h"
 #include "raster/voxelize.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
+#include "solid/memory_limit.h"
 #include "solid/mesh_io.h"
 #include "solid/scene.h"
 
@@ -54,13 +56,10 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
     throw InputError(o.output + ": unsupported voxel format (expected .binvox, .vti, .npy, .raw)");
   if (!o.surface.empty() && !is_mesh_extension(o.surface))
     throw InputError(o.surface + ": unsupported mesh format for --surface (expected .obj, .stl, .off, .ply)");
-  // The bit grid needs N³/8 bytes: refuse sizes beyond --max-memory before allocating.
-  const double bytes = std::pow(static_cast<double>(o.res), 3) / 8;
-  if (bytes > o.max_memory_mib * 1048576.0)
-    throw InputError("--res " + std::to_string(o.res) + ": the grid needs " +
-                     std::to_string(static_cast<long long>(bytes / 1048576)) +
-                     " MiB, over --max-memory " + std::to_string(o.max_memory_mib) + " MiB");
-  const LoadedInput in = load_input(o.input);
+  // The bit grid needs N³/8 bytes.
+  check_memory(std::pow(static_cast<double>(o.res), 3) / 8, common.max_memory_bytes(),
+               "--res " + std::to_string(o.res) + ": the grid");
+  const LoadedInput in = load_input(o.input, common.load_options());
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   VoxelizeOptions vo;
   vo.resolution = o.res;
@@ -69,8 +68,10 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   vo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   const VoxelGrid grid = voxelize(in.solid, vo);
   progress.finish();
+  OutputBatch outputs;
   write_voxels(o.output, grid);
   if (!o.surface.empty()) write_mesh(o.surface, voxel_surface(grid));
+  outputs.commit();
   const uint64_t occupied = grid.count();
   const double h = grid.voxel_size();
   json j;
@@ -93,15 +94,18 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   const auto start = Clock::now();
   if (!is_octree_extension(o.output))
     throw InputError(o.output + ": unsupported octree format (expected .htg, .bt, .json)");
-  const LoadedInput in = load_input(o.input);
+  const LoadedInput in = load_input(o.input, common.load_options());
   for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   OctreeOptions oo;
   oo.depth = o.depth;
+  oo.max_bytes = common.max_memory_bytes();
   Progress progress("octree", common.quiet);
   oo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   const Octree tree = build_octree(in.solid, bounds_option(o.bounds, in.solid, 1 << o.depth, o.input), oo);
   progress.finish();
+  OutputBatch outputs;
   write_octree(o.output, tree, o.threshold);
+  outputs.commit();
   const auto counts = tree.leaf_counts();
   json j;
   j["depth"] = o.depth;

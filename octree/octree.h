@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "raster/voxel_grid.h"
+#include "solid/memory_limit.h"
 #include "solid/solid.h"
 
 namespace cover {
@@ -23,6 +24,8 @@ enum class CellState : uint8_t { kEmpty = 0, kFull = 1, kPartial = 2 };
 struct OctreeOptions {
   int depth = 6;    ///< maximum depth (root = 0), 0..16; cells at depth D have side size/2^D
   int samples = 4;  ///< occupancy of partial cells: samples³ sub-points per cell, 1..32
+  /// Refuse builds expected to need more memory (the command's --max-memory), in bytes.
+  uint64_t max_bytes = kDefaultMaxMemoryBytes;
   /// Called on the calling thread after each block of cells with the estimated share of the work
   /// done, 0..1 (levels weighted by 4^d, the growth of crossed cells); default: none.
   std::function<void(double)> progress;
@@ -58,8 +61,11 @@ struct Octree {
 /// become full / empty leaves, the others split (or, at `options.depth`, become partial leaves).
 /// Memory and time grow with the number of crossed cells, not with 8^depth. TBB-parallel; the
 /// result does not depend on the thread count. Preconditions: closed leaves. Throws InputError
-/// for options out of range or bounds that are not a finite cube of positive size;
-/// NotComputable beyond 2^32 nodes.
+/// for options out of range or bounds that are not a finite cube of positive size, and the
+/// check_memory() message "--depth D: the octree needs N MiB, ..." (solid/memory_limit.h) when
+/// the expected memory exceeds options.max_bytes: before building, from the surface area (a
+/// surface of area A meets about 1.5·A/h² cells of side h), and again before each level from its
+/// exact node count; NotComputable beyond 2^32 nodes.
 Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options);
 
 }  // namespace cover

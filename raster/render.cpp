@@ -100,6 +100,11 @@ std::array<uint8_t, 3> leaf_colour(uint32_t leaf) {
 
 std::array<uint8_t, 3> cap_colour() { return {214, 48, 49}; }
 
+double render_bytes(int width, int height) {
+  constexpr size_t kPerPixel = 3 * sizeof(uint8_t) + 2 * sizeof(uint16_t) + sizeof(Vec3);
+  return static_cast<double>(width) * height * kPerPixel;
+}
+
 Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const RenderOptions& o) {
   Image img;
   img.width = cam.width;

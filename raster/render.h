@@ -50,6 +50,11 @@ struct Image {
 std::array<uint8_t, 3> leaf_colour(uint32_t leaf);
 std::array<uint8_t, 3> cap_colour();
 
+/// The bytes render() holds at its peak for a width × height image: per pixel the Image's rgb (3),
+/// depth (2) and ids (2), and the unit normals the outline compares (sizeof(Vec3)). The PNG
+/// writers' row copies (at most 3 bytes per pixel) come after the normals are freed.
+double render_bytes(int width, int height);
+
 /// Renders `solid` (with its prebuilt BVH) through `camera`.
 Image render(const Solid& solid, const Bvh& bvh, const Camera& camera,
              const RenderOptions& options = {});

@@ -9,12 +9,11 @@
 //                           rows over y, which feed a run-length encoder whose runs cross slabs.
 //   z, y, x   (.vti cells)  64 z-slabs at a time: 64×64 bit transposes turn blocks of 64 columns
 //                           into rows over x (64·N·W words), then each z-slab expands to bytes.
-// Every file is written to FILE.tmp-PID in the target's folder and renamed over FILE once
-// complete; on any failure the temporary file is removed and InputError names FILE.
+// Every file goes through write_atomically (solid/atomic_file.h): a temporary beside FILE, renamed
+// over it once complete (or with the command's other outputs); on any failure the temporary is
+// removed and InputError names FILE.
 
 #include "raster/voxel_io.h"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -30,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 
 namespace cover {
@@ -69,63 +69,56 @@ std::string number(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
-/// A file written to a temporary sibling and renamed onto its target by commit(). Until then
-/// the target is untouched; destruction without commit() removes the temporary file.
-class AtomicFile {
+/// A temporary output file (write_atomically's) written through stdio; every failure throws
+/// InputError "TARGET: cannot write: reason", naming the file the user asked for.
+class OutputFile {
  public:
-  explicit AtomicFile(fs::path target) : target_(std::move(target)), temp_(target_) {
-    temp_ += ".tmp-" + std::to_string(::getpid());
-    file_ = std::fopen(temp_.c_str(), "wb");
-    if (file_ == nullptr) fail(std::string("cannot write: ") + std::strerror(errno));
+  OutputFile(const fs::path& temporary, const fs::path& target) : target_(target) {
+    file_ = std::fopen(temporary.c_str(), "wb");
+    if (file_ == nullptr) fail(errno);
   }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile() { discard(); }
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  ~OutputFile() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
 
   void write(const void* data, size_t size) {
-    if (size != 0 && std::fwrite(data, 1, size, file_) != size)
-      fail(std::string("cannot write: ") + std::strerror(errno));
+    if (size != 0 && std::fwrite(data, 1, size, file_) != size) fail(errno);
   }
   void write(std::string_view text) { write(text.data(), text.size()); }
 
-  /// Flushes and closes the temporary file; throws if any write failed (e.g. a full disk).
+  /// Flushes and closes the file; throws if any write failed (e.g. a full disk).
   void finish() {
     std::FILE* file = std::exchange(file_, nullptr);
     const bool flushed = std::fflush(file) == 0 && std::ferror(file) == 0;
     const int flush_errno = errno;
     const bool closed = std::fclose(file) == 0;
-    if (!flushed || !closed)
-      fail(std::string("cannot write: ") + std::strerror(flushed ? errno : flush_errno));
-  }
-
-  /// Renames the finished temporary file onto the target.
-  void commit() {
-    std::error_code error;
-    fs::rename(temp_, target_, error);
-    if (error) fail("cannot replace the file: " + error.message());
-    committed_ = true;
-  }
-
-  /// Removes the temporary file and throws InputError("TARGET: message").
-  [[noreturn]] void fail(const std::string& message) {
-    discard();
-    throw InputError(target_.string() + ": " + message);
+    if (!flushed || !closed) fail(flushed ? errno : flush_errno);
   }
 
  private:
-  void discard() {
-    if (file_ != nullptr) std::fclose(std::exchange(file_, nullptr));
-    if (!committed_) {
-      std::error_code ignored;
-      fs::remove(temp_, ignored);
-    }
+  [[noreturn]] void fail(int error) const {
+    throw InputError(target_.string() + ": cannot write: " + std::strerror(error));
   }
 
-  fs::path target_;
-  fs::path temp_;
+  const fs::path& target_;
   std::FILE* file_ = nullptr;
-  bool committed_ = false;
 };
+
+/// Writes `path` atomically (solid/atomic_file.h) with body(out).
+template <class Body>
+void write_file(const fs::path& path, const Body& body) {
+  write_atomically(
+      path,
+      [&](const fs::path& temporary) {
+        OutputFile out(temporary, path);
+        body(out);
+        out.finish();
+        return true;
+      },
+      "the voxels");
+}
 
 /// kExpand.bytes[b][i] = bit i of b: one lookup expands 8 voxel bits into 8 bytes of 0/1.
 struct ExpandTable {
@@ -164,7 +157,7 @@ int bits_in_word(size_t w, int n) { return std::min(64, n - static_cast<int>(64 
 // ---- .npy and .raw: [x][y][z], z fastest ----
 
 /// Streams the N³ bytes in [x][y][z] order, one x-slab (N² bytes) at a time.
-void write_xyz_bytes(AtomicFile& out, const VoxelGrid& grid) {
+void write_xyz_bytes(OutputFile& out, const VoxelGrid& grid) {
   const size_t n = static_cast<size_t>(grid.n);
   std::vector<uint8_t> slab(n * n);
   for (int x = 0; x < grid.n; ++x) {
@@ -174,7 +167,7 @@ void write_xyz_bytes(AtomicFile& out, const VoxelGrid& grid) {
   }
 }
 
-void write_npy(AtomicFile& out, const VoxelGrid& grid) {
+void write_npy(OutputFile& out, const VoxelGrid& grid) {
   // NPY 1.0: magic, version 1.0, little-endian uint16 header length, then the header dict
   // padded with spaces and ended by '\n' so that the data starts at a multiple of 64 bytes.
   const std::string n = std::to_string(grid.n);
@@ -208,7 +201,7 @@ std::string raw_sidecar(const VoxelGrid& grid) {
 /// binvox run-length encoder: (value, count 1..255) byte pairs; runs continue across calls.
 class RunEncoder {
  public:
-  explicit RunEncoder(AtomicFile& out) : out_(out) { buffer_.reserve(kFlushBytes + 512); }
+  explicit RunEncoder(OutputFile& out) : out_(out) { buffer_.reserve(kFlushBytes + 512); }
 
   /// Appends the bits 0..count−1 of `word` (in order of increasing bit index).
   void add_bits(uint64_t word, int count) {
@@ -250,13 +243,13 @@ class RunEncoder {
     }
   }
 
-  AtomicFile& out_;
+  OutputFile& out_;
   std::vector<uint8_t> buffer_;
   bool value_ = false;  ///< value of the current run
   uint64_t run_ = 0;    ///< its length so far (0 before the first voxel)
 };
 
-void write_binvox(AtomicFile& out, const VoxelGrid& grid) {
+void write_binvox(OutputFile& out, const VoxelGrid& grid) {
   const Vec3& min = grid.bounds.min;
   const std::string n = std::to_string(grid.n);
   // binvox maps voxel index i to (i + ½)/N · scale + translate along each axis.
@@ -290,7 +283,7 @@ void write_binvox(AtomicFile& out, const VoxelGrid& grid) {
 
 // ---- .vti: VTK XML ImageData, cells in x-fastest order ----
 
-void write_vti(AtomicFile& out, const VoxelGrid& grid) {
+void write_vti(OutputFile& out, const VoxelGrid& grid) {
   const size_t n = static_cast<size_t>(grid.n);
   const std::string extent =
       "0 " + std::to_string(n) + " 0 " + std::to_string(n) + " 0 " + std::to_string(n);
@@ -373,36 +366,22 @@ void write_voxels(const fs::path& path, const VoxelGrid& grid) {
     throw InputError(path.string() + ": unsupported voxel format " +
                      quote(path.extension().string()) + " (expected .binvox, .vti, .npy, .raw)");
   check_grid(grid);
+  // .raw and its sidecar are committed together: no .raw is left without its description, and
+  // a failure leaves both old files as they were.
+  OutputBatch batch;
   if (ext == ".raw") {
-    // Both files are complete before either is renamed; a failed sidecar rename removes the
-    // freshly renamed data file so that no .raw is left without its description.
     fs::path sidecar = path;
     sidecar += ".json";
-    AtomicFile data(path);
-    AtomicFile json(sidecar);
-    write_xyz_bytes(data, grid);
-    json.write(raw_sidecar(grid));
-    data.finish();
-    json.finish();
-    data.commit();
-    try {
-      json.commit();
-    } catch (...) {
-      std::error_code ignored;
-      fs::remove(path, ignored);
-      throw;
-    }
-    return;
+    write_file(path, [&](OutputFile& out) { write_xyz_bytes(out, grid); });
+    write_file(sidecar, [&](OutputFile& out) { out.write(raw_sidecar(grid)); });
+  } else if (ext == ".npy") {
+    write_file(path, [&](OutputFile& out) { write_npy(out, grid); });
+  } else if (ext == ".binvox") {
+    write_file(path, [&](OutputFile& out) { write_binvox(out, grid); });
+  } else {
+    write_file(path, [&](OutputFile& out) { write_vti(out, grid); });
   }
-  AtomicFile out(path);
-  if (ext == ".npy")
-    write_npy(out, grid);
-  else if (ext == ".binvox")
-    write_binvox(out, grid);
-  else
-    write_vti(out, grid);
-  out.finish();
-  out.commit();
+  batch.commit();
 }
 
 }  // namespace cover

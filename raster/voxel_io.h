@@ -1,6 +1,7 @@
 #pragma once
 // Voxel grid export (CONTRACT.md `cover voxelize`), chosen by extension; written atomically
-// (temporary file, then rename) and streamed from the bit grid (no N³-byte buffer):
+// (solid/atomic_file.h: temporary file, then rename, or with an open OutputBatch) and streamed
+// from the bit grid (no N³-byte buffer):
 //   .binvox  binvox 1: "#binvox 1", "dim N N N", "translate x y z", "scale s", "data", then RLE
 //            pairs (value, count ≤ 255) over index x·N·N + z·N + y
 //   .vti     VTK XML ImageData, cell data "occupancy" (UInt8, 0/1), origin = min,
@@ -8,7 +9,7 @@
 //   .npy     NumPy 1.0 format, uint8 array of shape (N, N, N) indexed [x, y, z], C order
 //   .raw     uint8 bytes in [x][y][z] order, plus a sidecar named by appending ".json"
 //            (out.raw → out.raw.json): {"dims", "order": "xyz (z fastest)", "dtype": "uint8",
-//            "bounds": {"min", "size"}, "voxel_size"}; both written to temporaries first
+//            "bounds": {"min", "size"}, "voxel_size"}; both committed together or neither
 // Numbers in text headers are the shortest decimals that read back exactly. Extensions are
 // matched case-insensitively.
 

@@ -6,7 +6,8 @@
 //     assimp's invalid/OutOfMemory.off and malformed.obj, and on out-of-range indices);
 //   * bounded allocation: header counts are checked against the file size before anything is
 //     reserved, so a 40-byte file claiming 10^9 faces is refused instead of allocating gigabytes;
-//   * speed: the file is read whole and parsed in place with std::from_chars.
+//   * speed: the file is read whole and parsed in place with std::from_chars (only a regular
+//     file, no larger than the memory limit: solid/memory_limit.h).
 // Measured (median of 21 reads, file in the page cache, g++ 12 -O3, CGAL 5.5.1, 2-core AMD EPYC
 // VM), cover::read_mesh vs CGAL::IO::read_polygon_soup into Epick points + vector<vector<size_t>>:
 //   bunny00.off   (2.6 MB, 37706 V, 75408 F)   5.1 ms vs 55.4 ms  (11x)
@@ -15,55 +16,14 @@
 
 #include "solid/mesh_io.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <cerrno>
 #include <string>
 
 #include "solid/detail/mesh_io_detail.h"
 #include "solid/errors.h"
+#include "solid/memory_limit.h"
 
 namespace cover {
 namespace detail {
-
-namespace {
-
-/// Closes a POSIX file descriptor on scope exit.
-struct FdGuard {
-  int fd;
-  ~FdGuard() { ::close(fd); }
-};
-
-}  // namespace
-
-std::string load_file(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) fail_file(file, std::string("cannot open: ") + std::strerror(errno));
-  FdGuard guard{fd};
-  struct stat info {};
-  size_t size_hint = 0;
-  if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode))
-    size_hint = static_cast<size_t>(info.st_size);
-  // One byte more than the size so that the final read() sees end of file without growing.
-  std::string data(std::max<size_t>(size_hint + 1, 4096), '\0');
-  size_t used = 0;
-  for (;;) {
-    if (used == data.size()) data.resize(2 * data.size());
-    ssize_t got = ::read(fd, data.data() + used, data.size() - used);
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      fail_file(file, std::string("cannot read: ") + std::strerror(errno));
-    }
-    if (got == 0) break;
-    used += static_cast<size_t>(got);
-  }
-  data.resize(used);
-  return data;
-}
 
 std::string quote(std::string_view token) {
   constexpr size_t kMaxShown = 40;
@@ -169,11 +129,12 @@ bool is_mesh_extension(const std::filesystem::path& path) {
   return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
 }
 
-PolygonMesh read_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings) {
+PolygonMesh read_mesh(const std::filesystem::path& path, uint64_t max_file_bytes,
+                      std::vector<std::string>* warnings) {
   const std::string file = path.string();
   const std::string ext = detail::lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
-  const std::string data = detail::load_file(path);
+  const std::string data = read_regular_file(path, max_file_bytes);
   if (data.empty()) detail::fail_file(file, "empty file");
   if (ext == ".off") return detail::read_off(file, data);
   if (ext == ".obj") return detail::read_obj(file, data);

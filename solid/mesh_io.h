@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "solid/memory_limit.h"
 #include "solid/polygon_mesh.h"
 
 namespace cover {
@@ -19,14 +20,18 @@ namespace cover {
 /// "FILE: triangle N (byte B): ..."; whole-file problems: "FILE: empty file", "FILE: no faces")
 /// for any malformed input: empty, truncated, wrong counts, indices out of range, NaN/inf
 /// coordinates, absurd sizes (counts that cannot fit the file are refused before allocating),
-/// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file.
+/// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file, and
+/// (read_regular_file, solid/memory_limit.h) a FIFO / device / directory ("FILE: not a regular
+/// file") or a file larger than `max_file_bytes` (refused before reading).
 /// Numbers follow one rule in every text format (detail/mesh_io_detail.h): a leading '+' is
 /// allowed, overflow (1e400) is an error, underflow rounds to 0. Non-fatal problems (a binary
 /// STL's trailing bytes) are appended to `*warnings` when given, one line each naming the file.
 PolygonMesh read_mesh(const std::filesystem::path& path,
+                      uint64_t max_file_bytes = kDefaultMaxMemoryBytes,
                       std::vector<std::string>* warnings = nullptr);
 
-/// Writes a mesh atomically (temporary file in the same folder, then rename).
+/// Writes a mesh atomically (solid/atomic_file.h: a temporary beside the target, then rename;
+/// inside an OutputBatch, renamed with the batch's other outputs).
 /// Polygons are fan-triangulated for STL (coordinates rounded to float); .off/.obj/.ply round
 /// trips are exact. Throws InputError on unsupported extension, I/O failure, or a mesh that
 /// cannot be written (index out of range, face with fewer than 3 vertices, non-finite vertex).

@@ -191,7 +191,7 @@ class SceneReader {
     if (file.extension() == ".json") fail(path, "a mesh leaf must be a mesh file, not a scene");
     PolygonMesh m;
     try {
-      m = read_mesh(file, &warnings_);
+      m = read_mesh(file, options_.max_file_bytes, &warnings_);
     } catch (const InputError& e) {
       fail(path, e.what());
     }
@@ -377,9 +377,10 @@ LoadedInput parse_scene(const std::string& text, const std::filesystem::path& sc
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".json") return parse_scene(detail::load_file(path), path, options);
+  if (ext == ".json")
+    return parse_scene(read_regular_file(path, options.max_file_bytes), path, options);
   LoadedInput out;
-  PolygonMesh mesh = read_mesh(path, &out.warnings);
+  PolygonMesh mesh = read_mesh(path, options.max_file_bytes, &out.warnings);
   out.solid = SceneReader::prepare_leaf(std::move(mesh), path.string(), "", path.string(), options,
                                         out.warnings);
   return out;

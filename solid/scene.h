@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "solid/memory_limit.h"
 #include "solid/solid.h"
 
 namespace cover {
@@ -16,6 +17,9 @@ struct LoadOptions {
   /// read repeated loops once and re-orient inconsistently oriented closed leaves, with a
   /// warning each; refuse non-orientable ones (orient.h). Off only for reports (`cover info`).
   bool repair = true;
+  /// Every input file (the scene and each mesh) must be a regular file of at most this size;
+  /// larger ones are refused before reading (the --max-memory of the command).
+  uint64_t max_file_bytes = kDefaultMaxMemoryBytes;
 };
 
 struct LoadedInput {
@@ -29,7 +33,8 @@ struct LoadedInput {
 /// empty operations, singular transforms, a mesh leaf's own errors after its path
 /// ("scene.json: /union/1/mesh: m.off: cannot open: ..."), open leaves (when require_closed:
 /// "FILE: open mesh: N boundary edges"), non-orientable or unbalanced closed leaves (orient.h),
-/// vertices outside ±kMaxCoordinate, unsupported extensions.
+/// vertices outside ±kMaxCoordinate, unsupported extensions, inputs that are not regular files or
+/// exceed max_file_bytes (solid/memory_limit.h).
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options = {});
 
 /// Makes one mesh a leaf as load_input() does (coordinate range, repeated loops, consistent

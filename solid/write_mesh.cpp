@@ -1,5 +1,6 @@
-// Mesh writers. The file is written to a temporary sibling "<name>.tmp-<pid>" and renamed over
-// the target, so no reader ever sees a half-written mesh; on failure the temporary is removed.
+// Mesh writers. The file is written through write_atomically (solid/atomic_file.h: a temporary
+// beside the target, renamed over it, or committed with the command's other outputs), so no
+// reader ever sees a half-written mesh; on failure the temporary is removed.
 //   .off  ASCII "OFF", V F 0, one vertex / face per line
 //   .obj  ASCII v / f lines (1-based indices)
 //   .ply  binary_little_endian, double x y z, "list uchar int vertex_indices" (uint count when a
@@ -9,8 +10,6 @@
 // Numbers are written with std::to_chars' shortest round-trip form, so .off/.obj/.ply round trips
 // reproduce every double exactly.
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <bit>
 #include <cerrno>
@@ -18,6 +17,7 @@
 #include <cstdio>
 #include <string>
 
+#include "solid/atomic_file.h"
 #include "solid/detail/mesh_io_detail.h"
 #include "solid/errors.h"
 #include "solid/mesh_io.h"
@@ -178,40 +178,32 @@ void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh) {
   const std::string ext = detail::lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
   check_mesh(file, mesh);
-  std::filesystem::path temp = path;
-  temp += ".tmp-" + std::to_string(::getpid());
-  std::FILE* stream = std::fopen(temp.c_str(), "wb");
-  if (stream == nullptr)
-    detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
-  try {
-    Output out(stream, file);
-    if (ext == ".off")
-      write_off(out, mesh);
-    else if (ext == ".obj")
-      write_obj(out, mesh);
-    else if (ext == ".ply")
-      write_ply(out, mesh);
-    else
-      write_stl(out, mesh, file);
-    out.flush();
-  } catch (...) {
-    std::fclose(stream);
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    throw;
-  }
-  std::error_code error;
-  if (std::fclose(stream) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::filesystem::remove(temp, error);
-    detail::fail_file(file, "cannot write: " + reason);
-  }
-  std::filesystem::rename(temp, path, error);
-  if (error) {
-    const std::string reason = error.message();
-    std::filesystem::remove(temp, error);
-    detail::fail_file(file, "cannot replace the file: " + reason);
-  }
+  write_atomically(
+      path,
+      [&](const std::filesystem::path& temporary) {
+        std::FILE* stream = std::fopen(temporary.c_str(), "wb");
+        if (stream == nullptr)
+          detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
+        try {
+          Output out(stream, file);
+          if (ext == ".off")
+            write_off(out, mesh);
+          else if (ext == ".obj")
+            write_obj(out, mesh);
+          else if (ext == ".ply")
+            write_ply(out, mesh);
+          else
+            write_stl(out, mesh, file);
+          out.flush();
+        } catch (...) {
+          std::fclose(stream);
+          throw;
+        }
+        if (std::fclose(stream) != 0)
+          detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
+        return true;
+      },
+      "the mesh");
 }
 
 }  // namespace cover

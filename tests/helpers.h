@@ -46,12 +46,14 @@ struct RunResult {
   std::string err;      ///< stderr
 };
 
-/// Runs `cover ARGS` (a shell-quoted argument string), capturing stdout and stderr.
-inline RunResult run_cover(const std::string& args, const std::string& stdin_text = "") {
+/// Runs `cover ARGS` (a shell-quoted argument string), capturing stdout and stderr. `shell_prefix`
+/// goes before the command, e.g. "ulimit -v 2097152; timeout 20 " to cap memory and time.
+inline RunResult run_cover(const std::string& args, const std::string& stdin_text = "",
+                           const std::string& shell_prefix = "") {
   auto dir = temp_dir("run");
   auto out = dir / "out", err = dir / "err", in = dir / "in";
   write_file(in, stdin_text);
-  std::string cmd = std::string("'") + COVER_BIN + "' " + args + " <'" + in.string() + "' >'" +
+  std::string cmd = shell_prefix + "'" + COVER_BIN + "' " + args + " <'" + in.string() + "' >'" +
                     out.string() + "' 2>'" + err.string() + "'";
   int raw = std::system(cmd.c_str());
   RunResult r;

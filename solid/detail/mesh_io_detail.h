@@ -44,9 +44,6 @@ std::string lower_extension(const std::filesystem::path& path);
 /// The unsupported-extension message: "unsupported mesh format '.3ds' (expected ...)".
 std::string unsupported_format(const std::filesystem::path& path);
 
-/// Reads the whole file. Throws InputError "FILE: cannot open: reason" / "cannot read: reason".
-std::string load_file(const std::filesystem::path& path);
-
 /// Printable, single-line, length-limited rendering of a token, in single quotes.
 std::string quote(std::string_view token);
 

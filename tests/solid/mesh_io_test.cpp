@@ -650,7 +650,7 @@ TEST(SmallDefects, BinaryStlTrailingBytesWarns) {
   // Refused before; now read, with one warning naming the file and the byte count.
   std::vector<std::string> warnings;
   const fs::path file = data_file("trailing_bytes.stl");
-  expect_tetrahedron(cover::read_mesh(file, &warnings));
+  expect_tetrahedron(cover::read_mesh(file, cover::kDefaultMaxMemoryBytes, &warnings));
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_EQ(warnings[0], file.string() + ": 7 trailing bytes after the last triangle ignored");
   expect_tetrahedron(cover::read_mesh(file));  // no list given: the warning is dropped
@@ -659,7 +659,7 @@ TEST(SmallDefects, BinaryStlTrailingBytesWarns) {
   const std::string exact = test::read_file(file).substr(0, 84 + 4 * 50);
   warnings.clear();
   test::write_file(dir / "exact.stl", exact);
-  expect_tetrahedron(cover::read_mesh(dir / "exact.stl", &warnings));
+  expect_tetrahedron(cover::read_mesh(dir / "exact.stl", cover::kDefaultMaxMemoryBytes, &warnings));
   EXPECT_TRUE(warnings.empty());
   EXPECT_NE(
       bad_file(dir, "short.stl", exact.substr(0, exact.size() - 1)).find("declares 4 triangles"),
