@@ -272,7 +272,7 @@ int main(int argc, char** argv) {
   std::printf(" \"cgal_corefine_s\": %.4f, \"ratio\": %.4f, \"cgal_result_triangles\": %zu,\n",
               cgal_s, first_s / cgal_s, static_cast<size_t>(result.number_of_faces()));
   std::printf(
-      " \"volumes\": {\"cover_rays\": %.9g, \"cover_rays_per_side\": %d, "
+      " \"volumes\": {\"cover_rays\": %.9g, \"cover_rays_cast\": %zu, "
       "\"cover_error_bound\": %.3g, \"cgal\": %.9g, \"relative_difference\": %.3g},\n",
       cover_volume.volume, cover_volume.rays, cover_volume.error_bound, cgal_volume,
       std::abs(cover_volume.volume - cgal_volume) / cgal_volume);

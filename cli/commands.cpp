@@ -165,10 +165,17 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   // --exact, and a ray estimate whose proven bound misses the target: the evaluated B-rep's
   // exact volume and area (boolean/evaluate.h), when its leaves allow evaluation.
   VolumeResult r;
-  const bool covering_exact = !covering_inexact_reason(in.solid);
-  if (!o.exact || covering_exact) r = volume(in.solid, vo);
+  bool evaluate_instead = false;
+  try {
+    vo.exact = o.exact;  // throws NotComputable where only evaluation is exact
+    r = volume(in.solid, vo);
+    evaluate_instead = !r.target_met && o.rays == 0;
+  } catch (const NotComputable&) {
+    if (!o.exact) throw;
+    evaluate_instead = true;
+  }
   progress.finish();
-  if ((o.exact && !covering_exact) || (!r.target_met && o.rays == 0)) {
+  if (evaluate_instead) {
     try {
       const EvaluateResult e = evaluate(in.solid);
       r = VolumeResult{};

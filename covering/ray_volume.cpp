@@ -179,28 +179,20 @@ CellReport examine(const std::vector<Tri>& tris, const uint32_t* list, size_t co
   for (size_t i = 0; i < count; ++i)
     for (size_t j = 0; j < i; ++j) {
       const Tri &a = tris[list[i]], &b = tris[list[j]];
-      int sign = 0;
       double largest = 0;
-      bool tied = true;
+      bool tied = true, above = true, below = true;
       for (int k = 0; k < 4; ++k) {
         const double pu = c.u0 + ((k & 1) ? c.side : 0), pv = c.v0 + ((k & 2) ? c.side : 0);
         const double diff = a.depth(pu, pv) - b.depth(pu, pv);
         largest = std::max(largest, std::abs(diff));
         tied = tied && std::abs(diff) <= tol;
-        const int s = diff > tol ? 1 : (diff < -tol ? -1 : 0);
-        if (sign == 0) sign = s;
-        if (s != sign && !tied) sign = 2;
+        above = above && diff > tol;
+        below = below && diff < -tol;
       }
-      if (tied) {
+      if (tied)
         ties += largest + tol;
-        continue;
-      }
-      if (sign == 2 || sign == 0) return r;
-      for (int k = 0; k < 4; ++k) {  // strict at every corner
-        const double pu = c.u0 + ((k & 1) ? c.side : 0), pv = c.v0 + ((k & 2) ? c.side : 0);
-        const double diff = a.depth(pu, pv) - b.depth(pu, pv);
-        if (!(sign > 0 ? diff > tol : diff < -tol)) return r;
-      }
+      else if (!above && !below)
+        return r;  // the pair may cross inside the cell
     }
   r.certified = true;
   r.bound = 2 * area * ties;
