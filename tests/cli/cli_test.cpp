@@ -370,7 +370,13 @@ TEST_F(Cli, DefaultSceneInfoAndVolume) {
   ASSERT_EQ(r.status, 0) << r.err;
   r = run_cover("volume --json " + q(scene));
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_GT(json::parse(r.out)["volume"].get<double>(), 0);
+  const json v = json::parse(r.out);
+  // Against the evaluated B-rep's exact volume (an independent path: no covering sum).
+  r = run_cover("evaluate --json " + q(scene) + " -o " + q(dir_ / "default.off"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const double exact = json::parse(r.out)["volume"].get<double>();
+  EXPECT_GT(exact, 0);
+  EXPECT_NEAR(v["volume"].get<double>(), exact, v["error_bound"].get<double>() + 1e-12 * exact);
 }
 
 }  // namespace
