@@ -26,17 +26,25 @@ struct Side {
   int8_t dir;
 };
 
-/// Every side of every face, sorted by (edge, face).
-std::vector<Side> sorted_sides(const PolygonMesh& mesh) {
-  std::vector<Side> sides;
-  sides.reserve(mesh.face_vertices.size());
+/// Calls visit(face, u, v) for every side (u, v), u != v, of every face.
+template <typename Visit>
+void for_each_side(const PolygonMesh& mesh, Visit visit) {
   for (uint32_t f = 0; f < mesh.face_count(); ++f) {
     const auto loop = mesh.face(f);
     for (size_t i = 0; i < loop.size(); ++i) {
       const uint32_t u = loop[i], v = loop[(i + 1) % loop.size()];
-      if (u != v) sides.push_back({edge_key(u, v), f, static_cast<int8_t>(u < v ? 1 : -1)});
+      if (u != v) visit(f, u, v);
     }
   }
+}
+
+/// Every side of every face, sorted by (edge, face).
+std::vector<Side> sorted_sides(const PolygonMesh& mesh) {
+  std::vector<Side> sides;
+  sides.reserve(mesh.face_vertices.size());
+  for_each_side(mesh, [&](uint32_t f, uint32_t u, uint32_t v) {
+    sides.push_back({edge_key(u, v), f, static_cast<int8_t>(u < v ? 1 : -1)});
+  });
   std::sort(sides.begin(), sides.end(), [](const Side& a, const Side& b) {
     return a.key != b.key ? a.key < b.key : a.face < b.face;
   });
@@ -49,13 +57,9 @@ bool all_balanced(const PolygonMesh& mesh) {
   std::vector<uint64_t> up, down;
   up.reserve(mesh.face_vertices.size() / 2 + 1);
   down.reserve(mesh.face_vertices.size() / 2 + 1);
-  for (size_t f = 0; f < mesh.face_count(); ++f) {
-    const auto loop = mesh.face(f);
-    for (size_t i = 0; i < loop.size(); ++i) {
-      const uint32_t u = loop[i], v = loop[(i + 1) % loop.size()];
-      if (u != v) (u < v ? up : down).push_back(edge_key(u, v));
-    }
-  }
+  for_each_side(mesh, [&](uint32_t, uint32_t u, uint32_t v) {
+    (u < v ? up : down).push_back(edge_key(u, v));
+  });
   if (up.size() != down.size()) return false;
   parallel_sort(up);
   parallel_sort(down);

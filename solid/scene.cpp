@@ -53,7 +53,7 @@ class SceneReader {
     if (kind == "box" || kind == "sphere" || kind == "cylinder") {
       PolygonMesh m = primitive(kind, v, sub);
       apply_transform(world, m);
-      return leaf(std::move(m), kind, sub);
+      return leaf(std::move(m), kind, sub, false);
     }
     if (kind == "complement") return complement(node(v, sub, world, depth + 1));
     if (kind == "union" || kind == "intersection" || kind == "difference") {
@@ -196,13 +196,13 @@ class SceneReader {
       fail(path, e.what());
     }
     apply_transform(world, m);
-    return leaf(std::move(m), file.string(), path);
+    return leaf(std::move(m), file.string(), path, true);
   }
 
-  Solid leaf(PolygonMesh m, std::string name, const std::string& path) {
-    // Messages name the scene file and the leaf's JSON path; a mesh leaf also its file.
+  /// Messages name the scene file and the leaf's JSON path, and a mesh leaf's file before them.
+  Solid leaf(PolygonMesh m, std::string name, const std::string& path, bool from_file) {
     const std::string at = scene_.string() + ": " + path;
-    std::string where = name == "box" || name == "sphere" || name == "cylinder" ? at : name + " (" + at + ")";
+    const std::string where = from_file ? name + " (" + at + ")" : at;
     return prepare_leaf(std::move(m), std::move(name), path, where, options_, warnings_);
   }
 
