@@ -295,6 +295,31 @@ std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const
   return out;
 }
 
+LeafWindings leaf_windings(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+                           const ClassifyOptions& options) {
+  LeafWindings out;
+  out.leaves = solid.leaves.size();
+  out.winding.assign(points.size() * out.leaves, 0);
+  out.on_surface.assign(points.size() * out.leaves, 0);
+  if (out.leaves == 0 || bvh.nodes().empty()) return out;
+  const size_t batch = std::clamp<size_t>(16384 / out.leaves, 1, 256);
+  parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
+    std::vector<int> winding;
+    std::vector<uint8_t> on_surface;
+    std::vector<HalfLineQuery> queries;
+    std::vector<uint32_t> ids;
+    for (size_t b = begin; b < end; b += batch) {
+      ids.resize(std::min(end, b + batch) - b);  // batch-local ids: any number of points
+      for (size_t j = 0; j < ids.size(); ++j) ids[j] = static_cast<uint32_t>(j);
+      bvh_windings_batch(bvh, points.subspan(b, ids.size()), ids, out.leaves, winding, on_surface,
+                         queries);
+      std::copy(winding.begin(), winding.end(), out.winding.begin() + b * out.leaves);
+      std::copy(on_surface.begin(), on_surface.end(), out.on_surface.begin() + b * out.leaves);
+    }
+  });
+  return out;
+}
+
 void leaf_windings(const Solid& solid, const Vec3& q, std::vector<int>& winding,
                    std::vector<uint8_t>& on_surface) {
   brute_windings(detail::covering_triangles(solid), q, winding, on_surface);

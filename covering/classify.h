@@ -51,6 +51,20 @@ std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> point
 std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const Vec3> points,
                                              const ClassifyOptions& options = {});
 
+/// Per point and leaf, row-major (point i's leaf l at i·leaves + l): the leaf's exact winding
+/// number at the point, and whether the point lies on that leaf's surface (where a winding
+/// number is undefined; `winding` then holds the count of the perturbed point, which is a
+/// neighbouring value). Thread-count independent.
+struct LeafWindings {
+  size_t leaves = 0;
+  std::vector<int32_t> winding;
+  std::vector<uint8_t> on_surface;
+};
+
+/// Every leaf's winding number at every point, through a prebuilt BVH of `solid`.
+LeafWindings leaf_windings(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+                           const ClassifyOptions& options = {});
+
 /// Winding number of each leaf at q (exact), for q on no leaf's surface; on_surface[l] is set
 /// for the leaves whose surface contains q (their winding is then meaningless).
 void leaf_windings(const Solid& solid, const Vec3& q, std::vector<int>& winding,

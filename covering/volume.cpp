@@ -95,7 +95,7 @@ double face_sum(const Solid& s, PerFace per_face) {
   return total.value();
 }
 
-VolumeResult ray_volume(const Solid& s, const VolumeOptions& options) {
+VolumeResult ray_volume(const Solid& s, const Bvh* prebuilt, const VolumeOptions& options) {
   const std::optional<Bbox> box = result_bounds(s);
   if (!box) throw NotComputable("the result is unbounded (a complement at the root)");
   VolumeResult r;
@@ -104,7 +104,8 @@ VolumeResult ray_volume(const Solid& s, const VolumeOptions& options) {
   if (box->empty() || box->min.x >= box->max.x || box->min.y >= box->max.y ||
       box->min.z >= box->max.z)
     return r;  // operands' boxes share no interior: empty result
-  const Bvh bvh(s);
+  std::optional<Bvh> own;
+  const Bvh& bvh = prebuilt ? *prebuilt : own.emplace(s);
   detail::RayVolumeOptions ro;
   ro.target_relative_error = options.target_relative_error;
   ro.max_rays = options.max_rays;
@@ -138,7 +139,10 @@ std::optional<std::string> covering_inexact_reason(const Solid& s) {
   return collect(s, s.tree.root, leaves);
 }
 
-VolumeResult volume(const Solid& s, const VolumeOptions& options) {
+namespace {
+
+/// volume() with the BVH of the ray method when prebuilt (else built there if needed).
+VolumeResult volume_with(const Solid& s, const Bvh* bvh, const VolumeOptions& options) {
   if (!is_bounded(s)) throw NotComputable("the result is unbounded (a complement at the root)");
   VolumeResult r;
   r.method = "covering";
@@ -152,7 +156,7 @@ VolumeResult volume(const Solid& s, const VolumeOptions& options) {
     if (options.exact)
       throw NotComputable("the covering volume is not exact for this expression (" + *why +
                           "); evaluate() gives the exact volume of its B-rep");
-    return ray_volume(s, options);
+    return ray_volume(s, bvh, options);
   }
   // Σ of the contributing leaves' covering volumes (each in its own, outward orientation).
   NeumaierSum vol, area;
@@ -171,6 +175,16 @@ VolumeResult volume(const Solid& s, const VolumeOptions& options) {
   r.volume = vol.value();
   if (additive) r.area = area.value();
   return r;
+}
+
+}  // namespace
+
+VolumeResult volume(const Solid& s, const VolumeOptions& options) {
+  return volume_with(s, nullptr, options);
+}
+
+VolumeResult volume(const Solid& s, const Bvh& bvh, const VolumeOptions& options) {
+  return volume_with(s, &bvh, options);
 }
 
 }  // namespace cover

@@ -23,6 +23,7 @@
 #include <optional>
 #include <string>
 
+#include "covering/bvh.h"
 #include "solid/solid.h"
 
 namespace cover {
@@ -53,8 +54,13 @@ double covering_volume(const Solid& solid);
 /// Empty when the covering volume of `solid` is its volume; otherwise why not (one line).
 std::optional<std::string> covering_inexact_reason(const Solid& solid);
 
-/// Volume (and area where known) of the solid. Throws NotComputable when no available method is
-/// exact for this expression (see above).
+/// Volume (and area where known) of the solid.
+/// \throws NotComputable for an unbounded result, and with options.exact when the covering is
+/// not exact for this expression (see above; evaluate() is).
 VolumeResult volume(const Solid& solid, const VolumeOptions& options = {});
+
+/// The same with a prebuilt BVH of `solid` (used by the ray method).
+/// \throws as volume() above.
+VolumeResult volume(const Solid& solid, const Bvh& bvh, const VolumeOptions& options = {});
 
 }  // namespace cover

@@ -194,9 +194,10 @@ uint32_t halves(PointClass c) {
 
 class Builder {
  public:
-  Builder(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options)
+  Builder(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
+          const OctreeOptions& options)
       : solid_(solid),
-        bvh_(solid),
+        bvh_(bvh),
         bounds_(bounds),
         depth_(options.depth),
         samples_(options.samples),
@@ -452,7 +453,7 @@ class Builder {
   }
 
   const Solid& solid_;
-  const Bvh bvh_;
+  const Bvh& bvh_;
   VoxelBounds bounds_;
   int depth_;
   int samples_;
@@ -462,6 +463,22 @@ class Builder {
   std::vector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank
 };
+
+/// Checks the options and the bounds and refuses builds beyond options.max_bytes (see octree.h).
+void check_octree_request(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options) {
+  if (options.depth < 0 || options.depth > kMaxDepth)
+    throw InputError("--depth: expected a whole number from 0 to " + std::to_string(kMaxDepth) +
+                     ", got " + std::to_string(options.depth));
+  if (options.samples < 1 || options.samples > kMaxSamples)
+    throw InputError("octree samples: expected 1 to " + std::to_string(kMaxSamples) + ", got " +
+                     std::to_string(options.samples));
+  const bool finite = std::isfinite(bounds.min.x) && std::isfinite(bounds.min.y) &&
+                      std::isfinite(bounds.min.z) && std::isfinite(bounds.size);
+  if (!finite || !(bounds.size > 0))
+    throw InputError("--bounds: expected a finite cube of positive size");
+  check_memory(kBytesPerNode * expected_nodes(covering_area(solid), bounds.size, options.depth),
+               options.max_bytes, octree_subject(options.depth));
+}
 
 }  // namespace
 
@@ -475,19 +492,16 @@ std::array<uint64_t, 3> Octree::leaf_counts() const {
 }
 
 Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options) {
-  if (options.depth < 0 || options.depth > kMaxDepth)
-    throw InputError("--depth: expected a whole number from 0 to " + std::to_string(kMaxDepth) +
-                     ", got " + std::to_string(options.depth));
-  if (options.samples < 1 || options.samples > kMaxSamples)
-    throw InputError("octree samples: expected 1 to " + std::to_string(kMaxSamples) + ", got " +
-                     std::to_string(options.samples));
-  const bool finite = std::isfinite(bounds.min.x) && std::isfinite(bounds.min.y) &&
-                      std::isfinite(bounds.min.z) && std::isfinite(bounds.size);
-  if (!finite || !(bounds.size > 0))
-    throw InputError("--bounds: expected a finite cube of positive size");
-  check_memory(kBytesPerNode * expected_nodes(covering_area(solid), bounds.size, options.depth),
-               options.max_bytes, octree_subject(options.depth));
-  return Builder(solid, bounds, options).run();
+  check_octree_request(solid, bounds, options);
+  const Bvh bvh(solid);
+  return Builder(solid, bvh, bounds, options).run();
 }
+
+Octree build_octree(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
+                    const OctreeOptions& options) {
+  check_octree_request(solid, bounds, options);
+  return Builder(solid, bvh, bounds, options).run();
+}
+
 
 }  // namespace cover

@@ -13,6 +13,7 @@
 #include <functional>
 #include <vector>
 
+#include "covering/bvh.h"
 #include "raster/voxel_grid.h"
 #include "solid/memory_limit.h"
 #include "solid/solid.h"
@@ -67,5 +68,9 @@ struct Octree {
 /// surface of area A meets about 1.5·A/h² cells of side h), and again before each level from its
 /// exact node count; NotComputable beyond 2^32 nodes.
 Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options);
+
+/// The same with a prebuilt BVH of `solid` (cover::Model passes its own). \throws as above.
+Octree build_octree(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
+                    const OctreeOptions& options);
 
 }  // namespace cover

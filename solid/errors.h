@@ -1,11 +1,19 @@
 #pragma once
-// The cover:: exception family (STYLE.md §5).
-//   InputError    — bad input (file contents, scene, usage). The CLI prints
-//                   "cover: error: <what()>" and exits with status 2. what() already names the
-//                   place: "FILE:LINE: message", "FILE: record N: message" or
-//                   "scene.json: /json/path: message".
-//   NotComputable — the request is valid but this build cannot answer it exactly (exit 2).
-// Anything else escaping to main() is an internal failure (exit 1).
+// The cover:: exception family (STYLE.md §5), after pmp-library's exceptions.h: a few types, each
+// derived from the std exception that names its kind, and each kind of error always thrown as
+// the same type. Public functions document what they throw with \throws.
+//   InputError         (std::runtime_error) bad input: file contents, scene, arrays, options.
+//                      what() names the place: "FILE:LINE: message", "FILE: record N: message",
+//                      "scene.json: /json/path: message", "--option: message". The CLI prints
+//                      "cover: error: <what()>" and exits with status 2.
+//   NotComputable      (std::runtime_error) a well-formed request that this build cannot answer
+//                      without a wrong or inexact result (exit 2).
+//   PreconditionError  (std::logic_error) a caller broke a documented precondition of a public
+//                      function (a programming error in the caller).
+//   InternalError      (std::logic_error) an invariant of Cover's own failed: a bug in Cover.
+//                      COVER_ASSERT throws it; so do the checks that stay on in every build.
+// std::bad_alloc stays what it is (memory). Anything else escaping to the CLI's main() is an
+// internal failure (exit 1).
 
 #include <stdexcept>
 #include <string>
@@ -24,4 +32,35 @@ class NotComputable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A violated precondition of a public function.
+class PreconditionError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+/// A violated internal invariant (a bug in Cover).
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+namespace detail {
+[[noreturn]] inline void assert_failed(const char* condition, const char* file, int line) {
+  throw InternalError(std::string(file) + ":" + std::to_string(line) +
+                      ": internal invariant failed: " + condition);
+}
+}  // namespace detail
+
 }  // namespace cover
+
+/// COVER_ASSERT(condition): checks an internal invariant in Debug builds (no NDEBUG) and in the
+/// checked build (COVER_CHECKED, set with COVER_SANITIZE), throwing InternalError naming the
+/// file, line and condition; compiled out of Release builds (the condition is not evaluated).
+/// For invariants whose check is cheap and whose failure would give a wrong answer, throw
+/// InternalError unconditionally instead.
+#if !defined(NDEBUG) || defined(COVER_CHECKED)
+#define COVER_ASSERT(condition) \
+  ((condition) ? void(0) : ::cover::detail::assert_failed(#condition, __FILE__, __LINE__))
+#else
+#define COVER_ASSERT(condition) ((void)0)
+#endif

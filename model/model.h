@@ -1,0 +1,164 @@
+#pragma once
+// cover::Model — the one object a user needs (CONTRACT.md "C++ library"): a non-evaluated CSG
+// solid with a method per kernel. Built from a mesh or scene file (load), primitives (box,
+// sphere, cylinder), a triangle mesh from arrays (mesh), and combined with | & - ~ and
+// transformed(); none of these evaluates anything (paper §4: faces are concatenated, signs
+// flipped). Every query reuses one BVH over the covering triangles (covering/bvh.h), built on
+// the first query that needs it.
+//
+// Value semantics: a Model is an immutable handle (copies share the solid and its BVH), cheap to
+// copy and safe to query from several threads at once (the BVH is built once, under
+// std::call_once). The free functions of the modules stay available for those who want them:
+// solid() gives the Solid and bvh() its BVH.
+//
+// Errors (solid/errors.h): InputError for bad input (files, arrays, options), with the CLI's
+// one-line message; NotComputable for a valid request no exact method can answer (e.g. the volume
+// of an unbounded result); PreconditionError for a violated precondition of a caller.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "boolean/evaluate.h"
+#include "brep/clip.h"
+#include "covering/bvh.h"
+#include "covering/classify.h"
+#include "covering/ray.h"
+#include "covering/volume.h"
+#include "octree/octree.h"
+#include "raster/camera.h"
+#include "raster/render.h"
+#include "raster/voxelize.h"
+#include "solid/errors.h"
+#include "solid/scene.h"
+#include "solid/solid.h"
+#include "solid/transform.h"
+
+namespace cover {
+
+/// Volume of a Model (Model::volume): the covering's exact value where the expression allows it,
+/// else the ray method with its proven bound, else (exact requested, or the bound misses the
+/// target) the exact volume and area of the evaluated B-rep.
+struct ModelVolumeOptions {
+  /// Require an exact answer (error_bound 0): the covering where exact, else the B-rep's.
+  bool exact = false;
+  /// Ray method: fixed finest cells 1/2^⌈log2 rays⌉ of the square (0: adaptive); with rays > 0 the
+  /// result is the ray estimate whatever its bound.
+  int rays = 0;
+  double target_relative_error = 1e-4;  ///< adaptive rays: stop once the bound is below
+  size_t max_rays = size_t{1} << 22;    ///< adaptive rays: budget
+  std::function<void(double fraction)> progress;  ///< see VolumeOptions
+};
+
+class Model {
+ public:
+  /// The empty solid (no leaves): classifies every point outside, volume 0.
+  Model();
+  /// Wraps a solid (for instance from parse_scene); `warnings` are kept for warnings().
+  explicit Model(Solid solid, std::vector<std::string> warnings = {});
+
+  const Solid& solid() const { return state_->solid; }
+  /// One line each, from loading and repairs (a leaf re-oriented, an open leaf, ...).
+  const std::vector<std::string>& warnings() const { return state_->warnings; }
+  size_t leaf_count() const { return state_->solid.leaves.size(); }
+
+  /// The BVH of every covering triangle, built on first use (thread-safe) and shared by copies.
+  const Bvh& bvh() const;
+
+  /// Union, intersection, difference and complement (concatenation, paper §4).
+  friend Model operator|(const Model& a, const Model& b);
+  friend Model operator&(const Model& a, const Model& b);
+  friend Model operator-(const Model& a, const Model& b);
+  Model operator~() const;
+
+  /// The solid mapped by the affine `m` (p' = M·[p;1]); a mirror keeps leaves outward.
+  /// \throws InputError when m is not affine (last row 0 0 0 1), not finite, singular, or maps a
+  /// vertex outside ±kMaxCoordinate.
+  Model transformed(const Affine& m) const;
+
+  /// True when the result is a bounded set (covering/bounds.h).
+  bool bounded() const;
+  /// A box containing the result (empty box for an empty result); nullopt when unbounded.
+  std::optional<Bbox> bounds() const;
+
+  /// Exact class of each point (covering/classify.h). \throws InputError for a non-finite point
+  /// or one outside ±kMaxCoordinate, naming its index.
+  std::vector<PointClass> classify(std::span<const Vec3> points,
+                                   const ClassifyOptions& options = {}) const;
+
+  /// Every leaf's exact winding number at every point (covering/classify.h LeafWindings).
+  /// \throws InputError as classify().
+  LeafWindings windings(std::span<const Vec3> points, const ClassifyOptions& options = {}) const;
+
+  /// All hits and inside spans of each ray (covering/ray.h). \throws InputError for a zero or
+  /// non-finite direction or a non-finite origin, naming the ray's index.
+  std::vector<RayResult> cast(std::span<const Ray> rays, const CastOptions& options = {}) const;
+  /// The first entry into the result along each ray (FirstHit::hit false where there is none).
+  /// \throws InputError as cast().
+  std::vector<FirstHit> first_hits(std::span<const Ray> rays, const CastOptions& options = {}) const;
+
+  /// Volume, area where known, method ("covering", "rays" or "brep") and error bound.
+  /// \throws NotComputable for an unbounded result; with options.exact, InputError when the
+  /// B-rep cannot be evaluated (a leaf that intersects itself in a way evaluate() refuses).
+  VolumeResult volume(const ModelVolumeOptions& options = {}) const;
+
+  /// Presence-buffer voxelization (raster/voxelize.h). \throws InputError for a resolution out of
+  /// 1..4096, or an unbounded result without options.bounds.
+  VoxelGrid voxelize(const VoxelizeOptions& options = {}) const;
+
+  /// Direct octree (octree/octree.h) over `bounds`, default: the voxel bounds of the result at
+  /// 2^depth cells per side. \throws InputError as build_octree(), and for an unbounded result
+  /// without bounds; NotComputable beyond 2^32 nodes.
+  Octree octree(const OctreeOptions& options = {},
+                const std::optional<VoxelBounds>& bounds = std::nullopt) const;
+
+  /// The camera that frames the result's box (every leaf's when unbounded) from options.view.
+  Camera camera(const CameraOptions& options = {}) const;
+  /// Ray-cast preview (raster/render.h) through camera(camera_options).
+  /// \throws InputError for an image size out of 1..16384 or a zero section normal.
+  Image render(const CameraOptions& camera_options = {}, const RenderOptions& options = {}) const;
+  /// The same through a given camera.
+  Image render(const Camera& camera, const RenderOptions& options = {}) const;
+
+  /// The result as one closed, outward 2-manifold triangle mesh (boolean/evaluate.h).
+  /// \throws NotComputable for an unbounded result; InputError for a self-intersecting leaf
+  /// that is not a union of outward shells.
+  EvaluateResult evaluate(const EvaluateOptions& options = {}) const;
+
+  /// Plane clip and patch (brep/clip.h) of the result: a single leaf is clipped as it is, any
+  /// other expression is evaluated first. \throws InputError for a zero or non-finite plane, an
+  /// unbounded result, or (as brep::clip) a leaf that is open or non-manifold; NotComputable
+  /// when the cap cannot be built.
+  brep::ClipResult clip(const brep::Plane& plane, const brep::ClipOptions& options = {}) const;
+
+ private:
+  struct State;
+  explicit Model(std::shared_ptr<const State> state) : state_(std::move(state)) {}
+  std::shared_ptr<const State> state_;
+};
+
+/// Loads a mesh (one leaf) or a JSON scene (CONTRACT.md "Input"), repaired as the CLI does.
+/// \throws InputError naming the file and the place (solid/scene.h load_input).
+Model load(const std::filesystem::path& path, const LoadOptions& options = {});
+
+/// Primitives as closed, outward leaves (solid/primitives.h).
+/// \throws InputError for min ≥ max on an axis, a radius ≤ 0, segments < 3, base = top, or
+/// non-finite values.
+Model box(Vec3 min, Vec3 max);
+Model sphere(Vec3 center, double radius, int segments = 32);
+Model cylinder(Vec3 base, Vec3 top, double radius, int segments = 32);
+
+/// A leaf from a triangle mesh given as arrays (outward or inside-out; repaired as a loaded file,
+/// solid/scene.h prepare_leaf). \throws InputError for an index out of range, a non-finite
+/// coordinate, an open mesh (options.require_closed), a non-orientable surface, naming `name`.
+Model mesh(std::span<const Vec3> vertices, std::span<const std::array<uint32_t, 3>> triangles,
+           const std::string& name = "mesh", const LoadOptions& options = {});
+/// The same from polygons (solid/polygon_mesh.h). \throws as above.
+Model mesh(PolygonMesh polygons, const std::string& name = "mesh", const LoadOptions& options = {});
+
+}  // namespace cover
