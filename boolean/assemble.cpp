@@ -22,6 +22,7 @@
 
 #include "boolean/detail/arrangement.h"
 #include "solid/parallel.h"
+#include "solid/errors.h"
 
 namespace cover::boolean_detail {
 namespace {
@@ -77,10 +78,10 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
     const uint32_t p = static_cast<uint32_t>(hs[i - 1].first >> 32);
     auto forward = [&](uint32_t h) { return from(h) == p; };
     if (group.size() % 2 != 0)
-      throw std::runtime_error("evaluate: an edge of the result has an odd number of faces");
+      throw InternalError("evaluate: an edge of the result has an odd number of faces");
     if (group.size() == 2) {
       if (forward(group[0]) == forward(group[1]))
-        throw std::runtime_error("evaluate: inconsistent orientation at an edge of the result");
+        throw InternalError("evaluate: inconsistent orientation at an edge of the result");
       pair_up(group[0], group[1]);
       continue;
     }
@@ -101,7 +102,7 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
       if (forward(h)) continue;
       const uint32_t g = order[(x + 1) % k].second;
       if (!forward(g))
-        throw std::runtime_error("evaluate: faces around a non-manifold edge do not alternate");
+        throw InternalError("evaluate: faces around a non-manifold edge do not alternate");
       pair_up(h, g);
     }
   }

@@ -33,7 +33,9 @@
 
 #include "boolean/detail/arrangement.h"
 #include "covering/bvh.h"
+#include "covering/detail/bvh_walk.h"
 #include "solid/parallel.h"
+#include "solid/errors.h"
 
 namespace cover::boolean_detail {
 namespace {
@@ -157,7 +159,7 @@ Sides windings(const Arrangement& arr, const Bvh& bvh, size_t leaves, uint32_t t
     }
     return r;
   }
-  throw std::runtime_error("evaluate: every ray direction was degenerate");
+  throw InternalError("evaluate: every ray direction was degenerate");
 }
 
 }  // namespace
@@ -225,7 +227,7 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
         } catch (const BadPoint&) {
         }
       }
-      if (!found) throw std::runtime_error("evaluate: no usable interior point in a patch");
+      if (!found) throw InternalError("evaluate: no usable interior point in a patch");
       const uint32_t leaf = arr.tris[piece.tri].leaf;
       bool lower = false;
       for (size_t l = 0; l < leaf; ++l) lower = lower || sides.coincident[l];

@@ -152,7 +152,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
       h = m.next(h);
     } while (h != m.face_halfedge(f));
     if (!(pos && neg)) continue;
-    if (nz != 2) throw std::logic_error("clip: crossing face does not meet the plane twice");
+    if (nz != 2) throw InternalError("clip: crossing face does not meet the plane twice");
     m.split_face(zero[0], zero[1]);
   }
 

@@ -105,7 +105,7 @@ uint32_t HalfedgeMesh::add_vertex(const Vec3& p) {
 }
 
 void HalfedgeMesh::delete_vertex(uint32_t v) {
-  if (vertex_halfedge_[v] != kNone) throw std::logic_error("delete_vertex: vertex is not isolated");
+  if (vertex_halfedge_[v] != kNone) throw PreconditionError("delete_vertex: vertex is not isolated");
   vertex_deleted_[v] = 1;
 }
 
@@ -124,7 +124,7 @@ uint32_t HalfedgeMesh::new_edge(uint32_t a, uint32_t b) {
 }
 
 uint32_t HalfedgeMesh::insert_edge(uint32_t a, uint32_t b) {
-  if (a == b) throw std::logic_error("insert_edge: a loop edge");
+  if (a == b) throw PreconditionError("insert_edge: a loop edge");
   return new_edge(a, b);
 }
 
@@ -146,7 +146,7 @@ void HalfedgeMesh::delete_edge(uint32_t h) {
     return;
   }
   if (f == kNone || g == kNone || f == g)
-    throw std::logic_error("delete_edge: needs two distinct faces or none");
+    throw PreconditionError("delete_edge: needs two distinct faces or none");
   for (uint32_t k = next_[t]; k != t; k = next_[k]) face_[k] = f;
   if (vertex_halfedge_[a] == h) vertex_halfedge_[a] = next_[t];
   if (vertex_halfedge_[b] == t) vertex_halfedge_[b] = next_[h];
@@ -164,7 +164,7 @@ uint32_t HalfedgeMesh::make_face(std::span<const uint32_t> loop) {
   for (size_t i = 0; i < loop.size(); ++i) {
     const uint32_t h = loop[i], n = loop[i + 1 < loop.size() ? i + 1 : 0];
     if (face_[h] != kNone || head(h) != origin_[n])
-      throw std::logic_error("make_face: not a closed chain of border half-edges");
+      throw PreconditionError("make_face: not a closed chain of border half-edges");
   }
   face_halfedge_.push_back(loop[0]);
   for (size_t i = 0; i < loop.size(); ++i) {
@@ -198,7 +198,7 @@ uint32_t HalfedgeMesh::split_edge(uint32_t h, const Vec3& p) {
 
 uint32_t HalfedgeMesh::split_face(uint32_t a, uint32_t b) {
   const uint32_t f = face_[a];
-  if (f == kNone || face_[b] != f || a == b) throw std::logic_error("split_face: bad corners");
+  if (f == kNone || face_[b] != f || a == b) throw PreconditionError("split_face: bad corners");
   const uint32_t pa = prev_[a], pb = prev_[b];
   const uint32_t x = new_edge(origin_[a], origin_[b]), y = x ^ 1;
   link(pa, x);
@@ -216,7 +216,7 @@ uint32_t HalfedgeMesh::split_face(uint32_t a, uint32_t b) {
 
 void HalfedgeMesh::detach_edge(uint32_t h) {
   const uint32_t t = h ^ 1;
-  if (face_[h] == kNone || face_[t] == kNone) throw std::logic_error("detach_edge: a border edge");
+  if (face_[h] == kNone || face_[t] == kNone) throw PreconditionError("detach_edge: a border edge");
   const uint32_t y = new_edge(origin_[h], origin_[t]) ^ 1;  // y: head(h) → origin(h), like t
   const uint32_t g = face_[t], p = prev_[t], n = next_[t];
   face_[y] = g;

@@ -1,6 +1,5 @@
 // `cover clip` (CONTRACT.md): the exact plane clip and patch of brep/clip.h.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -8,7 +7,6 @@
 #include <optional>
 #include <stdexcept>
 
-#include "boolean/evaluate.h"
 #include "brep/clip.h"
 #include "covering/bounds.h"
 #include "brep/halfedge.h"
@@ -65,7 +63,7 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
     return json{{"mesh", *leaf_files[n.leaf]}};
   }
   if (n.op == CsgOp::kComplement)  // refused by run_clip before any file is written
-    throw std::logic_error("clipped_node: a complement cannot be clipped leaf by leaf");
+    throw InternalError("clipped_node: a complement cannot be clipped leaf by leaf");
   std::vector<json> kids;
   for (size_t k = 0; k < n.children.size(); ++k) {
     std::optional<json> c = clipped_node(tree, n.children[k], leaf_files);
@@ -83,12 +81,12 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
   return json{{key, kids}};
 }
 
-/// brep::clip with its messages ("edge 0-1 is used twice ...", "open mesh: ...") after `where`:
-/// the input file, and a leaf's JSON path in a scene.
-brep::ClipResult clip_named(const PolygonMesh& mesh, const brep::Plane& plane,
-                            const brep::ClipOptions& options, const std::string& where) {
+/// A clip (`clip()`) with its messages ("edge 0-1 is used twice ...", "open mesh: ...") after
+/// `where`: the input file, and a leaf's JSON path in a scene.
+template <typename Clip>
+brep::ClipResult clip_named(Clip&& clip, const std::string& where) {
   try {
-    return brep::clip(mesh, plane, options);
+    return clip();
   } catch (const InputError& e) {
     throw InputError(where + ": " + e.what());
   } catch (const NotComputable& e) {
@@ -99,7 +97,7 @@ brep::ClipResult clip_named(const PolygonMesh& mesh, const brep::Plane& plane,
 }  // namespace
 
 int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
-  const auto start = std::chrono::steady_clock::now();
+  Timing timing;
   const std::vector<double> p = parse_numbers(o.plane, "--plane", 4, ",");
   const brep::Plane plane{{p[0], p[1], p[2]}, p[3]};
   if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--plane: the normal must be non-zero");
@@ -112,10 +110,10 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     if (!scene_out && !is_mesh_extension(out))
       throw InputError(out.string() + ": unsupported output format (use .off .obj .stl .ply or .json)");
   }
-  const LoadedInput in = load_input(o.input, common.load_options());
-  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
-  const Solid& s = in.solid;
-  if (!is_bounded(s)) throw InputError(unbounded_message(o.input));
+  const Model model = load_model(o.input, common.load_options());
+  const Solid& s = model.solid();
+  if (!model.bounded()) throw InputError(unbounded_message(o.input));
+  timing.lap(Timing::kLoad);
   if (scene_out && std::any_of(s.tree.nodes.begin(), s.tree.nodes.end(),
                                [](const CsgNode& n) { return n.op == CsgOp::kComplement; }))
     throw InputError(o.input + ": a scene with a complement cannot be clipped leaf by leaf " +
@@ -126,29 +124,33 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   OutputBatch outputs;
   if (!scene_out) {
     // CONTRACT.md: a scene of several leaves is evaluated first (boolean/evaluate.h: one closed
-    // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly.
-    const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
-    const PolygonMesh mesh = one_leaf ? leaf_mesh(s, 0) : evaluate(s).mesh;
-    const brep::ClipResult r = clip_named(mesh, plane, co, o.input);
+    // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly
+    // (Model::clip).
+    const brep::ClipResult r = clip_named([&] { return model.clip(plane, co); }, o.input);
     add(above, r.above);
     add(below, r.below);
     above.volume = signed_volume(r.above.mesh);
     below.volume = signed_volume(r.below.mesh);
+    timing.lap(Timing::kKernel);
     write_mesh(above_path, r.above.mesh);
     if (!below_path.empty()) write_mesh(below_path, r.below.mesh);
   } else {
     // Intersection with a half-space distributes over union, intersection and difference: clip
     // every leaf and keep the expression. Leaf meshes are written beside each scene.
+    std::vector<brep::ClipResult> clipped;
+    for (uint32_t l = 0; l < s.leaves.size(); ++l) {
+      const std::string& origin = s.leaves[l].origin;
+      clipped.push_back(clip_named([&] { return brep::clip(leaf_mesh(s, l), plane, co); },
+                                   origin.empty() ? o.input : o.input + ": " + origin));
+      add(above, clipped.back().above);
+      add(below, clipped.back().below);
+    }
+    timing.lap(Timing::kKernel);
     std::vector<std::optional<std::string>> files[2];
     double volume[2] = {0, 0};
     for (uint32_t l = 0; l < s.leaves.size(); ++l) {
-      const std::string& origin = s.leaves[l].origin;
-      const brep::ClipResult r = clip_named(leaf_mesh(s, l), plane, co,
-                                            origin.empty() ? o.input : o.input + ": " + origin);
-      add(above, r.above);
-      add(below, r.below);
       for (int side = 0; side < 2; ++side) {
-        const brep::ClipHalf& h = side == 0 ? r.above : r.below;
+        const brep::ClipHalf& h = side == 0 ? clipped[l].above : clipped[l].below;
         const std::filesystem::path& scene = side == 0 ? above_path : below_path;
         volume[side] += signed_volume(h.mesh);
         if (scene.empty() || h.mesh.face_count() == 0) {
@@ -174,12 +176,12 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     }
   }
   outputs.commit();
-  const double seconds = seconds_since(start);
+  timing.lap(Timing::kWrite);
   if (common.json) {
     json j;
     j["above"] = summary_json(above);
     j["below"] = summary_json(below);
-    j["seconds"] = seconds;
+    timing.put(j);
     std::cout << j.dump() << "\n";
   } else {
     for (const auto& [name, h] : {std::pair{"above", &above}, std::pair{"below", &below}}) {
@@ -188,7 +190,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
       if (h->volume) std::printf(", volume %.17g", *h->volume);
       std::printf("\n");
     }
-    std::printf("%.3f s\n", seconds);
+    std::printf("%.3f s\n", timing.total());
   }
   return 0;
 }

@@ -8,15 +8,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "boolean/evaluate.h"
 #include "brep/halfedge.h"
 #include "cli/output.h"
 #include "cli/points.h"
-#include "covering/classify.h"
 #include "covering/bounds.h"
-#include "covering/volume.h"
 #include "raster/png.h"
-#include "raster/render.h"
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/memory_limit.h"
@@ -27,11 +23,7 @@ namespace cover::cli {
 namespace {
 
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
-void print_warnings(const LoadedInput& in) {
-  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
-}
 
 json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
   const Leaf& leaf = s.leaves[l];
@@ -94,14 +86,21 @@ json camera_json(const Camera& c) {
 
 }  // namespace
 
+Model load_model(const std::string& input, const LoadOptions& options) {
+  Model model = load(input, options);
+  for (const std::string& w : model.warnings()) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  return model;
+}
+
 int run_info(const InfoOptions& o, const CommonOptions& common) {
+  Timing timing;
   LoadOptions lo = common.load_options();
   lo.require_closed = false;  // info reports open leaves instead of rejecting them
   lo.orient_outward = false;  // and reports orientation as found in the input
   lo.repair = false;          // and the faces as found (no loop collapse, no re-orientation)
-  const LoadedInput in = load_input(o.input, lo);
-  print_warnings(in);
-  const Solid& s = in.solid;
+  const Model model = load_model(o.input, lo);
+  const Solid& s = model.solid();
+  timing.lap(Timing::kLoad);
   json j;
   j["input"] = o.input;
   j["vertices"] = s.vertices.size();
@@ -117,6 +116,8 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
     leaf["brep"] = brep_json(mesh);
     j["leaves_info"].push_back(std::move(leaf));
   }
+  timing.lap(Timing::kKernel);
+  timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";
     return 0;
@@ -154,38 +155,25 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
 }
 
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
-  const auto start = Clock::now();
-  const LoadedInput in = load_input(o.input, common.load_options());
-  print_warnings(in);
-  if (!is_bounded(in.solid)) throw InputError(unbounded_message(o.input));
+  Timing timing;
+  const Model model = load_model(o.input, common.load_options());
+  if (!model.bounded()) throw InputError(unbounded_message(o.input));
+  timing.lap(Timing::kLoad);
   VolumeOptions vo;
   vo.rays = static_cast<int>(o.rays);
+  vo.exact = o.exact;
   Progress progress("volume", common.quiet);
   vo.progress = [&](double fraction) { progress.update(static_cast<size_t>(1000 * fraction), 1000); };
-  // --exact, and a ray estimate whose proven bound misses the target: the evaluated B-rep's
-  // exact volume and area (boolean/evaluate.h), when its leaves allow evaluation.
+  // The covering where exact, else rays with their proven bound, else (--exact, or a bound that
+  // misses the target) the evaluated B-rep's exact volume and area (Model::volume).
   VolumeResult r;
-  bool evaluate_instead = false;
   try {
-    vo.exact = o.exact;  // throws NotComputable where only evaluation is exact
-    r = volume(in.solid, vo);
-    evaluate_instead = !r.target_met && o.rays == 0;
-  } catch (const NotComputable&) {
-    if (!o.exact) throw;
-    evaluate_instead = true;
+    r = model.volume(vo);
+  } catch (const InputError& e) {
+    throw InputError(o.input + ": --exact: " + e.what());  // a leaf evaluate() refuses
   }
   progress.finish();
-  if (evaluate_instead) {
-    try {
-      const EvaluateResult e = evaluate(in.solid);
-      r = VolumeResult{};
-      r.volume = e.volume;
-      r.area = e.area;
-      r.method = "brep";
-    } catch (const InputError& e) {
-      if (o.exact) throw InputError(o.input + ": --exact: " + e.what());
-    }
-  }
+  timing.lap(Timing::kKernel);
   if (!r.target_met && r.method == "rays")
     std::fprintf(stderr,
                  "cover: warning: %s: the ray volume's proven error bound %g is above the target "
@@ -197,7 +185,7 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   j["method"] = r.method;
   j["error_bound"] = r.error_bound;
   if (r.method == "rays") j["rays"] = r.rays;
-  j["seconds"] = seconds_since(start);
+  timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";
   } else {
@@ -208,28 +196,27 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
 }
 
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
-  const LoadedInput in = load_input(o.input, common.load_options());
-  print_warnings(in);
-  const auto start = Clock::now();
+  Timing timing;
+  const Model model = load_model(o.input, common.load_options());
   // Per point: the point, its class, and its output: a line of at most 8 bytes ("outside\n"), or
   // a JSON string value (16 bytes, its heap string ~48, room for the array's growth, the dump).
   const size_t bytes_per_point = sizeof(Vec3) + sizeof(PointClass) + (common.json ? 96 : 8);
   const std::vector<Vec3> points =
       read_points(o.points, common.max_memory_bytes(), bytes_per_point);
+  timing.lap(Timing::kLoad);
   // Batches keep the progress bar moving; results do not depend on the batch size.
   constexpr size_t kBatch = 1 << 20;
   std::vector<PointClass> classes;
   classes.reserve(points.size());
   Progress progress("classify", common.quiet);
-  const Bvh bvh(in.solid);
   for (size_t begin = 0; begin < points.size(); begin += kBatch) {
     const size_t n = std::min(kBatch, points.size() - begin);
-    const auto part = classify(in.solid, bvh, std::span<const Vec3>(points.data() + begin, n));
+    const auto part = model.classify(std::span<const Vec3>(points.data() + begin, n));
     classes.insert(classes.end(), part.begin(), part.end());
     progress.update(begin + n, points.size());
   }
   progress.finish();
-  const double seconds = seconds_since(start);
+  timing.lap(Timing::kKernel);
   std::array<size_t, 5> counts{};
   for (PointClass c : classes) ++counts[static_cast<size_t>(c)];
   std::string out;
@@ -240,7 +227,8 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
     json& cj = j["counts"];
     for (size_t k = 0; k < counts.size(); ++k)
       cj[std::string(to_string(static_cast<PointClass>(k)))] = counts[k];
-    j["seconds"] = seconds;
+    timing.lap(Timing::kWrite);
+    timing.put(j);
     out = j.dump() + "\n";
   } else {
     out.reserve(classes.size() * 8);
@@ -258,7 +246,7 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
 namespace cover::cli {
 
 int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
-  const auto start = Clock::now();
+  Timing timing;
   for (const std::string& image : {o.output, o.depth, o.ids})
     if (!image.empty()) check_png_path(image);
   CameraOptions co;
@@ -272,8 +260,6 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   co.height = static_cast<int>(size[1]);
   check_memory(render_bytes(co.width, co.height), common.max_memory_bytes(),
                "--size " + o.size + ": the image");
-  const LoadedInput in = load_input(o.input, common.load_options());
-  print_warnings(in);
   RenderOptions ro;
   ro.outline = o.outline;
   const std::vector<double> bg = parse_numbers(o.background, "--background", 3, ",");
@@ -286,27 +272,30 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
     if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--section: the normal must be non-zero");
     ro.section = Section{{p[0], p[1], p[2]}, p[3]};
   }
-  // Frame the result's box when bounded, else every leaf.
-  const std::optional<Bbox> bounds = result_bounds(in.solid);
-  const Camera camera = frame_camera(bounds && !bounds->empty() ? *bounds : in.solid.bbox(), co);
-  const Bvh bvh(in.solid);
+  const Model model = load_model(o.input, common.load_options());
+  timing.lap(Timing::kLoad);
+  // Frames the result's box when bounded, else every leaf (Model::camera).
+  const Camera camera = model.camera(co);
   Progress progress("render", common.quiet);
   ro.progress = [&progress](size_t done, size_t total) { progress.update(done, total); };
-  const Image image = render(in.solid, bvh, camera, ro);
+  const Image image = model.render(camera, ro);
   progress.finish();
+  timing.lap(Timing::kKernel);
   OutputBatch outputs;
   write_png_rgb(o.output, image.width, image.height, image.rgb);
   if (!o.depth.empty()) write_png_gray16(o.depth, image.width, image.height, image.depth);
   if (!o.ids.empty()) write_png_gray16(o.ids, image.width, image.height, image.ids);
   outputs.commit();
+  timing.lap(Timing::kWrite);
+  const Solid& s = model.solid();
   json j;
   j["width"] = image.width;
   j["height"] = image.height;
   j["rays"] = static_cast<size_t>(image.width) * image.height;
-  j["seconds"] = seconds_since(start);
+  timing.put(j);
   j["camera"] = camera_json(camera);
   j["ids"] = json::object({{"0", "background"}, {"65535", "section cap"}});
-  for (size_t l = 0; l < in.solid.leaves.size(); ++l) j["ids"][std::to_string(l + 1)] = in.solid.leaves[l].name;
+  for (size_t l = 0; l < s.leaves.size(); ++l) j["ids"][std::to_string(l + 1)] = s.leaves[l].name;
   if (common.json) {
     std::cout << j.dump() << "\n";
   } else {

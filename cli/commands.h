@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 
+#include "model/model.h"
 #include "solid/memory_limit.h"
 #include "solid/scene.h"
 
@@ -28,6 +29,10 @@ struct CommonOptions {
     return options;
   }
 };
+
+/// Loads INPUT as every command does (cover::load with the --max-memory file limit, or `options`)
+/// and prints its warnings on stderr ("cover: warning: ...").
+Model load_model(const std::string& input, const LoadOptions& options);
 
 struct InfoOptions {
   std::string input;

@@ -2,7 +2,6 @@
 // closed, outward-oriented 2-manifold B-rep (boolean/evaluate.h). An empty result (e.g. disjoint
 // operands intersected) is not an error: an empty mesh (0 vertices, 0 faces) is written, exit 0,
 // with a warning on stderr.
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -19,18 +18,20 @@
 namespace cover::cli {
 
 int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
-  const auto start = std::chrono::steady_clock::now();
+  Timing timing;
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
-  const LoadedInput in = load_input(o.input, common.load_options());
-  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
-  if (!is_bounded(in.solid)) throw InputError(unbounded_message(o.input));
-  const EvaluateResult r = evaluate(in.solid);
+  const Model model = load_model(o.input, common.load_options());
+  if (!model.bounded()) throw InputError(unbounded_message(o.input));
+  timing.lap(Timing::kLoad);
+  const EvaluateResult r = model.evaluate();
+  timing.lap(Timing::kKernel);
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
   OutputBatch outputs;
   write_mesh(o.output, r.mesh);
   outputs.commit();
+  timing.lap(Timing::kWrite);
   nlohmann::json j;
   j["volume"] = r.volume;
   j["area"] = r.area;
@@ -38,7 +39,7 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   j["faces"] = r.mesh.face_count();
   j["genus"] = r.genus;
   j["components"] = r.components;
-  j["seconds"] = seconds_since(start);
+  timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";
   } else {

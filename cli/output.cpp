@@ -64,4 +64,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void Timing::lap(Phase phase) {
+  const auto now = std::chrono::steady_clock::now();
+  phase_[phase] += std::chrono::duration<double>(now - mark_).count();
+  mark_ = now;
+}
+
+void Timing::put(nlohmann::json& j) const {
+  j["seconds"] = total();
+  j["seconds_detail"] = {{"load", phase_[kLoad]}, {"kernel", phase_[kKernel]}, {"write", phase_[kWrite]}};
+}
+
 }  // namespace cover::cli

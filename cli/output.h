@@ -38,4 +38,23 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
 /// Seconds since `start` as a double.
 double seconds_since(std::chrono::steady_clock::time_point start);
 
+/// The timing keys of every --json output (CONTRACT.md "Timing keys"): `seconds`, the whole
+/// command from its start, and `seconds_detail` {load, kernel, write}: reading and validating the
+/// input, the command's own work, and writing its files and building its stdout. Each phase ends
+/// with lap(); time between laps goes to the phase named there.
+class Timing {
+ public:
+  enum Phase { kLoad, kKernel, kWrite };
+  Timing() : start_(std::chrono::steady_clock::now()), mark_(start_) {}
+  /// Adds the time since the previous lap (or the start) to `phase`.
+  void lap(Phase phase);
+  /// Adds `seconds` to {"seconds", "seconds_detail"} of `j` (the whole command up to now).
+  void put(nlohmann::json& j) const;
+  double total() const { return seconds_since(start_); }
+
+ private:
+  std::chrono::steady_clock::time_point start_, mark_;
+  double phase_[3] = {0, 0, 0};
+};
+
 }  // namespace cover::cli

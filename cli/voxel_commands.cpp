@@ -12,7 +12,6 @@
 #include "octree/octree_io.h"
 #include "raster/voxel_io.h"
 #include "raster/voxel_surface.h"
-#include "raster/voxelize.h"
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/memory_limit.h"
@@ -23,17 +22,14 @@ namespace cover::cli {
 namespace {
 
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
-/// --bounds xmin,ymin,zmin,size, or the default cube around the result's box (an unbounded
-/// result has none: it needs --bounds).
-VoxelBounds bounds_option(const std::string& text, const Solid& solid, int n,
+/// --bounds xmin,ymin,zmin,size, or the default cube around the result's box (Model::
+/// voxel_bounds; an unbounded result has none: it needs --bounds).
+VoxelBounds bounds_option(const std::string& text, const Model& model, int n,
                           const std::string& input) {
   if (text.empty()) {
-    const std::optional<Bbox> box = result_bounds(solid);
-    if (!box) throw InputError(unbounded_message(input) + " (or give --bounds)");
-    // One voxel of margin per side needs N >= 3; coarser grids get the margin of N = 3.
-    return default_voxel_bounds(box && !box->empty() ? *box : solid.bbox(), std::max(n, 3));
+    if (!model.bounded()) throw InputError(unbounded_message(input) + " (or give --bounds)");
+    return model.voxel_bounds(n);
   }
   double v[4];
   char tail = 0;
@@ -51,7 +47,7 @@ json bounds_json(const VoxelBounds& b) {
 }  // namespace
 
 int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
-  const auto start = Clock::now();
+  Timing timing;
   if (!is_voxel_extension(o.output))
     throw InputError(o.output + ": unsupported voxel format (expected .binvox, .vti, .npy, .raw)");
   if (!o.surface.empty() && !is_mesh_extension(o.surface))
@@ -59,19 +55,21 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   // The bit grid needs N³/8 bytes.
   check_memory(std::pow(static_cast<double>(o.res), 3) / 8, common.max_memory_bytes(),
                "--res " + std::to_string(o.res) + ": the grid");
-  const LoadedInput in = load_input(o.input, common.load_options());
-  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  const Model model = load_model(o.input, common.load_options());
+  timing.lap(Timing::kLoad);
   VoxelizeOptions vo;
   vo.resolution = o.res;
-  vo.bounds = bounds_option(o.bounds, in.solid, o.res, o.input);
+  vo.bounds = bounds_option(o.bounds, model, o.res, o.input);
   Progress progress("voxelize", common.quiet);
   vo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
-  const VoxelGrid grid = voxelize(in.solid, vo);
+  const VoxelGrid grid = model.voxelize(vo);
   progress.finish();
+  timing.lap(Timing::kKernel);
   OutputBatch outputs;
   write_voxels(o.output, grid);
   if (!o.surface.empty()) write_mesh(o.surface, voxel_surface(grid));
   outputs.commit();
+  timing.lap(Timing::kWrite);
   const uint64_t occupied = grid.count();
   const double h = grid.voxel_size();
   json j;
@@ -79,7 +77,7 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   j["bounds"] = bounds_json(grid.bounds);
   j["occupied"] = occupied;
   j["volume_estimate"] = static_cast<double>(occupied) * h * h * h;
-  j["seconds"] = seconds_since(start);
+  timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";
   } else {
@@ -91,28 +89,30 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
 }
 
 int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
-  const auto start = Clock::now();
+  Timing timing;
   if (!is_octree_extension(o.output))
     throw InputError(o.output + ": unsupported octree format (expected .htg, .bt, .json)");
-  const LoadedInput in = load_input(o.input, common.load_options());
-  for (const std::string& w : in.warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  const Model model = load_model(o.input, common.load_options());
+  timing.lap(Timing::kLoad);
   OctreeOptions oo;
   oo.depth = o.depth;
   oo.max_bytes = common.max_memory_bytes();
   Progress progress("octree", common.quiet);
   oo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
-  const Octree tree = build_octree(in.solid, bounds_option(o.bounds, in.solid, 1 << o.depth, o.input), oo);
+  const Octree tree = model.octree(oo, bounds_option(o.bounds, model, 1 << o.depth, o.input));
   progress.finish();
+  timing.lap(Timing::kKernel);
   OutputBatch outputs;
   write_octree(o.output, tree, o.threshold);
   outputs.commit();
+  timing.lap(Timing::kWrite);
   const auto counts = tree.leaf_counts();
   json j;
   j["depth"] = o.depth;
   j["nodes"] = tree.nodes.size();
   j["leaves"] = {{"empty", counts[0]}, {"full", counts[1]}, {"partial", counts[2]}};
   j["bounds"] = bounds_json(tree.bounds);
-  j["seconds"] = seconds_since(start);
+  timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";
   } else {

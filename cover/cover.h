@@ -1,7 +1,9 @@
 #pragma once
 // Cover's umbrella header: every public module header (installed under include/cover/).
-// Link cover::cover (find_package(Cover)); the kernels are free functions on a Solid
-// (DESIGN.md: the simplicial-coverings engine), grouped by module:
+// Link cover::cover (find_package(Cover)). Start with cover::Model (model/model.h): load a file
+// or build primitives, combine with | & - ~, and call a method per kernel. Underneath, the
+// kernels are free functions on a Solid (DESIGN.md: the simplicial-coverings engine), by module:
+//   model/     the cover::Model facade
 //   solid/     the non-evaluated solid, CSG operators, primitives, transforms, mesh and scene I/O
 //   covering/  exact predicates, BVH, classification, rays, volume, bounds
 //   raster/    voxelization, voxel formats, rendering
@@ -9,6 +11,7 @@
 //   brep/      plane clip and patch, the half-edge kernel
 //   boolean/   evaluation of the CSG result to a closed 2-manifold mesh
 
+#include "model/model.h"
 #include "boolean/evaluate.h"
 #include "brep/clip.h"
 #include "brep/halfedge.h"

@@ -10,6 +10,7 @@
 #include "covering/detail/float_bounds.h"
 #include "covering/predicates.h"
 #include "solid/parallel.h"
+#include "solid/errors.h"
 
 namespace cover {
 namespace {
@@ -231,7 +232,7 @@ void treelet_order(LargeVector<Bvh::Node>& nodes) {
     }
     roots.insert(roots.end(), level.rbegin(), level.rend());  // leftmost treelet next
   }
-  if (order.size() != pairs) throw std::logic_error("BVH: children pairs do not form one tree");
+  if (order.size() != pairs) throw InternalError("BVH: children pairs do not form one tree");
   LargeVector<uint32_t> to(pairs);  // pair number → its new pair number
   for (uint32_t k = 0; k < pairs; ++k) to[order[k]] = k;
   // Child links first, then the pairs moved in place along the permutation's cycles (no second
@@ -431,7 +432,7 @@ Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   });
   for (size_t l = 0; l < leaf_nodes.size(); ++l) offset[l + 1] += offset[l];
   if (offset[leaf_nodes.size()] > UINT32_MAX)
-    throw std::length_error("BVH leaf blocks exceed 32 GB (too many triangles for one BVH)");
+    throw NotComputable("BVH leaf blocks exceed 32 GB (too many triangles for one BVH)");
   // Not zero-filled (LargeBuffer): the loop below writes every word of every block (its memset
   // included) and every triangle's block_of_ entry, from both threads.
   blocks_.resize(offset[leaf_nodes.size()]);

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <optional>
 
+#include "covering/detail/bvh_walk.h"
 #include "covering/detail/cell_grid.h"
 #include "covering/detail/float_bounds.h"
 #include "covering/detail/local.h"

@@ -38,8 +38,9 @@ struct ClassifyOptions {
   int grid_max_resolution = 64;      ///< cells per axis of that grid, at most
 };
 
-/// Classifies every point with a prebuilt BVH of `solid`. Preconditions: leaves are closed.
-/// Thread-count independent.
+/// Classifies every point with a prebuilt BVH of `solid`. Thread-count independent.
+/// \pre leaves are closed (load_input / prepare_leaf ensure it); points are finite
+/// (Model::classify checks).
 std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
 

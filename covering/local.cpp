@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "covering/predicates.h"
+#include "solid/errors.h"
 
 namespace cover::detail {
 namespace {
@@ -173,7 +174,7 @@ void evaluate_cells(Arrangement& arr, const LeafTriangles& lt, const CsgTree& tr
       if (!on_surface[l]) continue;
       std::optional<int> w;
       for (int attempt = 0; !(w = ray_winding(lt, l, q, d)); ++attempt) {
-        if (attempt == 64) throw std::runtime_error("classification: no tie-free probe ray");
+        if (attempt == 64) throw InternalError("classification: no tie-free probe ray");
         const auto& k = kNudges[attempt % kNudges.size()];
         const RVec r{Rat(k[0]), Rat(k[1]), Rat(k[2])};
         d = d + (arr.safe_step(d, r) / Rat(1 << (attempt % 16))) * r;

@@ -1,3 +1,4 @@
+#include "covering/detail/bvh_walk.h"
 #include "covering/ray.h"
 
 #include <algorithm>

@@ -93,6 +93,8 @@ struct CastOptions {
 };
 
 /// Casts many rays in parallel; results[i] belongs to rays[i].
+/// \pre closed leaves; every ray has a finite origin and a finite, non-zero direction
+/// (Model::cast checks).
 std::vector<RayResult> cast(const Bvh& bvh, const Solid& solid, std::span<const Ray> rays,
                             const CastOptions& options = {});
 

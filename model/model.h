@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -41,31 +42,20 @@
 
 namespace cover {
 
-/// Volume of a Model (Model::volume): the covering's exact value where the expression allows it,
-/// else the ray method with its proven bound, else (exact requested, or the bound misses the
-/// target) the exact volume and area of the evaluated B-rep.
-struct ModelVolumeOptions {
-  /// Require an exact answer (error_bound 0): the covering where exact, else the B-rep's.
-  bool exact = false;
-  /// Ray method: fixed finest cells 1/2^⌈log2 rays⌉ of the square (0: adaptive); with rays > 0 the
-  /// result is the ray estimate whatever its bound.
-  int rays = 0;
-  double target_relative_error = 1e-4;  ///< adaptive rays: stop once the bound is below
-  size_t max_rays = size_t{1} << 22;    ///< adaptive rays: budget
-  std::function<void(double fraction)> progress;  ///< see VolumeOptions
-};
-
 class Model {
  public:
-  /// The empty solid (no leaves): classifies every point outside, volume 0.
+  /// The empty solid (no leaves): the identity of `|`; classifies every point outside, volume 0,
+  /// evaluates to an empty mesh; ~Model() throws PreconditionError (all of space has no leaf).
   Model();
   /// Wraps a solid (for instance from parse_scene); `warnings` are kept for warnings().
   explicit Model(Solid solid, std::vector<std::string> warnings = {});
 
-  const Solid& solid() const { return state_->solid; }
+  const Solid& solid() const;
   /// One line each, from loading and repairs (a leaf re-oriented, an open leaf, ...).
-  const std::vector<std::string>& warnings() const { return state_->warnings; }
-  size_t leaf_count() const { return state_->solid.leaves.size(); }
+  const std::vector<std::string>& warnings() const;
+  size_t leaf_count() const { return solid().leaves.size(); }
+  /// True for the empty Model (no leaf): the empty set.
+  bool empty() const { return solid().leaves.empty(); }
 
   /// The BVH of every covering triangle, built on first use (thread-safe) and shared by copies.
   const Bvh& bvh() const;
@@ -76,9 +66,9 @@ class Model {
   friend Model operator-(const Model& a, const Model& b);
   Model operator~() const;
 
-  /// The solid mapped by the affine `m` (p' = M·[p;1]); a mirror keeps leaves outward.
-  /// \throws InputError when m is not affine (last row 0 0 0 1), not finite, singular, or maps a
-  /// vertex outside ±kMaxCoordinate.
+  /// The solid mapped by the affine `m` (p' = M·[p;1]; solid/transform.h transform_solid); a
+  /// mirror keeps leaves outward. \throws InputError when m is not affine (last row 0 0 0 1),
+  /// not finite, singular, or maps a vertex outside ±kMaxCoordinate.
   Model transformed(const Affine& m) const;
 
   /// True when the result is a bounded set (covering/bounds.h).
@@ -102,10 +92,20 @@ class Model {
   /// \throws InputError as cast().
   std::vector<FirstHit> first_hits(std::span<const Ray> rays, const CastOptions& options = {}) const;
 
-  /// Volume, area where known, method ("covering", "rays" or "brep") and error bound.
+  /// Volume, area where known, method ("covering", "rays" or "brep") and error bound: the
+  /// covering's exact value where the expression allows it (covering/volume.h); else the ray
+  /// method with its proven bound; else — options.exact, or (options.rays == 0) a bound that
+  /// misses options.target_relative_error — the exact volume and area of the evaluated B-rep
+  /// (method "brep", error_bound 0), when evaluate() accepts the leaves (otherwise the ray
+  /// result, target_met false, stays).
   /// \throws NotComputable for an unbounded result; with options.exact, InputError when the
   /// B-rep cannot be evaluated (a leaf that intersects itself in a way evaluate() refuses).
-  VolumeResult volume(const ModelVolumeOptions& options = {}) const;
+  VolumeResult volume(const VolumeOptions& options = {}) const;
+
+  /// The default grid cube of voxelize() and octree() for n cells per side: the result's box made
+  /// cubic with one cell of margin per side (n < 3 gets the margin of n = 3; raster/voxel_grid.h).
+  /// \throws InputError for an unbounded result (give explicit bounds instead).
+  VoxelBounds voxel_bounds(int n) const;
 
   /// Presence-buffer voxelization (raster/voxelize.h). \throws InputError for a resolution out of
   /// 1..4096, or an unbounded result without options.bounds.
@@ -138,7 +138,7 @@ class Model {
 
  private:
   struct State;
-  explicit Model(std::shared_ptr<const State> state) : state_(std::move(state)) {}
+  static std::shared_ptr<const State> make_state(Solid solid, std::vector<std::string> warnings);
   std::shared_ptr<const State> state_;
 };
 

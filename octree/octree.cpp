@@ -1,3 +1,4 @@
+#include "covering/detail/bvh_walk.h"
 #include "octree/octree.h"
 
 #include <algorithm>

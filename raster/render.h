@@ -56,6 +56,8 @@ std::array<uint8_t, 3> cap_colour();
 double render_bytes(int width, int height);
 
 /// Renders `solid` (with its prebuilt BVH) through `camera`.
+/// \pre closed leaves; camera from frame_camera() with a size of 1..16384 per side; a section
+/// normal that is finite and non-zero (Model::render checks).
 Image render(const Solid& solid, const Bvh& bvh, const Camera& camera,
              const RenderOptions& options = {});
 

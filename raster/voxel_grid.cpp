@@ -1,4 +1,5 @@
 #include "raster/voxel_grid.h"
+#include "solid/errors.h"
 
 #include <algorithm>
 #include <bit>
@@ -10,7 +11,7 @@ namespace cover {
 
 VoxelBounds default_voxel_bounds(const Bbox& box, int n) {
   if (n < 3)
-    throw std::invalid_argument("default_voxel_bounds: resolution " + std::to_string(n) +
+    throw PreconditionError("default_voxel_bounds: resolution " + std::to_string(n) +
                                 " < 3 leaves no room for the margin");
   // An empty box (nothing to enclose) is centred at the origin; a box with no extent (a point)
   // gets unit extent so that the cube keeps a positive size.

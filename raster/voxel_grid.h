@@ -23,7 +23,7 @@ struct VoxelBounds {
 
 /// Default bounds: the box made cubic around its centre, with a margin of one voxel per side:
 /// size = max extent · N/(N − 2). An empty box is taken as centred at the origin and a box of
-/// zero extent as having extent 1. Throws std::invalid_argument if N < 3.
+/// zero extent as having extent 1. \throws PreconditionError if N < 3.
 VoxelBounds default_voxel_bounds(const Bbox& box, int n);
 
 struct VoxelGrid {

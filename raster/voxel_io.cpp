@@ -345,12 +345,12 @@ void write_vti(OutputFile& out, const VoxelGrid& grid) {
 void check_grid(const VoxelGrid& grid) {
   const size_t n = static_cast<size_t>(std::max(grid.n, 0));
   if (grid.n <= 0 || grid.bits.size() != n * n * grid.words_per_column())
-    throw std::invalid_argument("write_voxels: grid of resolution " + std::to_string(grid.n) +
+    throw PreconditionError("write_voxels: grid of resolution " + std::to_string(grid.n) +
                                 " holds " + std::to_string(grid.bits.size()) + " words");
   if (!(grid.bounds.size > 0) || !std::isfinite(grid.bounds.size) ||
       !std::isfinite(grid.bounds.min.x) || !std::isfinite(grid.bounds.min.y) ||
       !std::isfinite(grid.bounds.min.z))
-    throw std::invalid_argument("write_voxels: bounds must be finite with a positive size");
+    throw PreconditionError("write_voxels: bounds must be finite with a positive size");
 }
 
 }  // namespace

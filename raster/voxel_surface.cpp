@@ -21,6 +21,7 @@
 // boundary corners (the only ones faces read), so nothing O(N²) is cleared per plane.
 
 #include "raster/voxel_surface.h"
+#include "solid/errors.h"
 
 #include <algorithm>
 #include <array>
@@ -168,7 +169,7 @@ class SurfaceBuilder {
         }
     }
     if (faces * 4 > UINT32_MAX)
-      throw std::length_error("voxel_surface: " + std::to_string(faces) +
+      throw NotComputable("voxel_surface: " + std::to_string(faces) +
                               " faces exceed 32-bit indices");
     mesh_.face_start.reserve(faces + 1);
     mesh_.face_vertices.reserve(faces * 4);
@@ -222,7 +223,7 @@ class SurfaceBuilder {
           const size_t idx = corner_index(j, k);
           const size_t base = mesh_.vertices.size();
           if (base + t.fans[mask] > UINT32_MAX)
-            throw std::length_error("voxel_surface: vertices exceed 32-bit indices");
+            throw NotComputable("voxel_surface: vertices exceed 32-bit indices");
           mask_[p][idx] = static_cast<uint8_t>(mask);
           base_[p][idx] = static_cast<uint32_t>(base);
           const Vec3 v{x, y, grid_.bounds.min.z + k * h_};
@@ -309,7 +310,7 @@ class SurfaceBuilder {
                      m[order[(x + 1) % 4]], voxel);
     }
     if (mesh_.face_vertices.size() > UINT32_MAX)
-      throw std::length_error("voxel_surface: face indices exceed 32 bits");
+      throw NotComputable("voxel_surface: face indices exceed 32 bits");
     mesh_.face_start.push_back(static_cast<uint32_t>(mesh_.face_vertices.size()));
   }
 
@@ -336,7 +337,7 @@ class SurfaceBuilder {
       return;
     }
     if (mesh_.vertices.size() >= UINT32_MAX)
-      throw std::length_error("voxel_surface: vertices exceed 32-bit indices");
+      throw NotComputable("voxel_surface: vertices exceed 32-bit indices");
     const uint32_t index = static_cast<uint32_t>(mesh_.vertices.size());
     std::array<double, 3> c;
     const std::array<double, 3> min = {grid_.bounds.min.x, grid_.bounds.min.y, grid_.bounds.min.z};

@@ -34,6 +34,9 @@ struct VoxelizeOptions {
 };
 
 /// Voxelizes the result of the CSG expression over an N×N×N grid.
+/// \pre closed leaves; 1 ≤ resolution ≤ 4096; bounds given or the result bounded; bounds finite
+/// with a positive size (Model::voxelize checks all of these). \throws PreconditionError when the
+/// default bounds need a resolution below 3 (default_voxel_bounds).
 VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options);
 
 /// The same into `grid`, reusing its memory (repeated voxelizations, benchmarks).

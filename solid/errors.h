@@ -13,7 +13,9 @@
 //   InternalError      (std::logic_error) an invariant of Cover's own failed: a bug in Cover.
 //                      COVER_ASSERT throws it; so do the checks that stay on in every build.
 // std::bad_alloc stays what it is (memory). Anything else escaping to the CLI's main() is an
-// internal failure (exit 1).
+// internal failure (exit 1). A public function documents with \throws what it throws beyond
+// std::bad_alloc and InternalError, and with \pre what it does not check; one without \throws
+// throws only those two.
 
 #include <stdexcept>
 #include <string>

@@ -5,7 +5,13 @@
 
 namespace cover {
 
-/// Axis-aligned box [min, max] as 6 quads. Precondition: min < max componentwise.
+/// Largest `segments` of a sphere (~8M faces) and of a cylinder (scenes and cover::sphere /
+/// cover::cylinder refuse more).
+inline constexpr int kMaxSphereSegments = 4096;
+inline constexpr int kMaxCylinderSegments = 1 << 20;
+
+/// Axis-aligned box [min, max] as 6 quads. \pre min < max componentwise, finite (cover::box
+/// checks; so do cover::sphere and cover::cylinder for the two below).
 PolygonMesh make_box(Vec3 min, Vec3 max);
 
 /// UV sphere with `segments` longitudes (>= 3) and max(2, segments/2) latitude bands; the

@@ -22,8 +22,6 @@ namespace {
 using nlohmann::json;
 
 constexpr int kMaxDepth = 256;              // nesting of operations
-constexpr int kMaxSphereSegments = 4096;    // ~8M faces
-constexpr int kMaxCylinderSegments = 1 << 20;
 
 /// Walks the scene JSON, keeping the JSON-pointer path of the current node for messages.
 class SceneReader {

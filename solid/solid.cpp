@@ -1,4 +1,5 @@
 #include "solid/solid.h"
+#include "solid/errors.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -84,7 +85,7 @@ namespace {
 /// Concatenates parts (paper §4 union) and roots them under a new node of kind `op`.
 /// Reverses the faces of parts[1..] when `flip_rest` (difference).
 Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
-  if (parts.empty()) throw std::invalid_argument("CSG operation without operands");
+  if (parts.empty()) throw PreconditionError("CSG operation without operands");
   Solid out = std::move(parts[0]);
   std::vector<uint32_t> roots{out.tree.root};
   for (size_t p = 1; p < parts.size(); ++p) {

@@ -82,6 +82,7 @@ PolygonMesh leaf_mesh(const Solid& solid, uint32_t leaf);
 /// Complement (paper §4): every face reversed, every sign negated.
 Solid complement(Solid a);
 /// Union of one or more solids (concatenation).
+/// \throws PreconditionError for no operands (also intersect(), subtract()).
 Solid unite(std::vector<Solid> parts);
 /// Intersection of one or more solids (concatenation; De Morgan keeps the signs).
 Solid intersect(std::vector<Solid> parts);

@@ -3,7 +3,11 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <numbers>
+#include <string>
+
+#include "solid/errors.h"
 
 namespace cover {
 
@@ -31,6 +35,33 @@ void apply_transform(const Affine& m, PolygonMesh& mesh) {
       std::reverse(mesh.face_vertices.begin() + mesh.face_start[f],
                    mesh.face_vertices.begin() + mesh.face_start[f + 1]);
   }
+}
+
+Solid transform_solid(const Affine& m, Solid solid) {
+  if (!m.allFinite()) throw InputError("transform: expected finite numbers");
+  if (m(3, 0) != 0 || m(3, 1) != 0 || m(3, 2) != 0 || m(3, 3) != 1)
+    throw InputError("transform: the last row must be 0 0 0 1");
+  const double det = m.topLeftCorner<3, 3>().determinant();
+  if (!(std::abs(det) > 0) || !std::isfinite(det)) throw InputError("transform: singular matrix");
+  for (size_t v = 0; v < solid.vertices.size(); ++v) {
+    Vec3& p = solid.vertices[v];
+    const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, 1.0);
+    p = {q.x(), q.y(), q.z()};
+    for (int a = 0; a < 3; ++a)
+      if (!(std::abs(p[a]) <= kMaxCoordinate))
+        throw InputError("transform: vertex " + std::to_string(v) +
+                         " is mapped outside the supported range [-2^64, 2^64]");
+  }
+  if (det < 0)
+    for (size_t f = 0; f < solid.face_count(); ++f)
+      std::reverse(solid.face_vertices.begin() + solid.face_start[f],
+                   solid.face_vertices.begin() + solid.face_start[f + 1]);
+  for (Leaf& leaf : solid.leaves) {
+    leaf.bbox = Bbox{};  // over the vertices of its faces, as make_leaf's face_bbox
+    for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f)
+      for (uint32_t v : solid.face(f)) leaf.bbox.add(solid.vertices[v]);
+  }
+  return solid;
 }
 
 }  // namespace cover

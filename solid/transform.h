@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "solid/polygon_mesh.h"
+#include "solid/solid.h"
 
 namespace cover {
 
@@ -19,5 +20,12 @@ Affine make_trs(Eigen::Vector3d scale, Eigen::Vector3d axis, double degrees,
 /// Applies `m` to every vertex; when det(m) < 0 every face is reversed so that a closed,
 /// outward mesh stays outward (mirroring keeps solids solid).
 void apply_transform(const Affine& m, PolygonMesh& mesh);
+
+/// The whole solid mapped by `m` (every leaf, the expression kept): vertices transformed and
+/// rounded once more, leaf boxes recomputed; when det(m) < 0 every stored face is reversed, which
+/// keeps each leaf outward and the covering's combined orientation (solid.h notation).
+/// \throws InputError when m is not affine (last row 0 0 0 1), has a non-finite entry or a
+/// singular linear part, or maps a vertex outside ±kMaxCoordinate.
+Solid transform_solid(const Affine& m, Solid solid);
 
 }  // namespace cover

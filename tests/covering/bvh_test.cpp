@@ -10,6 +10,7 @@
 #include <cstring>
 #include <tuple>
 
+#include "covering/detail/bvh_walk.h"
 #include "covering/detail/triangles.h"
 #include "covering/predicates.h"
 #include "helpers.h"

@@ -405,7 +405,7 @@ TEST(VoxelGrid, DefaultBoundsCentredCubeWithMargin) {
   EXPECT_GT(b.size, 0);
   EXPECT_NEAR(b.min.x + b.size / 2, 1, 1e-12);
   EXPECT_GT(default_voxel_bounds(Bbox{}, 10).size, 0);
-  EXPECT_THROW(default_voxel_bounds(box, 2), std::invalid_argument);
+  EXPECT_THROW(default_voxel_bounds(box, 2), PreconditionError);
 }
 
 }  // namespace

@@ -1,0 +1,308 @@
+#include "model/model.h"
+
+#include <cmath>
+#include <mutex>
+#include <string>
+#include <utility>
+
+#include "covering/bounds.h"
+#include "solid/parallel.h"
+#include "solid/primitives.h"
+
+namespace cover {
+
+// The shared, immutable state of a Model and its copies. The BVH is built on first use under
+// std::call_once (a throwing build leaves the flag unset, so a later call retries).
+struct Model::State {
+  Solid solid;
+  std::vector<std::string> warnings;
+  mutable std::once_flag bvh_once;
+  mutable std::optional<Bvh> bvh;
+};
+
+namespace {
+
+std::vector<std::string> joined(const std::vector<std::string>& a,
+                                const std::vector<std::string>& b) {
+  std::vector<std::string> out = a;
+  out.insert(out.end(), b.begin(), b.end());
+  return out;
+}
+
+bool finite(Vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+void check_points(std::span<const Vec3> points, const char* what) {
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!finite(points[i]))
+      throw InputError(std::string(what) + ": point " + std::to_string(i) +
+                       " has a non-finite coordinate");
+}
+
+void check_rays(std::span<const Ray> rays) {
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Ray& r = rays[i];
+    if (!finite(r.origin) || !finite(r.dir))
+      throw InputError("cast: ray " + std::to_string(i) + " has a non-finite origin or direction");
+    if (r.dir.x == 0 && r.dir.y == 0 && r.dir.z == 0)
+      throw InputError("cast: ray " + std::to_string(i) + " has a zero direction");
+  }
+}
+
+/// The mesh of a primitive as a leaf, repaired and checked as a scene's leaves are.
+Model primitive_leaf(PolygonMesh mesh, const std::string& kind) {
+  std::vector<std::string> warnings;
+  Solid s = prepare_leaf(std::move(mesh), kind, kind, LoadOptions{}, warnings);
+  return Model(std::move(s), std::move(warnings));
+}
+
+void check_vec(Vec3 v, const std::string& what) {
+  if (!finite(v)) throw InputError(what + ": expected finite numbers");
+}
+
+}  // namespace
+
+std::shared_ptr<const Model::State> Model::make_state(Solid solid,
+                                                     std::vector<std::string> warnings) {
+  auto state = std::make_shared<State>();
+  state->solid = std::move(solid);
+  state->warnings = std::move(warnings);
+  return state;
+}
+
+Model::Model() : state_(make_state(Solid{}, {})) {}
+
+Model::Model(Solid solid, std::vector<std::string> warnings)
+    : state_(make_state(std::move(solid), std::move(warnings))) {}
+
+const Solid& Model::solid() const { return state_->solid; }
+
+const std::vector<std::string>& Model::warnings() const { return state_->warnings; }
+
+const Bvh& Model::bvh() const {
+  std::call_once(state_->bvh_once, [this] { state_->bvh.emplace(state_->solid); });
+  return *state_->bvh;
+}
+
+// The empty Model (no leaves) is the empty set: it is the identity of union and absorbs
+// intersection; its complement (all of space) has no leaf to carry it.
+Model operator|(const Model& a, const Model& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return Model(unite({a.solid(), b.solid()}), joined(a.warnings(), b.warnings()));
+}
+
+Model operator&(const Model& a, const Model& b) {
+  if (a.empty()) return a;
+  if (b.empty()) return b;
+  return Model(intersect({a.solid(), b.solid()}), joined(a.warnings(), b.warnings()));
+}
+
+Model operator-(const Model& a, const Model& b) {
+  if (a.empty() || b.empty()) return a;
+  return Model(subtract({a.solid(), b.solid()}), joined(a.warnings(), b.warnings()));
+}
+
+Model Model::operator~() const {
+  if (empty()) throw PreconditionError("complement of the empty Model (all of space has no leaf)");
+  return Model(complement(solid()), warnings());
+}
+
+Model Model::transformed(const Affine& m) const {
+  Solid s = transform_solid(m, solid());
+  return Model(std::move(s), warnings());
+}
+
+bool Model::bounded() const { return empty() || is_bounded(solid()); }
+
+std::optional<Bbox> Model::bounds() const {
+  if (empty()) return Bbox{};
+  return result_bounds(solid());
+}
+
+std::vector<PointClass> Model::classify(std::span<const Vec3> points,
+                                        const ClassifyOptions& options) const {
+  check_points(points, "classify");
+  if (empty()) return std::vector<PointClass>(points.size(), PointClass::kOutside);
+  return cover::classify(solid(), bvh(), points, options);
+}
+
+LeafWindings Model::windings(std::span<const Vec3> points, const ClassifyOptions& options) const {
+  check_points(points, "windings");
+  if (empty()) return LeafWindings{};
+  return leaf_windings(solid(), bvh(), points, options);
+}
+
+std::vector<RayResult> Model::cast(std::span<const Ray> rays, const CastOptions& options) const {
+  check_rays(rays);
+  if (empty()) return std::vector<RayResult>(rays.size());
+  return cover::cast(bvh(), solid(), rays, options);
+}
+
+std::vector<FirstHit> Model::first_hits(std::span<const Ray> rays,
+                                        const CastOptions& options) const {
+  const std::vector<RayResult> all = cast(rays, options);
+  std::vector<FirstHit> out(all.size());
+  if (empty()) return out;
+  parallel_for(all.size(), options.grain, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) out[i] = first_hit(bvh(), all[i]);
+  });
+  return out;
+}
+
+VolumeResult Model::volume(const VolumeOptions& options) const {
+  if (empty()) {
+    VolumeResult r;
+    r.method = "covering";
+    r.area = 0.0;
+    return r;
+  }
+  VolumeResult r;
+  bool evaluate_instead = false;
+  try {
+    r = cover::volume(solid(), bvh(), options);  // with exact: NotComputable where only the B-rep is
+    evaluate_instead = !r.target_met && options.rays == 0;
+  } catch (const NotComputable&) {
+    if (!options.exact || !is_bounded(solid())) throw;
+    evaluate_instead = true;
+  }
+  if (!evaluate_instead) return r;
+  try {
+    const EvaluateResult e = cover::evaluate(solid());
+    r = VolumeResult{};
+    r.volume = e.volume;
+    r.area = e.area;
+    r.method = "brep";
+  } catch (const InputError&) {
+    if (options.exact) throw;  // a leaf evaluate() refuses: the ray result (target missed) stays
+  }
+  return r;
+}
+
+VoxelBounds Model::voxel_bounds(int n) const {
+  const std::optional<Bbox> box = bounds();
+  if (!box) throw InputError("the result is unbounded (a complement at the root): give bounds");
+  return default_voxel_bounds(!box->empty() ? *box : solid().bbox(), std::max(n, 3));
+}
+
+VoxelGrid Model::voxelize(const VoxelizeOptions& options) const {
+  if (options.resolution < 1 || options.resolution > 4096)
+    throw InputError("--res: expected a whole number from 1 to 4096, got " +
+                     std::to_string(options.resolution));
+  VoxelizeOptions o = options;
+  if (!o.bounds) o.bounds = voxel_bounds(o.resolution);
+  if (empty()) {
+    VoxelGrid grid;
+    grid.n = o.resolution;
+    grid.bounds = *o.bounds;
+    grid.bits.assign(static_cast<size_t>(grid.n) * grid.n * grid.words_per_column(), 0);
+    return grid;
+  }
+  return cover::voxelize(solid(), o);
+}
+
+Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBounds>& bounds) const {
+  if (empty()) throw PreconditionError("octree of the empty Model");
+  const int depth = std::clamp(options.depth, 0, 30);
+  const VoxelBounds b = bounds ? *bounds : voxel_bounds(1 << depth);
+  return build_octree(solid(), bvh(), b, options);
+}
+
+Camera Model::camera(const CameraOptions& options) const {
+  if (options.width < 1 || options.height < 1 || options.width > 16384 || options.height > 16384)
+    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
+                     std::to_string(options.width) + "x" + std::to_string(options.height));
+  const std::optional<Bbox> box = bounds();
+  return frame_camera(box && !box->empty() ? *box : solid().bbox(), options);
+}
+
+Image Model::render(const CameraOptions& camera_options, const RenderOptions& options) const {
+  return render(camera(camera_options), options);
+}
+
+Image Model::render(const Camera& camera, const RenderOptions& options) const {
+  if (camera.width < 1 || camera.height < 1 || camera.width > 16384 || camera.height > 16384)
+    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
+                     std::to_string(camera.width) + "x" + std::to_string(camera.height));
+  if (options.section) {
+    const Section& s = *options.section;
+    if (!finite(s.n) || !std::isfinite(s.d))
+      throw InputError("--section: expected finite numbers");
+    if (s.n.x == 0 && s.n.y == 0 && s.n.z == 0)
+      throw InputError("--section: the normal must be non-zero");
+  }
+  return cover::render(solid(), bvh(), camera, options);
+}
+
+EvaluateResult Model::evaluate(const EvaluateOptions& options) const {
+  if (empty()) return EvaluateResult{};
+  return cover::evaluate(solid(), options);
+}
+
+brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& options) const {
+  if (empty()) return brep::ClipResult{};
+  if (!is_bounded(solid()))
+    throw InputError("clip: the result is unbounded (a complement at the root)");
+  const Solid& s = solid();
+  const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
+  return brep::clip(one_leaf ? leaf_mesh(s, 0) : cover::evaluate(s).mesh, plane, options);
+}
+
+Model load(const std::filesystem::path& path, const LoadOptions& options) {
+  LoadedInput in = load_input(path, options);
+  return Model(std::move(in.solid), std::move(in.warnings));
+}
+
+Model box(Vec3 min, Vec3 max) {
+  check_vec(min, "box min");
+  check_vec(max, "box max");
+  if (!(min.x < max.x && min.y < max.y && min.z < max.z))
+    throw InputError("box: expected min < max on every axis");
+  return primitive_leaf(make_box(min, max), "box");
+}
+
+Model sphere(Vec3 center, double radius, int segments) {
+  check_vec(center, "sphere center");
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw InputError("sphere: expected a finite radius > 0");
+  if (segments < 3 || segments > kMaxSphereSegments)
+    throw InputError("sphere: expected segments from 3 to " + std::to_string(kMaxSphereSegments));
+  return primitive_leaf(make_sphere(center, radius, segments), "sphere");
+}
+
+Model cylinder(Vec3 base, Vec3 top, double radius, int segments) {
+  check_vec(base, "cylinder base");
+  check_vec(top, "cylinder top");
+  if (base == top) throw InputError("cylinder: base and top coincide");
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw InputError("cylinder: expected a finite radius > 0");
+  if (segments < 3 || segments > kMaxCylinderSegments)
+    throw InputError("cylinder: expected segments from 3 to " +
+                     std::to_string(kMaxCylinderSegments));
+  return primitive_leaf(make_cylinder(base, top, radius, segments), "cylinder");
+}
+
+Model mesh(std::span<const Vec3> vertices, std::span<const std::array<uint32_t, 3>> triangles,
+           const std::string& name, const LoadOptions& options) {
+  PolygonMesh m;
+  m.vertices.assign(vertices.begin(), vertices.end());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    for (uint32_t v : triangles[t])
+      if (v >= vertices.size())
+        throw InputError(name + ": triangle " + std::to_string(t) + ": vertex index " +
+                         std::to_string(v) + " out of range (" + std::to_string(vertices.size()) +
+                         " vertices)");
+    m.add_face(triangles[t]);
+  }
+  return mesh(std::move(m), name, options);
+}
+
+Model mesh(PolygonMesh polygons, const std::string& name, const LoadOptions& options) {
+  for (size_t v = 0; v < polygons.vertices.size(); ++v)
+    if (!finite(polygons.vertices[v]))
+      throw InputError(name + ": vertex " + std::to_string(v) + " has a non-finite coordinate");
+  std::vector<std::string> warnings;
+  Solid s = prepare_leaf(std::move(polygons), name, name, options, warnings);
+  return Model(std::move(s), std::move(warnings));
+}
+
+}  // namespace cover

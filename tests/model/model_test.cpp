@@ -1,0 +1,251 @@
+// cover::Model (model/model.h) against the free-function kernels it wraps and against analytic
+// answers: operators build the same solid as solid/solid.h's concatenation; every query equals
+// the free function on the same solid; the BVH is built once and shared by copies and threads;
+// errors are the documented types with one-line messages.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+#include <thread>
+
+#include "covering/bounds.h"
+#include "covering/classify.h"
+#include "covering/ray.h"
+#include "solid/measure.h"
+#include "helpers.h"
+#include "model/model.h"
+#include "solid/errors.h"
+#include "solid/primitives.h"
+#include "solid/transform.h"
+
+namespace cover {
+namespace {
+
+std::vector<Vec3> random_points(size_t n, double lo, double hi, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(lo, hi);
+  std::vector<Vec3> points(n);
+  for (Vec3& p : points) p = {u(rng), u(rng), u(rng)};
+  return points;
+}
+
+/// (box − sphere) ∪ bar: the consumer example's part.
+Model part() {
+  return (box({0, 0, 0}, {2, 2, 2}) - sphere({2, 2, 2}, 1, 32)) | box({1.5, 0.5, 0.5}, {3.5, 1, 1});
+}
+
+TEST(Model, OperatorsBuildTheConcatenatedSolid) {
+  const Model a = box({0, 0, 0}, {2, 2, 2}), b = sphere({2, 2, 2}, 1, 16);
+  const Solid sa = make_leaf(make_box({0, 0, 0}, {2, 2, 2}), "box");
+  const Solid sb = make_leaf(make_sphere({2, 2, 2}, 1, 16), "sphere");
+  const std::vector<Vec3> points = random_points(5000, -0.5, 3.5, 1);
+  const std::pair<Model, Solid> cases[] = {{a | b, unite({sa, sb})},
+                                           {a & b, intersect({sa, sb})},
+                                           {a - b, subtract({sa, sb})},
+                                           {~(~a), complement(complement(sa))}};
+  for (const auto& [model, solid] : cases) {
+    EXPECT_EQ(model.leaf_count(), solid.leaves.size());
+    EXPECT_EQ(model.classify(points), classify(solid, points));
+  }
+  // The operands are unchanged (value semantics).
+  EXPECT_EQ(a.leaf_count(), 1u);
+  EXPECT_EQ(a.solid().tree.nodes.size(), 1u);
+}
+
+TEST(Model, ClassifyEqualsBruteForceOnRandomAndLatticePoints) {
+  const Model m = part();
+  std::vector<Vec3> points = random_points(20000, -0.5, 4, 2);
+  for (int i = 0; i <= 8; ++i)  // the boxes' corners, edges and faces lie on this lattice
+    for (int j = 0; j <= 8; ++j)
+      for (int k = 0; k <= 8; ++k) points.push_back({i * 0.5, j * 0.25, k * 0.25});
+  EXPECT_EQ(m.classify(points), classify_brute_force(m.solid(), points));
+  EXPECT_EQ(to_string(m.classify(std::vector<Vec3>{{0.5, 0.5, 0.5}})[0]), "inside");
+}
+
+TEST(Model, WindingsAreEachLeafsWindingNumber) {
+  const Model m = part();
+  const std::vector<Vec3> points = random_points(3000, -0.5, 4, 3);
+  const LeafWindings w = m.windings(points);
+  ASSERT_EQ(w.leaves, 3u);
+  ASSERT_EQ(w.winding.size(), points.size() * 3);
+  std::vector<int> one;
+  std::vector<uint8_t> on;
+  size_t inside = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    leaf_windings(m.solid(), points[i], one, on);
+    for (size_t l = 0; l < 3; ++l) {
+      EXPECT_EQ(w.on_surface[i * 3 + l], on[l]) << i;
+      if (!on[l]) {
+        EXPECT_EQ(w.winding[i * 3 + l], one[l]) << i;
+      }
+      inside += w.winding[i * 3 + l] != 0;
+    }
+  }
+  EXPECT_GT(inside, 0u);
+}
+
+TEST(Model, VolumeExactCoveringRaysAndBrep) {
+  // Disjoint boxes: the covering is exact.
+  const Model two = box({0, 0, 0}, {1, 1, 1}) | box({2, 0, 0}, {3, 2, 1});
+  const VolumeResult v = two.volume();
+  EXPECT_EQ(v.method, "covering");
+  EXPECT_DOUBLE_EQ(v.volume, 3.0);
+  EXPECT_EQ(v.error_bound, 0);
+  // Overlapping: rays within their bound of the exact B-rep volume, and --exact gives the B-rep.
+  const Model m = part();
+  const double exact = m.evaluate().volume;
+  VolumeOptions rays;
+  rays.rays = 64;
+  const VolumeResult r = m.volume(rays);
+  EXPECT_EQ(r.method, "rays");
+  EXPECT_LE(std::abs(r.volume - exact), r.error_bound + 1e-12 * exact);
+  VolumeOptions exact_options;
+  exact_options.exact = true;
+  const VolumeResult e = m.volume(exact_options);
+  EXPECT_EQ(e.method, "brep");
+  EXPECT_EQ(e.volume, exact);
+  EXPECT_EQ(e.error_bound, 0);
+  ASSERT_TRUE(e.area.has_value());
+  // Unbounded.
+  EXPECT_THROW((~m).volume(), NotComputable);
+}
+
+TEST(Model, TransformedEqualsTransformingEveryLeaf) {
+  const Affine t = make_trs({2, 2, 2}, {0, 0, 1}, 90, {1, -3, 0.5});
+  const Model m = part().transformed(t);
+  PolygonMesh b = make_box({0, 0, 0}, {2, 2, 2}), s = make_sphere({2, 2, 2}, 1, 32),
+              bar = make_box({1.5, 0.5, 0.5}, {3.5, 1, 1});
+  for (PolygonMesh* mesh : {&b, &s, &bar}) apply_transform(t, *mesh);
+  const Solid expected = unite({subtract({make_leaf(b, "box"), make_leaf(s, "sphere")}),
+                                make_leaf(bar, "box")});
+  const std::vector<Vec3> points = random_points(5000, -8, 8, 4);
+  EXPECT_EQ(m.classify(points), classify(expected, points));
+  // A mirror keeps the solid solid (faces re-oriented): the volume keeps its sign.
+  Affine mirror = Affine::Identity();
+  mirror(0, 0) = -1;
+  EXPECT_DOUBLE_EQ(box({0, 0, 0}, {1, 2, 3}).transformed(mirror).volume().volume, 6.0);
+  Affine bad = Affine::Identity();
+  bad(3, 0) = 1;
+  EXPECT_THROW(part().transformed(bad), InputError);
+  EXPECT_THROW(part().transformed(Affine::Zero()), InputError);
+}
+
+TEST(Model, CastAndFirstHitsEqualTheKernel) {
+  const Model m = part();
+  std::vector<Ray> rays;
+  for (const Vec3& o : random_points(500, -1, 4, 5)) rays.push_back({o, {1, 0.25, 0.125}});
+  const std::vector<RayResult> all = m.cast(rays);
+  const Bvh bvh(m.solid());
+  const std::vector<RayResult> direct = cast(bvh, m.solid(), rays);
+  const std::vector<FirstHit> first = m.first_hits(rays);
+  ASSERT_EQ(all.size(), rays.size());
+  size_t hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_EQ(all[i].spans.size(), direct[i].spans.size());
+    for (size_t k = 0; k < all[i].spans.size(); ++k) EXPECT_EQ(all[i].spans[k].t0, direct[i].spans[k].t0);
+    const FirstHit expected = first_hit(bvh, direct[i]);
+    EXPECT_EQ(first[i].hit, expected.hit);
+    EXPECT_EQ(first[i].t, expected.t);
+    hits += first[i].hit;
+  }
+  EXPECT_GT(hits, 0u);
+  std::vector<Ray> zero{{{0, 0, 0}, {0, 0, 0}}};
+  EXPECT_THROW(m.cast(zero), InputError);
+}
+
+TEST(Model, VoxelizeOctreeRenderAndClipEqualTheKernels) {
+  const Model m = part();
+  VoxelizeOptions vo;
+  vo.resolution = 32;
+  const VoxelGrid grid = m.voxelize(vo);
+  vo.bounds = m.voxel_bounds(32);
+  const VoxelGrid direct = voxelize(m.solid(), vo);
+  EXPECT_EQ(grid.bits, direct.bits);
+  EXPECT_GT(grid.count(), 0u);
+
+  OctreeOptions oo;
+  oo.depth = 4;
+  const Octree tree = m.octree(oo);
+  const Octree direct_tree = build_octree(m.solid(), m.voxel_bounds(16), oo);
+  ASSERT_EQ(tree.nodes.size(), direct_tree.nodes.size());
+  EXPECT_EQ(tree.leaf_counts(), direct_tree.leaf_counts());
+
+  CameraOptions co;
+  co.width = 64;
+  co.height = 48;
+  const Image image = m.render(co);
+  const Image direct_image = render(m.solid(), Bvh(m.solid()), m.camera(co), {});
+  EXPECT_EQ(image.rgb, direct_image.rgb);
+  co.width = 0;
+  EXPECT_THROW(m.render(co), InputError);
+
+  const brep::ClipResult clipped = m.clip({{0, 0, 1}, 0.75});
+  const double exact = m.evaluate().volume;
+  const double halves = signed_volume(clipped.above.mesh) + signed_volume(clipped.below.mesh);
+  EXPECT_NEAR(halves, exact, 1e-12 * exact);
+}
+
+TEST(Model, BvhBuiltOnceSharedByCopiesAndThreads) {
+  const Model m = part();
+  const Model copy = m;  // NOLINT(performance-unnecessary-copy-initialization): shares the state
+  const std::vector<Vec3> points = random_points(20000, -0.5, 4, 6);
+  const std::vector<PointClass> expected = classify_brute_force(m.solid(), points);
+  std::vector<std::vector<PointClass>> results(4);
+  std::vector<const Bvh*> bvhs(4);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      const Model& which = t % 2 ? copy : m;
+      results[t] = which.classify(points);
+      bvhs[t] = &which.bvh();
+    });
+  for (std::thread& t : threads) t.join();
+  for (int t = 0; t < 4; ++t) {
+    EXPECT_EQ(results[t], expected);
+    EXPECT_EQ(bvhs[t], bvhs[0]);
+  }
+}
+
+TEST(Model, EmptyModelIsTheEmptySet) {
+  const Model empty;
+  const Model b = box({0, 0, 0}, {1, 1, 1});
+  EXPECT_TRUE(empty.empty());
+  EXPECT_EQ((empty | b).leaf_count(), 1u);
+  EXPECT_TRUE((empty & b).empty());
+  EXPECT_TRUE((empty - b).empty());
+  EXPECT_EQ((b - empty).leaf_count(), 1u);
+  EXPECT_EQ(empty.volume().volume, 0);
+  EXPECT_EQ(empty.classify(std::vector<Vec3>{{0, 0, 0}})[0], PointClass::kOutside);
+  EXPECT_EQ(empty.evaluate().mesh.face_count(), 0u);
+  EXPECT_THROW(~empty, PreconditionError);
+}
+
+TEST(Model, LoadAndMeshFromArrays) {
+  const Model frame = load(test::source_dir() / "models" / "frame.off");
+  EXPECT_EQ(frame.leaf_count(), 1u);
+  EXPECT_THROW(load(test::source_dir() / "models" / "missing.off"), InputError);
+  try {
+    load(test::source_dir() / "models" / "missing.off");
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.off"), std::string::npos);
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+  // A tetrahedron from arrays, given inside-out: reversed on load (a warning), volume 1/6.
+  const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const std::vector<std::array<uint32_t, 3>> inside_out = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  const Model tet = mesh(v, inside_out, "tet");
+  EXPECT_DOUBLE_EQ(tet.volume().volume, 1.0 / 6.0);
+  EXPECT_EQ(tet.warnings().size(), 1u);
+  const std::vector<std::array<uint32_t, 3>> bad_index = {{0, 1, 7}};
+  EXPECT_THROW(mesh(v, bad_index, "tet"), InputError);
+  const std::vector<std::array<uint32_t, 3>> open = {{0, 2, 1}, {0, 1, 3}};
+  EXPECT_THROW(mesh(v, open, "tet"), InputError);
+  EXPECT_THROW(box({0, 0, 0}, {0, 1, 1}), InputError);
+  EXPECT_THROW(sphere({0, 0, 0}, -1), InputError);
+  EXPECT_THROW(cylinder({0, 0, 0}, {0, 0, 0}, 1), InputError);
+  const std::vector<Vec3> nan_point = {{std::nan(""), 0, 0}};
+  EXPECT_THROW(tet.classify(nan_point), InputError);
+}
+
+}  // namespace
+}  // namespace cover
