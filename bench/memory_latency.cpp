@@ -3,7 +3,7 @@
 // (LargeVector: transparent huge pages), and the time per line when C chains are walked
 // interleaved (how far independent misses overlap: what walk_batch relies on).
 // Why: at 1M triangles the BVH is 80 MB; whether a query's loads hit the cache or DRAM, and
-// what a miss costs, decides how far its time departs from its node count (README "Scaling").
+// what a miss costs, decides how far its time departs from its node count (docs/benchmarks.md).
 // Usage: memory_latency [--chains C (24)] [--max-mb M (128)]
 #include <algorithm>
 #include <chrono>

@@ -7,7 +7,7 @@
 //                cast() finds) and first_intersection, tree prebuilt, per ray
 // Each round times one pass of every method over its Q queries at every size, so the host's
 // slow spells fall on all of them alike; per query, min and median over the rounds. The last
-// lines are the 1M / 10k ratios of each column next to log n's (README "Scaling").
+// lines are the 1M / 10k ratios of each column next to log n's (docs/benchmarks.md).
 // Hits are compared too: Cover's hit count per ray against CGAL's all_intersections (a ray
 // through an edge or vertex may differ: CGAL reports a point per triangle touched).
 // Usage: scaling_vs_cgal [--queries Q (64000)] [--rounds R (5)] [--max N (1000000)]

@@ -66,7 +66,7 @@ class Bvh {
   /// block's distinct vertices (by vertex index; 24 bytes each, the exact doubles). Why: a leaf
   /// of a mesh shares most vertices between its triangles (3.2 triangles and about 5.5 vertices
   /// per leaf on the benchmark sphere), so the BVH takes 80 bytes per triangle instead of 100,
-  /// and a leaf read touches about 4 cache lines instead of 5–6 (README "Scaling"). Fields are
+  /// and a leaf read touches about 4 cache lines instead of 5–6 (docs/benchmarks.md). Fields are
   /// read with memcpy (the words hold bytes of several types).
   class LeafBlock {
    public:

@@ -61,7 +61,7 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
 /// leaf's first and count are copied when its node is tested, so the leaf pass reads blocks
 /// only, no node lines. Measured in bench/bench_queries
 /// (BM_ClassifyPoint, batches of 1000 random points; BM_CastRay, one ray per call; 1 thread): see
-/// README "Scaling". Each query's calls are walk()'s, in another order: callers must not depend
+/// docs/benchmarks.md. Each query's calls are walk()'s, in another order: callers must not depend
 /// on it.
 /// meets_both(j, a, b) tests two boxes at once (bit 0: a meets query j, bit 1: b does), so that a
 /// caller can test a node's children in SIMD lanes; the root is tested as (root, root).
