@@ -1,10 +1,12 @@
 #include "cli/commands.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -245,6 +247,58 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
 
 namespace cover::cli {
 
+namespace {
+
+/// One frame of `cover render`: its camera options and the suffix of its files ("" for a
+/// single frame, "_000" ... for --turntable, "_iso" ... for --views).
+struct Frame {
+  std::string suffix;
+  CameraOptions camera;
+};
+
+/// PATH with `suffix` before its extension (out.png, "_iso" → out_iso.png).
+std::string with_suffix(const std::string& path, const std::string& suffix) {
+  if (path.empty() || suffix.empty()) return path;
+  const std::filesystem::path p = path;
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+/// The frames of --turntable N (azimuth 360·k/N from the chosen view) or --views a,b,c (each
+/// named view), else the one frame of the options.
+std::vector<Frame> render_frames(const RenderCommandOptions& o, const CameraOptions& base) {
+  std::vector<Frame> frames;
+  if (o.turntable > 0) {
+    const int digits = std::max<int>(3, std::to_string(o.turntable - 1).size());
+    for (int k = 0; k < o.turntable; ++k) {
+      std::string number = std::to_string(k);
+      number.insert(number.begin(), static_cast<size_t>(digits) - number.size(), '0');
+      Frame f{"_" + number, base};
+      f.camera.azimuth_degrees = base.azimuth_degrees + 360.0 * k / o.turntable;
+      frames.push_back(std::move(f));
+    }
+  } else if (!o.views.empty()) {
+    std::vector<std::string> seen;
+    size_t begin = 0;
+    for (;;) {
+      const size_t end = std::min(o.views.find(',', begin), o.views.size());
+      const std::string name = o.views.substr(begin, end - begin);
+      if (std::find(seen.begin(), seen.end(), name) != seen.end())
+        throw InputError("--views: view '" + name + "' given twice");
+      Frame f{"_" + name, base};
+      f.camera.view = parse_view(name);  // "--view: unknown view ..." names the option
+      seen.push_back(name);
+      frames.push_back(std::move(f));
+      if (end == o.views.size()) break;
+      begin = end + 1;
+    }
+  } else {
+    frames.push_back({"", base});
+  }
+  return frames;
+}
+
+}  // namespace
+
 int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   Timing timing;
   for (const std::string& image : {o.output, o.depth, o.ids})
@@ -252,12 +306,14 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   CameraOptions co;
   co.view = parse_view(o.view);
   co.perspective = o.perspective;
+  co.azimuth_degrees = o.azimuth;
   const std::vector<double> size = parse_numbers(o.size, "--size", 2, "xX");
   if (size[0] < 1 || size[1] < 1 || size[0] > 16384 || size[1] > 16384 || size[0] != std::floor(size[0]) ||
       size[1] != std::floor(size[1]))
     throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got '" + o.size + "'");
   co.width = static_cast<int>(size[0]);
   co.height = static_cast<int>(size[1]);
+  // Frames are rendered one after the other: one frame's buffers at a time.
   check_memory(render_bytes(co.width, co.height), common.max_memory_bytes(),
                "--size " + o.size + ": the image");
   RenderOptions ro;
@@ -272,35 +328,55 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
     if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--section: the normal must be non-zero");
     ro.section = Section{{p[0], p[1], p[2]}, p[3]};
   }
+  const std::vector<Frame> frames = render_frames(o, co);
   const Model model = load_model(o.input, common.load_options());
   timing.lap(Timing::kLoad);
-  // Frames the result's box when bounded, else every leaf (Model::camera).
-  const Camera camera = model.camera(co);
+  // Every frame through the one Model: one load and one BVH for all of them. Each frame's files
+  // join the batch as soon as it is drawn (frames one at a time); all are committed together.
   Progress progress("render", common.quiet);
-  ro.progress = [&progress](size_t done, size_t total) { progress.update(done, total); };
-  const Image image = model.render(camera, ro);
-  progress.finish();
-  timing.lap(Timing::kKernel);
   OutputBatch outputs;
-  write_png_rgb(o.output, image.width, image.height, image.rgb);
-  if (!o.depth.empty()) write_png_gray16(o.depth, image.width, image.height, image.depth);
-  if (!o.ids.empty()) write_png_gray16(o.ids, image.width, image.height, image.ids);
+  json frames_json = json::array();
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const Camera camera = model.camera(frames[f].camera);  // frames the result's box (Model::camera)
+    ro.progress = [&](size_t done, size_t total) {
+      progress.update(f * total + done, frames.size() * total);
+    };
+    const Image image = model.render(camera, ro);
+    timing.lap(Timing::kKernel);
+    const std::string& sfx = frames[f].suffix;
+    write_png_rgb(with_suffix(o.output, sfx), image.width, image.height, image.rgb);
+    if (!o.depth.empty())
+      write_png_gray16(with_suffix(o.depth, sfx), image.width, image.height, image.depth);
+    if (!o.ids.empty()) write_png_gray16(with_suffix(o.ids, sfx), image.width, image.height, image.ids);
+    timing.lap(Timing::kWrite);
+    json fj;
+    fj["output"] = with_suffix(o.output, sfx);
+    fj["camera"] = camera_json(camera);
+    frames_json.push_back(std::move(fj));
+  }
+  progress.finish();
   outputs.commit();
   timing.lap(Timing::kWrite);
   const Solid& s = model.solid();
   json j;
-  j["width"] = image.width;
-  j["height"] = image.height;
-  j["rays"] = static_cast<size_t>(image.width) * image.height;
+  j["width"] = co.width;
+  j["height"] = co.height;
+  j["rays"] = static_cast<size_t>(co.width) * co.height * frames.size();
   timing.put(j);
-  j["camera"] = camera_json(camera);
+  j["camera"] = frames_json[0]["camera"];
+  if (frames.size() > 1) j["frames"] = std::move(frames_json);
   j["ids"] = json::object({{"0", "background"}, {"65535", "section cap"}});
   for (size_t l = 0; l < s.leaves.size(); ++l) j["ids"][std::to_string(l + 1)] = s.leaves[l].name;
   if (common.json) {
     std::cout << j.dump() << "\n";
+  } else if (frames.size() == 1) {
+    std::printf("%s: %dx%d, %zu rays, %.3f s\n", o.output.c_str(), co.width, co.height,
+                static_cast<size_t>(co.width) * co.height, j["seconds"].get<double>());
   } else {
-    std::printf("%s: %dx%d, %zu rays, %.3f s\n", o.output.c_str(), image.width, image.height,
-                static_cast<size_t>(image.width) * image.height, j["seconds"].get<double>());
+    std::printf("%zu frames %s ... %s: %dx%d, %zu rays, %.3f s\n", frames.size(),
+                with_suffix(o.output, frames.front().suffix).c_str(),
+                with_suffix(o.output, frames.back().suffix).c_str(), co.width, co.height,
+                static_cast<size_t>(co.width) * co.height * frames.size(), j["seconds"].get<double>());
   }
   return 0;
 }

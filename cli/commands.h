@@ -61,6 +61,9 @@ struct RenderCommandOptions {
   std::string ids;          ///< --ids I.png
   std::string background = "255,255,255";
   bool outline = true;
+  double azimuth = 0;       ///< --azimuth DEG: the view turned about the vertical axis
+  int turntable = 0;        ///< --turntable N: N frames OUT_000.png ... around the vertical axis
+  std::string views;        ///< --views iso,front,...: one frame per view, OUT_iso.png ...
 };
 
 struct VoxelizeCommandOptions {

@@ -144,6 +144,17 @@ int main(int argc, char** argv) {
   ren_cmd->add_option("--background", ren.background, "Background colour r,g,b (0-255)")
       ->capture_default_str();
   ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
+  ren_cmd->add_option("--azimuth", ren.azimuth,
+                      "Turn the view about the vertical axis by DEG (counter-clockwise from above)")
+      ->check(real_number(-360, 360));
+  auto* turntable = ren_cmd->add_option("--turntable", ren.turntable,
+                                        "N frames around the vertical axis: OUT_000.png ... "
+                                        "(one load, one BVH)")
+                        ->transform(whole_number(1, 3600));
+  ren_cmd->add_option("--views", ren.views,
+                      "Frames from several views, e.g. iso,front,top: OUT_iso.png ... "
+                      "(one load, one BVH)")
+      ->excludes(turntable);
   add_common(ren_cmd, common);
 
   cover::cli::VoxelizeCommandOptions vox;

@@ -60,7 +60,13 @@ Camera frame_camera(const Bbox& box, const CameraOptions& o) {
   double radius = box.empty() ? 1 : 0.5 * std::sqrt(dot(box.max - box.min, box.max - box.min));
   if (!(radius > 0)) radius = 1;
   radius *= 1.05;
-  const ViewFrame f = frame_of(o.view);
+  ViewFrame f = frame_of(o.view);
+  if (o.azimuth_degrees != 0) {
+    const double a = o.azimuth_degrees * std::numbers::pi / 180.0;
+    const double ca = std::cos(a), sa = std::sin(a);
+    auto turn = [&](Vec3 v) { return Vec3{ca * v.x - sa * v.y, sa * v.x + ca * v.y, v.z}; };
+    f = {turn(f.from), turn(f.up)};
+  }
   c.forward = unit(-1.0 * f.from);
   c.right = unit(cross(c.forward, f.up));
   c.up = cross(c.right, c.forward);

@@ -23,6 +23,9 @@ struct CameraOptions {
   int width = 800;           ///< pixels
   int height = 600;          ///< pixels
   double fov_degrees = 40;   ///< perspective: field of view of the shorter image side
+  /// The view turned about the vertical (+z) axis through the framed centre, counter-clockwise
+  /// seen from above (a turntable frame: 360·k/N); the framing does not change.
+  double azimuth_degrees = 0;
 };
 
 struct Camera {

@@ -100,7 +100,9 @@ TEST(Ray, BatchSingleAndDepthFirstAgree) {
     const VisibleHit want = first_visible(single, 0, INFINITY);
     const VisibleHit got = first_visible(bvh, s.tree, s.leaves.size(), rays[i], 0, INFINITY);
     EXPECT_EQ(want.hit, got.hit) << i;
-    if (want.hit) EXPECT_EQ(want.t, got.t) << i;
+    if (want.hit) {
+      EXPECT_EQ(want.t, got.t) << i;
+    }
   }
 }
 
