@@ -284,7 +284,7 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   if (!o.section.empty()) {
     const std::vector<double> p = parse_numbers(o.section, "--section", 4, ",");
     if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--section: the normal must be non-zero");
-    ro.section = Section{{p[0], p[1], p[2]}, p[3]};
+    ro.section = Plane{{p[0], p[1], p[2]}, p[3]};
   }
   // Frame the result's box when bounded, else every leaf.
   const std::optional<Bbox> bounds = result_bounds(in.solid);

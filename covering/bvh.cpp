@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "covering/detail/float_bounds.h"
-#include "covering/predicates.h"
 #include "solid/parallel.h"
+#include "solid/predicates.h"
 
 namespace cover {
 namespace {

@@ -10,7 +10,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "covering/predicates.h"
+#include "solid/predicates.h"
 
 namespace cover::detail {
 namespace {
