@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <numeric>
 #include <stdexcept>
 
 #include "boolean/detail/arrangement.h"

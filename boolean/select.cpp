@@ -28,7 +28,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 
 #include "boolean/detail/arrangement.h"

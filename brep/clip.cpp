@@ -1,7 +1,7 @@
 // Plane clip on the HalfedgeMesh (paper §3 "open cutting boundaries", DESIGN.md §6).
 //
 // Steps, all with the kernel's operators:
-//   1. exact side s(v) ∈ {−1, 0, +1} of every input vertex (detail::plane_side, no tolerance);
+//   1. exact side s(v) ∈ {−1, 0, +1} of every input vertex (plane_side, no tolerance);
 //   2. a face with vertices on both sides whose boundary meets the plane more than twice (only a
 //      non-convex face can) is first triangulated by ear clipping in its own projection plane
 //      (exact orient2d on the input doubles): we triangulate such faces rather than pairing the
@@ -24,14 +24,10 @@
 #include "brep/detail/ear_clip.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
+#include "solid/triangulate.h"
 
 namespace cover::brep {
 namespace {
-
-int dominant_axis(const Vec3& n) {
-  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
-  return ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
-}
 
 /// Ear-clip face f (its input vertices, in the projection of its Newell normal) with split_face.
 void triangulate_face(HalfedgeMesh& m, uint32_t f) {
@@ -106,7 +102,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   std::vector<int8_t> side(n0);
   parallel_for(n0, 4096, [&](size_t b, size_t e) {
     for (size_t v = b; v < e; ++v)
-      side[v] = static_cast<int8_t>(detail::plane_side(n, plane.offset, mesh.vertices[v]));
+      side[v] = static_cast<int8_t>(plane_side(n, plane.offset, mesh.vertices[v]));
   });
   auto sign_of = [&](uint32_t v) { return v < n0 ? side[v] : int8_t{0}; };
 
@@ -169,7 +165,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
       h = m.next(h);
     } while (h != m.face_halfedge(f));
     if (s == 0) {  // in the plane: all its vertices are input vertices
-      const int area = detail::polygon_orientation(loop, ctx.axis);
+      const int area = polygon_orientation(loop, ctx.axis);
       s = -area * (n[ctx.axis] > 0 ? 1 : -1);  // normal·n < 0 → above
       if (s == 0) s = 1;
     }

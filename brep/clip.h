@@ -13,11 +13,8 @@
 
 namespace cover::brep {
 
-/// The plane n·x = d (n need not be unit length; n ≠ 0).
-struct Plane {
-  Vec3 normal;
-  double offset = 0;
-};
+/// The clip plane n·x = d (solid/types.h; n need not be unit length; n ≠ 0).
+using cover::Plane;
 
 struct ClipOptions {
   bool triangulate_caps = false;  ///< caps as triangles; default: convex polygons (paper §4)

@@ -1,18 +1,9 @@
 // validate(HalfedgeMesh): link invariants, closedness, fans per vertex, Euler characteristic,
 // components, boundary loops and genus (χ = 2C − 2g − B for an orientable surface).
-#include <numeric>
-
 #include "brep/halfedge.h"
+#include "solid/union_find.h"
 
 namespace cover::brep {
-namespace {
-
-uint32_t find(std::vector<uint32_t>& parent, uint32_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
-}  // namespace
 
 BrepReport validate(const HalfedgeMesh& m) {
   BrepReport r;
@@ -87,12 +78,11 @@ BrepReport validate(const HalfedgeMesh& m) {
   r.manifold = true;
   for (uint32_t v = 0; v < nv; ++v) r.manifold = r.manifold && fans[v] <= 1;
 
-  std::vector<uint32_t> parent(nv);
-  std::iota(parent.begin(), parent.end(), 0u);
+  UnionFind sets(nv);
   for (uint32_t h = 0; h < nh; h += 2)
-    if (!m.edge_deleted(h)) parent[find(parent, m.origin(h))] = find(parent, m.head(h));
+    if (!m.edge_deleted(h)) sets.unite(m.origin(h), m.head(h));
   for (uint32_t v = 0; v < nv; ++v)
-    if (!m.vertex_deleted(v) && degree[v] > 0 && find(parent, v) == v) ++r.components;
+    if (!m.vertex_deleted(v) && degree[v] > 0 && sets.find(v) == v) ++r.components;
 
   std::vector<uint8_t> walked(nh, 0);
   for (uint32_t h = 0; h < nh; ++h) {

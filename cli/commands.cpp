@@ -326,7 +326,7 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   if (!o.section.empty()) {
     const std::vector<double> p = parse_numbers(o.section, "--section", 4, ",");
     if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--section: the normal must be non-zero");
-    ro.section = Section{{p[0], p[1], p[2]}, p[3]};
+    ro.section = Plane{{p[0], p[1], p[2]}, p[3]};
   }
   const std::vector<Frame> frames = render_frames(o, co);
   const Model model = load_model(o.input, common.load_options());

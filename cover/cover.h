@@ -4,8 +4,9 @@
 // or build primitives, combine with | & - ~, and call a method per kernel. Underneath, the
 // kernels are free functions on a Solid (DESIGN.md: the simplicial-coverings engine), by module:
 //   model/     the cover::Model facade
-//   solid/     the non-evaluated solid, CSG operators, primitives, transforms, mesh and scene I/O
-//   covering/  exact predicates, BVH, classification, rays, volume, bounds
+//   solid/     the non-evaluated solid, CSG operators, primitives, transforms, mesh and scene I/O,
+//              exact predicates, face triangulation
+//   covering/  BVH, classification, rays, volume, bounds
 //   raster/    voxelization, voxel formats, rendering
 //   octree/    direct octrees and their formats
 //   brep/      plane clip and patch, the half-edge kernel
@@ -18,7 +19,6 @@
 #include "covering/bounds.h"
 #include "covering/bvh.h"
 #include "covering/classify.h"
-#include "covering/predicates.h"
 #include "covering/ray.h"
 #include "covering/volume.h"
 #include "octree/octree.h"
@@ -37,8 +37,12 @@
 #include "solid/mesh_io.h"
 #include "solid/orient.h"
 #include "solid/polygon_mesh.h"
+#include "solid/predicates.h"
 #include "solid/primitives.h"
 #include "solid/scene.h"
 #include "solid/solid.h"
 #include "solid/transform.h"
+#include "solid/triangulate.h"
+#include "solid/union_find.h"
 #include "solid/validate.h"
+#include "solid/voxel_bounds.h"

@@ -8,9 +8,9 @@
 #include <stdexcept>
 
 #include "covering/detail/float_bounds.h"
-#include "covering/predicates.h"
 #include "solid/parallel.h"
 #include "solid/errors.h"
+#include "solid/predicates.h"
 
 namespace cover {
 namespace {

@@ -14,8 +14,8 @@
 #include "covering/detail/local.h"
 #include "covering/detail/simd.h"
 #include "covering/detail/triangles.h"
-#include "covering/predicates.h"
 #include "solid/parallel.h"
+#include "solid/predicates.h"
 
 namespace cover {
 namespace {

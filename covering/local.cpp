@@ -10,8 +10,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "covering/predicates.h"
 #include "solid/errors.h"
+#include "solid/predicates.h"
 
 namespace cover::detail {
 namespace {

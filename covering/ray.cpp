@@ -6,10 +6,9 @@
 #include <cstddef>
 #include <cstring>
 
-#include "covering/detail/exact.h"
 #include "covering/detail/simd.h"
-#include "covering/predicates.h"
 #include "solid/parallel.h"
+#include "solid/predicates.h"
 
 namespace cover {
 namespace {
@@ -27,10 +26,10 @@ Axes axes_for(const Vec3& d) {
 /// Sign of ((a − o') × (b − o')) · d for o' = o + ε·e_u + ε²·e_w + ε³·e_k:
 /// s0 + Σ ε^i ((a − b) × d)_axis_i (see ray.h).
 int perturbed_side(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, Axes ax) {
-  if (const int s = detail::triple_sign(o, a, b, d)) return s;
-  if (const int s = detail::cross_axis_sign(a, b, d, ax.u)) return s;
-  if (const int s = detail::cross_axis_sign(a, b, d, ax.w)) return s;
-  return detail::cross_axis_sign(a, b, d, ax.k);
+  if (const int s = triple_sign(o, a, b, d)) return s;
+  if (const int s = cross_axis_sign(a, b, d, ax.u)) return s;
+  if (const int s = cross_axis_sign(a, b, d, ax.w)) return s;
+  return cross_axis_sign(a, b, d, ax.k);
 }
 
 /// Sign of n·(o' − a): which side of the triangle's plane the perturbed origin is on.

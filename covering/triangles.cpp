@@ -1,6 +1,6 @@
 #include "covering/detail/triangles.h"
 
-#include "covering/predicates.h"
+#include "solid/predicates.h"
 
 namespace cover::detail {
 

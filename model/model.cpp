@@ -224,10 +224,10 @@ Image Model::render(const Camera& camera, const RenderOptions& options) const {
     throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
                      std::to_string(camera.width) + "x" + std::to_string(camera.height));
   if (options.section) {
-    const Section& s = *options.section;
-    if (!finite(s.n) || !std::isfinite(s.d))
+    const Plane& s = *options.section;
+    if (!finite(s.normal) || !std::isfinite(s.offset))
       throw InputError("--section: expected finite numbers");
-    if (s.n.x == 0 && s.n.y == 0 && s.n.z == 0)
+    if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0)
       throw InputError("--section: the normal must be non-zero");
   }
   return cover::render(solid(), bvh(), camera, options);

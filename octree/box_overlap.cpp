@@ -6,7 +6,7 @@
 #include <iterator>
 #include <limits>
 
-#include "covering/predicates.h"
+#include "solid/predicates.h"
 
 namespace cover::detail {
 namespace {
@@ -121,14 +121,15 @@ PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& bo
   // permanent of n_i) and d = p − a, |ñ_i − n_i| ≤ γ_4·P_i and the dot product of ñ with the
   // rounded d adds ≤ γ_4·Σ|ñ_i||d_i|, so |ñ·d̃ − n·d| ≤ ~8u·Σ P_i|d_i|. Over the box
   // |d_i| ≤ max(|lo_i − a_i|, |hi_i − a_i|); 16u leaves a factor 2 for the rounding of the
-  // bound itself. Outside [1e-200, 1e200] under/overflow could void it: orient3d decides alone.
+  // bound itself (detail::kPlaneBoxErr = 16u). Outside the filter range (solid/predicates.h)
+  // under/overflow could void it: orient3d decides alone.
   const double perm[3] = {std::abs(u.y * v.z) + std::abs(u.z * v.y),
                           std::abs(u.z * v.x) + std::abs(u.x * v.z),
                           std::abs(u.x * v.y) + std::abs(u.y * v.x)};
   double sum = 0;
   for (int i = 0; i < 3; ++i)
     sum += perm[i] * std::max(std::abs(box.min[i] - a[i]), std::abs(box.max[i] - a[i]));
-  if (sum > 1e-200 && sum < 1e200) bound_ = 16 * std::ldexp(1.0, -53) * sum;
+  if (in_filter_range(sum)) bound_ = kPlaneBoxErr * sum;
 }
 
 int PlaneSide::sign(const Vec3& p) const {

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "covering/bvh.h"
-#include "raster/voxel_grid.h"
 #include "solid/memory_limit.h"
 #include "solid/solid.h"
+#include "solid/voxel_bounds.h"
 
 namespace cover {
 

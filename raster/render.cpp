@@ -26,11 +26,11 @@ Vec3 unit(Vec3 v) {
 }
 
 /// The allowed parameter interval [lo, hi] of the ray outside the removed half-space n·x > d.
-std::pair<double, double> allowed(const Ray& ray, const std::optional<Section>& section) {
+std::pair<double, double> allowed(const Ray& ray, const std::optional<Plane>& section) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   if (!section) return {0.0, kInf};
-  const double s = dot(section->n, ray.dir);
-  const double v0 = dot(section->n, ray.origin) - section->d;
+  const double s = dot(section->normal, ray.dir);
+  const double v0 = dot(section->normal, ray.origin) - section->offset;
   if (s == 0) return v0 <= 0 ? std::pair{0.0, kInf} : std::pair{1.0, 0.0};
   const double ts = -v0 / s;
   return s > 0 ? std::pair{0.0, ts} : std::pair{std::max(0.0, ts), kInf};
@@ -38,7 +38,7 @@ std::pair<double, double> allowed(const Ray& ray, const std::optional<Section>& 
 
 /// `outside_in_result`: the expression's value with every leaf outside (once per frame).
 Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
-              const std::optional<Section>& section, bool outside_in_result) {
+              const std::optional<Plane>& section, bool outside_in_result) {
   Sample out;
   const auto [lo, hi] = allowed(ray, section);
   if (lo > hi) return out;
@@ -55,7 +55,7 @@ Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
     out.leaf = v.enter.leaf;
   } else {
     out.cap = true;
-    const Vec3 n = section ? unit(section->n) : -1.0 * ray.dir;
+    const Vec3 n = section ? unit(section->normal) : -1.0 * ray.dir;
     out.normal = dot(n, ray.dir) < 0 ? n : -1.0 * n;
   }
   return out;

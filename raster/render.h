@@ -17,14 +17,9 @@
 
 namespace cover {
 
-/// Removes the half-space {x : n·x > d}. Precondition: n != 0.
-struct Section {
-  Vec3 n;
-  double d = 0;
-};
-
 struct RenderOptions {
-  std::optional<Section> section;                    ///< none by default
+  /// Removes the half-space {x : normal·x > offset}; none by default. Precondition: normal ≠ 0.
+  std::optional<Plane> section;
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
   bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
   int tile = 32;        ///< tile side for the parallel loop (results never depend on it)

@@ -11,20 +11,9 @@
 #include <vector>
 
 #include "solid/large_vector.h"
-#include "solid/types.h"
+#include "solid/voxel_bounds.h"
 
 namespace cover {
-
-/// The cube [min, min + size]³ (size > 0).
-struct VoxelBounds {
-  Vec3 min;
-  double size = 1;
-};
-
-/// Default bounds: the box made cubic around its centre, with a margin of one voxel per side:
-/// size = max extent · N/(N − 2). An empty box is taken as centred at the origin and a box of
-/// zero extent as having extent 1. \throws PreconditionError if N < 3.
-VoxelBounds default_voxel_bounds(const Bbox& box, int n);
 
 struct VoxelGrid {
   int n = 0;

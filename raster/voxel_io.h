@@ -23,7 +23,7 @@ namespace cover {
 bool is_voxel_extension(const std::filesystem::path& path);
 
 /// Writes the grid; throws InputError naming the file on unsupported extension or I/O failure
-/// (leaving no partial or temporary file), std::invalid_argument if grid.bits does not hold
+/// (leaving no partial or temporary file); \throws PreconditionError if grid.bits does not hold
 /// N·N·words_per_column() words or the bounds are not finite with size > 0.
 void write_voxels(const std::filesystem::path& path, const VoxelGrid& grid);
 

@@ -9,8 +9,8 @@
 
 #include "covering/bounds.h"
 #include "covering/detail/simd.h"
-#include "covering/predicates.h"
 #include "solid/parallel.h"
+#include "solid/predicates.h"
 
 namespace cover {
 namespace {
@@ -47,18 +47,6 @@ int perturbed_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
   if (const int s = orient2d(a, b, c, 0)) return s;
   if (const int s = orient2d(a, b, c, 1)) return s;
   return orient2d(a, b, c, 2);
-}
-
-/// The static filter of orient2d (covering/predicates.h) on precomputed terms: the sign of
-/// det = left − right when |det| exceeds its error bound, else 0 ("undecided": the caller then
-/// calls the exact predicate). sum = |left| + |right|.
-int filtered_orient2d(double det, double sum) {
-  if (sum > detail::kFilterMin && sum < detail::kFilterMax) {
-    const double bound = detail::kOrient2dErr * sum;
-    if (det > bound) return 1;
-    if (det < -bound) return -1;
-  }
-  return 0;
 }
 
 /// Coordinates of the voxel centres along one axis (the doubles voxel_centre() computes).
@@ -115,7 +103,7 @@ bool moderate(const Vec3& v) { return moderate(v.x) & moderate(v.y) & moderate(v
 /// Sign of one projected edge test orient2d(p, q, centre), given its filter terms (see
 /// crossings_of): the filter's sign when decided, else the exact perturbed predicate.
 int edge_sign(double det, double sum, const Vec3& p, const Vec3& q, const Vec3& centre) {
-  const int s = filtered_orient2d(det, sum);
+  const int s = detail::filter_sign(det, sum, detail::kOrient2dErr);
   return s != 0 ? s : perturbed_orient_xy(p, q, centre);
 }
 

@@ -34,6 +34,14 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
+/// The plane normal·x = offset (normal need not be unit length; functions taking a Plane say
+/// whether it may be zero). Its positive side is {x : normal·x > offset}: a clip's `above` half
+/// (brep/clip.h), the half-space a render section removes (raster/render.h).
+struct Plane {
+  Vec3 normal;
+  double offset = 0;
+};
+
 /// Axis-aligned box; empty() until a point is added (min > max).
 struct Bbox {
   Vec3 min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),

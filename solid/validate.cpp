@@ -23,8 +23,8 @@
 #include <span>
 #include <vector>
 
-#include "solid/detail/exact_geometry.h"
 #include "solid/measure.h"
+#include "solid/predicates.h"
 
 namespace cover {
 namespace {
@@ -248,7 +248,7 @@ MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options
   const Fans fans = table.nonmanifold == 0 ? count_fans(mesh.vertices.size(), he, table) : Fans{};
   report.manifold = table.nonmanifold == 0 && fans.pinched == 0;
   for (size_t f = 0; f < mesh.face_count(); ++f)
-    if (detail::all_collinear(mesh.vertices, mesh.face(f))) ++report.degenerate_faces;
+    if (all_collinear(mesh.vertices, mesh.face(f))) ++report.degenerate_faces;
   report.volume = signed_volume(mesh);
   report.outward = report.closed && report.oriented && report.volume > 0;
   if (report.closed && report.manifold && report.oriented) {

@@ -49,9 +49,9 @@ struct MeshReport {
 MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options = {});
 
 /// Exact self-intersection test (CGAL Epick predicates on the input doubles). Each face is tiled
-/// exactly: a fan when it is convex, else a constrained triangulation of its loops in its
-/// projection plane (false edges join no region, holes stay empty); a face whose boundary crosses
-/// itself counts as self-intersecting. Tiles of the same face are never tested against each other;
+/// exactly by triangulate_face (solid/triangulate.h: false edges join no region, holes stay
+/// empty); a face whose boundary crosses itself or winds more than once counts as
+/// self-intersecting. Tiles of the same face are never tested against each other;
 /// collinear tiles are ignored. Tiles sharing vertex indices intersect only when they meet beyond
 /// the shared vertices (CGAL::Polygon_mesh_processing::self_intersections' rules); distinct indices
 /// at equal coordinates are a contact, hence an intersection.

@@ -6,9 +6,10 @@
 //   point id     index into Arrangement::points; [0, originals) are the input vertices
 //                deduplicated by exact double value (shared by every leaf), the rest are
 //                constructed points (exact, CGAL Epeck).
-//   tri          a triangle of one leaf (the leaf faces triangulated: fan when strictly convex in
-//                the face's dominant projection, else a constrained triangulation of its loops),
-//                vertices in the LEAF's own orientation (outward); collinear ones are dropped.
+//   tri          a triangle of one leaf (the leaf faces triangulated by triangulate_face,
+//                solid/triangulate.h: fan when convex in the face's dominant projection, else a
+//                constrained triangulation of its loops), vertices in the LEAF's own orientation
+//                (outward); collinear ones are dropped.
 //   piece        a triangle of the arrangement: a sub-triangle of one tri (the whole tri when no
 //                other leaf meets it), same orientation as its tri.
 //   cut edge     an edge (point-id pair) lying on an intersection of two leaves' surfaces.
@@ -16,7 +17,7 @@
 // Exactness scheme (constructed points keep every predicate consistent)
 //   * Input coordinates are doubles and exact. The configuration of a triangle pair (apart,
 //     transversal, coplanar) and which corner / edge of each triangle bounds the intersection are
-//     decided by exact orient3d on those doubles (covering/predicates.h), no construction.
+//     decided by exact orient3d on those doubles (solid/predicates.h), no construction.
 //   * Every constructed point is a CGAL Epeck point: a lazy exact rational, evaluated with
 //     interval arithmetic and recomputed in exact rationals whenever a sign is uncertain, so every
 //     predicate on constructed points is exact. Transversal intersection ends are built
@@ -42,11 +43,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <numeric>
 #include <vector>
 
 #include "boolean/evaluate.h"
 #include "solid/solid.h"
+#include "solid/union_find.h"
 
 namespace cover::boolean_detail {
 
@@ -58,22 +59,6 @@ inline constexpr uint32_t kNone = 0xffffffffu;
 inline uint64_t edge_key(uint32_t a, uint32_t b) {
   return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
 }
-
-/// Disjoint sets over 0..n−1 with path halving; the root of a set is its smallest index, so
-/// results do not depend on the order of unions.
-struct UnionFind {
-  std::vector<uint32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 struct Tri {
   std::array<uint32_t, 3> v;  ///< point ids (originals), leaf orientation

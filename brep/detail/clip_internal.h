@@ -1,6 +1,6 @@
 #pragma once
-// Internals shared by clip.cpp (kernel steps), exact.cpp (exact predicates on input doubles) and
-// cap.cpp (rings and caps on exact constructed points). Not installed API.
+// Internals shared by clip.cpp (kernel steps) and cap.cpp (rings and caps on exact constructed
+// points). Not installed API.
 
 #include <array>
 #include <cmath>
@@ -9,32 +9,9 @@
 
 #include "brep/clip.h"
 #include "brep/halfedge.h"
-#include "covering/predicates.h"  // orient2d, orient3d and the filter range
+#include "solid/predicates.h"  // plane_side, polygon_orientation, orient2d, orient3d
 
 namespace cover::brep::detail {
-
-/// Exact sign of n·v − d (rational arithmetic).
-int plane_side_exact(const Vec3& n, double d, const Vec3& v);
-
-/// Exact sign of n·v − d. Filter: the double evaluation ((n.x·v.x + n.y·v.y) + n.z·v.z) − d has
-/// error ≤ 5u·M (1 + 5u), u = 2^−53, M = |n.x·v.x| + |n.y·v.y| + |n.z·v.z| + |d| (four roundings
-/// of a sum of four terms, Higham's γ_4, plus the product roundings); 1e-15·M (> 9u·M) covers it
-/// and the rounding of M itself. Outside the filter range of covering/predicates.h the exact
-/// path decides.
-inline int plane_side(const Vec3& n, double d, const Vec3& v) {
-  const double px = n.x * v.x, py = n.y * v.y, pz = n.z * v.z;
-  const double value = ((px + py) + pz) - d;
-  const double mag = std::abs(px) + std::abs(py) + std::abs(pz) + std::abs(d);
-  if (mag > cover::detail::kFilterMin && mag < cover::detail::kFilterMax) {
-    const double bound = 1e-15 * mag;
-    if (value > bound) return 1;
-    if (value < -bound) return -1;
-  }
-  return plane_side_exact(n, d, v);
-}
-
-/// Exact sign of the signed area of the closed polygon `points` projected dropping `axis`.
-int polygon_orientation(const std::vector<Vec3>& points, int axis);
 
 /// What the cap needs to know about the clipped mesh.
 struct CapContext {

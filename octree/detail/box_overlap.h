@@ -7,7 +7,7 @@
 // and a box (Akenine-Möller, "Fast 3D triangle-box overlap testing", 2001): the 3 box normals
 // (exact coordinate comparisons), the triangle's normal (the sign at the 8 corners) and the 9
 // products e_i × edge (orient2d in the coordinate plane that drops axis i). Every sign is exact
-// (covering/predicates.h), and only a STRICT separation counts, so a triangle that merely touches
+// (solid/predicates.h), and only a STRICT separation counts, so a triangle that merely touches
 // the box (a face lying on a box face, a vertex on a corner) meets it.
 // triangle_crosses_box, OctantOverlap::crosses: the same axes against the box's INTERIOR, where a
 // weak separation (touching allowed) suffices: T misses the open box iff 0 is not inside the

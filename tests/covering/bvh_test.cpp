@@ -12,9 +12,9 @@
 
 #include "covering/detail/bvh_walk.h"
 #include "covering/detail/triangles.h"
-#include "covering/predicates.h"
 #include "helpers.h"
 #include "solid/mesh_io.h"
+#include "solid/predicates.h"
 #include "solid/primitives.h"
 #include "solid/transform.h"
 

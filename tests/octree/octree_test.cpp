@@ -22,14 +22,13 @@
 
 #include "covering/bvh.h"
 #include "covering/classify.h"
-#include "covering/predicates.h"
 #include "covering/volume.h"
 #include "helpers.h"
 #include "octree/detail/box_overlap.h"
 #include "octree/octree_io.h"
-#include "raster/voxel_grid.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
+#include "solid/predicates.h"
 #include "solid/primitives.h"
 #include "solid/scene.h"
 

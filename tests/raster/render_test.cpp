@@ -97,7 +97,7 @@ TEST(Render, SectionCapExactlyWhereTheCutIs) {
   const Bbox frame = unit_frame();
   const Camera cam = front(frame, 90, 70);
   RenderOptions o;
-  o.section = Section{{0, -1, 0}, -0.25};
+  o.section = Plane{{0, -1, 0}, -0.25};
   const Image img = draw(s, cam, o);
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
@@ -110,9 +110,9 @@ TEST(Render, SectionCapExactlyWhereTheCutIs) {
     }
   // A section plane that misses the solid leaves it untouched; one that removes all of it leaves
   // nothing.
-  o.section = Section{{0, 1, 0}, 5};
+  o.section = Plane{{0, 1, 0}, 5};
   EXPECT_EQ(draw(s, cam, o).ids, draw(s, cam).ids);
-  o.section = Section{{0, 1, 0}, -5};
+  o.section = Plane{{0, 1, 0}, -5};
   for (uint16_t id : draw(s, cam, o).ids) ASSERT_EQ(id, Image::kBackgroundId);
 }
 
@@ -168,7 +168,7 @@ TEST(Render, SameImageWithOneAndTwoThreadsAndPngRoundTrip) {
     co.height = 120;
     const Camera cam = frame_camera(frame, co);
     RenderOptions o;
-    o.section = Section{{1, 1, 0}, 2.5};
+    o.section = Plane{{1, 1, 0}, 2.5};
     Image one, two;
     {
       ThreadLimit limit(1);

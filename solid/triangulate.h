@@ -1,0 +1,49 @@
+#pragma once
+// Triangulation of one polygon face of a mesh, shared by the self-intersection test (validate.h)
+// and boundary evaluation (boolean/evaluate.h). Exact: every decision is a CGAL Epick predicate
+// on the input doubles; no point is constructed. Notation:
+//   loop        the face's vertex indices in order (cyclic); a face with holes holds several
+//               loops joined by false edges (each run once in each direction)
+//   projection  the coordinate plane that drops the dominant axis of the loop's Newell normal
+//               (computed in doubles: it only picks the plane and the orientation; when it is
+//               zero, the normal of the first corner that is not)
+//   fan         the triangles (loop[0], loop[i], loop[i+1]): the covering triangles of the face
+//               (covering/triangles.cpp), used when the projected loop turns the same way
+//               (never straight) at every vertex and repeats no index
+//   otherwise   a constrained Delaunay triangulation of the projected loop edges, keeping the
+//               regions crossed an odd number of times from outside: a false edge (run twice)
+//               separates nothing, so holes stay holes
+// Every loop vertex is a corner of a triangle (no vertex in the middle of a fanned side).
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "solid/types.h"
+
+namespace cover {
+
+/// Index of the largest |n_k| (ties to the lower axis): the coordinate a projection of a plane
+/// with normal n drops.
+inline int dominant_axis(const Vec3& n) {
+  const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+  return ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+}
+
+/// What triangulate_face found out about a face's boundary.
+enum class FaceTiling : uint8_t {
+  kSimple,    ///< no crossing: the triangles tile the face once
+  kWinding,   ///< turns one way at every vertex but winds k > 1 times (a star): the fan, which
+              ///< covers each point as often as the loop winds around it
+  kCrossing,  ///< loop edges cross in the projection: no triangles
+};
+
+/// Appends the triangles of the face `loop` over `points`: vertex indices, in the loop's
+/// orientation (counter-clockwise seen from where the Newell normal points); collinear
+/// triangles are dropped. Precondition: every loop[i] < points.size().
+FaceTiling triangulate_face(std::span<const Vec3> points, std::span<const uint32_t> loop,
+                            std::vector<std::array<uint32_t, 3>>& out);
+
+}  // namespace cover
