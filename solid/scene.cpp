@@ -5,6 +5,7 @@
 #include <fstream>
 #include <Eigen/LU>
 #include <nlohmann/json.hpp>
+#include <exception>
 #include <set>
 
 #include "solid/detail/mesh_io_detail.h"
@@ -12,6 +13,7 @@
 #include "solid/measure.h"
 #include "solid/mesh_io.h"
 #include "solid/orient.h"
+#include "solid/parallel.h"
 #include "solid/primitives.h"
 #include "solid/transform.h"
 #include "solid/validate.h"
@@ -23,13 +25,56 @@ using nlohmann::json;
 
 constexpr int kMaxDepth = 256;              // nesting of operations
 
-/// Walks the scene JSON, keeping the JSON-pointer path of the current node for messages.
+/// Reads a scene in three steps. plan() walks the JSON in document order, checking its structure
+/// and every primitive and transform, and lists the leaves (their meshes not yet read); the
+/// leaves are then read, transformed and prepared in parallel, one task each (the load of a scene
+/// of many large meshes is mostly reading and validating them); assemble() concatenates them
+/// along the plan. Errors: the first structural error in document order, else the first leaf's
+/// error in document order; warnings in document order. The result does not depend on threads.
 class SceneReader {
  public:
   SceneReader(std::filesystem::path scene, LoadOptions options, std::vector<std::string>& warnings)
       : scene_(std::move(scene)), options_(options), warnings_(warnings) {}
 
-  Solid node(const json& j, const std::string& path, const Affine& parent, int depth) {
+  /// The solid of the scene rooted at `j`.
+  Solid read(const json& j) {
+    const Plan plan = this->plan(j, "", Affine::Identity(), 0);
+    std::vector<Solid> solids(tasks_.size());
+    std::vector<std::vector<std::string>> warnings(tasks_.size());
+    std::vector<std::exception_ptr> errors(tasks_.size());
+    parallel_for(tasks_.size(), 1, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) {
+        try {
+          solids[t] = run(tasks_[t], warnings[t]);
+        } catch (...) {
+          errors[t] = std::current_exception();
+        }
+      }
+    });
+    for (size_t t = 0; t < tasks_.size(); ++t) {
+      if (errors[t]) std::rethrow_exception(errors[t]);
+      warnings_.insert(warnings_.end(), warnings[t].begin(), warnings[t].end());
+    }
+    return assemble(plan, solids);
+  }
+
+ private:
+  /// One leaf to make: a mesh file (read in the task) or a primitive's mesh (built by plan()).
+  struct LeafTask {
+    std::string path;                  ///< its JSON path
+    std::filesystem::path file;        ///< mesh leaves: the file; empty for primitives
+    std::string kind;                  ///< primitives: box, sphere or cylinder
+    PolygonMesh mesh;                  ///< primitives: the mesh (transformed)
+    Affine world = Affine::Identity(); ///< mesh leaves: the transform to apply
+  };
+  /// The expression: a leaf task, or an operation over plans.
+  struct Plan {
+    CsgOp op = CsgOp::kLeaf;
+    size_t task = 0;
+    std::vector<Plan> children;
+  };
+
+  Plan plan(const json& j, const std::string& path, const Affine& parent, int depth) {
     if (depth > kMaxDepth) fail(path, "scene nested deeper than " + std::to_string(kMaxDepth));
     if (!j.is_object()) fail(path, "expected an object (a leaf or an operation)");
     Affine world = parent;
@@ -47,24 +92,59 @@ class SceneReader {
                                  "intersection, difference, complement");
     const json& v = j.at(kind);
     const std::string sub = path + "/" + kind;
-    if (kind == "mesh") return mesh_leaf(v, sub, world);
+    if (kind == "mesh") {
+      if (!v.is_string()) fail(sub, "expected a file path string");
+      if (v.get_ref<const std::string&>().empty()) fail(sub, "expected a non-empty file path");
+      std::filesystem::path file = v.get<std::string>();
+      if (file.is_relative()) file = scene_.parent_path() / file;
+      if (file.extension() == ".json") fail(sub, "a mesh leaf must be a mesh file, not a scene");
+      tasks_.push_back({sub, std::move(file), {}, {}, world});
+      return {CsgOp::kLeaf, tasks_.size() - 1, {}};
+    }
     if (kind == "box" || kind == "sphere" || kind == "cylinder") {
       PolygonMesh m = primitive(kind, v, sub);
       apply_transform(world, m);
-      return leaf(std::move(m), kind, sub, false);
+      tasks_.push_back({sub, {}, kind, std::move(m), Affine::Identity()});
+      return {CsgOp::kLeaf, tasks_.size() - 1, {}};
     }
-    if (kind == "complement") return complement(node(v, sub, world, depth + 1));
+    if (kind == "complement") return {CsgOp::kComplement, 0, {plan(v, sub, world, depth + 1)}};
     if (kind == "union" || kind == "intersection" || kind == "difference") {
       if (!v.is_array() || v.empty()) fail(sub, "expected an array of one or more nodes");
       if (kind == "difference" && v.size() < 2) fail(sub, "expected two or more nodes");
-      std::vector<Solid> parts;
+      Plan out{kind == "union"          ? CsgOp::kUnion
+               : kind == "intersection" ? CsgOp::kIntersection
+                                        : CsgOp::kDifference,
+               0,
+               {}};
       for (size_t i = 0; i < v.size(); ++i)
-        parts.push_back(node(v[i], sub + "/" + std::to_string(i), world, depth + 1));
-      if (kind == "union") return unite(std::move(parts));
-      if (kind == "intersection") return intersect(std::move(parts));
-      return subtract(std::move(parts));
+        out.children.push_back(plan(v[i], sub + "/" + std::to_string(i), world, depth + 1));
+      return out;
     }
     fail(path, "unknown key '" + kind + "'");
+  }
+
+  /// Makes the leaf of one task (in parallel with the others; `warnings` are the task's own).
+  /// A mesh file's own errors ("m.off:5: ...", "m.off: cannot open: ...") follow the JSON path.
+  Solid run(LeafTask& task, std::vector<std::string>& warnings) const {
+    if (task.file.empty()) return leaf(std::move(task.mesh), task.kind, task.path, false, warnings);
+    PolygonMesh m;
+    try {
+      m = read_mesh(task.file, options_.max_file_bytes, &warnings);
+    } catch (const InputError& e) {
+      fail(task.path, e.what());
+    }
+    apply_transform(task.world, m);
+    return leaf(std::move(m), task.file.string(), task.path, true, warnings);
+  }
+
+  Solid assemble(const Plan& p, std::vector<Solid>& solids) const {
+    if (p.op == CsgOp::kLeaf) return std::move(solids[p.task]);
+    if (p.op == CsgOp::kComplement) return complement(assemble(p.children[0], solids));
+    std::vector<Solid> parts;
+    for (const Plan& c : p.children) parts.push_back(assemble(c, solids));
+    if (p.op == CsgOp::kUnion) return unite(std::move(parts));
+    if (p.op == CsgOp::kIntersection) return intersect(std::move(parts));
+    return subtract(std::move(parts));
   }
 
  private:
@@ -180,28 +260,12 @@ class SceneReader {
     return m;
   }
 
-  /// The mesh file's own errors ("m.off:5: ...", "m.off: cannot open: ...") follow the path.
-  Solid mesh_leaf(const json& v, const std::string& path, const Affine& world) {
-    if (!v.is_string()) fail(path, "expected a file path string");
-    if (v.get_ref<const std::string&>().empty()) fail(path, "expected a non-empty file path");
-    std::filesystem::path file = v.get<std::string>();
-    if (file.is_relative()) file = scene_.parent_path() / file;
-    if (file.extension() == ".json") fail(path, "a mesh leaf must be a mesh file, not a scene");
-    PolygonMesh m;
-    try {
-      m = read_mesh(file, options_.max_file_bytes, &warnings_);
-    } catch (const InputError& e) {
-      fail(path, e.what());
-    }
-    apply_transform(world, m);
-    return leaf(std::move(m), file.string(), path, true);
-  }
-
   /// Messages name the scene file and the leaf's JSON path, and a mesh leaf's file before them.
-  Solid leaf(PolygonMesh m, std::string name, const std::string& path, bool from_file) {
+  Solid leaf(PolygonMesh m, std::string name, const std::string& path, bool from_file,
+             std::vector<std::string>& warnings) const {
     const std::string at = scene_.string() + ": " + path;
     const std::string where = from_file ? name + " (" + at + ")" : at;
-    return prepare_leaf(std::move(m), std::move(name), path, where, options_, warnings_);
+    return prepare_leaf(std::move(m), std::move(name), path, where, options_, warnings);
   }
 
  public:
@@ -269,6 +333,7 @@ class SceneReader {
   std::filesystem::path scene_;
   LoadOptions options_;
   std::vector<std::string>& warnings_;
+  std::vector<LeafTask> tasks_;  ///< the leaves, in document order
 };
 
 /// json::parse callback that keeps the JSON pointer of the value being parsed (for errors in the
@@ -368,7 +433,7 @@ LoadedInput parse_scene(const std::string& text, const std::filesystem::path& sc
   }
   LoadedInput out;
   SceneReader reader(scene_path, options, out.warnings);
-  out.solid = reader.node(j, "", Affine::Identity(), 0);
+  out.solid = reader.read(j);
   return out;
 }
 
