@@ -3,7 +3,9 @@
 // then up to the end of its last line, so the split depends only on the text):
 //   1. count the lines of each chunk; prefix sums give each chunk its first line number and its
 //      first slot in one array of (lines) points, the bound the memory check counts;
-//   2. parse each chunk into its slots, keeping the chunk's first error instead of throwing.
+//   2. parse each chunk into its slots, keeping the chunk's first error instead of throwing; a
+//      plain "x y z" line is read straight from the buffer, any other line (comment, blank,
+//      '+', error) by the general line rule, so both give the same points and messages.
 // The first chunk with an error (in file order) rethrows it; otherwise the chunks' points are
 // moved down over the slots of blank and comment lines, in order.
 
@@ -13,6 +15,7 @@
 #include <array>
 #include <bit>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -62,6 +65,24 @@ struct TextChunks {
   std::vector<uint64_t> line;  ///< lines before each chunk, then the total
 };
 
+/// The number of '\n' in `s`. Byte counters per lane (at most 255 blocks of 64 bytes before
+/// they are summed) let the compiler vectorize the comparisons; std::count and a memchr loop
+/// over short lines are several times slower.
+uint64_t count_newlines(std::string_view s) {
+  constexpr size_t kLanes = 64, kBlocks = 255;
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  uint64_t count = 0;
+  size_t i = 0;
+  while (s.size() - i >= kLanes) {
+    uint8_t lanes[kLanes] = {};
+    for (size_t b = 0; b < kBlocks && s.size() - i >= kLanes; ++b, i += kLanes)
+      for (size_t k = 0; k < kLanes; ++k) lanes[k] += p[i + k] == '\n';
+    for (const uint8_t c : lanes) count += c;
+  }
+  for (; i < s.size(); ++i) count += p[i] == '\n';
+  return count;
+}
+
 TextChunks split_lines(std::string_view text) {
   TextChunks c;
   c.text = detail::without_bom(text);
@@ -79,8 +100,7 @@ TextChunks split_lines(std::string_view text) {
     for (size_t k = first; k < last; ++k) {
       const std::string_view s = t.substr(c.begin[k], c.begin[k + 1] - c.begin[k]);
       // Only the last chunk may end without a newline: its last line counts too.
-      c.line[k + 1] = static_cast<uint64_t>(std::count(s.begin(), s.end(), '\n')) +
-                      (!s.empty() && s.back() != '\n' ? 1 : 0);
+      c.line[k + 1] = count_newlines(s) + (!s.empty() && s.back() != '\n' ? 1 : 0);
     }
   });
   for (size_t k = 0; k < chunks; ++k) c.line[k + 1] += c.line[k];
@@ -95,28 +115,65 @@ void check_range(double value, std::string_view token, const std::string& name, 
                       std::string(1, axis) + " coordinate " + detail::quote(token) + kRangeMessage);
 }
 
+/// Parses one line (without its terminator) under the full rule: true with `point` set for a
+/// point, false for a blank or comment line; throws InputError "NAME:N: ..." for a bad line.
+bool parse_line(std::string_view line, const std::string& name, uint64_t n, Vec3& point) {
+  line = detail::strip_comment(line);
+  double xyz[3];
+  int count = 0;
+  for (std::string_view field = next_field(line); !field.empty(); field = next_field(line)) {
+    if (count == 3) detail::fail_line(name, n, "expected 3 numbers, got more");
+    xyz[count] = detail::parse_coordinate(field, name, n, "xyz"[count]);
+    check_range(xyz[count], field, name, n, "xyz"[count]);
+    ++count;
+  }
+  if (count != 0 && count != 3)
+    detail::fail_line(name, n, "expected 3 numbers, got " + std::to_string(count));
+  if (count == 3) point = {xyz[0], xyz[1], xyz[2]};
+  return count == 3;
+}
+
+/// The common line, three numbers between separators, read straight from the buffer: the end of
+/// the line (past its '\n', or `end`) with `point` set, or nullptr for any other line (a '+',
+/// a comment, an error, an underflow...), which then takes parse_line(). A number ends where
+/// std::from_chars stops, which must be at a separator or the line's end: that is exactly the
+/// whole-token rule of parse_line(), as no separator can continue a number.
+const char* parse_plain_line(const char* p, const char* end, Vec3& point) {
+  double xyz[3];
+  for (double& v : xyz) {
+    while (p < end && is_separator(*p)) ++p;
+    const auto [stop, ec] = std::from_chars(p, end, v);
+    if (ec != std::errc() || stop == p || !(std::abs(v) <= kMaxCoordinate)) return nullptr;
+    p = stop;
+    if (p < end && !is_separator(*p) && *p != '\n') return nullptr;
+  }
+  while (p < end && is_separator(*p)) ++p;
+  if (p < end && *p != '\n') return nullptr;
+  point = {xyz[0], xyz[1], xyz[2]};
+  return p < end ? p + 1 : end;
+}
+
 /// Parses the lines of `chunk`, the first numbered `first_line` + 1, into out[0..); returns the
 /// number of points. Throws InputError "NAME:LINE: ..." at the first bad line.
 size_t parse_chunk(std::string_view chunk, const std::string& name, uint64_t first_line, Vec3* out) {
-  size_t count_points = 0;
-  detail::LineReader lines(chunk);
-  std::string_view line;
-  while (lines.next(line)) {
-    const uint64_t n = first_line + lines.line_number();
-    line = detail::strip_comment(line);
-    double xyz[3];
-    int count = 0;
-    for (std::string_view field = next_field(line); !field.empty(); field = next_field(line)) {
-      if (count == 3) detail::fail_line(name, n, "expected 3 numbers, got more");
-      xyz[count] = detail::parse_coordinate(field, name, n, "xyz"[count]);
-      check_range(xyz[count], field, name, n, "xyz"[count]);
+  size_t count = 0;
+  uint64_t n = first_line;
+  const char* p = chunk.data();
+  const char* const end = p + chunk.size();
+  while (p < end) {
+    ++n;
+    if (const char* next = parse_plain_line(p, end, out[count])) {
       ++count;
+      p = next;
+      continue;
     }
-    if (count != 0 && count != 3)
-      detail::fail_line(name, n, "expected 3 numbers, got " + std::to_string(count));
-    if (count == 3) out[count_points++] = {xyz[0], xyz[1], xyz[2]};
+    const auto* newline = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)));
+    std::string_view line(p, static_cast<size_t>((newline ? newline : end) - p));
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (parse_line(line, name, n, out[count])) ++count;
+    p = newline ? newline + 1 : end;
   }
-  return count_points;
+  return count;
 }
 
 std::vector<Vec3> parse_chunks(const TextChunks& c, const std::string& name) {
@@ -139,8 +196,9 @@ std::vector<Vec3> parse_chunks(const TextChunks& c, const std::string& name) {
   size_t size = 0;
   for (size_t k = 0; k < chunks; ++k) {
     const auto from = points.begin() + static_cast<std::ptrdiff_t>(c.line[k]);
-    std::copy(from, from + static_cast<std::ptrdiff_t>(found[k]),
-              points.begin() + static_cast<std::ptrdiff_t>(size));
+    if (c.line[k] != size)
+      std::copy(from, from + static_cast<std::ptrdiff_t>(found[k]),
+                points.begin() + static_cast<std::ptrdiff_t>(size));
     size += found[k];
   }
   points.resize(size);
