@@ -82,6 +82,27 @@ TEST(Points, ParallelTextEqualsThePointsWrittenForEveryThreadCount) {
   }
 }
 
+TEST(Points, PlainLinesReadAsTheGeneralLineRuleReadsThem) {
+  // Each line alone takes the direct path where it can; with a trailing comment (or a leading
+  // '+') it takes the general one. Both give the same points, or the same message.
+  const std::vector<std::string> lines = {
+      "1 2 3", ".5 5. -0", "1e-400 -1e-320 4E+2", ",1,,2\t3,", "1\v2\f3 \r", "0x10 1 2", "1e5x 2 3",
+      "nan 1 2", "1 inf 2", "1 2 1e400", "1 2 1e20", "1 2", "1 2 3 4", "- 1 2", "1 2 3.0.0"};
+  for (const std::string& line : lines) {
+    const std::string plain = error_of([&] { parse_points(line + "\n", "p.txt"); });
+    EXPECT_EQ(plain, error_of([&] { parse_points(line + " # c\n", "p.txt"); })) << line;
+    if (!plain.empty()) continue;
+    EXPECT_EQ(parse_points(line + "\n", "p.txt"), parse_points(line + "#\n", "p.txt")) << line;
+    if (line[0] != ',') {
+      EXPECT_EQ(parse_points(line, "p.txt"), parse_points("+" + line, "p.txt")) << line;
+    }
+  }
+  EXPECT_EQ(parse_points("1e-400 -1e-320 4E+2\n", "p.txt"),
+            (std::vector<Vec3>{{0.0, -1e-320, 400}}));
+  EXPECT_EQ(error_of([] { parse_points("1e5x 2 3\n", "p.txt"); }),
+            "p.txt:1: expected a number for the x coordinate, found '1e5x'");
+}
+
 TEST(Points, SmallAndEmptyTexts) {
   EXPECT_TRUE(parse_points("", "p.txt").empty());
   EXPECT_TRUE(parse_points("\xEF\xBB\xBF", "p.txt").empty());
