@@ -3,8 +3,9 @@
 // float64 .npy, against building the BVH and classifying the same points (covering/classify.h).
 // Goal (issue 18 item 4): at N = 1,000,000 on 2 threads, parsing the text takes no longer than
 // BVH build + classification of bunny00.
-// Usage: parse_points MESH [--points N (1000000)] [--threads T (2)] [--repeat R (5)]
-// Prints the best of R runs of each step, in seconds, and the text / (BVH + classify) ratio.
+// Usage: parse_points MESH [--points N (1000000)] [--threads T (2)] [--repeat R (11)]
+// Prints the best and the median of R interleaved rounds of each step, in seconds, and the
+// ratios to BVH + classify.
 // "read" is read_points on a file (reading included, as `cover classify` does); "parse alone" is
 // parse_points on the text already in memory.
 #include <algorithm>
@@ -40,18 +41,6 @@ void write_bytes(const fs::path& path, const std::string& bytes) {
   std::fclose(f);
 }
 
-/// Best of `repeat` timings of f().
-template <class F>
-double best_of(long repeat, F&& f) {
-  double best = 1e300;
-  for (long r = 0; r < repeat; ++r) {
-    const auto t = Clock::now();
-    f();
-    best = std::min(best, since(t));
-  }
-  return best;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -61,7 +50,7 @@ int main(int argc, char** argv) {
   }
   const size_t n = static_cast<size_t>(std::max(1L, bench::arg(argc, argv, "--points", 1000000)));
   const int threads = static_cast<int>(bench::arg(argc, argv, "--threads", 2));
-  const long repeat = std::max(1L, bench::arg(argc, argv, "--repeat", 5));
+  const long repeat = std::max(1L, bench::arg(argc, argv, "--repeat", 11));
   cover::ThreadLimit limit(threads);
 
   const cover::Solid solid = cover::load_input(argv[1]).solid;
@@ -83,42 +72,53 @@ int main(int argc, char** argv) {
 
   // Per point as `cover classify` asks: the point, its class, its output word.
   const size_t bytes_per_point = sizeof(cover::Vec3) + 1 + 8;
-  std::vector<cover::Vec3> read;
-  const double text_s = best_of(repeat, [&] {
-    read = cover::cli::read_points((dir / "points.txt").string(), cover::kDefaultMaxMemoryBytes,
-                                   bytes_per_point);
-  });
-  if (read != points) std::fprintf(stderr, "text points differ from the points written\n");
-  const double parse_s = best_of(repeat, [&] { read = cover::cli::parse_points(text, "points.txt"); });
-  const double npy_s = best_of(repeat, [&] {
-    read = cover::cli::read_points((dir / "points.npy").string(), cover::kDefaultMaxMemoryBytes,
-                                   bytes_per_point);
-  });
-  if (read != points) std::fprintf(stderr, ".npy points differ from the points written\n");
-  double bvh_s = 1e300, classify_s = 1e300, total_s = 1e300;
+  // Rounds interleave the steps, so that a busy moment of the host weighs on all of them alike;
+  // each step reports its best and its median round.
+  enum Step { kReadText, kParseText, kReadNpy, kBvh, kClassify, kBvhClassify, kSteps };
+  std::vector<std::vector<double>> seconds(kSteps);
+  bool same = true;
   for (long r = 0; r < repeat; ++r) {
-    const auto t0 = Clock::now();
+    auto t = Clock::now();
+    same &= cover::cli::read_points((dir / "points.txt").string(), cover::kDefaultMaxMemoryBytes,
+                                    bytes_per_point) == points;
+    seconds[kReadText].push_back(since(t));
+    t = Clock::now();
+    same &= cover::cli::parse_points(text, "points.txt") == points;
+    seconds[kParseText].push_back(since(t));
+    t = Clock::now();
+    same &= cover::cli::read_points((dir / "points.npy").string(), cover::kDefaultMaxMemoryBytes,
+                                    bytes_per_point) == points;
+    seconds[kReadNpy].push_back(since(t));
+    t = Clock::now();
     const cover::Bvh bvh(solid);
-    const double b = since(t0);
+    seconds[kBvh].push_back(since(t));
     const auto t1 = Clock::now();
     const std::vector<cover::PointClass> classes = cover::classify(solid, bvh, points);
-    const double c = since(t1);
-    bvh_s = std::min(bvh_s, b);
-    classify_s = std::min(classify_s, c);
-    total_s = std::min(total_s, b + c);
+    seconds[kClassify].push_back(since(t1));
+    seconds[kBvhClassify].push_back(since(t));
     if (classes.size() != n) return 1;
   }
   fs::remove_all(dir);
+  if (!same) std::fprintf(stderr, "points read differ from the points written\n");
+  std::vector<double> best, median;
+  for (std::vector<double>& s : seconds) {
+    std::sort(s.begin(), s.end());
+    best.push_back(s.front());
+    median.push_back(s[s.size() / 2]);
+  }
 
-  std::printf("%s: %zu faces; %zu random points in its box; %d threads; best of %ld\n", argv[1],
-              solid.face_count(), n, threads, repeat);
-  std::printf("  read text   %8.4f s  (%.1f MB; parse alone, text in memory: %.4f s)\n", text_s,
-              static_cast<double>(text.size()) / 1e6, parse_s);
-  std::printf("  read .npy   %8.4f s  (%.1f MB)\n", npy_s, static_cast<double>(n * 24 + 128) / 1e6);
-  std::printf("  BVH build   %8.4f s\n", bvh_s);
-  std::printf("  classify    %8.4f s\n", classify_s);
-  std::printf("  BVH+classify %7.4f s\n", total_s);
-  std::printf("  text / (BVH+classify) = %.2f, npy / (BVH+classify) = %.3f\n", text_s / total_s,
-              npy_s / total_s);
+  std::printf("%s: %zu faces; %zu random points in its box (text %.1f MB, .npy %.1f MB); %d "
+              "threads; %ld rounds, best / median s\n",
+              argv[1], solid.face_count(), n, static_cast<double>(text.size()) / 1e6,
+              static_cast<double>(n * 24 + 128) / 1e6, threads, repeat);
+  const char* names[kSteps] = {"read_points text", "parse_points (text in memory)",
+                               "read_points .npy", "BVH build", "classify", "BVH + classify"};
+  for (int k = 0; k < kSteps; ++k)
+    std::printf("  %-30s %8.4f  %8.4f\n", names[k], best[k], median[k]);
+  std::printf("  / (BVH + classify), best / median: read text %.2f / %.2f, parse text %.2f / %.2f, "
+              "read .npy %.3f / %.3f\n",
+              best[kReadText] / best[kBvhClassify], median[kReadText] / median[kBvhClassify],
+              best[kParseText] / best[kBvhClassify], median[kParseText] / median[kBvhClassify],
+              best[kReadNpy] / best[kBvhClassify], median[kReadNpy] / median[kBvhClassify]);
   return 0;
 }

@@ -337,12 +337,16 @@ void write_classes(const std::string& path, std::span<const PointClass> classes)
       path,
       [&](const std::filesystem::path& temporary) {
         std::FILE* file = std::fopen(temporary.c_str(), "wb");
-        if (file == nullptr) return false;
+        if (file == nullptr) detail::fail_file(path, std::string("cannot write: ") + std::strerror(errno));
         const bool written =
             std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
             (classes.empty() ||
-             std::fwrite(classes.data(), 1, classes.size(), file) == classes.size());
-        return (std::fclose(file) == 0) && written;
+             std::fwrite(classes.data(), 1, classes.size(), file) == classes.size()) &&
+            std::fflush(file) == 0;
+        const int error = errno;
+        if (std::fclose(file) != 0 || !written)
+          detail::fail_file(path, std::string("cannot write: ") + std::strerror(written ? errno : error));
+        return true;
       },
       "the classes");
 }

@@ -47,7 +47,7 @@ void check_classes_path(const std::string& path);
 
 /// Writes `classes` to `path` as an .npy uint8 array of shape (N,) through write_atomically
 /// (joining the caller's OutputBatch, if one is open). \throws InputError as check_classes_path,
-/// and "PATH: cannot write the classes (reason)".
+/// "PATH: cannot write: reason", and write_atomically's "PATH: cannot write the classes (reason)".
 void write_classes(const std::string& path, std::span<const PointClass> classes);
 
 }  // namespace cover::cli

@@ -123,7 +123,7 @@ sys.stdout.write("".join(names[k] + "\n" for k in c))
             "(0,)\n");
 }
 
-TEST_F(PointsCli, OutputOtherThanNpyIsRefusedBeforeAnyWork) {
+TEST_F(PointsCli, OutputOtherThanNpyOrUnwritableExitsTwo) {
   for (const char* name : {"classes.txt", "classes", "classes.npz"}) {
     const auto r = run_cover("classify " + q(dir_ / "missing.json") + " --points " +
                              q(dir_ / "p.txt") + " --output " + q(dir_ / name));
@@ -132,6 +132,12 @@ TEST_F(PointsCli, OutputOtherThanNpyIsRefusedBeforeAnyWork) {
                          fs::path(name).extension().string() + "' (expected .npy)\n");
     EXPECT_FALSE(fs::exists(dir_ / name));
   }
+  const fs::path missing = dir_ / "missing" / "classes.npy";
+  const auto r = run_cover("classify " + q(dir_ / "box.json") + " --points " + q(dir_ / "p.txt") +
+                           " --output " + q(missing));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("cover: error: " + missing.string() + ": cannot write", 0), 0u) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
 TEST_F(PointsCli, MalformedNpyExitsTwoWithOneLineAndWritesNothing) {
