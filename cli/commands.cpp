@@ -199,10 +199,13 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
 
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
   Timing timing;
+  if (!o.output.empty()) check_classes_path(o.output);
   const Model model = load_model(o.input, common.load_options());
   // Per point: the point, its class, and its output: a line of at most 8 bytes ("outside\n"), or
-  // a JSON string value (16 bytes, its heap string ~48, room for the array's growth, the dump).
-  const size_t bytes_per_point = sizeof(Vec3) + sizeof(PointClass) + (common.json ? 96 : 8);
+  // a JSON string value (16 bytes, its heap string ~48, room for the array's growth, the dump);
+  // --output writes the classes themselves.
+  const size_t bytes_per_point =
+      sizeof(Vec3) + sizeof(PointClass) + (!o.output.empty() ? 0 : common.json ? 96 : 8);
   const std::vector<Vec3> points =
       read_points(o.points, common.max_memory_bytes(), bytes_per_point);
   timing.lap(Timing::kLoad);
@@ -221,17 +224,30 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
   timing.lap(Timing::kKernel);
   std::array<size_t, 5> counts{};
   for (PointClass c : classes) ++counts[static_cast<size_t>(c)];
+  if (!o.output.empty()) {
+    OutputBatch outputs;
+    write_classes(o.output, classes);
+    outputs.commit();
+  }
   std::string out;
   if (common.json) {
     json j;
-    j["classes"] = json::array();
-    for (PointClass c : classes) j["classes"].push_back(std::string(to_string(c)));
+    if (o.output.empty()) {
+      j["classes"] = json::array();
+      for (PointClass c : classes) j["classes"].push_back(std::string(to_string(c)));
+    }
     json& cj = j["counts"];
     for (size_t k = 0; k < counts.size(); ++k)
       cj[std::string(to_string(static_cast<PointClass>(k)))] = counts[k];
     timing.lap(Timing::kWrite);
     timing.put(j);
     out = j.dump() + "\n";
+  } else if (!o.output.empty()) {
+    out = o.output + ": " + std::to_string(classes.size()) + " points (";
+    for (size_t k = 0; k < counts.size(); ++k)
+      out += std::string(k ? ", " : "") + std::string(to_string(static_cast<PointClass>(k))) + " " +
+             std::to_string(counts[k]);
+    out += ")\n";
   } else {
     out.reserve(classes.size() * 8);
     for (PointClass c : classes) {

@@ -48,6 +48,7 @@ struct VolumeCommandOptions {
 struct ClassifyCommandOptions {
   std::string input;
   std::string points;  ///< file or "-"
+  std::string output;  ///< --output OUT.npy: the classes as uint8 codes instead of words on stdout
 };
 
 struct RenderCommandOptions {

@@ -127,7 +127,12 @@ int main(int argc, char** argv) {
   cover::cli::ClassifyCommandOptions cls;
   CLI::App* cls_cmd = app.add_subcommand("classify", "Classify points: inside/outside/face/edge/vertex");
   cls_cmd->add_option("INPUT", cls.input, "Mesh or scene")->required();
-  cls_cmd->add_option("--points", cls.points, "Points file (x y z per line; - for stdin)")->required();
+  cls_cmd->add_option("--points", cls.points,
+                      "Points: text (x y z per line; - for stdin) or .npy (float64/float32, shape (N, 3))")
+      ->required();
+  cls_cmd->add_option("--output", cls.output,
+                      "Write the classes to OUT.npy (uint8 (N,): outside 0, inside 1, face 2, edge 3, "
+                      "vertex 4) instead of printing them; --json then prints counts and seconds only");
   add_common(cls_cmd, common);
 
   cover::cli::RenderCommandOptions ren;

@@ -35,6 +35,7 @@
 #include "solid/measure.h"
 #include "solid/memory_limit.h"
 #include "solid/mesh_io.h"
+#include "solid/npy.h"
 #include "solid/orient.h"
 #include "solid/polygon_mesh.h"
 #include "solid/predicates.h"

@@ -31,6 +31,7 @@
 
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
+#include "solid/npy.h"
 
 namespace cover {
 namespace {
@@ -168,19 +169,9 @@ void write_xyz_bytes(OutputFile& out, const VoxelGrid& grid) {
 }
 
 void write_npy(OutputFile& out, const VoxelGrid& grid) {
-  // NPY 1.0: magic, version 1.0, little-endian uint16 header length, then the header dict
-  // padded with spaces and ended by '\n' so that the data starts at a multiple of 64 bytes.
-  const std::string n = std::to_string(grid.n);
-  std::string header =
-      "{'descr': '|u1', 'fortran_order': False, 'shape': (" + n + ", " + n + ", " + n + "), }";
-  constexpr size_t kPreamble = 10;  // magic (6) + version (2) + header length (2)
-  header.append((64 - (kPreamble + header.size() + 1) % 64) % 64, ' ');
-  header += '\n';
-  const auto length = static_cast<uint16_t>(header.size());
-  std::string preamble("\x93NUMPY\x01\x00", 8);
-  preamble += static_cast<char>(length & 0xff);
-  preamble += static_cast<char>(length >> 8);
-  out.write(preamble + header);
+  const auto n = static_cast<uint64_t>(grid.n);
+  const std::array<uint64_t, 3> shape{n, n, n};
+  out.write(npy_header("|u1", shape));
   write_xyz_bytes(out, grid);
 }
 

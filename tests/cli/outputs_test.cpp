@@ -214,7 +214,7 @@ TEST_F(Limits, InputOverMaxMemoryRefused) {
   test::write_file(dir_ / "p.txt", points);
   expect_refused(
       run_cover("classify " + q(box_) + " --points " + q(dir_ / "p.txt") + " --max-memory 2"),
-      "p.txt: classifying 300001 lines of points needs");
+      "p.txt: classifying 300000 lines of points needs");
 }
 
 TEST_F(Limits, OctreeDepth16Refused) {
