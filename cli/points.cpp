@@ -305,7 +305,7 @@ std::vector<Vec3> parse_npy_points(std::string_view data, const std::string& nam
 
 std::vector<Vec3> read_points(const std::string& path, uint64_t max_bytes, size_t bytes_per_point) {
   const std::string name = path == "-" ? "<stdin>" : path;
-  const std::string data =
+  const FileBytes data =
       path == "-" ? read_stream(std::cin, max_bytes, name) : read_regular_file(path, max_bytes);
   const auto need = [&](uint64_t count, const std::string& what) {
     check_memory(static_cast<double>(data.size()) + static_cast<double>(count) * bytes_per_point,

@@ -32,7 +32,7 @@ void check_memory(double estimate_bytes, uint64_t limit_bytes, const std::string
                      mib(static_cast<double>(limit_bytes)) + " MiB");
 }
 
-std::string read_regular_file(const std::filesystem::path& path, uint64_t max_bytes) {
+FileBytes read_regular_file(const std::filesystem::path& path, uint64_t max_bytes) {
   const std::string file = path.string();
   // O_NONBLOCK: opening a FIFO must not wait for a writer (it is refused just below); reads
   // from a regular file never block anyway.
@@ -46,7 +46,9 @@ std::string read_regular_file(const std::filesystem::path& path, uint64_t max_by
   check_memory(static_cast<double>(size), max_bytes, file + ": the file");
   // One byte more than the size so that the final read() sees end of file without growing; a
   // file that grows while it is read is cut off at the limit like a stream.
-  std::string data(size + 1, '\0');
+  FileBytes out;
+  LargeBuffer<char>& data = out.bytes_;
+  data.resize(size + 1);
   size_t used = 0;
   for (;;) {
     if (used == data.size()) {
@@ -61,22 +63,22 @@ std::string read_regular_file(const std::filesystem::path& path, uint64_t max_by
     if (got == 0) break;
     used += static_cast<size_t>(got);
   }
-  data.resize(used);
-  return data;
+  out.size_ = used;
+  return out;
 }
 
-std::string read_stream(std::istream& in, uint64_t max_bytes, const std::string& name) {
+FileBytes read_stream(std::istream& in, uint64_t max_bytes, const std::string& name) {
   constexpr size_t kBlock = size_t{1} << 20;
-  std::string text;
+  FileBytes out;
+  LargeBuffer<char>& text = out.bytes_;
   while (in) {
-    const size_t used = text.size();
-    text.resize(used + kBlock);
-    in.read(text.data() + used, static_cast<std::streamsize>(kBlock));
-    text.resize(used + static_cast<size_t>(in.gcount()));
-    check_memory(static_cast<double>(text.size()), max_bytes, name + ": the input");
+    if (text.size() < out.size_ + kBlock) text.resize(std::max(2 * text.size(), out.size_ + kBlock));
+    in.read(text.data() + out.size_, static_cast<std::streamsize>(kBlock));
+    out.size_ += static_cast<size_t>(in.gcount());
+    check_memory(static_cast<double>(out.size_), max_bytes, name + ": the input");
   }
   if (in.bad()) throw InputError(name + ": cannot read");
-  return text;
+  return out;
 }
 
 }  // namespace cover

@@ -134,7 +134,7 @@ PolygonMesh read_mesh(const std::filesystem::path& path, uint64_t max_file_bytes
   const std::string file = path.string();
   const std::string ext = detail::lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
-  const std::string data = read_regular_file(path, max_file_bytes);
+  const FileBytes data = read_regular_file(path, max_file_bytes);
   if (data.empty()) detail::fail_file(file, "empty file");
   if (ext == ".off") return detail::read_off(file, data);
   if (ext == ".obj") return detail::read_obj(file, data);

@@ -441,7 +441,8 @@ LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& opt
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext == ".json")
-    return parse_scene(read_regular_file(path, options.max_file_bytes), path, options);
+    return parse_scene(std::string(read_regular_file(path, options.max_file_bytes).view()), path,
+                       options);
   LoadedInput out;
   PolygonMesh mesh = read_mesh(path, options.max_file_bytes, &out.warnings);
   out.solid = SceneReader::prepare_leaf(std::move(mesh), path.string(), "", path.string(), options,
