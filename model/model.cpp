@@ -7,6 +7,7 @@
 
 #include "covering/bounds.h"
 #include "solid/parallel.h"
+#include "solid/serialize.h"
 #include "solid/primitives.h"
 
 namespace cover {
@@ -110,6 +111,12 @@ Model Model::operator~() const {
 Model Model::transformed(const Affine& m) const {
   Solid s = transform_solid(m, solid());
   return Model(std::move(s), warnings());
+}
+
+std::string Model::to_bytes() const { return solid_to_bytes(solid()); }
+
+Model Model::from_bytes(std::string_view bytes, const std::string& what) {
+  return Model(solid_from_bytes(bytes, what));
 }
 
 bool Model::bounded() const { return empty() || is_bounded(solid()); }

@@ -23,6 +23,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "boolean/evaluate.h"
@@ -70,6 +71,12 @@ class Model {
   /// mirror keeps leaves outward. \throws InputError when m is not affine (last row 0 0 0 1),
   /// not finite, singular, or maps a vertex outside ±kMaxCoordinate.
   Model transformed(const Affine& m) const;
+
+  /// The solid as bytes (solid/serialize.h): how a Model travels to another process (pickling,
+  /// Dask workers) with the same doubles and expression; load warnings are not kept.
+  std::string to_bytes() const;
+  /// The Model of to_bytes(). \throws InputError naming `what` for bytes that are not a solid.
+  static Model from_bytes(std::string_view bytes, const std::string& what = "model bytes");
 
   /// True when the result is a bounded set (covering/bounds.h).
   bool bounded() const;

@@ -206,6 +206,16 @@ TEST(Model, BvhBuiltOnceSharedByCopiesAndThreads) {
   }
 }
 
+TEST(Model, BytesRoundTripAnswersTheSame) {
+  const Model m = part().transformed(make_trs({1, 2, 1}, {1, 1, 0}, 33, {0.5, 0, 0}));
+  const Model back = Model::from_bytes(m.to_bytes());
+  const std::vector<Vec3> points = random_points(5000, -2, 6, 9);
+  EXPECT_EQ(back.classify(points), m.classify(points));
+  EXPECT_EQ(back.evaluate().volume, m.evaluate().volume);
+  EXPECT_TRUE(Model::from_bytes(Model().to_bytes()).empty());
+  EXPECT_THROW(Model::from_bytes("not a solid"), InputError);
+}
+
 TEST(Model, EmptyModelIsTheEmptySet) {
   const Model empty;
   const Model b = box({0, 0, 0}, {1, 1, 1});
