@@ -613,16 +613,19 @@ TEST_F(OctreeFiles, JsonListsEveryLeaf) {
   EXPECT_EQ(j["leaves"]["partial"], counts[2]);
   const auto& cells = j["cells"];
   ASSERT_EQ(cells.size(), counts[0] + counts[1] + counts[2]);
+  EXPECT_EQ(j["cell_fields"], nlohmann::json({"depth", "i", "j", "k", "state", "occupancy"}));
   size_t k = 0;
-  const char* names[3] = {"empty", "full", "partial"};
   for (const Octree::Node& node : tree_.nodes) {
     if (node.first_child != 0) continue;
     const auto& c = cells[k++];
-    EXPECT_EQ(c["state"], names[static_cast<int>(node.state)]);
-    EXPECT_EQ(c["size"].get<double>(), tree_.cell_size(node.depth));
-    EXPECT_EQ(c["min"][0].get<double>(), node.min.x);
-    EXPECT_EQ(c["min"][2].get<double>(), node.min.z);
-    EXPECT_EQ(c["occupancy"].get<float>(), node.occupancy);
+    ASSERT_EQ(c.size(), 6u);
+    EXPECT_EQ(c[0].get<int>(), node.depth);
+    // The corner (i, j, k) at the cell's depth gives back its exact lower corner.
+    const double s = tree_.cell_size(node.depth);
+    for (int a = 0; a < 3; ++a)
+      EXPECT_EQ(tree_.bounds.min[a] + c[1 + a].get<int64_t>() * s, node.min[a]) << k;
+    EXPECT_EQ(c[4].get<int>(), static_cast<int>(node.state));
+    EXPECT_EQ(c[5].get<float>(), node.occupancy);
   }
 }
 
