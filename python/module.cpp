@@ -25,9 +25,18 @@ namespace cover::python {
 namespace {
 
 /// Points per kernel call between two Ctrl-C checks (results do not depend on it).
-constexpr size_t kBatch = size_t{1} << 18;
+constexpr size_t kBatch = size_t{1} << 20;
 
 using Threads = std::optional<int>;
+
+/// Model::classify's check over all points at once, so that the index named is the caller's
+/// (the kernel calls below see one batch each).
+void check_finite(std::span<const Vec3> points, const char* what) {
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z))
+      throw InputError(std::string(what) + ": point " + std::to_string(i) +
+                       " has a non-finite coordinate");
+}
 
 std::optional<VoxelBounds> bounds_arg(const py::object& bounds) {
   if (bounds.is_none()) return std::nullopt;
@@ -54,6 +63,7 @@ Affine matrix_arg(py::handle obj) {
 py::array_t<uint8_t> classify_points(const Model& model, py::handle points, Threads threads) {
   const Points p = points_arg(points, "points");
   const std::span<const Vec3> all = p.span();
+  check_finite(all, "classify");
   py::array_t<uint8_t> out(static_cast<py::ssize_t>(all.size()));
   uint8_t* dst = out.mutable_data();
   {
@@ -71,6 +81,7 @@ py::array_t<uint8_t> classify_points(const Model& model, py::handle points, Thre
 py::array_t<int32_t> winding_numbers(const Model& model, py::handle points, Threads threads) {
   const Points p = points_arg(points, "points");
   const std::span<const Vec3> all = p.span();
+  check_finite(all, "windings");
   const size_t leaves = model.leaf_count();
   py::array_t<int32_t> out({static_cast<py::ssize_t>(all.size()), static_cast<py::ssize_t>(leaves)});
   int32_t* dst = out.mutable_data();
@@ -102,6 +113,14 @@ py::object cast_rays(const Model& model, py::handle origins, py::handle directio
                             " directions (one per origin) or one of shape (3,), got " +
                             std::to_string(d.span().size()));
     for (size_t i = 0; i < rays.size(); ++i) rays[i] = {from[i], d.span()[i]};
+  }
+  for (size_t i = 0; i < rays.size(); ++i) {  // Model::cast's checks, naming the caller's index
+    const Ray& r = rays[i];
+    const double c[6] = {r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z};
+    if (!std::all_of(c, c + 6, [](double x) { return std::isfinite(x); }))
+      throw InputError("cast: ray " + std::to_string(i) + " has a non-finite origin or direction");
+    if (r.dir == Vec3{})
+      throw InputError("cast: ray " + std::to_string(i) + " has a zero direction");
   }
   const auto n = static_cast<py::ssize_t>(rays.size());
   py::array_t<bool> hit(n);

@@ -225,6 +225,20 @@ def test_wrong_arguments():
         cover.mesh(V, F[:, :2])
 
 
+def test_errors_name_the_callers_index_beyond_one_batch():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    P = np.zeros((1_100_000, 3))
+    P[1_050_000, 2] = np.inf
+    with pytest.raises(cover.InputError, match="classify: point 1050000 has"):
+        b.classify(P)
+    with pytest.raises(cover.InputError, match="windings: point 1050000 has"):
+        b.winding(P)
+    D = np.ones((300_000, 3))
+    D[299_999] = 0
+    with pytest.raises(cover.InputError, match="cast: ray 299999 has a zero direction"):
+        b.cast(np.zeros((300_000, 3)), D)
+
+
 def test_input_errors_are_value_errors():
     assert issubclass(cover.InputError, ValueError)
     assert issubclass(cover.NotComputable, RuntimeError)
