@@ -6,6 +6,7 @@ import os
 import signal
 import threading
 import time
+import tracemalloc
 
 import numpy as np
 import pytest
@@ -278,6 +279,25 @@ def test_million_points_in_any_layout(bunny_path):
     assert np.array_equal(codes, m.classify(strided[:, :3]))
     counts = np.bincount(codes, minlength=5)
     assert counts[0] > 0 and counts[1] > 0
+
+
+def test_float64_c_contiguous_points_are_not_copied(bunny_path):
+    """NumPy reports its buffers to tracemalloc: classifying a float64 C-contiguous array
+    allocates only the (n,) uint8 result; a Fortran-ordered one is converted once (n x 24 bytes)."""
+    m = cover.load(bunny_path)
+    lo, hi = m.bounds()
+    P = np.random.default_rng(2).uniform(lo, hi, size=(1_000_000, 3))
+    m.classify(P[:10])  # BVH built outside the measurement
+    F = np.asfortranarray(P)
+    peaks = []
+    for points in (P, F):
+        tracemalloc.start()
+        codes = m.classify(points)
+        peaks.append(tracemalloc.get_traced_memory()[1])
+        tracemalloc.stop()
+        del codes
+    assert peaks[0] < 2 * P.shape[0]  # the 1 MB result, no 24 MB copy
+    assert peaks[1] >= P.nbytes       # the converted copy
 
 
 def test_ctrl_c_stops_a_long_classification(bunny_path):
