@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-cmake -S . -B build-checked -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOVER_SANITIZE=ON \
+# COVER_BUILD_PYTHON=OFF: the sanitizer runtimes cannot be loaded into an uninstrumented python.
+cmake -S . -B build-checked -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOVER_SANITIZE=ON -DCOVER_BUILD_PYTHON=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g"
 cmake --build build-checked -j"$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1

@@ -1,0 +1,104 @@
+#pragma once
+// NumPy ⇄ C++ conversions and the call discipline of the Python bindings (module.cpp).
+//
+// Inputs: a float64, C-contiguous (n, 3) array is viewed in place as std::span<const Vec3> (Vec3
+// is three doubles, 24 bytes); any other array-like (lists, float32, Fortran order, strided
+// views) is converted once by NumPy. A wrong shape raises ValueError naming the argument and
+// the shape it got. Outputs are NumPy arrays allocated with the GIL held and filled without it.
+//
+// Kernels run in a KernelScope: the GIL is released, the worker threads are limited to the
+// caller's `threads` (None or 0: all cores), and Interrupt::poll() re-acquires the GIL at most
+// every 50 ms to run Python's signal handlers, so Ctrl-C raises KeyboardInterrupt between
+// batches (py::error_already_set thrown through the kernel).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "solid/parallel.h"
+#include "solid/polygon_mesh.h"
+#include "solid/types.h"
+
+namespace cover::python {
+
+namespace py = pybind11;
+
+static_assert(sizeof(Vec3) == 3 * sizeof(double) && alignof(Vec3) == alignof(double),
+              "Vec3 must be three packed doubles to view (n, 3) float64 arrays in place");
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// An (n, 3) float64 C-contiguous array (the caller's own when it already is one) and its view.
+struct Points {
+  DoubleArray array;
+  std::span<const Vec3> span() const {
+    return {reinterpret_cast<const Vec3*>(array.data()), static_cast<size_t>(array.shape(0))};
+  }
+};
+
+/// `obj` as (n, 3) float64 points. \throws ValueError "NAME: expected an array of shape (n, 3),
+/// got shape (...)", TypeError for a non-numeric dtype.
+Points points_arg(py::handle obj, const std::string& name);
+
+/// Exactly `count` finite-or-not doubles from a sequence or array (a point, a plane, bounds).
+/// \throws ValueError "NAME: expected K numbers, got shape (...)".
+std::vector<double> numbers_arg(py::handle obj, const std::string& name, size_t count);
+Vec3 vec3_arg(py::handle obj, const std::string& name);
+
+/// (m, 3) integer triangles as uint32 vertex indices, each checked against `vertices`.
+/// \throws ValueError for a wrong shape, TypeError for a non-integer dtype, cover::InputError for
+/// an index outside [0, vertices) (as cover::mesh words it).
+std::vector<std::array<uint32_t, 3>> triangles_arg(py::handle obj, size_t vertices);
+
+/// The worker-thread count of a `threads=` argument (None or 0: all cores). \throws ValueError
+/// for a negative count.
+int thread_count(const std::optional<int>& threads);
+
+/// Releases the GIL and limits the worker threads for its lifetime.
+class KernelScope {
+ public:
+  explicit KernelScope(const std::optional<int>& threads)
+      : count_(thread_count(threads)), release_(), limit_(count_) {}
+
+ private:
+  int count_;
+  py::gil_scoped_release release_;
+  ThreadLimit limit_;
+};
+
+/// Runs Python's signal handlers (with the GIL) at most every 50 ms; a handler that raises
+/// (SIGINT: KeyboardInterrupt) becomes py::error_already_set, thrown to stop the kernel.
+/// Call only on the thread that released the GIL.
+class Interrupt {
+ public:
+  void poll(bool force = false);
+
+ private:
+  std::thread::id caller_ = std::this_thread::get_id();
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+/// Vertices as float64 (n, 3).
+py::array_t<double> vertices_array(const LargeVector<Vec3>& vertices);
+
+/// Faces as int64 (m, 3) triangles: a triangle as it is, a convex polygon as a fan from its first
+/// vertex, any other simple polygon by ear clipping in the plane of its largest normal component
+/// (counter-clockwise order kept, so outward triangles stay outward).
+py::array_t<int64_t> triangles_array(const PolygonMesh& mesh);
+
+/// A copy of `values` as a NumPy array of the given shape.
+template <class T>
+py::array_t<T> copy_array(std::span<const T> values, std::vector<py::ssize_t> shape) {
+  py::array_t<T> out(shape);
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+}  // namespace cover::python

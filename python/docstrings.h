@@ -1,0 +1,148 @@
+#pragma once
+// Docstrings of cover._cover (module.cpp): shapes, dtypes and conventions of every function.
+// Arrays are NumPy arrays; "float64 (n, 3)" means dtype float64 and shape (n, 3). The stubs in
+// cover/__init__.pyi carry the same signatures.
+
+namespace cover::python::doc {
+
+inline constexpr const char* kModule = R"(Cover: CSG solids without boundary evaluation (simplicial coverings).
+
+Build a Model with load(), box(), sphere(), cylinder() or mesh(); combine with | & - ~;
+query it with classify(), winding(), volume(), voxelize(), cast(), render(), evaluate(),
+clip(). numpy in, numpy out; kernels release the GIL and take threads= (None or 0: all
+cores; results never depend on it); Ctrl-C stops long kernels (KeyboardInterrupt).)";
+
+inline constexpr const char* kHits = R"(First hits of Model.cast(), one entry per ray:
+hit bool (n,); t float64 (n,) ray parameter of the hit (inf where none; a distance when the
+direction has unit length); leaf int32 (n,) leaf index (-1 where none); face int64 (n,) the
+leaf's face index (-1 where none); normal float64 (n, 3) unit outward normal of the result at
+the hit (0 where none).)";
+
+inline constexpr const char* kInputError = R"(Invalid input (file contents, scene, arrays, options); a ValueError.
+The message is the CLI's one-line error without its "cover: error: " prefix, naming the file
+and the line / record / JSON path where it applies.)";
+
+inline constexpr const char* kNotComputable = R"(A well-formed request that no exact method can answer (e.g. the volume or
+bounds of an unbounded result); a RuntimeError.)";
+
+inline constexpr const char* kPreconditionError = R"(A violated precondition (e.g. ~Model() of the empty Model); a ValueError.)";
+
+inline constexpr const char* kModel = R"(A non-evaluated CSG solid: leaves (closed meshes) and the expression over them.
+
+Immutable; copies share the solid and its BVH (built once, on the first query that needs
+it). Safe to query from several Python threads at once.)";
+
+inline constexpr const char* kModelInit = "The empty solid (no leaves): the identity of |.";
+inline constexpr const char* kLeaves = "Number of leaves (int).";
+inline constexpr const char* kEmpty = "True for the empty Model (no leaves).";
+inline constexpr const char* kBounded = "True when the result is a bounded set (no complement at the root).";
+inline constexpr const char* kWarnings = "Warnings from loading and repairs (list of str, one line each).";
+inline constexpr const char* kOr = "Union (regularized): a | b.";
+inline constexpr const char* kAnd = "Intersection (regularized): a & b.";
+inline constexpr const char* kSub = "Difference (regularized): a - b.";
+inline constexpr const char* kInvert = "Complement: ~a (unbounded). Raises PreconditionError for the empty Model.";
+
+inline constexpr const char* kTransform = R"(A new Model mapped by the affine 4x4 matrix M (p' = M @ [p, 1]).
+
+M: array-like (4, 4), last row 0 0 0 1. A mirror keeps solids solid. Raises InputError when
+M is not affine, not finite, or singular.)";
+inline constexpr const char* kTranslate = "A new Model moved by v (3 numbers).";
+inline constexpr const char* kScale = R"(A new Model scaled about the origin by s: one number or 3 (per axis, non-zero).)";
+inline constexpr const char* kRotate = R"(A new Model rotated about the line through the origin along `axis` (3 numbers,
+non-zero) by `degrees` (right-hand rule).)";
+
+inline constexpr const char* kClassify = R"(Exact class of each point: uint8 (n,), codes indexing CLASS_NAMES.
+
+points: array-like (n, 3), converted once to float64 (no copy for a float64 C-contiguous
+array). Codes: 0 outside, 1 inside, 2 face, 3 edge, 4 vertex (the last three: on the
+result's boundary; a point on a leaf's surface buried in the result is inside / outside).
+Same classes as `cover classify`. Raises ValueError for a wrong shape, InputError for a
+non-finite point (naming its index).)";
+
+inline constexpr const char* kWinding = R"(Every leaf's exact winding number at every point: int32 (n, leaves).
+
+points: array-like (n, 3) as for classify(). Column l is leaf l (load order / operand order).
+Where a point lies ON leaf l's surface the winding number is undefined; the entry then holds
+the count of a symbolically perturbed point (a neighbouring value, 0 or 1 for a simple
+leaf): use classify() to detect such points (its face / edge / vertex codes).)";
+
+inline constexpr const char* kCast = R"(First entry into the result along each ray: a Hits named tuple of arrays.
+
+origins: array-like (n, 3); directions: (n, 3), or (3,) for one direction shared by every
+ray (non-zero, finite). A ray is origin + t * direction, t > 0. Returns Hits(hit bool (n,),
+t float64 (n,) [inf where no hit], leaf int32 (n,) [-1], face int64 (n,) [-1], normal
+float64 (n, 3) unit outward normal of the result [0]).)";
+
+inline constexpr const char* kVolume = R"(Volume of the result (float), as `cover volume`.
+
+Exact from the covering where the expression allows it; else integrated over parallel rays
+with a proven relative error bound of 1e-4 (or the exact B-rep volume when the bound is not
+met); exact=True requires an exact method (B-rep evaluation); rays=N fixes the ray method's
+finest cells (1..2048). volume_info() returns the method and error bound as well. Raises
+NotComputable for an unbounded result.)";
+
+inline constexpr const char* kVolumeInfo = R"(Volume with its provenance: dict with volume (float), area (float or None where
+it would need evaluation), method ("covering", "rays" or "brep"), error_bound (float, 0 for
+exact methods); for the ray method also rays (int) and target_met (bool). Same keys and
+values as `cover volume --json`. Arguments as volume().)";
+
+inline constexpr const char* kBounds = R"(A box containing the result: float64 (2, 3), [min, max] (an empty result gives
+[inf, -inf] rows). Raises NotComputable for an unbounded result.)";
+
+inline constexpr const char* kVoxelBounds = R"(The default grid cube of voxelize(res): (xmin, ymin, zmin, size), the result's
+box made cubic with one voxel of margin per side.)";
+
+inline constexpr const char* kVoxelize = R"(Voxel grid of the result: bool (res, res, res), indexed [x, y, z].
+
+Voxel (i, j, k) has centre min + (i + 1/2, j + 1/2, k + 1/2) * size / res and is True iff
+the centre is inside (a centre exactly on a surface is decided for the point displaced
+infinitesimally towards +x, then +y, then +z). bounds: (xmin, ymin, zmin, size) or None
+for voxel_bounds(res). Equal to the .npy of `cover voxelize --res res` (uint8 there).
+res: 1..4096.)";
+
+inline constexpr const char* kRender = R"(Ray-cast preview of the non-evaluated solid: uint8 (height, width, 3) RGB, row 0 at the top.
+
+view: "iso", "front", "back", "left", "right", "top" or "bottom"; section: (nx, ny, nz, d)
+removes the half-space n.x > d and shows the exact cut faces; perspective: a perspective
+camera (default orthographic). The same pixels as `cover render --size WxH`.)";
+
+inline constexpr const char* kEvaluate = R"(The result as one closed, outward, 2-manifold triangle mesh (exact evaluation).
+
+Returns (V float64 (n, 3), F int64 (m, 3)), faces counter-clockwise seen from outside; the
+same mesh as `cover evaluate -o out.off`. Raises NotComputable for an unbounded result,
+InputError for a self-intersecting leaf that evaluation refuses. Not interruptible.)";
+
+inline constexpr const char* kClip = R"(Plane clip and patch: ((V_above, F_above), (V_below, F_below)).
+
+plane: (nx, ny, nz, d); above = result with n.x >= d, below = n.x <= d, each closed and
+outward with cap triangles on the plane; V float64 (n, 3), F int64 (m, 3): polygon faces are
+triangulated (a fan for convex faces, ear clipping for others). A single leaf is clipped as it
+is, any other expression is evaluated first (as `cover clip`). Not interruptible.)";
+
+inline constexpr const char* kInfo = R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
+faces, leaves, bbox ((min, max) or None) and leaves_info (one dict per leaf: name, origin,
+vertices, faces, closed, manifold, oriented, outward, boundary_edges, nonmanifold_edges,
+components, genus, degenerate_faces, self_intersecting, volume, bbox, brep). A loaded Model
+is the repaired one (outward, consistently oriented), so for a file that needs repairs this
+differs from `cover info`, which reports the file as found. self_intersection=False skips
+the exact self-intersection check (self_intersecting is then None).)";
+
+inline constexpr const char* kLoad = R"(Loads a mesh (.obj .off .stl .ply: one leaf) or a JSON scene as a Model.
+
+Repaired as the CLI does (inside-out leaves flipped, inconsistent orientation fixed), each
+repair reported by a Python warning and in Model.warnings. Raises InputError with the CLI's
+one-line message (naming the file and line / JSON path).)";
+
+inline constexpr const char* kBox = R"(Axis-aligned box [min, max] (3 numbers each, min < max on every axis).)";
+inline constexpr const char* kSphere = R"(UV sphere inscribed in the sphere (center, radius): `segments` longitudes (3..4096),
+segments/2 latitude bands.)";
+inline constexpr const char* kCylinder = R"(Cylinder from `base` to `top` with a regular `segments`-gon cross-section inscribed
+in the circle of `radius`.)";
+inline constexpr const char* kMesh = R"(A leaf from a closed triangle mesh given as arrays.
+
+V: array-like (n, 3) of coordinates (used without a copy when float64 C-contiguous); F:
+integer array-like (m, 3) of vertex indices, counter-clockwise seen from outside (an
+inside-out mesh is flipped, with a warning). Raises ValueError for a wrong shape, TypeError
+for non-integer F, InputError for an index out of range, an open or non-orientable mesh.)";
+
+}  // namespace cover::python::doc

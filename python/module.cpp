@@ -1,0 +1,484 @@
+// cover._cover: the Python bindings of cover::Model (docs/python.md). numpy in, numpy out; the
+// conversions and the GIL / threads / Ctrl-C discipline are in arrays.h. The package cover/
+// (__init__.py) re-exports everything and adds the load warnings; cover/__init__.pyi holds the
+// stubs, which python/tests/test_stubs.py keeps equal to what this module defines.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "brep/halfedge.h"
+#include "model/model.h"
+#include "python/arrays.h"
+#include "solid/validate.h"
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+using cover::python::Interrupt;
+using cover::python::KernelScope;
+
+namespace cover::python {
+namespace {
+
+/// Points per kernel call between two Ctrl-C checks (results do not depend on it).
+constexpr size_t kBatch = size_t{1} << 20;
+
+using Threads = std::optional<int>;
+
+/// Model::classify's check over all points at once, so that the index named is the caller's
+/// (the kernel calls below see one batch each).
+void check_finite(std::span<const Vec3> points, const char* what) {
+  for (size_t i = 0; i < points.size(); ++i)
+    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z))
+      throw InputError(std::string(what) + ": point " + std::to_string(i) +
+                       " has a non-finite coordinate");
+}
+
+std::optional<VoxelBounds> bounds_arg(const py::object& bounds) {
+  if (bounds.is_none()) return std::nullopt;
+  const std::vector<double> b = numbers_arg(bounds, "bounds", 4);
+  if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !std::isfinite(b[2]) ||
+      !std::isfinite(b[3]) || !(b[3] > 0))
+    throw InputError("--bounds: expected finite xmin,ymin,zmin and a size > 0");
+  return VoxelBounds{{b[0], b[1], b[2]}, b[3]};
+}
+
+Affine matrix_arg(py::handle obj) {
+  const py::array a = py::array::ensure(obj);
+  if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4) {
+    PyErr_Clear();
+    throw py::value_error("M: expected a 4x4 matrix");
+  }
+  const auto d = DoubleArray::ensure(a);
+  Affine m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m(r, c) = d.data()[4 * r + c];
+  return m;
+}
+
+py::array_t<uint8_t> classify_points(const Model& model, py::handle points, Threads threads) {
+  const Points p = points_arg(points, "points");
+  const std::span<const Vec3> all = p.span();
+  check_finite(all, "classify");
+  py::array_t<uint8_t> out(static_cast<py::ssize_t>(all.size()));
+  uint8_t* dst = out.mutable_data();
+  {
+    KernelScope scope(threads);
+    Interrupt interrupt;
+    for (size_t begin = 0; begin < all.size(); begin += kBatch) {
+      const auto part = model.classify(all.subspan(begin, std::min(kBatch, all.size() - begin)));
+      std::memcpy(dst + begin, part.data(), part.size());
+      interrupt.poll();
+    }
+  }
+  return out;
+}
+
+py::array_t<int32_t> winding_numbers(const Model& model, py::handle points, Threads threads) {
+  const Points p = points_arg(points, "points");
+  const std::span<const Vec3> all = p.span();
+  check_finite(all, "windings");
+  const size_t leaves = model.leaf_count();
+  py::array_t<int32_t> out({static_cast<py::ssize_t>(all.size()), static_cast<py::ssize_t>(leaves)});
+  int32_t* dst = out.mutable_data();
+  {
+    KernelScope scope(threads);
+    Interrupt interrupt;
+    for (size_t begin = 0; begin < all.size() && leaves > 0; begin += kBatch) {
+      const LeafWindings w = model.windings(all.subspan(begin, std::min(kBatch, all.size() - begin)));
+      std::copy(w.winding.begin(), w.winding.end(), dst + begin * leaves);
+      interrupt.poll();
+    }
+  }
+  return out;
+}
+
+py::object cast_rays(const Model& model, py::handle origins, py::handle directions, Threads threads) {
+  const Points o = points_arg(origins, "origins");
+  const std::span<const Vec3> from = o.span();
+  std::vector<Ray> rays(from.size());
+  const py::array d_any = py::array::ensure(directions);
+  if (d_any && d_any.ndim() == 1) {
+    const Vec3 d = vec3_arg(directions, "directions");
+    for (size_t i = 0; i < rays.size(); ++i) rays[i] = {from[i], d};
+  } else {
+    PyErr_Clear();
+    const Points d = points_arg(directions, "directions");
+    if (d.span().size() != from.size())
+      throw py::value_error("directions: expected " + std::to_string(from.size()) +
+                            " directions (one per origin) or one of shape (3,), got " +
+                            std::to_string(d.span().size()));
+    for (size_t i = 0; i < rays.size(); ++i) rays[i] = {from[i], d.span()[i]};
+  }
+  for (size_t i = 0; i < rays.size(); ++i) {  // Model::cast's checks, naming the caller's index
+    const Ray& r = rays[i];
+    const double c[6] = {r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z};
+    if (!std::all_of(c, c + 6, [](double x) { return std::isfinite(x); }))
+      throw InputError("cast: ray " + std::to_string(i) + " has a non-finite origin or direction");
+    if (r.dir == Vec3{})
+      throw InputError("cast: ray " + std::to_string(i) + " has a zero direction");
+  }
+  const auto n = static_cast<py::ssize_t>(rays.size());
+  py::array_t<bool> hit(n);
+  py::array_t<double> t(n), normal({n, py::ssize_t{3}});
+  py::array_t<int32_t> leaf(n);
+  py::array_t<int64_t> face(n);
+  bool* hit_p = hit.mutable_data();
+  double* t_p = t.mutable_data();
+  double* normal_p = normal.mutable_data();
+  int32_t* leaf_p = leaf.mutable_data();
+  int64_t* face_p = face.mutable_data();
+  {
+    KernelScope scope(threads);
+    Interrupt interrupt;
+    for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
+      const size_t count = std::min(kBatch / 4, rays.size() - begin);
+      const auto hits = model.first_hits(std::span<const Ray>(rays).subspan(begin, count));
+      for (size_t k = 0; k < count; ++k) {
+        const FirstHit& h = hits[k];
+        const size_t i = begin + k;
+        hit_p[i] = h.hit;
+        t_p[i] = h.hit ? h.t : std::numeric_limits<double>::infinity();
+        leaf_p[i] = h.hit ? static_cast<int32_t>(h.leaf) : -1;
+        face_p[i] = h.hit ? static_cast<int64_t>(h.face) : -1;
+        const double len = std::sqrt(dot(h.normal, h.normal));
+        const Vec3 u = h.hit && len > 0 ? (1 / len) * h.normal : Vec3{};
+        normal_p[3 * i] = u.x, normal_p[3 * i + 1] = u.y, normal_p[3 * i + 2] = u.z;
+      }
+      interrupt.poll();
+    }
+  }
+  return py::module_::import("cover._cover").attr("Hits")(hit, t, leaf, face, normal);
+}
+
+VolumeResult volume_result(const Model& model, bool exact, std::optional<int> rays, Threads threads) {
+  VolumeOptions o;
+  o.exact = exact;
+  if (rays) {
+    if (*rays < 1 || *rays > 2048)
+      throw InputError("--rays: expected a whole number from 1 to 2048, got " + std::to_string(*rays));
+    o.rays = *rays;
+  }
+  KernelScope scope(threads);
+  Interrupt interrupt;
+  o.progress = [&](double) { interrupt.poll(); };
+  return model.volume(o);
+}
+
+py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& bounds, Threads threads) {
+  VoxelizeOptions o;
+  o.resolution = res;
+  o.bounds = bounds_arg(bounds);
+  if (res < 1 || res > 4096)  // before allocating the output
+    throw InputError("--res: expected a whole number from 1 to 4096, got " + std::to_string(res));
+  const auto n = static_cast<py::ssize_t>(res);
+  py::array_t<bool> out({n, n, n});
+  bool* dst = out.mutable_data();
+  {
+    KernelScope scope(threads);
+    Interrupt interrupt;
+    o.progress = [&](double) { interrupt.poll(); };
+    const VoxelGrid grid = model.voxelize(o);
+    // Unpack bit columns (i, j) into bytes [x][y][z], one column per task.
+    const size_t words = grid.words_per_column(), side = static_cast<size_t>(res);
+    parallel_for(side * side, 64, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c) {
+        const uint64_t* col = grid.bits.data() + c * words;
+        bool* row = dst + c * side;
+        for (size_t k = 0; k < side; ++k) row[k] = (col[k / 64] >> (k % 64)) & 1;
+      }
+    });
+  }
+  return out;
+}
+
+py::array_t<uint8_t> render_image(const Model& model, int width, int height, const std::string& view,
+                            const py::object& section, bool perspective, Threads threads) {
+  CameraOptions co;
+  co.view = parse_view(view);
+  co.width = width;
+  co.height = height;
+  co.perspective = perspective;
+  RenderOptions ro;
+  if (!section.is_none()) {
+    const std::vector<double> s = numbers_arg(section, "section", 4);
+    ro.section = Section{{s[0], s[1], s[2]}, s[3]};
+  }
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
+                     std::to_string(width) + "x" + std::to_string(height));
+  py::array_t<uint8_t> out({py::ssize_t{height}, py::ssize_t{width}, py::ssize_t{3}});
+  uint8_t* dst = out.mutable_data();
+  {
+    KernelScope scope(threads);
+    Interrupt interrupt;
+    ro.progress = [&](size_t, size_t) { interrupt.poll(); };
+    const Image img = model.render(co, ro);
+    std::copy(img.rgb.begin(), img.rgb.end(), dst);
+  }
+  return out;
+}
+
+py::tuple mesh_arrays(const PolygonMesh& mesh) {
+  return py::make_tuple(vertices_array(mesh.vertices), triangles_array(mesh));
+}
+
+py::tuple evaluate_mesh(const Model& model, Threads threads) {
+  EvaluateResult r;
+  {
+    KernelScope scope(threads);
+    r = model.evaluate();
+  }
+  return mesh_arrays(r.mesh);
+}
+
+py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
+  const std::vector<double> p = numbers_arg(plane, "plane", 4);
+  brep::ClipOptions o;
+  o.triangulate_caps = true;
+  brep::ClipResult r;
+  {
+    KernelScope scope(threads);
+    r = model.clip(brep::Plane{{p[0], p[1], p[2]}, p[3]}, o);
+  }
+  return py::make_tuple(mesh_arrays(r.above.mesh), mesh_arrays(r.below.mesh));
+}
+
+py::object bbox_list(const Bbox& b) {
+  if (b.empty()) return py::none();
+  py::list box;
+  box.append(py::make_tuple(b.min.x, b.min.y, b.min.z));
+  box.append(py::make_tuple(b.max.x, b.max.y, b.max.z));
+  for (int i = 0; i < 2; ++i) box[i] = py::list(box[i]);
+  return box;
+}
+
+py::object brep_dict(const PolygonMesh& mesh) {
+  try {
+    const brep::BrepReport r = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(mesh));
+    return py::dict("closed"_a = r.closed, "manifold"_a = r.manifold, "euler"_a = r.euler,
+                    "genus"_a = r.genus >= 0 ? py::object(py::int_(r.genus)) : py::none(),
+                    "components"_a = r.components, "boundary_loops"_a = r.boundary_loops);
+  } catch (const InputError&) {
+    return py::none();
+  }
+}
+
+py::dict info_dict(const Model& model, bool self_intersection) {
+  const Solid& s = model.solid();
+  struct LeafReport {
+    PolygonMesh mesh;
+    MeshReport report;
+  };
+  std::vector<LeafReport> reports(s.leaves.size());
+  {
+    KernelScope scope(std::nullopt);
+    ValidateOptions vo;
+    vo.check_self_intersection = self_intersection;
+    for (uint32_t l = 0; l < s.leaves.size(); ++l) {
+      reports[l].mesh = leaf_mesh(s, l);
+      reports[l].report = validate_mesh(reports[l].mesh, vo);
+    }
+  }
+  py::list leaves;
+  for (uint32_t l = 0; l < s.leaves.size(); ++l) {
+    const Leaf& leaf = s.leaves[l];
+    const MeshReport& r = reports[l].report;
+    py::dict d("name"_a = leaf.name);
+    if (!leaf.origin.empty()) d["origin"] = leaf.origin;
+    d["vertices"] = leaf.vertex_count;
+    d["faces"] = leaf.face_count;
+    d["closed"] = r.closed;
+    d["manifold"] = r.manifold;
+    d["oriented"] = r.oriented;
+    d["outward"] = r.outward;
+    d["boundary_edges"] = r.boundary_edges;
+    d["nonmanifold_edges"] = r.nonmanifold_edges;
+    d["components"] = r.components;
+    d["genus"] = r.genus >= 0 ? py::object(py::int_(r.genus)) : py::none();
+    d["degenerate_faces"] = r.degenerate_faces;
+    d["self_intersecting"] = r.self_intersecting ? py::object(py::bool_(*r.self_intersecting)) : py::none();
+    d["volume"] = r.volume;
+    d["bbox"] = bbox_list(leaf.bbox);
+    d["brep"] = brep_dict(reports[l].mesh);
+    leaves.append(d);
+  }
+  return py::dict("vertices"_a = s.vertices.size(), "faces"_a = s.face_count(),
+                  "leaves"_a = s.leaves.size(), "bbox"_a = bbox_list(s.bbox()),
+                  "leaves_info"_a = leaves);
+}
+
+/// `model` after issuing each of its warnings as a Python UserWarning (with the GIL).
+Model warned(Model model) {
+  for (const std::string& w : model.warnings())
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 2) != 0) throw py::error_already_set();
+  return model;
+}
+
+}  // namespace
+}  // namespace cover::python
+
+#include "python/docstrings.h"
+
+PYBIND11_MODULE(_cover, m) {
+  using namespace cover;
+  using namespace cover::python;
+  namespace doc = cover::python::doc;
+  m.doc() = doc::kModule;
+  m.attr("__version__") = COVER_VERSION;
+  py::tuple names(5);
+  for (int c = 0; c < 5; ++c) names[c] = py::str(std::string(to_string(static_cast<PointClass>(c))));
+  m.attr("CLASS_NAMES") = names;
+  m.attr("Hits") = py::module_::import("collections")
+                       .attr("namedtuple")("Hits", py::make_tuple("hit", "t", "leaf", "face", "normal"));
+  m.attr("Hits").attr("__doc__") = doc::kHits;
+
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<NotComputable> not_computable(m, "NotComputable", PyExc_RuntimeError);
+  static py::exception<PreconditionError> precondition(m, "PreconditionError", PyExc_ValueError);
+  input_error.doc() = doc::kInputError;
+  not_computable.doc() = doc::kNotComputable;
+  precondition.doc() = doc::kPreconditionError;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(e.what());
+    } catch (const NotComputable& e) {
+      not_computable(e.what());
+    } catch (const PreconditionError& e) {
+      precondition(e.what());
+    }
+  });
+
+  const auto threads = py::arg("threads") = py::none();
+
+  py::class_<Model> model(m, "Model", doc::kModel);
+  model.def(py::init<>(), doc::kModelInit)
+      .def_property_readonly("leaves", &Model::leaf_count, doc::kLeaves)
+      .def_property_readonly("empty", &Model::empty, doc::kEmpty)
+      .def_property_readonly("bounded", &Model::bounded, doc::kBounded)
+      .def_property_readonly("warnings", &Model::warnings, doc::kWarnings)
+      .def("__repr__",
+           [](const Model& a) {
+             return "<cover.Model: " + std::to_string(a.leaf_count()) + " leaves, " +
+                    std::to_string(a.solid().face_count()) + " faces>";
+           })
+      .def("__or__", [](const Model& a, const Model& b) { return a | b; }, py::is_operator(), doc::kOr)
+      .def("__and__", [](const Model& a, const Model& b) { return a & b; }, py::is_operator(), doc::kAnd)
+      .def("__sub__", [](const Model& a, const Model& b) { return a - b; }, py::is_operator(), doc::kSub)
+      .def("__invert__", [](const Model& a) { return ~a; }, doc::kInvert)
+      .def("transform", [](const Model& a, py::handle mat) { return a.transformed(matrix_arg(mat)); },
+           py::arg("M"), doc::kTransform)
+      .def("translate",
+           [](const Model& a, py::handle v) {
+             const Vec3 t = vec3_arg(v, "v");
+             return a.transformed(make_trs({1, 1, 1}, {0, 0, 1}, 0, {t.x, t.y, t.z}));
+           },
+           py::arg("v"), doc::kTranslate)
+      .def("scale",
+           [](const Model& a, py::handle s) {
+             Vec3 f;
+             py::array scalar = py::array::ensure(s);
+             if (!scalar) PyErr_Clear();
+             if (scalar && scalar.ndim() == 0) {
+               const double k = DoubleArray::ensure(scalar.reshape({1})).data()[0];
+               f = {k, k, k};
+             } else {
+               f = vec3_arg(s, "s");
+             }
+             return a.transformed(make_trs({f.x, f.y, f.z}, {0, 0, 1}, 0, {0, 0, 0}));
+           },
+           py::arg("s"), doc::kScale)
+      .def("rotate",
+           [](const Model& a, py::handle axis, double degrees) {
+             const Vec3 ax = vec3_arg(axis, "axis");
+             if (ax == Vec3{}) throw InputError("rotate: the axis must be non-zero");
+             return a.transformed(make_trs({1, 1, 1}, {ax.x, ax.y, ax.z}, degrees, {0, 0, 0}));
+           },
+           py::arg("axis"), py::arg("degrees"), doc::kRotate)
+      .def("classify", &classify_points, py::arg("points"), py::kw_only(), threads, doc::kClassify)
+      .def("winding", &winding_numbers, py::arg("points"), py::kw_only(), threads, doc::kWinding)
+      .def("cast", &cast_rays, py::arg("origins"), py::arg("directions"), py::kw_only(), threads,
+           doc::kCast)
+      .def("volume",
+           [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
+             return volume_result(a, exact, rays, t).volume;
+           },
+           py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
+           doc::kVolume)
+      .def("volume_info",
+           [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
+             const VolumeResult r = volume_result(a, exact, rays, t);
+             py::dict d("volume"_a = r.volume, "area"_a = r.area ? py::object(py::float_(*r.area)) : py::none(),
+                        "method"_a = r.method, "error_bound"_a = r.error_bound);
+             if (r.method == "rays") {
+               d["rays"] = r.rays;
+               d["target_met"] = r.target_met;
+             }
+             return d;
+           },
+           py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
+           doc::kVolumeInfo)
+      .def("bounds",
+           [](const Model& a) {
+             const std::optional<Bbox> b = a.bounds();
+             if (!b) throw NotComputable("bounds: the result is unbounded (a complement at the root)");
+             const double v[6] = {b->min.x, b->min.y, b->min.z, b->max.x, b->max.y, b->max.z};
+             return copy_array<double>(v, {2, 3});
+           },
+           doc::kBounds)
+      .def("voxel_bounds",
+           [](const Model& a, int res) {
+             if (res < 1 || res > 4096)
+               throw InputError("--res: expected a whole number from 1 to 4096, got " + std::to_string(res));
+             const VoxelBounds b = a.voxel_bounds(res);
+             return py::make_tuple(b.min.x, b.min.y, b.min.z, b.size);
+           },
+           py::arg("res"), doc::kVoxelBounds)
+      .def("voxelize", &voxel_grid, py::arg("res"), py::arg("bounds") = py::none(), py::kw_only(),
+           threads, doc::kVoxelize)
+      .def("render", &render_image, py::arg("width"), py::arg("height"), py::arg("view") = "iso",
+           py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false, threads,
+           doc::kRender)
+      .def("evaluate", &evaluate_mesh, py::kw_only(), threads, doc::kEvaluate)
+      .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
+      .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
+
+  m.def("load",
+        [](const std::filesystem::path& path) {
+          Model model;
+          {
+            py::gil_scoped_release release;
+            model = cover::load(path);
+          }
+          return warned(std::move(model));
+        },
+        py::arg("path"), doc::kLoad);
+  m.def("box", [](py::handle lo, py::handle hi) { return box(vec3_arg(lo, "min"), vec3_arg(hi, "max")); },
+        py::arg("min"), py::arg("max"), doc::kBox);
+  m.def("sphere",
+        [](py::handle c, double r, int segments) { return sphere(vec3_arg(c, "center"), r, segments); },
+        py::arg("center"), py::arg("radius"), py::arg("segments") = 32, doc::kSphere);
+  m.def("cylinder",
+        [](py::handle base, py::handle top, double r, int segments) {
+          return cylinder(vec3_arg(base, "base"), vec3_arg(top, "top"), r, segments);
+        },
+        py::arg("base"), py::arg("top"), py::arg("radius"), py::arg("segments") = 32, doc::kCylinder);
+  m.def("mesh",
+        [](py::handle v, py::handle f) {
+          const Points vertices = points_arg(v, "V");
+          const auto triangles = triangles_arg(f, vertices.span().size());
+          Model model;
+          {
+            py::gil_scoped_release release;
+            model = mesh(vertices.span(), triangles);
+          }
+          return warned(std::move(model));
+        },
+        py::arg("V"), py::arg("F"), doc::kMesh);
+}

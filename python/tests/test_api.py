@@ -1,0 +1,319 @@
+"""The Python API on its own and against independent paths: analytic volumes and hits of boxes,
+numpy ray parity on a triangle mesh, shapes and dtypes, errors, thread counts, large arrays,
+Ctrl-C."""
+
+import os
+import signal
+import threading
+import time
+import tracemalloc
+
+import numpy as np
+import pytest
+
+import cover
+from conftest import MODELS, canonical_triangles, parity_inside, signed_volume
+
+
+def box_mesh(lo, hi):
+    """Vertices and outward triangles of the box [lo, hi] (an independent mesh)."""
+    x0, y0, z0 = lo
+    x1, y1, z1 = hi
+    V = np.array([[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0],
+                  [x0, y0, z1], [x1, y0, z1], [x1, y1, z1], [x0, y1, z1]], dtype=np.float64)
+    F = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+                  [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]])
+    return V, F
+
+
+def octahedron():
+    V = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
+    F = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4],
+                  [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    return V, F
+
+
+def test_version_and_class_names():
+    assert cover.__version__ == "0.2.0"
+    assert cover.CLASS_NAMES == ("outside", "inside", "face", "edge", "vertex")
+
+
+def test_box_classes_and_volume_are_analytic():
+    b = cover.box([0, 0, 0], [2, 3, 4])
+    assert b.volume() == 24.0
+    info = b.volume_info()
+    assert info["method"] == "covering" and info["error_bound"] == 0 and info["area"] == 52.0
+    assert np.array_equal(b.bounds(), [[0, 0, 0], [2, 3, 4]])
+    P = [[1, 1, 1], [3, 1, 1], [0, 1, 1], [0, 0, 1], [0, 0, 0], [2, 3, 4], [1, 1.5, 4]]
+    assert b.classify(P).tolist() == [1, 0, 2, 3, 4, 4, 2]
+
+
+def test_operators_match_analytic_volumes():
+    a = cover.box([0, 0, 0], [2, 2, 2])
+    b = cover.box([1, 1, 1], [3, 3, 3])
+    assert (a | b).volume() == pytest.approx(15, rel=1e-4)
+    assert (a & b).volume() == pytest.approx(1, rel=1e-4)
+    assert (a - b).volume() == pytest.approx(7, rel=1e-4)
+    assert (a | b).volume(exact=True) == pytest.approx(15, rel=1e-14)
+    assert (a - b).volume(exact=True) == pytest.approx(7, rel=1e-14)
+    assert (~a).classify([[1, 1, 1], [5, 5, 5]]).tolist() == [0, 1]
+    assert not (~a).bounded and (a | b).bounded
+    with pytest.raises(cover.NotComputable):
+        (~a).volume()
+    with pytest.raises(cover.NotComputable):
+        (~a).bounds()
+    assert (a | b).leaves == 2
+
+
+def test_transforms_return_new_models():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    moved = b.translate([10, 0, 0])
+    assert np.array_equal(b.bounds(), [[0, 0, 0], [1, 1, 1]])
+    assert np.array_equal(moved.bounds(), [[10, 0, 0], [11, 1, 1]])
+    assert b.scale(2).volume() == 8 and b.scale([1, 2, 3]).volume() == 6
+    assert b.scale(np.float32(2)).volume() == 8
+    r = b.rotate([0, 0, 1], 90)
+    assert np.allclose(r.bounds(), [[-1, 0, 0], [0, 1, 1]], atol=1e-15)
+    M = np.eye(4)
+    M[:3, 3] = [1, 2, 3]
+    assert np.array_equal(b.transform(M).bounds(), [[1, 2, 3], [2, 3, 4]])
+    mirror = np.diag([-1.0, 1, 1, 1])
+    assert b.transform(mirror).volume() == 1.0  # a mirror keeps the solid solid
+    with pytest.raises(cover.InputError):
+        b.transform(np.zeros((4, 4)))
+    with pytest.raises(ValueError, match="4x4"):
+        b.transform(np.eye(3))
+
+
+def test_mesh_classification_equals_numpy_ray_parity():
+    V, F = octahedron()
+    V = V * [1.3, 0.9, 1.1] + [0.1, -0.2, 0.05]
+    model = cover.mesh(V, F)
+    P = np.random.default_rng(7).uniform(-1.5, 1.5, size=(4000, 3))
+    codes = model.classify(P)
+    assert not np.isin(codes, [2, 3, 4]).any()  # random points miss the surface
+    assert np.array_equal(codes == 1, parity_inside(V, F, P))
+    assert model.volume() == pytest.approx(signed_volume(V, F), rel=1e-14)
+
+
+def test_mesh_accepts_any_integer_index_dtype_and_inside_out():
+    V, F = box_mesh([0, 0, 0], [1, 2, 3])
+    for f in (F.astype(np.int32), F.astype(np.uint32), F.astype(np.uint64), F.tolist()):
+        assert cover.mesh(V, f).volume() == 6.0
+    with pytest.warns(UserWarning):
+        flipped = cover.mesh(V, F[:, ::-1])
+    assert flipped.volume() == 6.0 and flipped.warnings
+
+
+def test_winding_numbers_of_overlapping_leaves():
+    a = cover.box([0, 0, 0], [2, 2, 2])
+    b = cover.box([1, 1, 1], [3, 3, 3])
+    w = (a | b).winding([[0.5, 0.5, 0.5], [1.5, 1.5, 1.5], [2.5, 2.5, 2.5], [5, 5, 5]])
+    assert w.dtype == np.int32 and w.shape == (4, 2)
+    assert w.tolist() == [[1, 0], [1, 1], [0, 1], [0, 0]]
+    V, F = box_mesh([0, 0, 0], [1, 1, 1])
+    double = cover.mesh(np.vstack([V, V]), np.vstack([F, F + 8]))  # two coincident shells
+    assert double.winding([[0.5, 0.5, 0.5]]).tolist() == [[2]]
+
+
+def test_cast_hits_box_faces():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    O = np.array([[-1, 0.5, 0.5], [0.5, 0.5, 3], [5, 5, 5], [0.5, 0.25, 0.5]])
+    D = np.array([[2, 0, 0], [0, 0, -1], [1, 0, 0], [0, 1, 0]], float)
+    h = b.cast(O, D)
+    assert isinstance(h, cover.Hits)
+    assert h.hit.tolist() == [True, True, False, False]  # the last starts inside: no entry
+    assert h.t[:2].tolist() == [0.5, 2.0] and np.isinf(h.t[2])
+    assert h.normal[:2].tolist() == [[-1, 0, 0], [0, 0, 1]]
+    assert h.leaf.dtype == np.int32 and h.face.dtype == np.int64 and h.leaf[2] == -1
+    points = O[:2] + h.t[:2, None] * D[:2]
+    assert np.isin(b.classify(points), [2, 3, 4]).all()
+    shared = b.cast(O[:2], [1, 0, 0])  # one direction for every ray
+    assert shared.hit.tolist() == [True, False]
+
+
+def test_voxelize_converges_to_volume_and_indexes_xyz():
+    b = cover.box([0, 0, 0], [1, 0.5, 0.25])
+    grid = b.voxelize(64, bounds=(0, 0, 0, 1))
+    assert grid.shape == (64, 64, 64) and grid.dtype == np.bool_ and grid.flags.c_contiguous
+    assert grid[:, :32, :16].all() and grid.sum() == 64 * 32 * 16  # [x, y, z]
+
+
+def test_render_view_and_section():
+    m = cover.load(MODELS / "default.json")
+    image = m.render(32, 24, view="front")
+    assert image.shape == (24, 32, 3) and image.dtype == np.uint8
+    assert (image[0, 0] == 255).all()  # background
+    assert not np.array_equal(image, m.render(32, 24, view="front", section=(0, -1, 0, 0)))  # front half off
+    with pytest.raises(cover.InputError, match="view"):
+        m.render(32, 24, view="sideways")
+
+
+def test_evaluate_and_clip_volumes_agree():
+    m = cover.load(MODELS / "default.json")
+    V, F = m.evaluate()
+    exact = m.volume(exact=True)
+    assert signed_volume(V, F) == pytest.approx(exact, rel=1e-12)
+    (Va, Fa), (Vb, Fb) = m.clip((0, 0, 1, 0.25))
+    assert signed_volume(Va, Fa) + signed_volume(Vb, Fb) == pytest.approx(exact, rel=1e-9)
+    box = cover.box([0, 0, 0], [1, 1, 1])
+    (Va, Fa), (Vb, Fb) = box.clip([0, 0, 1, 0.25])  # quads cut into convex pieces, triangulated
+    assert signed_volume(Va, Fa) == pytest.approx(0.75) and signed_volume(Vb, Fb) == pytest.approx(0.25)
+
+
+def test_clip_triangulates_nonconvex_faces():
+    path = MODELS / "frame.off"  # a square frame: faces with holes / non-convex polygons
+    m = cover.load(path)
+    (Va, Fa), (Vb, Fb) = m.clip((0, 0, 1, 1.0))
+    assert signed_volume(Va, Fa) + signed_volume(Vb, Fb) == pytest.approx(m.volume(), rel=1e-12)
+
+
+def test_empty_model():
+    e = cover.Model()
+    assert e.empty and e.leaves == 0
+    assert e.classify([[0, 0, 0]]).tolist() == [0] and e.volume() == 0
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    assert (e | b).volume() == 1
+    with pytest.raises(cover.PreconditionError):
+        ~e
+
+
+@pytest.mark.parametrize("bad, message", [
+    (np.zeros((5, 2)), r"points: expected an array of shape \(n, 3\), got shape \(5, 2\)"),
+    (np.zeros(3), r"got shape \(3,\)"),
+    (np.zeros((2, 3, 1)), r"got shape \(2, 3, 1\)"),
+])
+def test_wrong_shapes_raise_value_error_naming_argument(bad, message):
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    with pytest.raises(ValueError, match=message):
+        b.classify(bad)
+    with pytest.raises(ValueError, match=message.replace("points", "origins")):
+        b.cast(bad, [1, 0, 0])
+
+
+def test_wrong_arguments():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    with pytest.raises(TypeError):
+        b.classify(np.array([["a", "b", "c"]]))
+    with pytest.raises(cover.InputError, match="point 1 has a non-finite coordinate"):
+        b.classify([[0, 0, 0], [np.nan, 0, 0]])
+    with pytest.raises(ValueError, match="threads"):
+        b.classify([[0, 0, 0]], threads=-1)
+    with pytest.raises(ValueError, match="min: expected 3 numbers"):
+        cover.box([0, 0], [1, 1, 1])
+    with pytest.raises(cover.InputError, match="min < max"):
+        cover.box([0, 0, 0], [0, 1, 1])
+    with pytest.raises(cover.InputError, match="radius"):
+        cover.sphere([0, 0, 0], -1)
+    with pytest.raises(cover.InputError, match="res"):
+        b.voxelize(0)
+    with pytest.raises(ValueError, match="bounds: expected 4 numbers"):
+        b.voxelize(8, bounds=(0, 0, 0))
+    with pytest.raises(ValueError, match="plane: expected 4 numbers"):
+        b.clip((0, 0, 1))
+    with pytest.raises(cover.InputError):
+        b.clip((0, 0, 0, 1))
+    V, F = box_mesh([0, 0, 0], [1, 1, 1])
+    with pytest.raises(cover.InputError, match="vertex index 8 out of range"):
+        cover.mesh(V, F + 1)
+    with pytest.raises(cover.InputError, match="vertex index -1 out of range"):
+        cover.mesh(V, F - 1)
+    with pytest.raises(cover.InputError, match="open mesh"):
+        cover.mesh(V, F[:-1])
+    with pytest.raises(TypeError, match="integers"):
+        cover.mesh(V, F.astype(float))
+    with pytest.raises(ValueError, match=r"F: expected an array of shape \(m, 3\)"):
+        cover.mesh(V, F[:, :2])
+
+
+def test_errors_name_the_callers_index_beyond_one_batch():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    P = np.zeros((1_100_000, 3))
+    P[1_050_000, 2] = np.inf
+    with pytest.raises(cover.InputError, match="classify: point 1050000 has"):
+        b.classify(P)
+    with pytest.raises(cover.InputError, match="windings: point 1050000 has"):
+        b.winding(P)
+    D = np.ones((300_000, 3))
+    D[299_999] = 0
+    with pytest.raises(cover.InputError, match="cast: ray 299999 has a zero direction"):
+        b.cast(np.zeros((300_000, 3)), D)
+
+
+def test_input_errors_are_value_errors():
+    assert issubclass(cover.InputError, ValueError)
+    assert issubclass(cover.NotComputable, RuntimeError)
+    with pytest.raises(ValueError):
+        cover.load("/nonexistent/model.off")
+
+
+def test_results_do_not_depend_on_threads():
+    m = cover.load(MODELS / "default.json")
+    P = np.random.default_rng(3).uniform(-4, 4, size=(50000, 3))
+    assert np.array_equal(m.classify(P, threads=1), m.classify(P, threads=2))
+    assert np.array_equal(m.winding(P, threads=1), m.winding(P, threads=2))
+    assert np.array_equal(m.voxelize(40, threads=1), m.voxelize(40, threads=2))
+    assert m.volume_info(threads=1) == m.volume_info(threads=2)
+    assert np.array_equal(m.render(40, 30, threads=1), m.render(40, 30, threads=2))
+    h1, h2 = m.cast(P[:1000], [0, 0, 1], threads=1), m.cast(P[:1000], [0, 0, 1], threads=2)
+    assert all(np.array_equal(a, b) for a, b in zip(h1, h2))
+    (V1, F1), (V2, F2) = m.evaluate(threads=1), m.evaluate(threads=2)
+    assert np.array_equal(V1, V2)
+    assert np.array_equal(canonical_triangles(F1), canonical_triangles(F2))
+
+
+def test_million_points_in_any_layout(bunny_path):
+    m = cover.load(bunny_path)
+    lo, hi = m.bounds()
+    P = np.random.default_rng(11).uniform(lo, hi, size=(1_000_000, 3))
+    codes = m.classify(P)  # float64 C-contiguous: viewed in place, no copy
+    assert codes.shape == (1_000_000,) and codes.dtype == np.uint8
+    assert np.array_equal(codes, m.classify(np.asfortranarray(P)))  # converted once
+    readonly = P.copy()
+    readonly.flags.writeable = False
+    assert np.array_equal(codes, m.classify(readonly))
+    P32 = P.astype(np.float32)
+    assert np.array_equal(m.classify(P32), m.classify(P32.astype(np.float64)))
+    strided = np.zeros((1_000_000, 4))
+    strided[:, :3] = P
+    assert np.array_equal(codes, m.classify(strided[:, :3]))
+    counts = np.bincount(codes, minlength=5)
+    assert counts[0] > 0 and counts[1] > 0
+
+
+def test_float64_c_contiguous_points_are_not_copied(bunny_path):
+    """NumPy reports its buffers to tracemalloc: classifying a float64 C-contiguous array
+    allocates only the (n,) uint8 result; a Fortran-ordered one is converted once (n x 24 bytes)."""
+    m = cover.load(bunny_path)
+    lo, hi = m.bounds()
+    P = np.random.default_rng(2).uniform(lo, hi, size=(1_000_000, 3))
+    m.classify(P[:10])  # BVH built outside the measurement
+    F = np.asfortranarray(P)
+    peaks = []
+    for points in (P, F):
+        tracemalloc.start()
+        codes = m.classify(points)
+        peaks.append(tracemalloc.get_traced_memory()[1])
+        tracemalloc.stop()
+        del codes
+    assert peaks[0] < 2 * P.shape[0]  # the 1 MB result, no 24 MB copy
+    assert peaks[1] >= P.nbytes       # the converted copy
+
+
+def test_ctrl_c_stops_a_long_classification(bunny_path):
+    m = cover.load(bunny_path)
+    lo, hi = m.bounds()
+    P = np.random.default_rng(5).uniform(lo, hi, size=(8_000_000, 3))
+    m.classify(P[:1000])  # BVH built before the timer starts
+    timer = threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    finished = False
+    start = time.monotonic()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            m.classify(P, threads=1)
+            finished = True
+    finally:
+        timer.cancel()
+    assert not finished, "the kernel ran to its end before the interrupt"
+    assert time.monotonic() - start >= 0  # (no timed assertion: the call stopped by raising)
