@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solid/errors.h"
+#include "solid/triangulate.h"
 
 namespace cover::python {
 
@@ -103,82 +104,23 @@ py::array_t<double> vertices_array(const LargeVector<Vec3>& vertices) {
   return out;
 }
 
-namespace {
-
-using Tri = std::array<int64_t, 3>;
-
-/// 2D cross product of (b − a) and (c − a).
-double cross2(const std::array<double, 2>& a, const std::array<double, 2>& b,
-              const std::array<double, 2>& c) {
-  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
-/// Appends the triangles of one polygon face (see triangles_array()).
-void triangulate(std::span<const uint32_t> loop, const LargeVector<Vec3>& v, std::vector<Tri>& out) {
-  const size_t n = loop.size();
-  if (n < 3) return;
-  if (n == 3) {
-    out.push_back({loop[0], loop[1], loop[2]});
-    return;
-  }
-  // Newell normal; project onto the plane of its two smaller components, counter-clockwise.
-  Vec3 normal;
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 a = v[loop[i]], b = v[loop[(i + 1) % n]];
-    normal = normal + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
-                           (a.x - b.x) * (a.y + b.y)};
-  }
-  const double ax = std::abs(normal.x), ay = std::abs(normal.y), az = std::abs(normal.z);
-  const int k = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
-  const int u = (k + 1) % 3, w = (k + 2) % 3;
-  const bool flip = normal[k] < 0;
-  std::vector<std::array<double, 2>> p(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 q = v[loop[i]];
-    p[i] = {q[u], flip ? -q[w] : q[w]};
-  }
-  bool convex = true;
-  for (size_t i = 0; i < n && convex; ++i)
-    convex = cross2(p[i], p[(i + 1) % n], p[(i + 2) % n]) >= 0;
-  if (convex) {
-    for (size_t i = 1; i + 1 < n; ++i) out.push_back({loop[0], loop[i], loop[i + 1]});
-    return;
-  }
-  // Ear clipping: an ear is a convex corner whose triangle holds no other remaining corner.
-  std::vector<size_t> rest(n);
-  for (size_t i = 0; i < n; ++i) rest[i] = i;
-  while (rest.size() > 3) {
-    const size_t m = rest.size();
-    size_t ear = m;
-    for (size_t i = 0; i < m && ear == m; ++i) {
-      const size_t a = rest[(i + m - 1) % m], b = rest[i], c = rest[(i + 1) % m];
-      if (cross2(p[a], p[b], p[c]) <= 0) continue;
-      bool empty = true;
-      for (size_t j = 0; j < m && empty; ++j) {
-        const size_t q = rest[j];
-        if (q == a || q == b || q == c || loop[q] == loop[a] || loop[q] == loop[b] ||
-            loop[q] == loop[c])
-          continue;
-        empty = !(cross2(p[a], p[b], p[q]) >= 0 && cross2(p[b], p[c], p[q]) >= 0 &&
-                  cross2(p[c], p[a], p[q]) >= 0);
-      }
-      if (empty) ear = i;
-    }
-    if (ear == m) ear = 0;  // degenerate rings (collinear runs): cut any corner
-    out.push_back({loop[rest[(ear + m - 1) % m]], loop[rest[ear]], loop[rest[(ear + 1) % m]]});
-    rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(ear));
-  }
-  out.push_back({loop[rest[0]], loop[rest[1]], loop[rest[2]]});
-}
-
-}  // namespace
-
 py::array_t<int64_t> triangles_array(const PolygonMesh& mesh) {
-  std::vector<Tri> tris;
+  // The project's one face triangulation (solid/triangulate.h: exact, fans for convex faces).
+  std::vector<std::array<uint32_t, 3>> tris;
   tris.reserve(mesh.face_count());
-  for (size_t f = 0; f < mesh.face_count(); ++f) triangulate(mesh.face(f), mesh.vertices, tris);
+  const std::span<const Vec3> points(mesh.vertices.data(), mesh.vertices.size());
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto face = mesh.face(f);
+    if (face.size() == 3) {
+      tris.push_back({face[0], face[1], face[2]});
+    } else if (face.size() > 3 && triangulate_face(points, face, tris) == FaceTiling::kCrossing) {
+      throw InternalError("triangles_array: face " + std::to_string(f) + " crosses itself");
+    }
+  }
   py::array_t<int64_t> out({static_cast<py::ssize_t>(tris.size()), py::ssize_t{3}});
-  std::copy(tris.begin(), tris.end(), reinterpret_cast<Tri*>(out.mutable_data()));
+  int64_t* o = out.mutable_data();
+  for (size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) o[3 * t + k] = tris[t][k];
   return out;
 }
 

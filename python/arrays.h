@@ -88,9 +88,9 @@ class Interrupt {
 /// Vertices as float64 (n, 3).
 py::array_t<double> vertices_array(const LargeVector<Vec3>& vertices);
 
-/// Faces as int64 (m, 3) triangles: a triangle as it is, a convex polygon as a fan from its first
-/// vertex, any other simple polygon by ear clipping in the plane of its largest normal component
-/// (counter-clockwise order kept, so outward triangles stay outward).
+/// Faces as int64 (m, 3) triangles: a triangle as it is, any other face by triangulate_face
+/// (solid/triangulate.h: exact; a convex face as a fan from its first vertex; orientation kept,
+/// so outward triangles stay outward).
 py::array_t<int64_t> triangles_array(const PolygonMesh& mesh);
 
 /// A copy of `values` as a NumPy array of the given shape.

@@ -116,7 +116,7 @@ inline constexpr const char* kClip = R"(Plane clip and patch: ((V_above, F_above
 
 plane: (nx, ny, nz, d); above = result with n.x >= d, below = n.x <= d, each closed and
 outward with cap triangles on the plane; V float64 (n, 3), F int64 (m, 3): polygon faces are
-triangulated (a fan for convex faces, ear clipping for others). A single leaf is clipped as it
+triangulated exactly (a fan for convex faces). A single leaf is clipped as it
 is, any other expression is evaluated first (as `cover clip`). Not interruptible.)";
 
 inline constexpr const char* kInfo = R"(Facts about the Model as `cover info --json` reports them: dict with vertices,

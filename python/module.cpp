@@ -206,7 +206,7 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height, con
   RenderOptions ro;
   if (!section.is_none()) {
     const std::vector<double> s = numbers_arg(section, "section", 4);
-    ro.section = Section{{s[0], s[1], s[2]}, s[3]};
+    ro.section = Plane{{s[0], s[1], s[2]}, s[3]};
   }
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
