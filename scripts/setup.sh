@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev
   nlohmann-json3-dev libcli11-dev libpng-dev liboctomap-dev python3-numpy python3-vtk9
   libcgal-demo assimp-testmodels
+  zlib1g-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb python3-zarr
 )
 
 missing=()
