@@ -1,7 +1,9 @@
 // `cover voxelize` and `cover octree` (CONTRACT.md).
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -104,6 +106,11 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
     throw InputError(unbounded_message(o.input) + " (or give --bounds)");
   if (!o.bounds.empty()) vo.bounds = bounds_option(o.bounds, model, vo.resolution, o.input);
   const VoxelLattice lattice = model.voxel_lattice(vo);
+  std::string ext = std::filesystem::path(o.output).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (!lattice.cubic() && ext == ".binvox")  // refused before the work, as write_voxels would
+    throw InputError(o.output + ": .binvox holds cubic grids only (dim N N N), got " +
+                     dims_text(lattice.dims) + " (use .npy, .raw, .vti, .zarr or .vdb)");
   if (!o.surface.empty() && !lattice.cubic())
     throw InputError("--surface: needs a cubic grid, got " + dims_text(lattice.dims));
   if (!cubic && !zarr)
