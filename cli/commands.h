@@ -69,9 +69,12 @@ struct RenderCommandOptions {
 
 struct VoxelizeCommandOptions {
   std::string input;
-  std::string output;   ///< -o OUT.(binvox|vti|npy|raw)
-  int res = 0;          ///< --res N
+  std::string output;   ///< -o OUT.(binvox|vti|npy|raw|zarr|vdb)
+  int res = 0;          ///< --res N (0: not given; then --voxel-size or --dims)
   std::string bounds;   ///< --bounds xmin,ymin,zmin,size
+  double voxel_size = 0;  ///< --voxel-size h (0: not given)
+  std::string dims;     ///< --dims NX,NY,NZ
+  int chunk = 128;      ///< --chunk C (.zarr)
   std::string surface;  ///< --surface OUT.(obj|stl|off|ply)
 };
 

@@ -2,6 +2,7 @@
 // (one line "cover: error: ..." on stderr), 1 internal failure.
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <limits>
@@ -165,11 +166,27 @@ int main(int argc, char** argv) {
   cover::cli::VoxelizeCommandOptions vox;
   CLI::App* vox_cmd = app.add_subcommand("voxelize", "Voxelize the solid (presence buffer)");
   vox_cmd->add_option("INPUT", vox.input, "Mesh or scene")->required();
-  vox_cmd->add_option("--res", vox.res, "Voxels per axis")
-      ->required()
-      ->transform(whole_number(1, 4096));
-  vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy or .raw")->required();
+  CLI::Option* vox_res = vox_cmd->add_option("--res", vox.res, "Voxels per axis (cubic grid; up to 4096, 16384 for .zarr)")
+      ->transform(whole_number(1, 16384));
+  CLI::Option* vox_size =
+      vox_cmd->add_option("--voxel-size", vox.voxel_size, "Spacing h of a grid over the box (dims = ceil(extent / h))")
+          ->check(CLI::Validator(
+              [](std::string& text) -> std::string {
+                double value = 0;
+                const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+                if (ec != std::errc() || end != text.data() + text.size() || !(value > 0) ||
+                    !std::isfinite(value))
+                  return "expected a finite number > 0, got " + shown(text);
+                return "";
+              },
+              "FLOAT > 0"))
+          ->excludes(vox_res);
+  vox_cmd->add_option("--dims", vox.dims, "NX,NY,NZ: voxel counts of a grid over the box")
+      ->excludes(vox_res)
+      ->excludes(vox_size);
+  vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy, .raw, .zarr or .vdb")->required();
   vox_cmd->add_option("--bounds", vox.bounds, "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
+  vox_cmd->add_option("--chunk", vox.chunk, "Zarr chunk edge C (default 128)")->transform(whole_number(1, 16384));
   vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)");
   add_common(vox_cmd, common);
 

@@ -1,5 +1,9 @@
 // `cover voxelize` and `cover octree` (CONTRACT.md).
+#include <algorithm>
+#include <array>
+#include <cctype>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -11,7 +15,9 @@
 #include "octree/octree.h"
 #include "octree/octree_io.h"
 #include "raster/voxel_io.h"
+#include "raster/vdb_io.h"
 #include "raster/voxel_surface.h"
+#include "raster/zarr_io.h"
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/memory_limit.h"
@@ -44,44 +50,118 @@ json bounds_json(const VoxelBounds& b) {
   return json{{"min", to_json(b.min)}, {"size", b.size}};
 }
 
+/// {"min", "size"} of a cubic grid's cube, else {"min", "max"} (max = origin + dims·h).
+json bounds_json(const VoxelLattice& l) {
+  if (l.cube_size) return bounds_json(VoxelBounds{l.origin, *l.cube_size});
+  const Vec3 max{l.origin.x + l.dims[0] * l.spacing, l.origin.y + l.dims[1] * l.spacing,
+                 l.origin.z + l.dims[2] * l.spacing};
+  return json{{"min", to_json(l.origin)}, {"max", to_json(max)}};
+}
+
+/// --dims NX,NY,NZ (each 1 to kMaxVoxelDims).
+std::array<int, 3> dims_option(const std::string& text) {
+  int d[3];
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d,%d,%d%c", &d[0], &d[1], &d[2], &tail) != 3 || d[0] < 1 ||
+      d[1] < 1 || d[2] < 1 || d[0] > kMaxVoxelDims || d[1] > kMaxVoxelDims || d[2] > kMaxVoxelDims)
+    throw InputError("--dims: expected NX,NY,NZ, whole numbers from 1 to " +
+                     std::to_string(kMaxVoxelDims) + ", got '" + text + "'");
+  return {d[0], d[1], d[2]};
+}
+
+std::string dims_text(const std::array<int, 3>& d) {
+  return std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]);
+}
+
 }  // namespace
 
 int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   Timing timing;
-  if (!is_voxel_extension(o.output))
-    throw InputError(o.output + ": unsupported voxel format (expected .binvox, .vti, .npy, .raw)");
+  const bool zarr = is_zarr_extension(o.output), vdb = is_vdb_extension(o.output);
+  if (!is_voxel_extension(o.output) && !zarr && !vdb)
+    throw InputError(o.output +
+                     ": unsupported voxel format (expected .binvox, .vti, .npy, .raw, .zarr, .vdb)");
   if (!o.surface.empty() && !is_mesh_extension(o.surface))
     throw InputError(o.surface + ": unsupported mesh format for --surface (expected .obj, .stl, .off, .ply)");
-  // The bit grid needs N³/8 bytes.
-  check_memory(std::pow(static_cast<double>(o.res), 3) / 8, common.max_memory_bytes(),
-               "--res " + std::to_string(o.res) + ": the grid");
+  if (!o.surface.empty() && zarr)
+    throw InputError("--surface: needs the grid in memory, not with a .zarr output");
+  if (o.res == 0 && o.voxel_size == 0 && o.dims.empty())
+    throw InputError("voxelize: give the grid: --res N, --voxel-size h or --dims NX,NY,NZ");
+  const bool cubic = o.res > 0;
+  if (cubic && !zarr && o.res > kMaxVoxelResolution)
+    throw InputError("--res: expected a whole number from 1 to " +
+                     std::to_string(kMaxVoxelResolution) + " (up to " +
+                     std::to_string(kMaxVoxelDims) + " for .zarr), got " + std::to_string(o.res));
+  VoxelizeOptions vo;
+  vo.resolution = cubic ? o.res : 128;
+  vo.voxel_size = o.voxel_size;
+  if (!o.dims.empty()) vo.dims = dims_option(o.dims);
+  // The bit grid needs N³/8 bytes (when its dims are known before loading).
+  if (cubic && !zarr)
+    check_memory(std::pow(static_cast<double>(o.res), 3) / 8, common.max_memory_bytes(),
+                 "--res " + std::to_string(o.res) + ": the grid");
   const Model model = load_model(o.input, common.load_options());
   timing.lap(Timing::kLoad);
-  VoxelizeOptions vo;
-  vo.resolution = o.res;
-  vo.bounds = bounds_option(o.bounds, model, o.res, o.input);
+  if (o.bounds.empty() && !model.bounded())
+    throw InputError(unbounded_message(o.input) + " (or give --bounds)");
+  if (!o.bounds.empty()) vo.bounds = bounds_option(o.bounds, model, vo.resolution, o.input);
+  const VoxelLattice lattice = model.voxel_lattice(vo);
+  std::string ext = std::filesystem::path(o.output).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (!lattice.cubic() && ext == ".binvox")  // refused before the work, as write_voxels would
+    throw InputError(o.output + ": .binvox holds cubic grids only (dim N N N), got " +
+                     dims_text(lattice.dims) + " (use .npy, .raw, .vti, .zarr or .vdb)");
+  if (!o.surface.empty() && !lattice.cubic())
+    throw InputError("--surface: needs a cubic grid, got " + dims_text(lattice.dims));
+  if (!cubic && !zarr)
+    check_memory(static_cast<double>(lattice.voxel_count()) / 8, common.max_memory_bytes(),
+                 "--dims " + dims_text(lattice.dims) + ": the grid");
   Progress progress("voxelize", common.quiet);
-  vo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
-  const VoxelGrid grid = model.voxelize(vo);
-  progress.finish();
-  timing.lap(Timing::kKernel);
-  OutputBatch outputs;
-  write_voxels(o.output, grid);
-  if (!o.surface.empty()) write_mesh(o.surface, voxel_surface(grid));
-  outputs.commit();
-  timing.lap(Timing::kWrite);
-  const uint64_t occupied = grid.count();
-  const double h = grid.voxel_size();
+  auto report = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
   json j;
-  j["res"] = o.res;
-  j["bounds"] = bounds_json(grid.bounds);
+  uint64_t occupied = 0;
+  if (zarr) {
+    ZarrOptions zo;
+    zo.chunk = o.chunk;
+    zo.max_bytes = common.max_memory_bytes();
+    zo.progress = report;
+    const ZarrResult r = model.voxelize_to_zarr(o.output, vo, zo);
+    progress.finish();
+    timing.lap(Timing::kKernel);
+    occupied = r.occupied;
+    j["chunk"] = std::min(o.chunk, std::max({lattice.dims[0], lattice.dims[1], lattice.dims[2]}));
+    j["chunks"] = r.chunks;
+    j["chunks_written"] = r.chunks_written;
+    j["bricks_in_flight"] = r.bricks_in_flight;
+  } else {
+    vo.progress = report;
+    const VoxelGrid grid = model.voxelize(vo);
+    progress.finish();
+    timing.lap(Timing::kKernel);
+    OutputBatch outputs;
+    if (vdb)
+      write_vdb(o.output, grid);
+    else
+      write_voxels(o.output, grid);
+    if (!o.surface.empty()) write_mesh(o.surface, voxel_surface(grid));
+    outputs.commit();
+    timing.lap(Timing::kWrite);
+    occupied = grid.count();
+  }
+  const double h = lattice.spacing;
+  if (lattice.cube_size) j["res"] = lattice.dims[0];
+  j["dims"] = lattice.dims;
+  j["voxel_size"] = h;
+  j["bounds"] = bounds_json(lattice);
   j["occupied"] = occupied;
   j["volume_estimate"] = static_cast<double>(occupied) * h * h * h;
   timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";
   } else {
-    std::printf("%s: %d^3 voxels, %llu occupied, volume estimate %.9g, %.3f s\n", o.output.c_str(), o.res,
+    std::printf("%s: %s voxels, %llu occupied, volume estimate %.9g, %.3f s\n", o.output.c_str(),
+                lattice.cubic() ? (std::to_string(lattice.dims[0]) + "^3").c_str()
+                                : dims_text(lattice.dims).c_str(),
                 static_cast<unsigned long long>(occupied), j["volume_estimate"].get<double>(),
                 j["seconds"].get<double>());
   }

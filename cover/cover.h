@@ -30,6 +30,7 @@
 #include "raster/voxel_io.h"
 #include "raster/voxel_surface.h"
 #include "raster/voxelize.h"
+#include "raster/zarr_io.h"
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/measure.h"

@@ -1,11 +1,13 @@
 #include "model/model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <string>
 #include <utility>
 
 #include "covering/bounds.h"
+#include "covering/detail/bvh_walk.h"
 #include "solid/parallel.h"
 #include "solid/serialize.h"
 #include "solid/primitives.h"
@@ -191,20 +193,99 @@ VoxelBounds Model::voxel_bounds(int n) const {
   return default_voxel_bounds(!box->empty() ? *box : solid().bbox(), std::max(n, 3));
 }
 
+VoxelLattice Model::voxel_lattice(const VoxelizeOptions& options) const {
+  const bool cubic = options.voxel_size == 0 && options.dims == std::array<int, 3>{};
+  if (cubic && (options.resolution < 1 || options.resolution > kMaxVoxelDims))
+    throw InputError("--res: expected a whole number from 1 to " + std::to_string(kMaxVoxelDims) +
+                     ", got " + std::to_string(options.resolution));
+  if (options.bounds) return cover::voxel_lattice(Bbox{}, options);
+  const std::optional<Bbox> box = bounds();
+  if (!box) throw InputError("the result is unbounded (a complement at the root): give bounds");
+  return cover::voxel_lattice(!box->empty() ? *box : solid().bbox(), options);
+}
+
 VoxelGrid Model::voxelize(const VoxelizeOptions& options) const {
-  if (options.resolution < 1 || options.resolution > 4096)
-    throw InputError("--res: expected a whole number from 1 to 4096, got " +
+  const bool cubic = options.voxel_size == 0 && options.dims == std::array<int, 3>{};
+  if (cubic && (options.resolution < 1 || options.resolution > kMaxVoxelResolution))
+    throw InputError("--res: expected a whole number from 1 to " +
+                     std::to_string(kMaxVoxelResolution) + ", got " +
                      std::to_string(options.resolution));
-  VoxelizeOptions o = options;
-  if (!o.bounds) o.bounds = voxel_bounds(o.resolution);
+  const VoxelLattice lattice = voxel_lattice(options);
+  if (empty()) return empty_voxel_grid(lattice, whole_box(lattice));
+  VoxelGrid grid;
+  cover::voxelize_brick(solid(), lattice, whole_box(lattice), nullptr, grid, options.progress);
+  return grid;
+}
+
+namespace {
+
+/// Throws InputError unless `box` is a non-empty index box of a valid lattice.
+void check_brick(const VoxelLattice& lattice, const IndexBox& box) {
+  for (int a = 0; a < 3; ++a)
+    if (lattice.dims[a] < 1 || lattice.dims[a] > kMaxVoxelDims)
+      throw InputError("brick: lattice dims must be 1 to " + std::to_string(kMaxVoxelDims) +
+                       ", got " + std::to_string(lattice.dims[a]));
+  if (!(lattice.spacing > 0) || !std::isfinite(lattice.spacing) ||
+      !std::isfinite(lattice.origin.x) || !std::isfinite(lattice.origin.y) ||
+      !std::isfinite(lattice.origin.z))
+    throw InputError("brick: the lattice's origin must be finite and its spacing finite and > 0");
+  for (int a = 0; a < 3; ++a)
+    if (box.lo[a] < 0 || box.hi[a] > lattice.dims[a] || box.lo[a] >= box.hi[a])
+      throw InputError("brick: index box [" + std::to_string(box.lo[a]) + ", " +
+                       std::to_string(box.hi[a]) + ") on axis " + std::to_string(a) +
+                       " is empty or outside [0, " + std::to_string(lattice.dims[a]) + ")");
+}
+
+}  // namespace
+
+void Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const {
+  check_brick(lattice, box);
   if (empty()) {
-    VoxelGrid grid;
-    grid.n = o.resolution;
-    grid.bounds = *o.bounds;
-    grid.bits.assign(static_cast<size_t>(grid.n) * grid.n * grid.words_per_column(), 0);
-    return grid;
+    grid = empty_voxel_grid(lattice, box);
+    return;
   }
-  return cover::voxelize(solid(), o);
+  // The faces with a covering triangle whose box may reach the brick's column centres: BVH
+  // nodes whose (outward-rounded) x/y bounds meet [x of the first column, x of the last] × the
+  // same for y. Only culling: voxelize_brick decides every row and column exactly.
+  const double xlo = lattice.centre(box.lo[0], 0, 0).x, xhi = lattice.centre(box.hi[0] - 1, 0, 0).x;
+  const double ylo = lattice.centre(0, box.lo[1], 0).y, yhi = lattice.centre(0, box.hi[1] - 1, 0).y;
+  std::vector<uint32_t> faces;
+  walk(
+      bvh(),
+      [&](const Bvh::Node& node) {
+        return node.lo[0] <= xhi && node.hi[0] >= xlo && node.lo[1] <= yhi && node.hi[1] >= ylo;
+      },
+      [&](const Bvh::Tri& t, uint32_t) { faces.push_back(t.face); });
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  cover::voxelize_brick(solid(), lattice, box, &faces, grid);
+}
+
+VoxelGrid Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box) const {
+  VoxelGrid grid;
+  voxelize_brick(lattice, box, grid);
+  return grid;
+}
+
+std::vector<PointClass> Model::classify_brick(const VoxelLattice& lattice, const IndexBox& box,
+                                              const ClassifyOptions& options) const {
+  check_brick(lattice, box);
+  std::vector<Vec3> centres;
+  const auto d = box.dims();
+  centres.reserve(static_cast<size_t>(d[0]) * d[1] * d[2]);
+  for (int i = box.lo[0]; i < box.hi[0]; ++i)
+    for (int j = box.lo[1]; j < box.hi[1]; ++j)
+      for (int k = box.lo[2]; k < box.hi[2]; ++k) centres.push_back(lattice.centre(i, j, k));
+  return classify(centres, options);
+}
+
+ZarrResult Model::voxelize_to_zarr(const std::filesystem::path& path, const VoxelizeOptions& options,
+                                   const ZarrOptions& zarr) const {
+  const VoxelLattice lattice = voxel_lattice(options);
+  if (!empty()) bvh();  // built once, before the workers
+  return write_zarr(path, lattice, zarr, [&](const IndexBox& box, VoxelGrid& grid) {
+    voxelize_brick(lattice, box, grid);
+  });
 }
 
 Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBounds>& bounds) const {

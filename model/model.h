@@ -36,6 +36,7 @@
 #include "raster/camera.h"
 #include "raster/render.h"
 #include "raster/voxelize.h"
+#include "raster/zarr_io.h"
 #include "solid/errors.h"
 #include "solid/scene.h"
 #include "solid/solid.h"
@@ -114,9 +115,41 @@ class Model {
   /// \throws InputError for an unbounded result (give explicit bounds instead).
   VoxelBounds voxel_bounds(int n) const;
 
-  /// Presence-buffer voxelization (raster/voxelize.h). \throws InputError for a resolution out of
-  /// 1..4096, or an unbounded result without options.bounds.
+  /// The global grid voxelize(options) covers (raster/voxelize.h voxel_lattice): cubic from
+  /// resolution and bounds, or from voxel_size / dims over options.bounds or the result's box.
+  /// Bricks of it are voxelize_brick's input. \throws InputError for a resolution out of
+  /// 1..kMaxVoxelDims (16384), an unbounded result without options.bounds, bad voxel_size or
+  /// dims (voxel_lattice).
+  VoxelLattice voxel_lattice(const VoxelizeOptions& options = {}) const;
+
+  /// Presence-buffer voxelization of the whole lattice (raster/voxelize.h). \throws InputError
+  /// as voxel_lattice(), and for a cubic resolution above 4096 (use voxelize_to_zarr or bricks).
   VoxelGrid voxelize(const VoxelizeOptions& options = {}) const;
+
+  /// Brick API (DESIGN.md §10): the voxels of the index box [box.lo, box.hi) of `lattice`,
+  /// bit-identical to the same region of voxelize() over that lattice (global centres, the same
+  /// exact predicates and tie rule), at a cost ∝ the covering triangles whose x/y range reaches
+  /// the brick's columns (found through the BVH) and the brick's voxels. grid.lattice = lattice,
+  /// grid.box = box; local voxel (i, j, k) is global box.lo + (i, j, k). Thread-safe.
+  /// \throws InputError for an empty box or one outside [0, lattice.dims), dims out of
+  /// 1..16384, a non-finite origin or a spacing that is not finite and > 0.
+  VoxelGrid voxelize_brick(const VoxelLattice& lattice, const IndexBox& box) const;
+  /// The same into `grid`, reusing its memory (one grid per worker).
+  void voxelize_brick(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const;
+
+  /// Exact class (classify()) of the centres of the brick's voxels, in [x][y][z] order (z
+  /// fastest): index ((i − lo₀)·ny + (j − lo₁))·nz + (k − lo₂). Where it says inside / outside,
+  /// voxelize_brick's bit agrees; on a leaf's boundary the voxel follows the tie rule.
+  /// \throws InputError as voxelize_brick().
+  std::vector<PointClass> classify_brick(const VoxelLattice& lattice, const IndexBox& box,
+                                         const ClassifyOptions& options = {}) const;
+
+  /// Voxelizes voxel_lattice(options) straight into a Zarr v2 store (raster/zarr_io.h), brick
+  /// by brick (chunk columns; memory bounded by the bricks in flight), so N up to 16384 fits
+  /// one machine. options.progress is not used (zarr.progress is). \throws InputError as
+  /// voxel_lattice() and write_zarr().
+  ZarrResult voxelize_to_zarr(const std::filesystem::path& path, const VoxelizeOptions& options,
+                              const ZarrOptions& zarr = {}) const;
 
   /// Direct octree (octree/octree.h) over `bounds`, default: the voxel bounds of the result at
   /// 2^depth cells per side. \throws InputError as build_octree(), and for an unbounded result

@@ -92,6 +92,18 @@ inline constexpr const char* kBounds = R"(A box containing the result: float64 (
 inline constexpr const char* kVoxelBounds = R"(The default grid cube of voxelize(res): (xmin, ymin, zmin, size), the result's
 box made cubic with one voxel of margin per side.)";
 
+inline constexpr const char* kVoxelizeBrick = R"(The voxels of one brick of the res³ grid: bool
+(i1-i0, j1-j0, k1-k0), indexed [x, y, z], for box = (i0, i1, j0, j1, k0, k1) (half-open index
+ranges, 0 <= lo < hi <= res) and bounds = (xmin, ymin, zmin, size) (default: voxel_bounds(res)).
+Bit-identical to voxelize(res, bounds)[i0:i1, j0:j1, k0:k1] (global centres, the same tie rule);
+its cost follows the brick, and res may reach 16384 since only the brick is held. The building
+block of cover.dask.voxelize.)";
+
+inline constexpr const char* kToBytes = R"(The model as bytes: the same doubles and expression in another process
+(Model.from_bytes, pickle); load warnings are not kept.)";
+
+inline constexpr const char* kFromBytes = R"(The Model of to_bytes(); raises cover.InputError for bytes that are not one.)";
+
 inline constexpr const char* kVoxelize = R"(Voxel grid of the result: bool (res, res, res), indexed [x, y, z].
 
 Voxel (i, j, k) has centre min + (i + 1/2, j + 1/2, k + 1/2) * size / res and is True iff

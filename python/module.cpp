@@ -169,31 +169,67 @@ VolumeResult volume_result(const Model& model, bool exact, std::optional<int> ra
   return model.volume(o);
 }
 
+/// The bits of `grid` as bool (nx, ny, nz) [x, y, z], one column per task.
+py::array_t<bool> unpack_grid(const VoxelGrid& grid) {
+  const auto nx = static_cast<size_t>(grid.nx()), ny = static_cast<size_t>(grid.ny()),
+             nz = static_cast<size_t>(grid.nz());
+  py::array_t<bool> out({static_cast<py::ssize_t>(nx), static_cast<py::ssize_t>(ny),
+                         static_cast<py::ssize_t>(nz)});
+  bool* dst = out.mutable_data();
+  const size_t words = grid.words_per_column();
+  py::gil_scoped_release release;
+  parallel_for(nx * ny, 64, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      const uint64_t* col = grid.bits.data() + c * words;
+      bool* row = dst + c * nz;
+      for (size_t k = 0; k < nz; ++k) row[k] = (col[k / 64] >> (k % 64)) & 1;
+    }
+  });
+  return out;
+}
+
+/// voxelize_brick(res, box, bounds): the voxels of index box (i0, i1, j0, j1, k0, k1) of the
+/// cubic res³ grid over `bounds` (default: voxel_bounds(res)), bit-identical to that region of
+/// voxelize(res, bounds); res up to 16384 (only the brick is held).
+py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box,
+                              const py::object& bounds, Threads threads) {
+  if (res < 1 || res > 16384)
+    throw InputError("res: expected a whole number from 1 to 16384, got " + std::to_string(res));
+  const std::vector<double> b = numbers_arg(box, "box", 6);
+  IndexBox index;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = b[2 * a], hi = b[2 * a + 1];
+    if (lo != std::floor(lo) || hi != std::floor(hi) || !(0 <= lo && lo < hi && hi <= res))
+      throw InputError("box: expected whole numbers 0 <= lo < hi <= res per axis "
+                       "(i0, i1, j0, j1, k0, k1)");
+    index.lo[a] = static_cast<int>(lo);
+    index.hi[a] = static_cast<int>(hi);
+  }
+  const std::optional<VoxelBounds> given = bounds_arg(bounds);
+  VoxelGrid grid;
+  {
+    py::gil_scoped_release release;
+    KernelScope scope(threads);
+    const VoxelLattice lattice = cubic_lattice(given ? *given : model.voxel_bounds(res), res);
+    model.voxelize_brick(lattice, index, grid);
+  }
+  return unpack_grid(grid);
+}
+
 py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& bounds, Threads threads) {
   VoxelizeOptions o;
   o.resolution = res;
   o.bounds = bounds_arg(bounds);
   if (res < 1 || res > 4096)  // before allocating the output
     throw InputError("--res: expected a whole number from 1 to 4096, got " + std::to_string(res));
-  const auto n = static_cast<py::ssize_t>(res);
-  py::array_t<bool> out({n, n, n});
-  bool* dst = out.mutable_data();
+  VoxelGrid grid;
   {
     KernelScope scope(threads);
     Interrupt interrupt;
     o.progress = [&](double) { interrupt.poll(); };
-    const VoxelGrid grid = model.voxelize(o);
-    // Unpack bit columns (i, j) into bytes [x][y][z], one column per task.
-    const size_t words = grid.words_per_column(), side = static_cast<size_t>(res);
-    parallel_for(side * side, 64, [&](size_t begin, size_t end) {
-      for (size_t c = begin; c < end; ++c) {
-        const uint64_t* col = grid.bits.data() + c * words;
-        bool* row = dst + c * side;
-        for (size_t k = 0; k < side; ++k) row[k] = (col[k / 64] >> (k % 64)) & 1;
-      }
-    });
+    grid = model.voxelize(o);
   }
-  return out;
+  return unpack_grid(grid);
 }
 
 py::array_t<uint8_t> render_image(const Model& model, int width, int height, const std::string& view,
@@ -442,6 +478,30 @@ PYBIND11_MODULE(_cover, m) {
            py::arg("res"), doc::kVoxelBounds)
       .def("voxelize", &voxel_grid, py::arg("res"), py::arg("bounds") = py::none(), py::kw_only(),
            threads, doc::kVoxelize)
+      .def("voxelize_brick", &voxel_brick, py::arg("res"), py::arg("box"),
+           py::arg("bounds") = py::none(), py::kw_only(), threads, doc::kVoxelizeBrick)
+      .def("to_bytes",
+           [](const Model& a) {
+             const std::string bytes = a.to_bytes();
+             return py::bytes(bytes.data(), bytes.size());
+           },
+           doc::kToBytes)
+      .def_static("from_bytes",
+                  [](const py::bytes& bytes) {
+                    const std::string_view view = bytes;
+                    py::gil_scoped_release release;
+                    return Model::from_bytes(view);
+                  },
+                  py::arg("data"), doc::kFromBytes)
+      .def(py::pickle(
+          [](const Model& a) {
+            const std::string bytes = a.to_bytes();
+            return py::make_tuple(py::bytes(bytes.data(), bytes.size()));
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 1) throw InputError("pickled cover.Model: expected one bytes object");
+            return Model::from_bytes(std::string_view(t[0].cast<py::bytes>()), "pickled cover.Model");
+          }))
       .def("render", &render_image, py::arg("width"), py::arg("height"), py::arg("view") = "iso",
            py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false, threads,
            doc::kRender)

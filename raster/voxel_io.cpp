@@ -1,14 +1,17 @@
 // Voxel grid export: .binvox, .vti, .npy, .raw (+ .raw.json sidecar).
 //
-// Notation: N = grid.n; W = grid.words_per_column() = ⌈N/64⌉. A column is the N bits over z of
-// the voxels (x, y, ·), stored z-contiguous (voxel_grid.h). A slab is the N² voxels that share the
-// outermost coordinate of a file's order. Files are streamed one slab at a time, so memory stays
-// O(N²) bytes beside the grid (N = 2048: 4 MiB per byte slab; the grid itself holds N³/8 bytes).
-//   [x][y][z] (.npy, .raw)  slab = fixed x; each column expands straight to N bytes.
-//   x, z, y   (.binvox)     slab = fixed x; 64×64 bit transposes turn the columns of one x into
-//                           rows over y, which feed a run-length encoder whose runs cross slabs.
+// Notation: NX, NY, NZ = the grid's dims (N for a cubic grid); W = grid.words_per_column() =
+// ⌈NZ/64⌉. A column is the NZ bits over z of the voxels (x, y, ·), stored z-contiguous
+// (voxel_grid.h). A slab is the voxels that share the outermost coordinate of a file's order.
+// Files are streamed one slab at a time, so memory stays O(N²) bytes beside the grid (N = 2048:
+// 4 MiB per byte slab; the grid itself holds N³/8 bytes).
+//   [x][y][z] (.npy, .raw)  slab = fixed x; each column expands straight to NZ bytes.
+//   x, z, y   (.binvox)     cubic only; slab = fixed x; 64×64 bit transposes turn the columns of
+//                           one x into rows over y, which feed a run-length encoder whose runs
+//                           cross slabs.
 //   z, y, x   (.vti cells)  64 z-slabs at a time: 64×64 bit transposes turn blocks of 64 columns
-//                           into rows over x (64·N·W words), then each z-slab expands to bytes.
+//                           into rows over x (64·NY·⌈NX/64⌉ words), then each z-slab expands to
+//                           bytes.
 // Every file goes through write_atomically (solid/atomic_file.h): a temporary beside FILE, renamed
 // over it once complete (or with the command's other outputs); on any failure the temporary is
 // removed and InputError names FILE.
@@ -29,6 +32,7 @@
 #include <utility>
 #include <vector>
 
+#include "raster/detail/bit_expand.h"
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/npy.h"
@@ -37,6 +41,7 @@ namespace cover {
 namespace {
 
 namespace fs = std::filesystem;
+using detail::expand_bits;
 
 /// The extension of `path`, ASCII-lowercased (".NPY" → ".npy").
 std::string lower_extension(const fs::path& path) {
@@ -121,24 +126,6 @@ void write_file(const fs::path& path, const Body& body) {
       "the voxels");
 }
 
-/// kExpand.bytes[b][i] = bit i of b: one lookup expands 8 voxel bits into 8 bytes of 0/1.
-struct ExpandTable {
-  uint8_t bytes[256][8];
-  constexpr ExpandTable() : bytes{} {
-    for (int b = 0; b < 256; ++b)
-      for (int i = 0; i < 8; ++i) bytes[b][i] = static_cast<uint8_t>((b >> i) & 1);
-  }
-};
-constexpr ExpandTable kExpand;
-
-/// Writes bits 0..count−1 of the little-endian bit string `words` as bytes 0/1 to `out`.
-void expand_bits(const uint64_t* words, size_t count, uint8_t* out) {
-  size_t i = 0;
-  for (; i + 8 <= count; i += 8)
-    std::memcpy(out + i, kExpand.bytes[(words[i / 64] >> (i % 64)) & 0xff], 8);
-  for (; i < count; ++i) out[i] = static_cast<uint8_t>((words[i / 64] >> (i % 64)) & 1);
-}
-
 /// Transposes a 64×64 bit matrix in place: bit c of a[r] ↔ bit r of a[c] (recursive block
 /// swap, Hacker's Delight §7-3, with bit 0 as column 0).
 void transpose64(std::array<uint64_t, 64>& a) {
@@ -157,34 +144,49 @@ int bits_in_word(size_t w, int n) { return std::min(64, n - static_cast<int>(64 
 
 // ---- .npy and .raw: [x][y][z], z fastest ----
 
-/// Streams the N³ bytes in [x][y][z] order, one x-slab (N² bytes) at a time.
+/// Streams the NX·NY·NZ bytes in [x][y][z] order, one x-slab (NY·NZ bytes) at a time.
 void write_xyz_bytes(OutputFile& out, const VoxelGrid& grid) {
-  const size_t n = static_cast<size_t>(grid.n);
-  std::vector<uint8_t> slab(n * n);
-  for (int x = 0; x < grid.n; ++x) {
-    for (int y = 0; y < grid.n; ++y)
-      expand_bits(&grid.bits[grid.column_word(x, y)], n, &slab[static_cast<size_t>(y) * n]);
+  const size_t nz = static_cast<size_t>(grid.nz());
+  std::vector<uint8_t> slab(static_cast<size_t>(grid.ny()) * nz);
+  for (int x = 0; x < grid.nx(); ++x) {
+    for (int y = 0; y < grid.ny(); ++y)
+      expand_bits(&grid.bits[grid.column_word(x, y)], nz, &slab[static_cast<size_t>(y) * nz]);
     out.write(slab.data(), slab.size());
   }
 }
 
+/// "[a, b, c]" of the grid's dims.
+std::string dims_list(const VoxelGrid& grid, const char* open, const char* close) {
+  return open + std::to_string(grid.nx()) + ", " + std::to_string(grid.ny()) + ", " +
+         std::to_string(grid.nz()) + close;
+}
+
 void write_npy(OutputFile& out, const VoxelGrid& grid) {
-  const auto n = static_cast<uint64_t>(grid.n);
-  const std::array<uint64_t, 3> shape{n, n, n};
+  const std::array<uint64_t, 3> shape{static_cast<uint64_t>(grid.nx()),
+                                      static_cast<uint64_t>(grid.ny()),
+                                      static_cast<uint64_t>(grid.nz())};
   out.write(npy_header("|u1", shape));
   write_xyz_bytes(out, grid);
 }
 
-/// The .raw sidecar: dims, order, dtype, bounds and voxel size as JSON.
+/// "[x, y, z]" of a point.
+std::string point_list(const Vec3& p) {
+  return "[" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + "]";
+}
+
+/// The .raw sidecar: dims, order, dtype, bounds and voxel size as JSON. Bounds are {"min",
+/// "size"} for a cubic grid made from a cube (--res), else {"min", "max"} (max = min + dims·h).
 std::string raw_sidecar(const VoxelGrid& grid) {
-  const std::string n = std::to_string(grid.n);
-  const Vec3& min = grid.bounds.min;
-  return "{\n  \"dims\": [" + n + ", " + n + ", " + n +
-         "],\n  \"order\": \"xyz (z fastest)\",\n  \"dtype\": \"uint8\",\n"
-         "  \"bounds\": {\"min\": [" +
-         number(min.x) + ", " + number(min.y) + ", " + number(min.z) +
-         "], \"size\": " + number(grid.bounds.size) +
-         "},\n  \"voxel_size\": " + number(grid.voxel_size()) + "\n}\n";
+  const VoxelLattice& l = grid.lattice;
+  const std::string bounds =
+      l.cube_size ? "\"min\": " + point_list(l.origin) + ", \"size\": " + number(*l.cube_size)
+                  : "\"min\": " + point_list(l.origin) + ", \"max\": " +
+                        point_list({l.origin.x + l.dims[0] * l.spacing,
+                                    l.origin.y + l.dims[1] * l.spacing,
+                                    l.origin.z + l.dims[2] * l.spacing});
+  return "{\n  \"dims\": " + dims_list(grid, "[", "]") +
+         ",\n  \"order\": \"xyz (z fastest)\",\n  \"dtype\": \"uint8\",\n"
+         "  \"bounds\": {" + bounds + "},\n  \"voxel_size\": " + number(grid.voxel_size()) + "\n}\n";
 }
 
 // ---- .binvox: RLE over index x·N·N + z·N + y ----
@@ -241,33 +243,35 @@ class RunEncoder {
 };
 
 void write_binvox(OutputFile& out, const VoxelGrid& grid) {
-  const Vec3& min = grid.bounds.min;
-  const std::string n = std::to_string(grid.n);
+  const VoxelLattice& l = grid.lattice;
+  const Vec3& min = l.origin;
+  const int grid_n = grid.nx();
+  const std::string n = std::to_string(grid_n);
   // binvox maps voxel index i to (i + ½)/N · scale + translate along each axis.
+  const double scale = l.cube_size ? *l.cube_size : grid_n * l.spacing;
   out.write("#binvox 1\ndim " + n + " " + n + " " + n + "\ntranslate " + number(min.x) + " " +
-            number(min.y) + " " + number(min.z) + "\nscale " + number(grid.bounds.size) +
-            "\ndata\n");
+            number(min.y) + " " + number(min.z) + "\nscale " + number(scale) + "\ndata\n");
   const size_t words = grid.words_per_column();
   // rows[z·W + w]: bits over y (bit t = y − 64w) of the x-slab being encoded.
-  std::vector<uint64_t> rows(static_cast<size_t>(grid.n) * words);
+  std::vector<uint64_t> rows(static_cast<size_t>(grid_n) * words);
   std::array<uint64_t, 64> block{};
   RunEncoder encoder(out);
-  for (int x = 0; x < grid.n; ++x) {
+  for (int x = 0; x < grid_n; ++x) {
     for (size_t zw = 0; zw < words; ++zw) {
       for (size_t yw = 0; yw < words; ++yw) {
         // block[t] = bits over z of column (x, 64·yw + t), word zw; zero past y = N − 1.
         for (int t = 0; t < 64; ++t) {
           const int y = static_cast<int>(64 * yw) + t;
-          block[t] = y < grid.n ? grid.bits[grid.column_word(x, y) + zw] : 0;
+          block[t] = y < grid_n ? grid.bits[grid.column_word(x, y) + zw] : 0;
         }
         transpose64(block);  // block[dz] = bits over y of row z = 64·zw + dz
-        for (int dz = 0; dz < bits_in_word(zw, grid.n); ++dz)
+        for (int dz = 0; dz < bits_in_word(zw, grid_n); ++dz)
           rows[(64 * zw + dz) * words + yw] = block[dz];
       }
     }
-    for (size_t z = 0; z < static_cast<size_t>(grid.n); ++z)
+    for (size_t z = 0; z < static_cast<size_t>(grid_n); ++z)
       for (size_t yw = 0; yw < words; ++yw)
-        encoder.add_bits(rows[z * words + yw], bits_in_word(yw, grid.n));
+        encoder.add_bits(rows[z * words + yw], bits_in_word(yw, grid_n));
   }
   encoder.finish();
 }
@@ -275,10 +279,10 @@ void write_binvox(OutputFile& out, const VoxelGrid& grid) {
 // ---- .vti: VTK XML ImageData, cells in x-fastest order ----
 
 void write_vti(OutputFile& out, const VoxelGrid& grid) {
-  const size_t n = static_cast<size_t>(grid.n);
-  const std::string extent =
-      "0 " + std::to_string(n) + " 0 " + std::to_string(n) + " 0 " + std::to_string(n);
-  const Vec3& min = grid.bounds.min;
+  const int nx = grid.nx(), ny = grid.ny(), nz = grid.nz();
+  const std::string extent = "0 " + std::to_string(nx) + " 0 " + std::to_string(ny) + " 0 " +
+                             std::to_string(nz);
+  const Vec3& min = grid.lattice.origin;
   const std::string h = number(grid.voxel_size());
   const std::string origin = number(min.x) + " " + number(min.y) + " " + number(min.z);
   const std::string spacing = h + " " + h + " " + h;
@@ -301,47 +305,52 @@ void write_vti(OutputFile& out, const VoxelGrid& grid) {
       "  <AppendedData encoding=\"raw\">\n"
       "   _";
   out.write(xml);
-  // Raw appended block: UInt64 little-endian byte count, then the N³ cell values.
-  const uint64_t total = static_cast<uint64_t>(n) * n * n;
+  // Raw appended block: UInt64 little-endian byte count, then the NX·NY·NZ cell values.
+  const uint64_t total = grid.lattice.voxel_count();
   uint8_t count_bytes[8];
   for (int i = 0; i < 8; ++i) count_bytes[i] = static_cast<uint8_t>(total >> (8 * i));
   out.write(count_bytes, sizeof count_bytes);
 
   const size_t words = grid.words_per_column();
-  // zrows[(dz·N + y)·W + w]: bits over x (bit t = x − 64w) of z-slab 64·zw + dz, row y.
-  std::vector<uint64_t> zrows(64 * n * words);
-  std::vector<uint8_t> slab(n * n);
+  const size_t xwords = (static_cast<size_t>(nx) + 63) / 64;
+  const size_t rows = static_cast<size_t>(ny);
+  // zrows[(dz·NY + y)·XW + w]: bits over x (bit t = x − 64w) of z-slab 64·zw + dz, row y.
+  std::vector<uint64_t> zrows(64 * rows * xwords);
+  std::vector<uint8_t> slab(rows * static_cast<size_t>(nx));
   std::array<uint64_t, 64> block{};
   for (size_t zw = 0; zw < words; ++zw) {
-    for (size_t xw = 0; xw < words; ++xw) {
-      for (int y = 0; y < grid.n; ++y) {
-        // block[t] = bits over z of column (64·xw + t, y), word zw; zero past x = N − 1.
+    for (size_t xw = 0; xw < xwords; ++xw) {
+      for (int y = 0; y < ny; ++y) {
+        // block[t] = bits over z of column (64·xw + t, y), word zw; zero past x = NX − 1.
         for (int t = 0; t < 64; ++t) {
           const int x = static_cast<int>(64 * xw) + t;
-          block[t] = x < grid.n ? grid.bits[grid.column_word(x, y) + zw] : 0;
+          block[t] = x < nx ? grid.bits[grid.column_word(x, y) + zw] : 0;
         }
         transpose64(block);  // block[dz] = bits over x of row y in z-slab 64·zw + dz
-        for (int dz = 0; dz < 64; ++dz) zrows[(dz * n + y) * words + xw] = block[dz];
+        for (int dz = 0; dz < 64; ++dz) zrows[(dz * rows + y) * xwords + xw] = block[dz];
       }
     }
-    for (int dz = 0; dz < bits_in_word(zw, grid.n); ++dz) {
-      for (size_t y = 0; y < n; ++y) expand_bits(&zrows[(dz * n + y) * words], n, &slab[y * n]);
+    for (int dz = 0; dz < bits_in_word(zw, nz); ++dz) {
+      for (size_t y = 0; y < rows; ++y)
+        expand_bits(&zrows[(dz * rows + y) * xwords], nx, &slab[y * nx]);
       out.write(slab.data(), slab.size());
     }
   }
   out.write("\n  </AppendedData>\n</VTKFile>\n");
 }
 
-/// Rejects grids whose storage does not match their resolution (a caller's bug, not input).
+/// Rejects grids whose storage does not match their dims, or bricks (a caller's bug, not input).
 void check_grid(const VoxelGrid& grid) {
-  const size_t n = static_cast<size_t>(std::max(grid.n, 0));
-  if (grid.n <= 0 || grid.bits.size() != n * n * grid.words_per_column())
-    throw PreconditionError("write_voxels: grid of resolution " + std::to_string(grid.n) +
-                                " holds " + std::to_string(grid.bits.size()) + " words");
-  if (!(grid.bounds.size > 0) || !std::isfinite(grid.bounds.size) ||
-      !std::isfinite(grid.bounds.min.x) || !std::isfinite(grid.bounds.min.y) ||
-      !std::isfinite(grid.bounds.min.z))
-    throw PreconditionError("write_voxels: bounds must be finite with a positive size");
+  const VoxelLattice& l = grid.lattice;
+  if (!grid.whole() || l.dims[0] <= 0 || l.dims[1] <= 0 || l.dims[2] <= 0 ||
+      grid.bits.size() != grid.word_count())
+    throw PreconditionError("write_voxels: a whole grid of positive dims expected, got a " +
+                            std::to_string(grid.nx()) + "x" + std::to_string(grid.ny()) + "x" +
+                            std::to_string(grid.nz()) + " region holding " +
+                            std::to_string(grid.bits.size()) + " words");
+  if (!(l.spacing > 0) || !std::isfinite(l.spacing) || !std::isfinite(l.origin.x) ||
+      !std::isfinite(l.origin.y) || !std::isfinite(l.origin.z))
+    throw PreconditionError("write_voxels: origin and spacing must be finite, spacing > 0");
 }
 
 }  // namespace
@@ -357,6 +366,10 @@ void write_voxels(const fs::path& path, const VoxelGrid& grid) {
     throw InputError(path.string() + ": unsupported voxel format " +
                      quote(path.extension().string()) + " (expected .binvox, .vti, .npy, .raw)");
   check_grid(grid);
+  if (ext == ".binvox" && !grid.lattice.cubic())
+    throw InputError(path.string() + ": .binvox holds cubic grids only (dim N N N), got " +
+                     std::to_string(grid.nx()) + "x" + std::to_string(grid.ny()) + "x" +
+                     std::to_string(grid.nz()) + " (use .npy, .raw, .vti or .zarr)");
   // .raw and its sidecar are committed together: no .raw is left without its description, and
   // a failure leaves both old files as they were.
   OutputBatch batch;

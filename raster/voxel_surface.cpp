@@ -115,7 +115,7 @@ class SurfaceBuilder {
  public:
   explicit SurfaceBuilder(const VoxelGrid& grid)
       : grid_(grid),
-        n_(grid.n),
+        n_(grid.nx()),
         row_(static_cast<size_t>(n_) + 1),
         cw_((static_cast<size_t>(n_) + 2 + 63) / 64),
         h_(grid.voxel_size()),
@@ -201,11 +201,11 @@ class SurfaceBuilder {
   void number_corners(int i) {
     const CornerTable& t = table_;
     const int p = i & 1;
-    const double x = grid_.bounds.min.x + i * h_;
+    const double x = grid_.lattice.origin.x + i * h_;
     for (int j = 0; j <= n_; ++j) {
       const std::array<const uint64_t*, 4> c = {column(i - 1, j - 1), column(i, j - 1),
                                                 column(i - 1, j), column(i, j)};
-      const double y = grid_.bounds.min.y + j * h_;
+      const double y = grid_.lattice.origin.y + j * h_;
       for (size_t w = 0; w < cw_; ++w) {
         const uint64_t any = c[0][w] | c[1][w] | c[2][w] | c[3][w];
         const uint64_t all = c[0][w] & c[1][w] & c[2][w] & c[3][w];
@@ -226,7 +226,7 @@ class SurfaceBuilder {
             throw NotComputable("voxel_surface: vertices exceed 32-bit indices");
           mask_[p][idx] = static_cast<uint8_t>(mask);
           base_[p][idx] = static_cast<uint32_t>(base);
-          const Vec3 v{x, y, grid_.bounds.min.z + k * h_};
+          const Vec3 v{x, y, grid_.lattice.origin.z + k * h_};
           for (int f = 0; f < t.fans[mask]; ++f) mesh_.vertices.push_back(v);
         }
       }
@@ -340,7 +340,7 @@ class SurfaceBuilder {
       throw NotComputable("voxel_surface: vertices exceed 32-bit indices");
     const uint32_t index = static_cast<uint32_t>(mesh_.vertices.size());
     std::array<double, 3> c;
-    const std::array<double, 3> min = {grid_.bounds.min.x, grid_.bounds.min.y, grid_.bounds.min.z};
+    const std::array<double, 3> min = {grid_.lattice.origin.x, grid_.lattice.origin.y, grid_.lattice.origin.z};
     for (int d = 0; d < 3; ++d) c[d] = min[d] + (d == axis ? low[d] + 0.5 : low[d]) * h_;
     mesh_.vertices.push_back({c[0], c[1], c[2]});
     mesh_.face_vertices.push_back(index);
@@ -363,7 +363,9 @@ class SurfaceBuilder {
 }  // namespace
 
 PolygonMesh voxel_surface(const VoxelGrid& grid) {
-  if (grid.n <= 0) return {};
+  if (grid.nx() <= 0) return {};
+  if (!grid.whole() || !grid.lattice.cubic())
+    throw PreconditionError("voxel_surface: a whole cubic grid expected");
   return SurfaceBuilder(grid).build();
 }
 

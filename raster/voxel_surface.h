@@ -6,13 +6,13 @@
 
 namespace cover {
 
-/// The boundary of the union of the occupied voxels, each the closed cube of side h = size/N
+/// The boundary of the union of the occupied voxels, each the closed cube of side h (the spacing)
 /// around its centre; voxels outside the grid count as empty. One face per boundary face (a voxel
 /// face between an occupied and an empty voxel), counter-clockwise seen from the empty side.
 /// Where voxels touch only along an edge or at a corner the surface is split: at each grid corner
 /// the incident faces are grouped into fans (across an axis half-edge with 2 boundary faces the
 /// two are joined; with 4, the two faces of the same occupied voxel) and each fan gets its own
-/// vertex copy. Vertex (i, j, k) is at min + (i, j, k)·h, computed the same way for every copy.
+/// vertex copy. Vertex (i, j, k) is at origin + (i, j, k)·h, computed the same way for every copy.
 /// Resulting connectivity: (6, 18). Occupied voxels are 6-connected; empty voxels joined along an
 /// edge stay joined, but at a corner both sides are split, so two empty voxels touching only at
 /// a corner are apart (the ring of 6 voxels around a corner is a sphere, not a torus).
@@ -27,7 +27,8 @@ namespace cover {
 /// Order: vertices by corner (i, then j, then k, then fan; midpoints when first used); faces by
 /// x-slab. Deterministic and serial: O(N³/64 + faces) time, O(N²) memory beyond the result.
 /// Throws std::length_error if the mesh needs 2³² or more vertices or face indices.
-/// Precondition: grid.bits holds N²·words_per_column() words.
+/// Precondition: grid.bits holds N²·words_per_column() words. \throws PreconditionError for a
+/// brick or a non-cubic grid (N×N×N lattices only).
 PolygonMesh voxel_surface(const VoxelGrid& grid);
 
 }  // namespace cover

@@ -4,11 +4,13 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "covering/bounds.h"
 #include "covering/detail/simd.h"
+#include "solid/errors.h"
 #include "solid/parallel.h"
 #include "solid/predicates.h"
 
@@ -24,7 +26,7 @@ struct Crossing {
 };
 
 /// Per-column sort key of a crossing: (below, leaf, sign) packed so that integer order is
-/// (below, leaf) order. below ≤ 4096 needs 13 bits, leaf 32, sign 1: 46 bits in all.
+/// (below, leaf) order. below ≤ kMaxVoxelDims = 16384 needs 15 bits, leaf 32, sign 1: 48 bits.
 uint64_t crossing_key(const Crossing& c) {
   return (uint64_t{c.below} << 33) | (uint64_t{c.leaf} << 1) | (c.sign > 0 ? 1u : 0u);
 }
@@ -49,16 +51,18 @@ int perturbed_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
   return orient2d(a, b, c, 2);
 }
 
-/// Coordinates of the voxel centres along one axis (the doubles voxel_centre() computes).
-std::vector<double> centres(double min, double h, int n) {
-  std::vector<double> c(static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) c[i] = min + (i + 0.5) * h;
+/// Coordinates of the voxel centres first..first+count−1 along one axis: the doubles
+/// VoxelLattice::centre() computes, from the GLOBAL index (never re-based on the brick).
+std::vector<double> centres(double min, double h, int first, int count) {
+  std::vector<double> c(static_cast<size_t>(count));
+  for (int t = 0; t < count; ++t) c[t] = min + ((first + t) + 0.5) * h;
   return c;
 }
 
 /// Indices [first, last] of the centres inside [lo, hi], or first > last: a floating-point
 /// guess, then exact comparisons with the centre coordinates.
-/// inv_h: 1 / (c[1] − c[0]) (1 when N = 1), computed once by the caller.
+/// inv_h: 1 / (c[1] − c[0]) (1 when N = 1), computed once by the caller. `c` may be any run of
+/// consecutive centres (a brick's): the guess is relative to c[0], the answer exact.
 std::pair<int, int> centre_range(const std::vector<double>& c, double inv_h, double lo, double hi) {
   const int n = static_cast<int>(c.size());
   // A guess only (the loops below make it exact): truncation instead of floor (std::floor is a
@@ -85,7 +89,7 @@ using detail::vabs;
 struct BandTriangle {
   uint32_t v[3];  ///< vertex indices, leaf orientation
   uint32_t leaf;
-  uint16_t i0, i1;  ///< rows whose centre x lies in the triangle's x range (N ≤ 4096)
+  uint16_t i0, i1;  ///< rows whose centre x lies in the triangle's x range (≤ kMaxVoxelDims)
   uint16_t j0, j1;  ///< the same for columns and y
   int8_t nz;        ///< orient2d(a, b, c, 2) ≠ 0: winding contribution to the centres below
   bool moderate;    ///< every coordinate of a, b, c is moderate()
@@ -149,7 +153,7 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
                   int i1, int j0, int j1, int band_first_row, const std::vector<double>& xs,
                   const std::vector<double>& ys, const std::vector<double>& zs,
                   std::vector<Crossing>& out) {
-  const int n = static_cast<int>(xs.size());
+  const int ny = static_cast<int>(ys.size()), nk = static_cast<int>(zs.size());  // columns per row, centres per column
   const double inv_h = zs.size() > 1 ? 1 / (zs[1] - zs[0]) : 1;
   const double snz = nz;
   // The plane's z in centre-index units, k(x, y) = k0 + kx·(x − a.x) + ky·(y − a.y): only the
@@ -225,14 +229,14 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
         // stands in for ceil; NaN and out-of-range values are clamped first).
         double g = k0 + kx * (x - a.x) + ky * (y - a.y);
         if (!(g > -1)) g = -1;
-        if (g > n) g = n;
-        int below = std::clamp(static_cast<int>(g) + 1, 0, n);
+        if (g > nk) g = nk;
+        int below = std::clamp(static_cast<int>(g) + 1, 0, nk);
         // Centre k is below the triangle iff its perturbed side is opposite to n_z (the side is
         // never 0: n_z ≠ 0). The common case, the guess right and both of its neighbours
         // decided by the filter, takes one paired evaluation of the side filter (the same
         // operations as `side` on both centres; ~6% of the call at 512³ together with keeping
         // the minors); otherwise the walk below tests centre by centre.
-        if (below > 0 && below < n) {
+        if (below > 0 && below < nk) {
           const v2d z = {zs[below - 1], zs[below]};
           const v2d adz = v2d{a.z, a.z} - z, bdz = v2d{b.z, b.z} - z, cdz = v2d{c.z, c.z} - z;
           const v2d det = adz * ma + bdz * mb + cdz * mc;
@@ -242,15 +246,15 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
           const v2d sdet = snz * det;
           if ((kModerate || (in_range(permanent[0]) & in_range(permanent[1]))) &
               (sdet[0] > bound[0]) & (sdet[1] < -bound[1])) {
-            out.push_back({static_cast<uint32_t>((i - band_first_row) * n + j), leaf,
+            out.push_back({static_cast<uint32_t>((i - band_first_row) * ny + j), leaf,
                            static_cast<uint32_t>(below), nz});
             continue;
           }
         }
         auto is_below = [&](int k) { return side(zs[k]) == -nz; };
         while (below > 0 && !is_below(below - 1)) --below;
-        while (below < n && is_below(below)) ++below;
-        out.push_back({static_cast<uint32_t>((i - band_first_row) * n + j), leaf,
+        while (below < nk && is_below(below)) ++below;
+        out.push_back({static_cast<uint32_t>((i - band_first_row) * ny + j), leaf,
                        static_cast<uint32_t>(below), nz});
       }
     }
@@ -282,6 +286,63 @@ void fill(uint64_t* column, int k0, int k1) {
 
 }  // namespace
 
+VoxelLattice voxel_lattice(const Bbox& result_box, const VoxelizeOptions& options) {
+  const bool by_size = options.voxel_size != 0;
+  const bool by_dims = options.dims != std::array<int, 3>{};
+  if (!by_size && !by_dims) {
+    const int n = options.resolution;
+    return cubic_lattice(options.bounds ? *options.bounds : default_voxel_bounds(result_box, std::max(n, 3)), n);
+  }
+  if (by_size && by_dims) throw InputError("--voxel-size and --dims: give one of them, not both");
+  if (by_size && !(options.voxel_size > 0 && std::isfinite(options.voxel_size)))
+    throw InputError("--voxel-size: expected a finite number > 0");
+  for (const int d : options.dims)
+    if (by_dims && (d < 1 || d > kMaxVoxelDims))
+      throw InputError("--dims: expected three whole numbers from 1 to " +
+                       std::to_string(kMaxVoxelDims) + ", got " + std::to_string(d));
+  // The box B to cover: the given cube, else the result's box; no extent anywhere (or empty):
+  // the unit cube around its centre.
+  Bbox box = result_box;
+  if (options.bounds) {
+    const VoxelBounds& b = *options.bounds;
+    box = Bbox{b.min, b.min + Vec3{b.size, b.size, b.size}};
+  }
+  std::array<double, 3> lo{}, extent{};
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = box.empty() ? 0 : box.min[a];
+    extent[a] = box.empty() ? 0 : std::max(0.0, box.max[a] - box.min[a]);
+  }
+  if (!(std::max({extent[0], extent[1], extent[2]}) > 0)) {
+    for (int a = 0; a < 3; ++a) lo[a] = lo[a] + 0.5 * extent[a] - 0.5, extent[a] = 1;
+  }
+  VoxelLattice lattice;
+  lattice.origin = {lo[0], lo[1], lo[2]};
+  if (by_size) {
+    const double h = options.voxel_size;
+    lattice.spacing = h;
+    for (int a = 0; a < 3; ++a) {
+      const double guess = std::ceil(extent[a] / h);
+      if (!(guess <= kMaxVoxelDims))
+        throw InputError("--voxel-size: " + std::to_string(h) + " gives more than " +
+                         std::to_string(kMaxVoxelDims) + " voxels on an axis");
+      int d = std::max(1, static_cast<int>(guess));
+      while (d * h < extent[a]) ++d;  // the rounded quotient may fall short by one
+      if (d > kMaxVoxelDims)
+        throw InputError("--voxel-size: too small, more than " + std::to_string(kMaxVoxelDims) +
+                         " voxels on an axis");
+      lattice.dims[a] = d;
+    }
+  } else {
+    lattice.dims = options.dims;
+    double h = 0;
+    for (int a = 0; a < 3; ++a) h = std::max(h, extent[a] / lattice.dims[a]);
+    for (int a = 0; a < 3; ++a)
+      while (lattice.dims[a] * h < extent[a]) h = std::nextafter(h, INFINITY);
+    lattice.spacing = h;
+  }
+  return lattice;
+}
+
 VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options) {
   VoxelGrid g;
   voxelize(solid, options, g);
@@ -289,45 +350,72 @@ VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options) {
 }
 
 void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) {
-  g.n = options.resolution;
+  VoxelLattice lattice;
   if (options.bounds) {
-    g.bounds = *options.bounds;
+    lattice = voxel_lattice(Bbox{}, options);
   } else {
     const std::optional<Bbox> box = result_bounds(solid);
-    g.bounds = default_voxel_bounds(box && !box->empty() ? *box : solid.bbox(), std::max(g.n, 3));
+    lattice = voxel_lattice(box && !box->empty() ? *box : solid.bbox(), options);
   }
-  const int n = g.n;
-  const double h = g.voxel_size();
-  const std::vector<double> xs = centres(g.bounds.min.x, h, n), ys = centres(g.bounds.min.y, h, n),
-                            zs = centres(g.bounds.min.z, h, n);
-  const double inv_hx = n > 1 ? 1 / (xs[1] - xs[0]) : 1, inv_hy = n > 1 ? 1 / (ys[1] - ys[0]) : 1;
+  voxelize_brick(solid, lattice, whole_box(lattice), nullptr, g, options.progress);
+}
+
+void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const IndexBox& box,
+                    const std::vector<uint32_t>* face_list, VoxelGrid& g,
+                    const std::function<void(double)>& progress) {
+  g.lattice = lattice;
+  g.box = box;
+  // A brick is the whole-grid algorithm run on the slices of the global centre arrays
+  // (DESIGN.md §10): every decision below is taken on the same doubles by the same exact
+  // predicates as for the whole grid. centre_range finds, within the slices, exactly the rows
+  // and columns whose centres the triangle's x/y range contains (the rest of the grid's columns
+  // are not visited); `below` over the sliced zs is the number of the brick's centres below the
+  // crossing, i.e. the global count clamped to [k0, k1) and shifted by k0. As a crossing adds
+  // its sign to the winding of every centre below it, one above the brick still counts for all
+  // of the brick's centres of that column (below = nk) and one under the brick for none
+  // (below = 0): the brick's windings, hence its bits, equal the whole grid's.
+  const int nx = g.nx(), ny = g.ny(), nk = g.nz();
+  const double h = lattice.spacing;
+  const std::vector<double> xs = centres(lattice.origin.x, h, box.lo[0], nx),
+                            ys = centres(lattice.origin.y, h, box.lo[1], ny),
+                            zs = centres(lattice.origin.z, h, box.lo[2], nk);
+  const double inv_hx = nx > 1 ? 1 / (xs[1] - xs[0]) : 1, inv_hy = ny > 1 ? 1 / (ys[1] - ys[0]) : 1;
   // Whether all centres, and all vertices (one pass here instead of nine tests per triangle:
   // those were ~4% of the call at 512³), are moderate().
   bool moderate_centres = true, moderate_vertices = true;
-  for (int i = 0; i < n; ++i)
-    moderate_centres &= moderate(xs[i]) & moderate(ys[i]) & moderate(zs[i]);
-  for (const Vec3& v : solid.vertices) moderate_vertices &= moderate(v);
+  for (const double x : xs) moderate_centres &= moderate(x);
+  for (const double y : ys) moderate_centres &= moderate(y);
+  for (const double z : zs) moderate_centres &= moderate(z);
+  // A brick given its faces checks their vertices triangle by triangle instead (no pass over
+  // the whole mesh per brick).
+  if (face_list)
+    moderate_vertices = false;
+  else
+    for (const Vec3& v : solid.vertices) moderate_vertices &= moderate(v);
   const size_t words = g.words_per_column();
   // No zeroing pass here: step 2 writes every word of every band (a reused grid keeps its memory).
-  g.bits.resize(static_cast<size_t>(n) * n * words);
+  g.bits.resize(g.word_count());
 
   // The covering triangles are the fan triangles (v0, v_k, v_k+1) of each face in its leaf's own
   // orientation, numbered face by face (those a Bvh is built over; degenerate ones have n_z = 0
   // and cross no column). They are read straight from the faces: materializing
-  // them cost 3–5 ms at 512³ (a 6 MB copy, a serial compaction, page faults).
-  const size_t faces = solid.face_count();
+  // them cost 3–5 ms at 512³ (a 6 MB copy, a serial compaction, page faults). Faces are taken
+  // in list order (face_of(p): the p-th face of face_list, or face p); a triangle's position in
+  // that order does not change the grid (a column's crossings are sorted by their keys).
+  const size_t faces = face_list ? face_list->size() : solid.face_count();
+  auto face_of = [face_list](size_t p) { return face_list ? (*face_list)[p] : p; };
   std::vector<uint32_t> first_tri(faces + 1, 0);
-  for (size_t f = 0; f < faces; ++f) {
-    const size_t k = solid.face(f).size();
-    first_tri[f + 1] = first_tri[f] + static_cast<uint32_t>(k >= 3 ? k - 2 : 0);
+  for (size_t p = 0; p < faces; ++p) {
+    const size_t k = solid.face(face_of(p)).size();
+    first_tri[p + 1] = first_tri[p] + static_cast<uint32_t>(k >= 3 ? k - 2 : 0);
   }
   // Rows (x index i) are processed in bands of `band_rows`; a band's crossings are found,
   // grouped by column and swept by one task in cache-sized scratch, and its columns (contiguous
   // in the grid) written once. This replaced a global pass (all crossings into per-chunk
   // vectors, then a counting sort over all N² columns into a fresh array: 7 ms serial at 512³,
   // still ~7 ms with atomic counts and an atomic scatter on 2 threads, cache misses throughout).
-  const int band_rows = std::max(1, n / 64);
-  const size_t bands = (static_cast<size_t>(n) + band_rows - 1) / band_rows;
+  const int band_rows = std::max(1, nx / 64);
+  const size_t bands = (static_cast<size_t>(nx) + band_rows - 1) / band_rows;
 
   // 1. Each covering triangle's n_z and exact row and column ranges (centre_range), and the
   //    triangles of each band: counted per (chunk of faces, band), then listed in (band, chunk,
@@ -340,13 +428,14 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
   std::vector<uint32_t> per_chunk(chunks * bands, 0);  // [chunk][band] counts, then offsets
   parallel_for(faces, kChunk, [&](size_t begin, size_t end) {
     uint32_t* count = per_chunk.data() + begin / kChunk * bands;
-    for (size_t f = begin; f < end; ++f) {
-      if (f + kAhead < end) prefetch_face_vertices(solid, f + kAhead);
+    for (size_t p = begin; p < end; ++p) {
+      if (p + kAhead < end) prefetch_face_vertices(solid, face_of(p + kAhead));
+      const size_t f = face_of(p);
       const auto face = solid.face(f);
       const bool rev = solid.face_sign[f] < 0;  // back to the leaf's own orientation
       auto index = [&](size_t k) { return face[rev ? face.size() - 1 - k : k]; };
-      for (uint32_t t = first_tri[f]; t < first_tri[f + 1]; ++t) {
-        const size_t k = t - first_tri[f] + 1;
+      for (uint32_t t = first_tri[p]; t < first_tri[p + 1]; ++t) {
+        const size_t k = t - first_tri[p] + 1;
         BandTriangle& tri = tris[t];
         tri = {{index(0), index(k), index(k + 1)}, solid.face_leaf[f], 1, 0, 1, 0, 0, false};
         const Vec3 &a = solid.vertices[tri.v[0]], &b = solid.vertices[tri.v[1]],
@@ -416,7 +505,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
     thread_local std::vector<int> winding;
     thread_local std::vector<uint8_t> inside;
     const int row0 = static_cast<int>(band) * band_rows;
-    const int row1 = std::min(n, row0 + band_rows) - 1;
+    const int row1 = std::min(nx, row0 + band_rows) - 1;
     found.clear();
     for (uint32_t i = band_start[band]; i < band_start[band + 1]; ++i) {
       if (i + kAhead < band_start[band + 1])
@@ -430,7 +519,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
       else
         crossings_of<false>(a, b, c, t.leaf, t.nz, i0, i1, t.j0, t.j1, row0, xs, ys, zs, found);
     }
-    const size_t band_columns = static_cast<size_t>(row1 - row0 + 1) * n;
+    const size_t band_columns = static_cast<size_t>(row1 - row0 + 1) * ny;
     start.assign(band_columns + 1, 0);
     for (const Crossing& c : found) ++start[c.column + 1];
     for (size_t col = 0; col < band_columns; ++col) start[col + 1] += start[col];
@@ -441,14 +530,14 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
     inside.assign(leaves, 0);
     // The band's words, zeroed with one memset (a std::fill per column: ~1–2% slower at
     // 512³), then the inside runs set column by column.
-    uint64_t* band_bits = g.bits.data() + static_cast<size_t>(row0) * n * words;
+    uint64_t* band_bits = g.bits.data() + static_cast<size_t>(row0) * ny * words;
     std::memset(band_bits, 0, band_columns * words * sizeof(uint64_t));
     for (size_t col = 0; col < band_columns; ++col) {
       uint64_t* column = band_bits + col * words;
       uint64_t* first = keys.data() + (col == 0 ? 0 : start[col - 1]);
       uint64_t* last = keys.data() + start[col];
       if (first == last) {
-        if (outside_value) fill(column, 0, n);
+        if (outside_value) fill(column, 0, nk);
         continue;
       }
       if (last - first == 2) {  // the common case: one entry and one exit
@@ -462,7 +551,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
           const uint32_t both = cancel ? 0 : (uint32_t{1} << l0) | (uint32_t{1} << l1);
           if (table[both]) fill(column, 0, b0);
           if (table[uint32_t{1} << l1]) fill(column, b0, b1);
-          if (outside_value) fill(column, b1, n);
+          if (outside_value) fill(column, b1, nk);
           continue;
         }
       } else {
@@ -484,7 +573,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
           update(*c, -key_sign(*c));
           ++c;
         }
-        const int run_end = c == last ? n : key_below(*c);
+        const int run_end = c == last ? nk : key_below(*c);
         bool member;
         if (use_table) {
           member = table[mask];
@@ -493,7 +582,7 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
           member = solid.tree.evaluate(inside);
         }
         if (member) fill(column, k, run_end);
-        if (c == last || run_end >= n) break;
+        if (c == last || run_end >= nk) break;
         k = run_end;
       }
       for (; c != last; ++c) winding[key_leaf(*c)] -= key_sign(*c);  // back to all zeros
@@ -507,10 +596,10 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
   parallel_for(bands, 1, [&](size_t begin, size_t end) {
     for (size_t band = begin; band < end; ++band) sweep_band(band);
     const size_t done = bands_done.fetch_add(end - begin) + (end - begin);
-    if (options.progress && std::this_thread::get_id() == caller && done < bands)
-      options.progress(static_cast<double>(done) / bands);
+    if (progress && std::this_thread::get_id() == caller && done < bands)
+      progress(static_cast<double>(done) / bands);
   });
-  if (options.progress) options.progress(1.0);
+  if (progress) progress(1.0);
 }
 
 }  // namespace cover

@@ -5,6 +5,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
 
 namespace cover {
 
@@ -28,6 +31,13 @@ void parallel_invoke(const std::function<void()>& f, const std::function<void()>
 }
 
 void parallel_sort(std::vector<uint64_t>& keys) { tbb::parallel_sort(keys.begin(), keys.end()); }
+
+int max_threads() {
+  const size_t allowed =
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return static_cast<int>(
+      std::max<size_t>(1, std::min<size_t>(allowed, tbb::this_task_arena::max_concurrency())));
+}
 
 struct ThreadLimit::Impl {
   std::unique_ptr<tbb::global_control> control;

@@ -20,6 +20,9 @@ void parallel_invoke(const std::function<void()>& f, const std::function<void()>
 /// Sorts ascending (parallel; the result is unique, so it does not depend on the threads).
 void parallel_sort(std::vector<uint64_t>& keys);
 
+/// Number of threads a parallel_for may use now (ThreadLimit and the machine's cores).
+int max_threads();
+
 /// Limits the worker threads of every parallel_for while alive (n <= 0: all cores).
 class ThreadLimit {
  public:

@@ -58,6 +58,17 @@ class Model:
         *,
         threads: int | None = None,
     ) -> npt.NDArray[np.bool_]: ...
+    def voxelize_brick(
+        self,
+        res: int,
+        box: Sequence[int],
+        bounds: Sequence[float] | None = None,
+        *,
+        threads: int | None = None,
+    ) -> npt.NDArray[np.bool_]: ...
+    def to_bytes(self) -> bytes: ...
+    @staticmethod
+    def from_bytes(data: bytes) -> Model: ...
     def render(
         self,
         width: int,

@@ -335,6 +335,59 @@ TEST_F(Cli, VoxelizeAndOctreeWriteEveryFormatDeterministically) {
   }
 }
 
+TEST_F(Cli, VoxelizeZarrVdbAndNonCubicGrids) {
+  const auto scene = test::source_dir() / "models" / "default.json";
+  // The same grid as .npy, .zarr (one and two threads) and .vdb: equal counts; the stores are
+  // compared voxel by voxel in raster_tests (zarr_io_test.cpp).
+  auto r = run_cover("voxelize " + q(scene) + " --dims 20,31,9 -o " + q(dir_ / "g.npy") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json npy = json::parse(r.out);
+  EXPECT_EQ(npy["dims"], json({20, 31, 9}));
+  EXPECT_FALSE(npy.contains("res"));
+  EXPECT_TRUE(npy["bounds"]["max"].is_array());
+  for (const char* threads : {"1", "2"}) {
+    r = run_cover("voxelize " + q(scene) + " --dims 20,31,9 -o " + q(dir_ / "g.zarr") +
+                  " --chunk 8 --json --threads " + threads);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json z = json::parse(r.out);
+    EXPECT_EQ(z["occupied"], npy["occupied"]);
+    EXPECT_EQ(z["chunk"], 8);
+    EXPECT_EQ(z["chunks"], 3 * 4 * 2);
+  }
+  r = run_cover("voxelize " + q(scene) + " --dims 20,31,9 -o " + q(dir_ / "g.vdb") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["occupied"], npy["occupied"]);
+  r = run_cover("voxelize " + q(scene) + " --voxel-size 0.5 -o " + q(dir_ / "h.raw") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["voxel_size"], 0.5);
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "h.raw.json"));
+  // Bad input: one line, exit 2, existing files and stores intact.
+  test::write_file(dir_ / "file.zarr", "keep");
+  const std::string zarr_before = test::read_file(dir_ / "g.zarr" / ".zarray");
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"--res 8 -o " + q(dir_ / "a.zarr") + " --chunk 0", "--chunk"},
+      {"--res 8 -o " + q(dir_ / "file.zarr"), "file.zarr"},
+      {"--res 8 -o " + q(dir_ / "missing" / "a.zarr"), "a.zarr"},
+      {"--dims 3,4,5 -o " + q(dir_ / "a.binvox"), "cubic"},
+      {"--res 5000 -o " + q(dir_ / "a.npy"), "--res"},
+      {"--dims 3,4 -o " + q(dir_ / "a.npy"), "--dims"},
+      {"--voxel-size 0 -o " + q(dir_ / "a.npy"), "--voxel-size"},
+      {"--res 8 --dims 3,4,5 -o " + q(dir_ / "a.npy"), "--dims"},
+      {"-o " + q(dir_ / "a.npy"), "--res"},
+      {"--res 8 -o " + q(dir_ / "g.zarr") + " --surface " + q(dir_ / "s.off"), "--surface"},
+      {"--dims 3,4,5 -o " + q(dir_ / "a.npy") + " --surface " + q(dir_ / "s.off"), "cubic"}};
+  for (const auto& [args, word] : bad) {
+    r = run_cover("voxelize " + q(scene) + " " + args);
+    EXPECT_EQ(r.status, 2) << args << " " << r.err;
+    EXPECT_EQ(lines(r.err).size(), 1u) << args << " " << r.err;
+    EXPECT_NE(r.err.find(word), std::string::npos) << args << " " << r.err;
+  }
+  EXPECT_EQ(test::read_file(dir_ / "file.zarr"), "keep");
+  EXPECT_EQ(test::read_file(dir_ / "g.zarr" / ".zarray"), zarr_before);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "a.npy"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "s.off"));
+}
+
 TEST_F(Cli, EveryCommandIsByteIdenticalWithOneAndTwoThreads) {
   // stdout (without --json, whose "seconds" is a timing) and every output file.
   test::write_file(dir_ / "s.json", R"({"difference": [

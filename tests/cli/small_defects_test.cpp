@@ -199,7 +199,7 @@ TEST_F(SmallDefects, OptionMessages) {
   expect_error(run_cover("volume --rays 0 " + box()),
                "--rays: expected a whole number from 1 to 2048, got '0'");
   expect_error(run_cover("voxelize " + box() + " --res abc -o " + q(dir_ / "v.npy")),
-               "--res: expected a whole number from 1 to 4096, got 'abc'");
+               "--res: expected a whole number from 1 to 16384, got 'abc'");
   expect_error(run_cover("voxelize " + box() + " --res 10 --max-memory -1 -o " + q(dir_ / "v.npy")),
                "--max-memory: expected a positive whole number, got '-1'");
   expect_error(run_cover("octree " + box() + " --depth 2.5 -o " + q(dir_ / "o.bt")),

@@ -4,9 +4,11 @@
 Usage: read_voxels.py FILE DUMP
 
 Reads FILE (.npy through numpy.load, .vti through xml.etree + struct, .raw through its
-FILE.json sidecar and numpy.fromfile), checks the format's header, and writes the occupancy as
-N^3 bytes 0/1 in [x][y][z] order (z fastest) to DUMP. Prints one JSON line:
-{"shape": [N, N, N], "sum": S, "origin": [x, y, z] | null, "spacing": h | null}.
+FILE.json sidecar and numpy.fromfile, .zarr through the zarr package, .vdb through pyopenvdb),
+checks the format's header, and writes the occupancy as NX*NY*NZ bytes 0/1 in [x][y][z] order
+(z fastest) to DUMP. Prints one JSON line:
+{"shape": [NX, NY, NZ], "sum": S, "origin": [x, y, z] | null, "spacing": h | null, ...}
+(.zarr adds "chunks" and "stored": the chunk files present; .vdb adds "leaves" and "tiles").
 Exits with status 1 and a message on stderr when the file is malformed.
 """
 
@@ -62,9 +64,9 @@ def read_vti(path):
     extent = [int(v) for v in image.attrib["WholeExtent"].split()]
     if [int(v) for v in piece.attrib["Extent"].split()] != extent:
         fail("Piece Extent differs from WholeExtent")
-    if extent[0::2] != [0, 0, 0] or len(set(extent[1::2])) != 1:
-        fail("expected extent 0 N 0 N 0 N, got %s" % extent)
-    n = extent[1]
+    if extent[0::2] != [0, 0, 0]:
+        fail("expected extent 0 NX 0 NY 0 NZ, got %s" % extent)
+    nx, ny, nz = extent[1::2]
     origin = [float(v) for v in image.attrib["Origin"].split()]
     spacing = [float(v) for v in image.attrib["Spacing"].split()]
     if len(origin) != 3 or len(spacing) != 3 or len(set(spacing)) != 1:
@@ -77,23 +79,22 @@ def read_vti(path):
             a.get("format") != "appended" or a.get("offset") != "0"):
         fail("bad DataArray attributes %s" % a)
     (count,) = struct.unpack("<Q", data[underscore + 1:underscore + 9])
-    if count != n ** 3:
-        fail("block holds %d bytes, expected %d" % (count, n ** 3))
+    if count != nx * ny * nz:
+        fail("block holds %d bytes, expected %d" % (count, nx * ny * nz))
     begin = underscore + 9
     cells = np.frombuffer(data[begin:begin + count], dtype=np.uint8)
     tail = data[begin + count:].split()
     if tail != [b"</AppendedData>", b"</VTKFile>"]:
         fail("unexpected bytes after the appended block: %r" % data[begin + count:][:80])
     # VTK cell order: x fastest, then y, then z, i.e. C order [z][y][x].
-    return cells.reshape((n, n, n)).transpose(2, 1, 0), origin, spacing[0]
+    return cells.reshape((nz, ny, nx)).transpose(2, 1, 0), origin, spacing[0]
 
 
 def read_raw(path):
     with open(path + ".json") as f:
         meta = json.load(f)
     dims = meta["dims"]
-    if (meta["dtype"] != "uint8" or meta["order"] != "xyz (z fastest)" or len(dims) != 3 or
-            len(set(dims)) != 1):
+    if meta["dtype"] != "uint8" or meta["order"] != "xyz (z fastest)" or len(dims) != 3:
         fail("bad sidecar %s" % meta)
     cells = np.fromfile(path, dtype=np.uint8)
     if cells.size != dims[0] * dims[1] * dims[2]:
@@ -101,23 +102,99 @@ def read_raw(path):
     return cells.reshape(dims), meta["bounds"]["min"], meta["voxel_size"]
 
 
+def read_zarr(path, extra):
+    import os
+    import zarr
+    with open(os.path.join(path, ".zarray")) as f:
+        meta = json.load(f)
+    expected = {"zarr_format": 2, "dtype": "|u1", "fill_value": 0, "order": "C", "filters": None,
+                "dimension_separator": "."}
+    for key, value in expected.items():
+        if meta.get(key) != value:
+            fail("bad .zarray %s: %r" % (key, meta.get(key)))
+    if meta["compressor"].get("id") != "zlib":
+        fail("expected the zlib compressor, got %s" % meta["compressor"])
+    z = zarr.open(path, mode="r")
+    array = z[:]
+    if array.dtype != np.uint8:
+        fail("expected uint8, got %s" % array.dtype)
+    # Chunks whose voxels are all 0 must be absent (fill_value 0); stored ones must hold a 1.
+    chunks = meta["chunks"]
+    stored = sorted(name for name in os.listdir(path) if not name.startswith("."))
+    for name in stored:
+        i, j, k = (int(v) for v in name.split("."))
+        block = array[i * chunks[0]:(i + 1) * chunks[0], j * chunks[1]:(j + 1) * chunks[1],
+                      k * chunks[2]:(k + 1) * chunks[2]]
+        if not block.any():
+            fail("chunk %s is stored but all 0" % name)
+    for i in range(0, array.shape[0], chunks[0]):
+        for j in range(0, array.shape[1], chunks[1]):
+            for k in range(0, array.shape[2], chunks[2]):
+                name = "%d.%d.%d" % (i // chunks[0], j // chunks[1], k // chunks[2])
+                if array[i:i + chunks[0], j:j + chunks[1], k:k + chunks[2]].any() and \
+                        name not in stored:
+                    fail("chunk %s has set voxels but no file" % name)
+    attrs = dict(z.attrs)
+    extra["chunks"] = chunks
+    extra["stored"] = len(stored)
+    extra["tie_rule"] = "tie_rule" in attrs
+    return array, attrs["origin"], attrs["spacing"]
+
+
+def read_vdb(path, extra):
+    import pyopenvdb as vdb
+    grids, _ = vdb.readAll(path)
+    if len(grids) != 1 or grids[0].name != "occupancy":
+        fail("expected one grid named occupancy, got %s" % [g.name for g in grids])
+    grid = grids[0]
+    if not isinstance(grid, vdb.BoolGrid):
+        fail("expected a BoolGrid, got %s" % type(grid))
+    dims = [int(v) for v in grid["cover_dims"]]
+    origin = [float(v) for v in grid["cover_origin"]]
+    spacing = float(grid["cover_spacing"])
+    lo, hi = grid.evalActiveVoxelBoundingBox()
+    if grid.activeVoxelCount() and (min(lo) < 0 or any(hi[a] >= dims[a] for a in range(3))):
+        fail("active voxels outside [0, dims): %s %s" % (lo, hi))
+    # The transform puts index (i, j, k) at the voxel centre origin + (i + 1/2) h.
+    for ijk in [(0, 0, 0), (dims[0] - 1, 1, 2)]:
+        world = grid.transform.indexToWorld(ijk)
+        for a in range(3):
+            centre = origin[a] + (ijk[a] + 0.5) * spacing
+            if abs(world[a] - centre) > 1e-9 * max(1.0, abs(centre)):
+                fail("indexToWorld%s = %s, expected the centre %s" % (ijk, world, centre))
+    array = np.zeros(dims, dtype=bool)
+    grid.copyToArray(array, ijk=(0, 0, 0))
+    if int(array.sum()) != grid.activeVoxelCount():
+        fail("%d set voxels but %d active" % (array.sum(), grid.activeVoxelCount()))
+    extra["leaves"] = grid.leafCount()
+    extra["tiles"] = grid.activeTileCount() if hasattr(grid, "activeTileCount") else None
+    return array.astype(np.uint8), origin, spacing
+
+
 def main():
     if len(sys.argv) != 3:
         fail("usage: read_voxels.py FILE DUMP")
     path, dump = sys.argv[1], sys.argv[2]
+    extra = {}
     if path.lower().endswith(".npy"):
         array, origin, spacing = read_npy(path)
     elif path.lower().endswith(".vti"):
         array, origin, spacing = read_vti(path)
     elif path.lower().endswith(".raw"):
         array, origin, spacing = read_raw(path)
+    elif path.lower().rstrip("/").endswith(".zarr"):
+        array, origin, spacing = read_zarr(path, extra)
+    elif path.lower().endswith(".vdb"):
+        array, origin, spacing = read_vdb(path, extra)
     else:
         fail("unknown extension: " + path)
     if array.size and array.max() > 1:
         fail("values other than 0/1")
     np.ascontiguousarray(array, dtype=np.uint8).tofile(dump)
-    print(json.dumps({"shape": list(array.shape), "sum": int(array.sum(dtype=np.int64)),
-                      "origin": origin, "spacing": spacing}))
+    summary = {"shape": list(array.shape), "sum": int(array.sum(dtype=np.int64)),
+               "origin": origin, "spacing": spacing}
+    summary.update(extra)
+    print(json.dumps(summary))
 
 
 if __name__ == "__main__":

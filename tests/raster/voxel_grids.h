@@ -9,11 +9,8 @@ namespace cover::test {
 
 /// An all-empty N³ grid over `bounds` (off the origin by default, so bounds are exercised).
 inline VoxelGrid empty_grid(int n, VoxelBounds bounds = {{-1.25, 0.5, 3.0}, 2.5}) {
-  VoxelGrid grid;
-  grid.n = n;
-  grid.bounds = bounds;
-  grid.bits.assign(static_cast<size_t>(n) * n * grid.words_per_column(), 0);
-  return grid;
+  const VoxelLattice lattice = cubic_lattice(bounds, n);
+  return empty_voxel_grid(lattice, whole_box(lattice));
 }
 
 /// Each voxel set with probability `density`.

@@ -66,18 +66,18 @@ std::vector<std::pair<std::string, VoxelGrid>> grids() {
 }
 
 size_t xyz_index(const VoxelGrid& grid, int x, int y, int z) {
-  const size_t n = static_cast<size_t>(grid.n);
+  const size_t n = static_cast<size_t>(grid.nx());
   return (static_cast<size_t>(x) * n + static_cast<size_t>(y)) * n + static_cast<size_t>(z);
 }
 
 /// Compares N³ bytes in [x][y][z] order with the grid, voxel by voxel (reports the first few).
 void expect_xyz_bytes(const VoxelGrid& grid, const std::string& bytes, const std::string& what) {
-  const size_t n = static_cast<size_t>(grid.n);
+  const size_t n = static_cast<size_t>(grid.nx());
   ASSERT_EQ(bytes.size(), n * n * n) << what;
   int mismatches = 0;
-  for (int x = 0; x < grid.n; ++x)
-    for (int y = 0; y < grid.n; ++y)
-      for (int z = 0; z < grid.n; ++z) {
+  for (int x = 0; x < grid.nx(); ++x)
+    for (int y = 0; y < grid.nx(); ++y)
+      for (int z = 0; z < grid.nx(); ++z) {
         const auto value = static_cast<unsigned char>(bytes[xyz_index(grid, x, y, z)]);
         const unsigned expected = grid.get(x, y, z) ? 1 : 0;
         if (value != expected && ++mismatches <= 5)
@@ -169,7 +169,7 @@ TEST(VoxelIo, NpyReadByNumpy) {
     std::string bytes;
     const nlohmann::json summary = python_read(file, bytes);
     ASSERT_FALSE(summary.is_null()) << name;
-    EXPECT_EQ(summary["shape"], nlohmann::json({grid.n, grid.n, grid.n})) << name;
+    EXPECT_EQ(summary["shape"], nlohmann::json({grid.nx(), grid.nx(), grid.nx()})) << name;
     EXPECT_EQ(summary["sum"].get<uint64_t>(), grid.count()) << name;
     expect_xyz_bytes(grid, bytes, name + ".npy");
   }
@@ -184,12 +184,12 @@ TEST(VoxelIo, VtiReadByPythonXml) {
     std::string bytes;
     const nlohmann::json summary = python_read(file, bytes);
     ASSERT_FALSE(summary.is_null()) << name;
-    EXPECT_EQ(summary["shape"], nlohmann::json({grid.n, grid.n, grid.n})) << name;
+    EXPECT_EQ(summary["shape"], nlohmann::json({grid.nx(), grid.nx(), grid.nx()})) << name;
     EXPECT_EQ(summary["sum"].get<uint64_t>(), grid.count()) << name;
     // Shortest round-trip decimals: Python reads back exactly the doubles of the grid.
-    EXPECT_EQ(summary["origin"][0].get<double>(), grid.bounds.min.x) << name;
-    EXPECT_EQ(summary["origin"][1].get<double>(), grid.bounds.min.y) << name;
-    EXPECT_EQ(summary["origin"][2].get<double>(), grid.bounds.min.z) << name;
+    EXPECT_EQ(summary["origin"][0].get<double>(), grid.lattice.origin.x) << name;
+    EXPECT_EQ(summary["origin"][1].get<double>(), grid.lattice.origin.y) << name;
+    EXPECT_EQ(summary["origin"][2].get<double>(), grid.lattice.origin.z) << name;
     EXPECT_EQ(summary["spacing"].get<double>(), grid.voxel_size()) << name;
     expect_xyz_bytes(grid, bytes, name + ".vti");
   }
@@ -205,13 +205,13 @@ TEST(VoxelIo, RawAndSidecar) {
     const fs::path sidecar = dir / (name + ".raw.json");
     ASSERT_TRUE(fs::exists(sidecar)) << name;
     const nlohmann::json meta = nlohmann::json::parse(test::read_file(sidecar));
-    EXPECT_EQ(meta["dims"], nlohmann::json({grid.n, grid.n, grid.n})) << name;
+    EXPECT_EQ(meta["dims"], nlohmann::json({grid.nx(), grid.nx(), grid.nx()})) << name;
     EXPECT_EQ(meta["order"], "xyz (z fastest)") << name;
     EXPECT_EQ(meta["dtype"], "uint8") << name;
-    EXPECT_EQ(meta["bounds"]["min"][0].get<double>(), grid.bounds.min.x) << name;
-    EXPECT_EQ(meta["bounds"]["min"][1].get<double>(), grid.bounds.min.y) << name;
-    EXPECT_EQ(meta["bounds"]["min"][2].get<double>(), grid.bounds.min.z) << name;
-    EXPECT_EQ(meta["bounds"]["size"].get<double>(), grid.bounds.size) << name;
+    EXPECT_EQ(meta["bounds"]["min"][0].get<double>(), grid.lattice.origin.x) << name;
+    EXPECT_EQ(meta["bounds"]["min"][1].get<double>(), grid.lattice.origin.y) << name;
+    EXPECT_EQ(meta["bounds"]["min"][2].get<double>(), grid.lattice.origin.z) << name;
+    EXPECT_EQ(meta["bounds"]["size"].get<double>(), *grid.lattice.cube_size) << name;
     EXPECT_EQ(meta["voxel_size"].get<double>(), grid.voxel_size()) << name;
     // And through numpy.fromfile + the sidecar's dims.
     std::string bytes;
@@ -230,14 +230,14 @@ TEST(VoxelIo, BinvoxDecodedFromSpecification) {
     write_voxels(file, grid);
     Binvox binvox;
     ASSERT_NO_THROW(binvox = read_binvox(file)) << name;
-    ASSERT_EQ(binvox.n, grid.n) << name;
-    EXPECT_EQ(binvox.translate, grid.bounds.min) << name;
-    EXPECT_EQ(binvox.scale, grid.bounds.size) << name;
-    const size_t n = static_cast<size_t>(grid.n);
+    ASSERT_EQ(binvox.n, grid.nx()) << name;
+    EXPECT_EQ(binvox.translate, grid.lattice.origin) << name;
+    EXPECT_EQ(binvox.scale, *grid.lattice.cube_size) << name;
+    const size_t n = static_cast<size_t>(grid.nx());
     int mismatches = 0;
-    for (int x = 0; x < grid.n; ++x)
-      for (int z = 0; z < grid.n; ++z)
-        for (int y = 0; y < grid.n; ++y) {
+    for (int x = 0; x < grid.nx(); ++x)
+      for (int z = 0; z < grid.nx(); ++z)
+        for (int y = 0; y < grid.nx(); ++y) {
           const size_t index = (static_cast<size_t>(x) * n + z) * n + y;
           if (binvox.voxels[index] != (grid.get(x, y, z) ? 1 : 0) && ++mismatches <= 5)
             ADD_FAILURE() << name << ".binvox: voxel (" << x << ", " << y << ", " << z << ")";
@@ -368,9 +368,9 @@ TEST(VoxelIo, OverwritesExistingFile) {
 TEST(VoxelGrid, CountMatchesBruteForce) {
   for (const auto& [name, grid] : grids()) {
     uint64_t brute = 0;
-    for (int i = 0; i < grid.n; ++i)
-      for (int j = 0; j < grid.n; ++j)
-        for (int k = 0; k < grid.n; ++k) brute += grid.get(i, j, k) ? 1 : 0;
+    for (int i = 0; i < grid.nx(); ++i)
+      for (int j = 0; j < grid.nx(); ++j)
+        for (int k = 0; k < grid.nx(); ++k) brute += grid.get(i, j, k) ? 1 : 0;
     EXPECT_EQ(grid.count(), brute) << name;
   }
   EXPECT_EQ(VoxelGrid{}.count(), 0u);

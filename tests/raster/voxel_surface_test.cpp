@@ -46,13 +46,13 @@ VoxelGrid grid_of(int n, const std::vector<std::array<int, 3>>& voxels) {
 
 
 bool occupied(const VoxelGrid& g, int i, int j, int k) {
-  return i >= 0 && j >= 0 && k >= 0 && i < g.n && j < g.n && k < g.n && g.get(i, j, k);
+  return i >= 0 && j >= 0 && k >= 0 && i < g.nx() && j < g.nx() && k < g.nx() && g.get(i, j, k);
 }
 
 /// Connected components of the occupied voxels (6-neighbours) or of the empty ones, including
 /// the outside, (18-neighbours), by flood fill over the grid padded by one voxel.
 int64_t count_components(const VoxelGrid& g, bool of_occupied) {
-  const int m = g.n + 2;
+  const int m = g.nx() + 2;
   auto index = [&](int i, int j, int k) { return (static_cast<size_t>(i) * m + j) * m + k; };
   std::vector<uint8_t> seen(static_cast<size_t>(m) * m * m, 0);
   int64_t components = 0;
@@ -88,9 +88,9 @@ int64_t count_components(const VoxelGrid& g, bool of_occupied) {
 int64_t euler_6_18(const VoxelGrid& g) {
   int64_t chi = 0;
   // Each cell: its lowest voxel (i, j, k) and the axes it spans; all its voxels occupied.
-  for (int i = 0; i < g.n; ++i)
-    for (int j = 0; j < g.n; ++j)
-      for (int k = 0; k < g.n; ++k)
+  for (int i = 0; i < g.nx(); ++i)
+    for (int j = 0; j < g.nx(); ++j)
+      for (int k = 0; k < g.nx(); ++k)
         for (int axes = 0; axes < 8; ++axes) {
           bool full = true;
           for (int o = 0; o < 8 && full; ++o)
@@ -98,9 +98,9 @@ int64_t euler_6_18(const VoxelGrid& g) {
               full = occupied(g, i + (o & 1), j + ((o >> 1) & 1), k + ((o >> 2) & 1));
           if (full) chi += std::popcount(static_cast<unsigned>(axes)) % 2 == 0 ? 1 : -1;
         }
-  for (int i = -1; i < g.n; ++i)
-    for (int j = -1; j < g.n; ++j)
-      for (int k = -1; k < g.n; ++k)
+  for (int i = -1; i < g.nx(); ++i)
+    for (int j = -1; j < g.nx(); ++j)
+      for (int k = -1; k < g.nx(); ++k)
         for (int o = 0; o < 4; ++o) {  // the 4 opposite pairs o, 7 − o
           bool hexagon = !occupied(g, i + (o & 1), j + ((o >> 1) & 1), k) &&
                          !occupied(g, i + 1 - (o & 1), j + 1 - ((o >> 1) & 1), k + 1);
@@ -114,9 +114,9 @@ int64_t euler_6_18(const VoxelGrid& g) {
 
 int64_t boundary_faces(const VoxelGrid& g) {
   int64_t faces = 0;
-  for (int i = -1; i < g.n; ++i)
-    for (int j = -1; j < g.n; ++j)
-      for (int k = -1; k < g.n; ++k) {
+  for (int i = -1; i < g.nx(); ++i)
+    for (int j = -1; j < g.nx(); ++j)
+      for (int k = -1; k < g.nx(); ++k) {
         const bool v = occupied(g, i, j, k);
         faces += v != occupied(g, i + 1, j, k);
         faces += v != occupied(g, i, j + 1, k);

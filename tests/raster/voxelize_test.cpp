@@ -25,16 +25,16 @@ struct Comparison {
 /// edge, vertex) are counted separately (they follow the tie rule, checked elsewhere).
 Comparison compare(const Solid& s, const VoxelGrid& g) {
   std::vector<Vec3> centres;
-  centres.reserve(static_cast<size_t>(g.n) * g.n * g.n);
-  for (int i = 0; i < g.n; ++i)
-    for (int j = 0; j < g.n; ++j)
-      for (int k = 0; k < g.n; ++k) centres.push_back(g.voxel_centre(i, j, k));
+  centres.reserve(static_cast<size_t>(g.nx()) * g.nx() * g.nx());
+  for (int i = 0; i < g.nx(); ++i)
+    for (int j = 0; j < g.nx(); ++j)
+      for (int k = 0; k < g.nx(); ++k) centres.push_back(g.voxel_centre(i, j, k));
   const std::vector<PointClass> cls = classify(s, centres);
   Comparison c;
   size_t idx = 0;
-  for (int i = 0; i < g.n; ++i)
-    for (int j = 0; j < g.n; ++j)
-      for (int k = 0; k < g.n; ++k, ++idx) {
+  for (int i = 0; i < g.nx(); ++i)
+    for (int j = 0; j < g.nx(); ++j)
+      for (int k = 0; k < g.nx(); ++k, ++idx) {
         const bool v = g.get(i, j, k);
         c.occupied += v;
         if (cls[idx] != PointClass::kInside && cls[idx] != PointClass::kOutside) {
@@ -143,7 +143,7 @@ TEST(Voxelize, SameGridWithOneAndTwoThreadsAndComplement) {
   }
   EXPECT_EQ(a.bits, b.bits);
   // The complement fills exactly the other voxels of the same grid.
-  o.bounds = a.bounds;
+  o.bounds = VoxelBounds{a.lattice.origin, *a.lattice.cube_size};
   const VoxelGrid c = voxelize(complement(s), o);
   EXPECT_EQ(c.count() + a.count(), static_cast<uint64_t>(96) * 96 * 96);
 }
