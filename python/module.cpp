@@ -208,8 +208,7 @@ py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box
   const std::optional<VoxelBounds> given = bounds_arg(bounds);
   VoxelGrid grid;
   {
-    py::gil_scoped_release release;
-    KernelScope scope(threads);
+    KernelScope scope(threads);  // releases the GIL
     const VoxelLattice lattice = cubic_lattice(given ? *given : model.voxel_bounds(res), res);
     model.voxelize_brick(lattice, index, grid);
   }

@@ -28,7 +28,8 @@ except ImportError as _error:  # pragma: no cover - dask is optional for the res
 
 __all__ = ["voxelize", "classify"]
 
-_models = {}
+_models = {}  # key (sha256 of the bytes) -> Model, per process
+_builds = {}  # key -> how many times this process built it (1: the cache works)
 _models_lock = threading.Lock()
 
 
@@ -39,6 +40,7 @@ def _model(key, payload):
         if model is None:
             model = cover.Model.from_bytes(payload)
             _models[key] = model
+            _builds[key] = _builds.get(key, 0) + 1
         return model
 
 
