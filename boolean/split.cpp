@@ -5,6 +5,7 @@
 #include <CGAL/Constrained_triangulation_plus_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <algorithm>
 #include <unordered_map>
 
 #include "boolean/detail/arrangement_steps.h"
@@ -128,10 +129,18 @@ Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const std::vect
     }
     for (const Point& p : h.hit->points) add_value(p, kNone);
   }
-  // Points created at constraint crossings: lift onto the tri's plane exactly.
+  // Points created at constraint crossings: lift onto the tri's plane exactly. They are numbered
+  // in exact (x, y) order of their projections, not in the triangulation's storage order: that
+  // order (like the faces' below) depends on which of two faces a point location on an edge
+  // returned, which CGAL's randomized walk makes depend on the thread's history.
   const K::FT d = n.x() * a.x() + n.y() * a.y() + n.z() * a.z();
-  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
-    if (v->info().id != kNone) continue;
+  std::vector<CdtPlus::Vertex_handle> crossings;
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
+    if (v->info().id == kNone) crossings.push_back(v);
+  std::sort(crossings.begin(), crossings.end(), [](const auto& x, const auto& y) {
+    return CGAL::compare_xy(x->point(), y->point()) == CGAL::SMALLER;
+  });
+  for (const CdtPlus::Vertex_handle& v : crossings) {
     v->info().id = static_cast<uint32_t>(local.ids.size());
     local.ids.push_back(kNone);
     const K::FT xi = v->point().x(), xj = v->point().y();
@@ -146,9 +155,11 @@ Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const std::vect
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     const uint32_t x = f->vertex(0)->info().id, y = f->vertex(1)->info().id,
                    z = f->vertex(2)->info().id;
-    local.tris.push_back(flip ? std::array<uint32_t, 3>{x, z, y}
-                              : std::array<uint32_t, 3>{x, y, z});
+    std::array<uint32_t, 3> t = flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // orientation kept
+    local.tris.push_back(t);
   }
+  std::sort(local.tris.begin(), local.tris.end());  // canonical: independent of storage order
   for (const auto& cid : cuts) {
     uint32_t prev = kNone;
     for (auto it = cdt.vertices_in_constraint_begin(cid); it != cdt.vertices_in_constraint_end(cid);
