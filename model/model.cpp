@@ -246,14 +246,18 @@ void Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box, Vox
   }
   // The faces with a covering triangle whose box may reach the brick's column centres: BVH
   // nodes whose (outward-rounded) x/y bounds meet [x of the first column, x of the last] × the
-  // same for y. Only culling: voxelize_brick decides every row and column exactly.
+  // same for y, and whose top is not below the brick's lowest centre (a triangle wholly below
+  // every centre of the brick has none of them below it: it adds nothing). Only culling:
+  // voxelize_brick decides every row and column exactly.
   const double xlo = lattice.centre(box.lo[0], 0, 0).x, xhi = lattice.centre(box.hi[0] - 1, 0, 0).x;
   const double ylo = lattice.centre(0, box.lo[1], 0).y, yhi = lattice.centre(0, box.hi[1] - 1, 0).y;
+  const double zlo = lattice.centre(0, 0, box.lo[2]).z;
   std::vector<uint32_t> faces;
   walk(
       bvh(),
       [&](const Bvh::Node& node) {
-        return node.lo[0] <= xhi && node.hi[0] >= xlo && node.lo[1] <= yhi && node.hi[1] >= ylo;
+        return node.lo[0] <= xhi && node.hi[0] >= xlo && node.lo[1] <= yhi && node.hi[1] >= ylo &&
+               node.hi[2] >= zlo;
       },
       [&](const Bvh::Tri& t, uint32_t) { faces.push_back(t.face); });
   std::sort(faces.begin(), faces.end());

@@ -8,6 +8,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -177,12 +178,26 @@ py::array_t<bool> unpack_grid(const VoxelGrid& grid) {
                          static_cast<py::ssize_t>(nz)});
   bool* dst = out.mutable_data();
   const size_t words = grid.words_per_column();
+  // Eight bits at a time through a table of their eight bytes (a bit at a time took most of a
+  // brick's time in cover.dask: 16 MB of bool per 256³ brick).
+  static const std::array<uint64_t, 256> kBytes = [] {
+    std::array<uint64_t, 256> t{};
+    for (int v = 0; v < 256; ++v)
+      for (int b = 0; b < 8; ++b) t[v] |= static_cast<uint64_t>((v >> b) & 1) << (8 * b);
+    return t;
+  }();
+  static_assert(sizeof(bool) == 1 && std::endian::native == std::endian::little);
   py::gil_scoped_release release;
   parallel_for(nx * ny, 64, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; ++c) {
       const uint64_t* col = grid.bits.data() + c * words;
       bool* row = dst + c * nz;
-      for (size_t k = 0; k < nz; ++k) row[k] = (col[k / 64] >> (k % 64)) & 1;
+      size_t k = 0;
+      for (; k + 8 <= nz; k += 8) {
+        const uint64_t bytes = kBytes[(col[k / 64] >> (k % 64)) & 0xff];  // little-endian
+        std::memcpy(row + k, &bytes, 8);
+      }
+      for (; k < nz; ++k) row[k] = (col[k / 64] >> (k % 64)) & 1;
     }
   });
   return out;
