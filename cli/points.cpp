@@ -27,6 +27,7 @@
 #include "solid/detail/mesh_io_detail.h"
 #include "solid/errors.h"
 #include "solid/memory_limit.h"
+#include "solid/mesh_io.h"
 #include "solid/npy.h"
 #include "solid/parallel.h"
 
@@ -53,7 +54,7 @@ std::string_view next_field(std::string_view& line) {
 
 /// True when `path` ends in .npy (any case).
 bool has_npy_extension(const std::string& path) {
-  return detail::lower_extension(path) == ".npy";
+  return lower_extension(path) == ".npy";
 }
 
 // ---- text ----

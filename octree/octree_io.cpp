@@ -17,18 +17,12 @@
 
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
+#include "solid/mesh_io.h"
 
 namespace cover {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string extension_of(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 /// Writes the text produced by `emit` into a file; false on any I/O error.
 bool write_text(const fs::path& file, const std::function<void(std::ostream&)>& emit) {
@@ -45,18 +39,6 @@ std::string number(T value) {
   char buf[32];
   const auto result = std::to_chars(buf, buf + sizeof buf, value);
   return std::string(buf, result.ptr);
-}
-
-const char* state_name(CellState s) {
-  switch (s) {
-    case CellState::kEmpty:
-      return "empty";
-    case CellState::kFull:
-      return "full";
-    case CellState::kPartial:
-      return "partial";
-  }
-  return "?";
 }
 
 // ---- .htg: VTK XML HyperTreeGrid, file version 1.0 ----------------------------------------------
@@ -276,7 +258,7 @@ void write_json(std::ostream& out, const Octree& tree, double threshold) {
 }  // namespace
 
 bool is_octree_extension(const std::filesystem::path& path) {
-  const std::string ext = extension_of(path);
+  const std::string ext = lower_extension(path);
   return ext == ".htg" || ext == ".bt" || ext == ".json";
 }
 
@@ -285,7 +267,7 @@ void write_octree(const std::filesystem::path& path, const Octree& tree, double 
     throw InputError("--threshold: expected a number from 0 to 1, got " +
                      std::to_string(threshold));
   if (tree.nodes.empty()) throw InputError(path.string() + ": empty octree");
-  const std::string ext = extension_of(path);
+  const std::string ext = lower_extension(path);
   if (ext == ".htg") {
     write_atomically(path, [&](const fs::path& tmp) {
       return write_text(tmp, [&](std::ostream& out) { write_htg(out, tree); });

@@ -11,6 +11,7 @@
 
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
+#include "solid/mesh_io.h"
 
 #ifdef COVER_WITH_OPENVDB
 #include <openvdb/io/File.h>
@@ -76,10 +77,7 @@ openvdb::BoolGrid::Ptr to_vdb(const VoxelGrid& grid) {
 }  // namespace
 
 bool is_vdb_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return ext == ".vdb";
+  return lower_extension(path) == ".vdb";
 }
 
 void write_vdb(const fs::path& path, const VoxelGrid& grid) {

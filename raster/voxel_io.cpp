@@ -35,6 +35,7 @@
 #include "raster/detail/bit_expand.h"
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
+#include "solid/mesh_io.h"
 #include "solid/npy.h"
 
 namespace cover {
@@ -42,14 +43,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using detail::expand_bits;
-
-/// The extension of `path`, ASCII-lowercased (".NPY" → ".npy").
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return ext;
-}
 
 /// `text` in single quotes, non-printable bytes as \xHH (for error messages).
 std::string quote(std::string_view text) {

@@ -27,6 +27,7 @@
 #include "raster/detail/bit_expand.h"
 #include "solid/errors.h"
 #include "solid/memory_limit.h"
+#include "solid/mesh_io.h"
 #include "solid/parallel.h"
 
 namespace cover {
@@ -161,10 +162,7 @@ class TemporaryDirectory {
 }  // namespace
 
 bool is_zarr_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return ext == ".zarr";
+  return lower_extension(path) == ".zarr";
 }
 
 double zarr_brick_bytes(const VoxelLattice& lattice, int chunk) {

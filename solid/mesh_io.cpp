@@ -110,13 +110,6 @@ void check_numeric_tail(std::string_view rest, const std::string& file, uint64_t
   }
 }
 
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return ext;
-}
-
 std::string unsupported_format(const std::filesystem::path& path) {
   return "unsupported mesh format " + quote(path.extension().string()) +
          " (expected .obj, .off, .stl, .ply)";
@@ -124,15 +117,22 @@ std::string unsupported_format(const std::filesystem::path& path) {
 
 }  // namespace detail
 
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return ext;
+}
+
 bool is_mesh_extension(const std::filesystem::path& path) {
-  const std::string ext = detail::lower_extension(path);
+  const std::string ext = lower_extension(path);
   return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
 }
 
 PolygonMesh read_mesh(const std::filesystem::path& path, uint64_t max_file_bytes,
                       std::vector<std::string>* warnings) {
   const std::string file = path.string();
-  const std::string ext = detail::lower_extension(path);
+  const std::string ext = lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
   const FileBytes data = read_regular_file(path, max_file_bytes);
   if (data.empty()) detail::fail_file(file, "empty file");

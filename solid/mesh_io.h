@@ -40,4 +40,8 @@ void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh);
 /// True if the extension names a mesh format read_mesh understands.
 bool is_mesh_extension(const std::filesystem::path& path);
 
+/// The extension of `path` with its dot, ASCII-lowercased (".OFF" → ".off"), or empty: how every
+/// reader and writer picks a format.
+std::string lower_extension(const std::filesystem::path& path);
+
 }  // namespace cover

@@ -175,7 +175,7 @@ void write_stl(Output& out, const PolygonMesh& mesh, const std::string& file) {
 
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh) {
   const std::string file = path.string();
-  const std::string ext = detail::lower_extension(path);
+  const std::string ext = lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
   check_mesh(file, mesh);
   write_atomically(

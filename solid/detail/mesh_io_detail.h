@@ -38,9 +38,6 @@ namespace cover::detail {
 /// Largest vertex count / face-vertex count a PolygonMesh can index (uint32 offsets).
 inline constexpr uint64_t kMaxIndexCount = 0xFFFFFFFFull;
 
-/// Lower-case extension with its dot (".off"), or empty.
-std::string lower_extension(const std::filesystem::path& path);
-
 /// The unsupported-extension message: "unsupported mesh format '.3ds' (expected ...)".
 std::string unsupported_format(const std::filesystem::path& path);
 

@@ -1,11 +1,41 @@
 #pragma once
 // Shared voxel-grid generators for the raster tests (seeded, reproducible).
 
-#include <random>
+#include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+
+#include "helpers.h"
 #include "raster/voxel_grid.h"
 
 namespace cover::test {
+
+/// Debian's interpreter (the one with numpy, zarr and pyopenvdb), else the python3 on PATH.
+inline std::string python() {
+  return std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
+/// Runs tests/raster/read_voxels.py on `file` (an independent reader: numpy, VTK, zarr,
+/// pyopenvdb); returns its JSON summary and the decoded [x][y][z] bytes.
+inline nlohmann::json python_read(const std::filesystem::path& file, std::string& bytes) {
+  const std::filesystem::path dump = file.string() + ".dump";
+  const std::filesystem::path out = file.string() + ".out";
+  const std::string cmd = python() + " '" +
+                          (source_dir() / "tests/raster/read_voxels.py").string() + "' '" +
+                          file.string() + "' '" + dump.string() + "' >'" + out.string() + "'";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(status, 0) << cmd;
+  if (status != 0) return {};
+  bytes = read_file(dump);
+  const nlohmann::json summary = nlohmann::json::parse(read_file(out));
+  std::filesystem::remove(dump);
+  std::filesystem::remove(out);
+  return summary;
+}
 
 /// An all-empty N³ grid over `bounds` (off the origin by default, so bounds are exercised).
 inline VoxelGrid empty_grid(int n, VoxelBounds bounds = {{-1.25, 0.5, 3.0}, 2.5}) {

@@ -87,24 +87,6 @@ void expect_xyz_bytes(const VoxelGrid& grid, const std::string& bytes, const std
   EXPECT_EQ(mismatches, 0) << what;
 }
 
-std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3"; }
-
-/// Runs read_voxels.py on `file`; returns its JSON summary and the decoded [x][y][z] bytes.
-nlohmann::json python_read(const fs::path& file, std::string& bytes) {
-  const fs::path dump = file.string() + ".dump";
-  const fs::path out = file.string() + ".out";
-  const std::string cmd = python() + " '" +
-                          (test::source_dir() / "tests/raster/read_voxels.py").string() + "' '" +
-                          file.string() + "' '" + dump.string() + "' >'" + out.string() + "'";
-  const int status = std::system(cmd.c_str());
-  EXPECT_EQ(status, 0) << cmd;
-  if (status != 0) return {};
-  bytes = test::read_file(dump);
-  const nlohmann::json summary = nlohmann::json::parse(test::read_file(out));
-  fs::remove(dump);
-  fs::remove(out);
-  return summary;
-}
 
 /// Header fields and decoded voxels (index x·N·N + z·N + y) of a binvox file.
 struct Binvox {
@@ -167,7 +149,7 @@ TEST(VoxelIo, NpyReadByNumpy) {
     const fs::path file = dir / (name + ".npy");
     write_voxels(file, grid);
     std::string bytes;
-    const nlohmann::json summary = python_read(file, bytes);
+    const nlohmann::json summary = test::python_read(file, bytes);
     ASSERT_FALSE(summary.is_null()) << name;
     EXPECT_EQ(summary["shape"], nlohmann::json({grid.nx(), grid.nx(), grid.nx()})) << name;
     EXPECT_EQ(summary["sum"].get<uint64_t>(), grid.count()) << name;
@@ -182,7 +164,7 @@ TEST(VoxelIo, VtiReadByPythonXml) {
     const fs::path file = dir / (name + ".vti");
     write_voxels(file, grid);
     std::string bytes;
-    const nlohmann::json summary = python_read(file, bytes);
+    const nlohmann::json summary = test::python_read(file, bytes);
     ASSERT_FALSE(summary.is_null()) << name;
     EXPECT_EQ(summary["shape"], nlohmann::json({grid.nx(), grid.nx(), grid.nx()})) << name;
     EXPECT_EQ(summary["sum"].get<uint64_t>(), grid.count()) << name;
@@ -215,7 +197,7 @@ TEST(VoxelIo, RawAndSidecar) {
     EXPECT_EQ(meta["voxel_size"].get<double>(), grid.voxel_size()) << name;
     // And through numpy.fromfile + the sidecar's dims.
     std::string bytes;
-    const nlohmann::json summary = python_read(file, bytes);
+    const nlohmann::json summary = test::python_read(file, bytes);
     ASSERT_FALSE(summary.is_null()) << name;
     EXPECT_EQ(summary["sum"].get<uint64_t>(), grid.count()) << name;
     expect_xyz_bytes(grid, bytes, name + ".raw via numpy");
@@ -312,7 +294,7 @@ TEST(VoxelIo, ExtensionsAreCaseInsensitive) {
   const VoxelGrid grid = sphere_grid(9);
   write_voxels(dir / "A.NPY", grid);
   std::string bytes;
-  python_read(dir / "A.NPY", bytes);
+  test::python_read(dir / "A.NPY", bytes);
   expect_xyz_bytes(grid, bytes, "A.NPY");
   fs::remove_all(dir);
 }

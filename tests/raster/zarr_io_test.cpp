@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "helpers.h"
+#include "voxel_grids.h"
 #include "raster/vdb_io.h"
 #include "raster/voxel_io.h"
 #include "raster/voxelize.h"
@@ -22,23 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3"; }
-
-/// read_voxels.py's JSON summary of `file`, and its [x][y][z] bytes.
-nlohmann::json python_read(const fs::path& file, std::string& bytes) {
-  const fs::path dump = file.string() + ".dump", out = file.string() + ".out";
-  const std::string cmd = python() + " '" +
-                          (test::source_dir() / "tests/raster/read_voxels.py").string() + "' '" +
-                          file.string() + "' '" + dump.string() + "' >'" + out.string() + "'";
-  const int status = std::system(cmd.c_str());
-  EXPECT_EQ(status, 0) << cmd;
-  if (status != 0) return {};
-  bytes = test::read_file(dump);
-  const nlohmann::json summary = nlohmann::json::parse(test::read_file(out));
-  fs::remove(dump);
-  fs::remove(out);
-  return summary;
-}
 
 /// Several leaves: a box minus a sphere, with a bar through it.
 Solid scene() {
@@ -70,7 +54,7 @@ TEST(Zarr, StoreAndVdbEqualTheNpyOfTheSameGrid) {
     voxelize_brick(s, lattice, whole_box(lattice), nullptr, whole);
     write_voxels(dir / "whole.npy", whole);
     std::string npy;
-    const nlohmann::json expected = python_read(dir / "whole.npy", npy);
+    const nlohmann::json expected = test::python_read(dir / "whole.npy", npy);
     ASSERT_EQ(expected["shape"], nlohmann::json(dims));
     ASSERT_GT(expected["sum"].get<long>(), 0);
     for (const int chunk : {1, 7, 16, 64}) {
@@ -82,11 +66,13 @@ TEST(Zarr, StoreAndVdbEqualTheNpyOfTheSameGrid) {
       const ZarrResult r = write_zarr(store, lattice, o, bricks_of(s, lattice));
       EXPECT_EQ(r.occupied, whole.count());
       std::string bytes;
-      const nlohmann::json got = python_read(store, bytes);
+      const nlohmann::json got = test::python_read(store, bytes);
       const int c = std::min(chunk, std::max({dims[0], dims[1], dims[2]}));
       EXPECT_EQ(got["chunks"], nlohmann::json({c, c, c}));
       EXPECT_EQ(got["stored"].get<uint64_t>(), r.chunks_written);
-      if (c <= 7) EXPECT_LT(r.chunks_written, r.chunks) << "all-empty chunks are not written";
+      if (c <= 7) {
+        EXPECT_LT(r.chunks_written, r.chunks) << "all-empty chunks are not written";
+      }
       EXPECT_TRUE(got["tie_rule"].get<bool>());
       EXPECT_EQ(got["origin"][0].get<double>(), lattice.origin.x);
       EXPECT_EQ(got["spacing"].get<double>(), lattice.spacing);
@@ -94,7 +80,7 @@ TEST(Zarr, StoreAndVdbEqualTheNpyOfTheSameGrid) {
     }
     write_vdb(dir / "grid.vdb", whole);
     std::string bytes;
-    const nlohmann::json got = python_read(dir / "grid.vdb", bytes);
+    const nlohmann::json got = test::python_read(dir / "grid.vdb", bytes);
     EXPECT_EQ(got["shape"], nlohmann::json(dims));
     EXPECT_TRUE(bytes == npy);
   }
@@ -114,9 +100,9 @@ TEST(Zarr, FullChunksBecomeTilesAndSharedBytesInTheStores) {
   o.chunk = 8;
   write_zarr(dir / "box.zarr", lattice, o, bricks_of(s, lattice));
   std::string npy, vdb, zarr;
-  python_read(dir / "box.npy", npy);
-  const nlohmann::json v = python_read(dir / "box.vdb", vdb);
-  python_read(dir / "box.zarr", zarr);
+  test::python_read(dir / "box.npy", npy);
+  const nlohmann::json v = test::python_read(dir / "box.vdb", vdb);
+  test::python_read(dir / "box.zarr", zarr);
   EXPECT_TRUE(vdb == npy);
   EXPECT_TRUE(zarr == npy);
   EXPECT_LT(v["leaves"].get<int>(), 40 * 40 * 40 / 512) << "full leaves pruned to tiles";
