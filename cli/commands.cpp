@@ -18,6 +18,7 @@
 #include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/memory_limit.h"
+#include "solid/repair.h"
 #include "solid/scene.h"
 #include "solid/validate.h"
 
@@ -114,8 +115,27 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
   vo.check_self_intersection = o.check_self_intersection;
   for (uint32_t l = 0; l < s.leaves.size(); ++l) {
     const PolygonMesh mesh = leaf_mesh(s, l);
-    json leaf = leaf_json(s, l, validate_mesh(mesh, vo));
+    const MeshReport report = validate_mesh(mesh, vo);
+    json leaf = leaf_json(s, l, report);
     leaf["brep"] = brep_json(mesh);
+    // What loading repairs (solid/repair.h: open leaves only) and the rule the leaf then gets.
+    json repair = {{"welded_vertices", 0}, {"zero_area_faces", 0},
+                   {"boundary_edges", report.boundary_edges}, {"edges", report.edges}};
+    if (report.boundary_edges > 0) {
+      PolygonMesh repaired = mesh;
+      repair["welded_vertices"] = weld_duplicate_vertices(repaired);
+      repair["zero_area_faces"] = drop_zero_area_faces(repaired);
+      ValidateOptions quick;
+      quick.check_self_intersection = false;
+      const MeshReport after = validate_mesh(repaired, quick);
+      repair["boundary_edges"] = after.boundary_edges;
+      repair["edges"] = after.edges;
+    }
+    const int64_t open_edges = repair["boundary_edges"].get<int64_t>();
+    const int64_t edges = repair["edges"].get<int64_t>();
+    leaf["repair"] = repair;
+    leaf["rule"] = open_edges > 0 ? "generalized winding number" : "exact";
+    leaf["boundary_edge_fraction"] = edges > 0 ? static_cast<double>(open_edges) / edges : 0.0;
     j["leaves_info"].push_back(std::move(leaf));
   }
   timing.lap(Timing::kKernel);
@@ -145,6 +165,12 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
                 leaf["self_intersecting"].is_null() ? "not checked"
                 : leaf["self_intersecting"].get<bool>() ? "yes" : "no",
                 leaf["volume"].get<double>());
+    const json& rp = leaf["repair"];
+    std::printf("  rule %s; on load: %lld duplicate vertices welded, %lld zero-area faces dropped, "
+                "%lld boundary edges left (%.4g of %lld edges)\n",
+                leaf["rule"].get<std::string>().c_str(), rp["welded_vertices"].get<long long>(),
+                rp["zero_area_faces"].get<long long>(), rp["boundary_edges"].get<long long>(),
+                leaf["boundary_edge_fraction"].get<double>(), rp["edges"].get<long long>());
     const json& b = leaf["brep"];
     if (b.is_null())
       std::printf("  half-edge kernel: not an oriented surface\n");

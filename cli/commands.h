@@ -20,12 +20,14 @@ struct CommonOptions {
   bool quiet = false;  ///< no progress bars
   int threads = 0;     ///< 0: all cores
   uint64_t max_memory_mib = kDefaultMaxMemoryMiB;  ///< --max-memory: refuse estimates above it
+  bool closed_only = false;  ///< --closed-only: refuse open leaves (else the winding-number rule)
 
   uint64_t max_memory_bytes() const { return max_memory_mib << 20; }
   /// How every command loads INPUT: each input file within the memory limit.
   LoadOptions load_options() const {
     LoadOptions options;
     options.max_file_bytes = max_memory_bytes();
+    options.require_closed = closed_only;
     return options;
   }
 };

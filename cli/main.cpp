@@ -84,6 +84,8 @@ void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
                   "Refuse work estimated to need more MiB (inputs, images, grids, octrees)")
       ->capture_default_str()
       ->transform(whole_number(1));
+  cmd->add_flag("--closed-only", common.closed_only,
+                "Refuse open meshes (exit 2) instead of using the generalized winding number");
 }
 
 /// "unknown command 'bogus' (expected info, volume, ...)" when the first argument names no

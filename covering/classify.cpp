@@ -162,14 +162,31 @@ void bvh_windings_batch(const Bvh& bvh, std::span<const Vec3> points, std::span<
 }
 
 /// Leaf memberships → result class; on-surface points go to the exact local analysis.
+/// Open leaves off their surface take the generalized winding number's membership (gwn.h):
+/// through the forest's trees, or (direct) by the direct sum.
+struct OpenRule {
+  const GwnForest* forest = nullptr;
+  GwnOptions options;
+  bool direct = false;
+};
+
 PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> winding,
                   std::span<const uint8_t> on_surface, std::vector<uint8_t>& inside,
-                  const std::function<const LeafTriangles&()>& triangles) {
+                  const std::function<const LeafTriangles&()>& triangles,
+                  const OpenRule& open = {}) {
   inside.resize(winding.size());
   bool any_on = false;
   for (size_t l = 0; l < winding.size(); ++l) {
     inside[l] = winding[l] != 0;
     any_on |= on_surface[l] != 0;
+    if (open.forest == nullptr || open.forest->tree_of_leaf[l] < 0 || on_surface[l]) continue;
+    const GwnTree& t = open.forest->trees[open.forest->tree_of_leaf[l]];
+    if (open.direct) {
+      const GwnValue v = generalized_winding_direct(t, q);
+      inside[l] = std::abs(std::abs(v.w) - 0.5) > v.error && std::abs(v.w) > 0.5;
+    } else {
+      inside[l] = gwn_inside(t, q, open.options);
+    }
   }
   if (!any_on) return tree.evaluate(inside) ? PointClass::kInside : PointClass::kOutside;
   return detail::classify_on_surface(triangles(), tree, q, on_surface, inside);
@@ -222,9 +239,18 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
     return lazy;
   };
   std::vector<PointClass> out(points.size());
-  // Many queries: first label the grid cells no surface touches (exact, see cell_grid.h).
+  // Open leaves: their generalized winding number trees (gwn.h).
+  std::optional<GwnForest> own;
+  OpenRule open;
+  if (solid.has_open_leaf()) {
+    if (options.gwn == nullptr) own = build_gwn(solid, options.gwn_options);
+    open.forest = options.gwn != nullptr ? options.gwn : &*own;
+    open.options = options.gwn_options;
+  }
+  // Many queries: first label the grid cells no surface touches (exact, see cell_grid.h). Only
+  // for closed leaves: an open leaf's membership changes away from its surface too.
   std::optional<detail::CellGrid> grid;
-  if (points.size() >= options.grid_min_points) {
+  if (points.size() >= options.grid_min_points && open.forest == nullptr) {
     const int res = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(points.size()))),
                                8, options.grid_max_resolution);
     grid.emplace(bvh, res, [&](const Vec3& c) {
@@ -266,7 +292,7 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
         out[ids[j]] = finish(points[ids[j]], solid.tree,
                              std::span<const int>(winding).subspan(j * leaves, leaves),
                              std::span<const uint8_t>(on_surface).subspan(j * leaves, leaves),
-                             inside, triangles);
+                             inside, triangles, open);
     }
   });
   return out;
@@ -284,13 +310,20 @@ std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const
   const std::function<const LeafTriangles&()> triangles = [&]() -> const LeafTriangles& {
     return lt;
   };
+  std::optional<GwnForest> forest;
+  OpenRule open;
+  if (solid.has_open_leaf()) {
+    forest = build_gwn(solid, options.gwn_options);
+    open.forest = &*forest;
+    open.direct = true;
+  }
   std::vector<PointClass> out(points.size());
   parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
     std::vector<int> winding;
     std::vector<uint8_t> on_surface, inside;
     for (size_t i = begin; i < end; ++i) {
       brute_windings(lt, points[i], winding, on_surface);
-      out[i] = finish(points[i], solid.tree, winding, on_surface, inside, triangles);
+      out[i] = finish(points[i], solid.tree, winding, on_surface, inside, triangles, open);
     }
   });
   return out;

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "covering/bvh.h"
+#include "covering/gwn.h"
 #include "solid/solid.h"
 
 namespace cover {
@@ -36,11 +37,17 @@ struct ClassifyOptions {
   size_t grain = 256;                ///< points per parallel chunk (results never depend on it)
   size_t grid_min_points = 20000;    ///< build the empty-cell grid from this many points on
   int grid_max_resolution = 64;      ///< cells per axis of that grid, at most
+  /// Open leaves (Leaf::open) are inside where |generalized winding number| > 1/2 (gwn.h):
+  /// their trees, prebuilt (Model keeps one), or nullptr to build them per call.
+  const GwnForest* gwn = nullptr;
+  GwnOptions gwn_options;
 };
 
 /// Classifies every point with a prebuilt BVH of `solid`. Thread-count independent.
-/// \pre leaves are closed (load_input / prepare_leaf ensure it); points are finite
-/// (Model::classify checks).
+/// Open leaves: membership by the generalized winding number (|w| > 1/2, gwn.h) for points off
+/// their surface; a point on an open leaf's surface is classified by the same local analysis as
+/// on a closed leaf (its faces read as the leaf's boundary there). The empty-cell grid is used
+/// only when every leaf is closed. \pre points are finite (Model::classify checks).
 std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
 
@@ -48,7 +55,8 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
 
-/// The same classification visiting every covering triangle for every point (reference path).
+/// The same classification visiting every covering triangle for every point (reference path;
+/// open leaves by the direct solid-angle sum, generalized_winding_direct).
 std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const Vec3> points,
                                              const ClassifyOptions& options = {});
 

@@ -1,6 +1,8 @@
 #include "covering/detail/bvh_walk.h"
 #include "covering/ray.h"
 
+#include <optional>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -436,15 +438,68 @@ std::vector<RayResult> cast(const Bvh& bvh, const Solid& solid, std::span<const 
                             const CastOptions& options) {
   std::vector<RayResult> out(rays.size());
   if (bvh.nodes().empty()) return out;
+  std::optional<GwnForest> own;
+  const GwnForest* forest = nullptr;
+  if (solid.has_open_leaf()) {
+    if (options.gwn == nullptr) own = build_gwn(solid);
+    forest = options.gwn != nullptr ? options.gwn : &*own;
+  }
   constexpr size_t kBatch = 256;  // rays walking the BVH together (walk_batch)
   parallel_for(rays.size(), options.grain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; b += kBatch) {
       const size_t e = std::min(end, b + kBatch);
       cast_batch(bvh, solid.tree, solid.leaves.size(), rays.subspan(b, e - b),
                  std::span(out).subspan(b, e - b));
+      if (forest != nullptr)
+        for (size_t i = b; i < e; ++i) open_spans(out[i], solid, *forest, rays[i]);
     }
   });
   return out;
+}
+
+void open_spans(RayResult& result, const Solid& solid, const GwnForest& forest, const Ray& ray,
+                const GwnOptions& options) {
+  const size_t leaves = solid.leaves.size();
+  const std::vector<RayHit>& hits = result.hits;
+  result.spans.clear();
+  std::vector<int> winding(leaves, 0);
+  std::vector<uint8_t> inside(leaves);
+  for (const RayHit& h : hits) winding[h.leaf] += h.sign;
+  const Bbox box = solid.bbox();
+  const double diag = box.empty() ? 1.0 : std::sqrt(dot(box.max - box.min, box.max - box.min));
+  const double beyond = 0.5 * diag / std::sqrt(dot(ray.dir, ray.dir));
+  // Membership on the interval (t0, t1) (t1 = ∞: the last one), closed leaves by `winding`.
+  auto member = [&](double t0, double t1) {
+    const double t = std::isinf(t1) ? t0 + beyond : 0.5 * (t0 + t1);
+    const Vec3 p = ray.origin + t * ray.dir;
+    for (size_t l = 0; l < leaves; ++l) {
+      const int32_t tree = forest.tree_of_leaf[l];
+      inside[l] = tree < 0 ? winding[l] != 0 : gwn_inside(forest.trees[tree], p, options);
+    }
+    return solid.tree.evaluate(inside);
+  };
+  double t_prev = 0;
+  bool in = member(0, hits.empty() ? INFINITY : hits[0].t);
+  Span open{0, 0, Span::kNone, Span::kNone};
+  for (size_t i = 0; i < hits.size(); ++i) {
+    winding[hits[i].leaf] -= hits[i].sign;
+    if (i + 1 < hits.size() && hits[i + 1].t == hits[i].t) continue;
+    t_prev = hits[i].t;
+    const bool now = member(t_prev, i + 1 < hits.size() ? hits[i + 1].t : INFINITY);
+    if (now == in) continue;
+    if (now) {
+      open = {hits[i].t, 0, static_cast<uint32_t>(i), Span::kNone};
+    } else {
+      open.t1 = hits[i].t;
+      open.exit = static_cast<uint32_t>(i);
+      if (open.t1 > open.t0) result.spans.push_back(open);
+    }
+    in = now;
+  }
+  if (in) {
+    open.t1 = INFINITY;
+    result.spans.push_back(open);
+  }
 }
 
 }  // namespace cover

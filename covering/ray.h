@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "covering/bvh.h"
+#include "covering/gwn.h"
 #include "solid/solid.h"
 
 namespace cover {
@@ -90,10 +91,21 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
 
 struct CastOptions {
   size_t grain = 256;  ///< rays per parallel chunk (results never depend on it)
+  /// Open leaves' trees (gwn.h) for open_spans(); nullptr: built per call when needed.
+  const GwnForest* gwn = nullptr;
 };
 
-/// Casts many rays in parallel; results[i] belongs to rays[i].
-/// \pre closed leaves; every ray has a finite origin and a finite, non-zero direction
+/// Open leaves (Leaf::open): recomputes result.spans (hits sorted as cast() leaves them) with
+/// each open leaf's membership on each interval between distinct hit parameters taken from its
+/// generalized winding number (gwn_inside) at the interval's midpoint (the last, unbounded
+/// interval: half a box diagonal beyond the last hit); closed leaves keep their exact crossing
+/// counts. So spans change only at surface hits: a hole's membrane (|w| = 1/2 away from the
+/// surface) is not a span end. Used by cast() and render for solids with open leaves.
+void open_spans(RayResult& result, const Solid& solid, const GwnForest& forest, const Ray& ray,
+                const GwnOptions& options = {});
+
+/// Casts many rays in parallel; results[i] belongs to rays[i]. Open leaves: open_spans().
+/// \pre every ray has a finite origin and a finite, non-zero direction
 /// (Model::cast checks).
 std::vector<RayResult> cast(const Bvh& bvh, const Solid& solid, std::span<const Ray> rays,
                             const CastOptions& options = {});

@@ -21,6 +21,8 @@ struct Model::State {
   std::vector<std::string> warnings;
   mutable std::once_flag bvh_once;
   mutable std::optional<Bvh> bvh;
+  mutable std::once_flag gwn_once;
+  mutable std::optional<GwnForest> gwn;  ///< open leaves' winding-number trees (covering/gwn.h)
 };
 
 namespace {
@@ -86,6 +88,24 @@ const Bvh& Model::bvh() const {
   return *state_->bvh;
 }
 
+const GwnForest* Model::gwn() const {
+  if (!solid().has_open_leaf()) return nullptr;
+  std::call_once(state_->gwn_once, [this] { state_->gwn.emplace(build_gwn(state_->solid)); });
+  return &*state_->gwn;
+}
+
+namespace {
+
+/// The first open leaf's message prefix: "NAME: open mesh (N boundary edges)".
+std::string open_leaf_message(const Solid& s) {
+  for (const Leaf& l : s.leaves)
+    if (l.open())
+      return l.name + ": open mesh (" + std::to_string(l.boundary_edges) + " boundary edges)";
+  return {};
+}
+
+}  // namespace
+
 // The empty Model (no leaves) is the empty set: it is the identity of union and absorbs
 // intersection; its complement (all of space) has no leaf to carry it.
 Model operator|(const Model& a, const Model& b) {
@@ -132,7 +152,9 @@ std::vector<PointClass> Model::classify(std::span<const Vec3> points,
                                         const ClassifyOptions& options) const {
   check_points(points, "classify");
   if (empty()) return std::vector<PointClass>(points.size(), PointClass::kOutside);
-  return cover::classify(solid(), bvh(), points, options);
+  ClassifyOptions o = options;
+  if (o.gwn == nullptr) o.gwn = gwn();
+  return cover::classify(solid(), bvh(), points, o);
 }
 
 LeafWindings Model::windings(std::span<const Vec3> points, const ClassifyOptions& options) const {
@@ -144,7 +166,9 @@ LeafWindings Model::windings(std::span<const Vec3> points, const ClassifyOptions
 std::vector<RayResult> Model::cast(std::span<const Ray> rays, const CastOptions& options) const {
   check_rays(rays);
   if (empty()) return std::vector<RayResult>(rays.size());
-  return cover::cast(bvh(), solid(), rays, options);
+  CastOptions o = options;
+  if (o.gwn == nullptr) o.gwn = gwn();
+  return cover::cast(bvh(), solid(), rays, o);
 }
 
 std::vector<FirstHit> Model::first_hits(std::span<const Ray> rays,
@@ -164,6 +188,12 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
     r.method = "covering";
     r.area = 0.0;
     return r;
+  }
+  if (solid().has_open_leaf()) {
+    if (options.exact)
+      throw InputError(open_leaf_message(solid()) +
+                       ": no exact volume; the winding method estimates it (without --exact)");
+    return winding_volume(options);
   }
   VolumeResult r;
   bool evaluate_instead = false;
@@ -213,8 +243,70 @@ VoxelGrid Model::voxelize(const VoxelizeOptions& options) const {
   const VoxelLattice lattice = voxel_lattice(options);
   if (empty()) return empty_voxel_grid(lattice, whole_box(lattice));
   VoxelGrid grid;
+  if (solid().has_open_leaf()) {
+    open_voxelize(lattice, whole_box(lattice), grid);
+    return grid;
+  }
   cover::voxelize_brick(solid(), lattice, whole_box(lattice), nullptr, grid, options.progress);
   return grid;
+}
+
+void Model::open_voxelize(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const {
+  grid = empty_voxel_grid(lattice, box);
+  const auto d = box.dims();
+  std::vector<Vec3> centres;
+  centres.reserve(static_cast<size_t>(d[1]) * d[2]);
+  for (int i = box.lo[0]; i < box.hi[0]; ++i) {  // one x slab at a time: bounded memory
+    centres.clear();
+    for (int j = box.lo[1]; j < box.hi[1]; ++j)
+      for (int k = box.lo[2]; k < box.hi[2]; ++k) centres.push_back(lattice.centre(i, j, k));
+    const std::vector<PointClass> c = classify(centres);
+    size_t at = 0;
+    for (int j = 0; j < d[1]; ++j)
+      for (int k = 0; k < d[2]; ++k)
+        if (c[at++] != PointClass::kOutside) grid.set(i - box.lo[0], j, k);
+  }
+}
+
+VolumeResult Model::winding_volume(const VolumeOptions& options) const {
+  // The centres of an n³ grid over the result's box (default n = 128), classified as classify()
+  // does: volume = h³·(centres not outside); error bound = h³·(voxels whose class differs from
+  // a face neighbour's, or on the grid's border while not outside): each voxel the region's
+  // boundary crosses counts fully, assuming the grid resolves the boundary (no feature thinner
+  // than a voxel between two centres of the same class).
+  VolumeResult r;
+  r.method = "winding";
+  const std::optional<Bbox> box = bounds();
+  if (!box) throw NotComputable("volume: the result is unbounded (a complement at the root)");
+  if (box->empty()) return r;
+  const int n = options.rays > 0 ? std::clamp(options.rays, 2, 1024) : 128;
+  const VoxelLattice lattice = cubic_lattice(default_voxel_bounds(*box, n), n);
+  VoxelGrid grid;
+  open_voxelize(lattice, whole_box(lattice), grid);
+  const double h3 = lattice.spacing * lattice.spacing * lattice.spacing;
+  size_t in = 0, border = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const bool v = grid.get(i, j, k);
+        in += v;
+        bool differs = false;
+        const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k},
+                              {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
+        for (const auto& q : nb) {
+          if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n || q[1] >= n || q[2] >= n) {
+            differs |= v;
+            continue;
+          }
+          differs |= grid.get(q[0], q[1], q[2]) != v;
+        }
+        border += differs;
+      }
+  r.volume = h3 * static_cast<double>(in);
+  r.error_bound = h3 * static_cast<double>(border);
+  r.rays = static_cast<size_t>(n) * n * n;  // points classified
+  r.target_met = r.error_bound <= options.target_relative_error * std::abs(r.volume);
+  return r;
 }
 
 namespace {
@@ -242,6 +334,10 @@ void Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box, Vox
   check_brick(lattice, box);
   if (empty()) {
     grid = empty_voxel_grid(lattice, box);
+    return;
+  }
+  if (solid().has_open_leaf()) {
+    open_voxelize(lattice, box, grid);
     return;
   }
   // The faces with a covering triangle whose box may reach the brick's column centres: BVH
@@ -296,7 +392,9 @@ Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBoun
   if (empty()) throw PreconditionError("octree of the empty Model");
   const int depth = std::clamp(options.depth, 0, 30);
   const VoxelBounds b = bounds ? *bounds : voxel_bounds(1 << depth);
-  return build_octree(solid(), bvh(), b, options);
+  OctreeOptions o = options;
+  if (o.gwn == nullptr) o.gwn = gwn();
+  return build_octree(solid(), bvh(), b, o);
 }
 
 Camera Model::camera(const CameraOptions& options) const {
@@ -322,16 +420,22 @@ Image Model::render(const Camera& camera, const RenderOptions& options) const {
     if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0)
       throw InputError("--section: the normal must be non-zero");
   }
-  return cover::render(solid(), bvh(), camera, options);
+  RenderOptions o = options;
+  if (o.gwn == nullptr) o.gwn = gwn();
+  return cover::render(solid(), bvh(), camera, o);
 }
 
 EvaluateResult Model::evaluate(const EvaluateOptions& options) const {
   if (empty()) return EvaluateResult{};
+  if (solid().has_open_leaf())
+    throw InputError(open_leaf_message(solid()) + ": evaluate needs closed leaves");
   return cover::evaluate(solid(), options);
 }
 
 brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& options) const {
   if (empty()) return brep::ClipResult{};
+  if (solid().has_open_leaf())
+    throw InputError(open_leaf_message(solid()) + ": clip needs closed leaves");
   if (!is_bounded(solid()))
     throw InputError("clip: the result is unbounded (a complement at the root)");
   const Solid& s = solid();

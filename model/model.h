@@ -61,6 +61,10 @@ class Model {
 
   /// The BVH of every covering triangle, built on first use (thread-safe) and shared by copies.
   const Bvh& bvh() const;
+  /// The open leaves' generalized-winding-number trees (covering/gwn.h), built on first use;
+  /// nullptr when every leaf is closed. Open leaves: CONTRACT.md "Semantics" — inside where
+  /// |w| > 1/2; classify, windings-free kernels (cast, render, voxelize, octree, volume) use it.
+  const GwnForest* gwn() const;
 
   /// Union, intersection, difference and complement (concatenation, paper §4).
   friend Model operator|(const Model& a, const Model& b);
@@ -177,6 +181,11 @@ class Model {
   brep::ClipResult clip(const brep::Plane& plane, const brep::ClipOptions& options = {}) const;
 
  private:
+  /// Open leaves: the voxels of `box` set where classify() of their centre is not outside.
+  void open_voxelize(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const;
+  /// Open leaves: volume method "winding" (model.cpp states the estimate and its bound).
+  VolumeResult winding_volume(const VolumeOptions& options) const;
+
   struct State;
   static std::shared_ptr<const State> make_state(Solid solid, std::vector<std::string> warnings);
   std::shared_ptr<const State> state_;

@@ -1,6 +1,8 @@
 #include "covering/detail/bvh_walk.h"
 #include "octree/octree.h"
 
+#include <optional>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -204,7 +206,11 @@ class Builder {
         samples_(options.samples),
         h_(std::ldexp(bounds.size, -options.depth)),
         max_bytes_(options.max_bytes),
-        progress_(options.progress) {}
+        progress_(options.progress),
+        open_(solid.has_open_leaf()) {
+    if (open_ && options.gwn == nullptr) own_gwn_ = build_gwn(solid);
+    gwn_ = options.gwn != nullptr ? options.gwn : (own_gwn_ ? &*own_gwn_ : nullptr);
+  }
 
   Octree run() {
     Octree tree;
@@ -373,7 +379,8 @@ class Builder {
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
         size_t uncrossed = 0;
         for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += lists[i].empty();
-        const bool shared = uncrossed > 1 && !centre_on_surface((b0 + g0) / 8, d, candidates);
+        const bool shared = uncrossed > 1 && !open_ &&
+                            !centre_on_surface((b0 + g0) / 8, d, candidates);
         uint32_t rep = UINT32_MAX;
         for (size_t i = g0; i < g0 + siblings; ++i) {
           if (!lists[i].empty()) continue;
@@ -428,6 +435,7 @@ class Builder {
     }
     ClassifyOptions options;
     options.grid_min_points = std::numeric_limits<size_t>::max();  // near-surface points only
+    options.gwn = gwn_;
     const std::vector<PointClass> classes = classify(solid_, bvh_, points, options);
     // (D) States and occupancies (a cell's entries all lie in its own chunk).
     std::vector<uint32_t> sum(m, 0);
@@ -461,6 +469,9 @@ class Builder {
   double h_;
   uint64_t max_bytes_;
   std::function<void(double)> progress_;
+  bool open_ = false;                  ///< some leaf is open: no shared centres
+  std::optional<GwnForest> own_gwn_;   ///< built here when options.gwn is null
+  const GwnForest* gwn_ = nullptr;
   std::vector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank
 };

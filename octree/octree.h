@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "covering/bvh.h"
+#include "covering/gwn.h"
 #include "solid/memory_limit.h"
 #include "solid/solid.h"
 #include "solid/voxel_bounds.h"
@@ -30,6 +31,10 @@ struct OctreeOptions {
   /// Called on the calling thread after each block of cells with the estimated share of the work
   /// done, 0..1 (levels weighted by 4^d, the growth of crossed cells); default: none.
   std::function<void(double)> progress;
+  /// Open leaves' trees (covering/gwn.h; Model passes its own), or nullptr: built when needed.
+  /// With open leaves, cells the surface does not cross take the class of their own centre
+  /// (the winding-number membership is not constant there: an approximation, docs/design.md).
+  const GwnForest* gwn = nullptr;
 };
 
 /// Nodes in breadth-first order; children of an inner node are 8 consecutive nodes starting at

@@ -143,18 +143,20 @@ inline constexpr const char* kLoad = R"(Loads a mesh (.obj .off .stl .ply: one l
 
 Repaired as the CLI does (inside-out leaves flipped, inconsistent orientation fixed), each
 repair reported by a Python warning and in Model.warnings. Raises InputError with the CLI's
-one-line message (naming the file and line / JSON path).)";
+one-line message (naming the file and line / JSON path). An open mesh is accepted with a warning
+(inside where its generalized winding number has |w| > 1/2); closed_only=True refuses it.)";
 
 inline constexpr const char* kBox = R"(Axis-aligned box [min, max] (3 numbers each, min < max on every axis).)";
 inline constexpr const char* kSphere = R"(UV sphere inscribed in the sphere (center, radius): `segments` longitudes (3..4096),
 segments/2 latitude bands.)";
 inline constexpr const char* kCylinder = R"(Cylinder from `base` to `top` with a regular `segments`-gon cross-section inscribed
 in the circle of `radius`.)";
-inline constexpr const char* kMesh = R"(A leaf from a closed triangle mesh given as arrays.
+inline constexpr const char* kMesh = R"(A leaf from a triangle mesh given as arrays.
 
 V: array-like (n, 3) of coordinates (used without a copy when float64 C-contiguous); F:
 integer array-like (m, 3) of vertex indices, counter-clockwise seen from outside (an
 inside-out mesh is flipped, with a warning). Raises ValueError for a wrong shape, TypeError
-for non-integer F, InputError for an index out of range, an open or non-orientable mesh.)";
+for non-integer F, InputError for an index out of range, a non-orientable mesh, or (closed_only=True)
+an open mesh; otherwise an open mesh is inside where its generalized winding number has |w| > 1/2.)";
 
 }  // namespace cover::python::doc

@@ -524,15 +524,17 @@ PYBIND11_MODULE(_cover, m) {
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 
   m.def("load",
-        [](const std::filesystem::path& path) {
+        [](const std::filesystem::path& path, bool closed_only) {
           Model model;
           {
             py::gil_scoped_release release;
-            model = cover::load(path);
+            LoadOptions options;
+            options.require_closed = closed_only;
+            model = cover::load(path, options);
           }
           return warned(std::move(model));
         },
-        py::arg("path"), doc::kLoad);
+        py::arg("path"), py::kw_only(), py::arg("closed_only") = false, doc::kLoad);
   m.def("box", [](py::handle lo, py::handle hi) { return box(vec3_arg(lo, "min"), vec3_arg(hi, "max")); },
         py::arg("min"), py::arg("max"), doc::kBox);
   m.def("sphere",
@@ -544,15 +546,17 @@ PYBIND11_MODULE(_cover, m) {
         },
         py::arg("base"), py::arg("top"), py::arg("radius"), py::arg("segments") = 32, doc::kCylinder);
   m.def("mesh",
-        [](py::handle v, py::handle f) {
+        [](py::handle v, py::handle f, bool closed_only) {
           const Points vertices = points_arg(v, "V");
           const auto triangles = triangles_arg(f, vertices.span().size());
           Model model;
           {
             py::gil_scoped_release release;
-            model = mesh(vertices.span(), triangles);
+            LoadOptions options;
+            options.require_closed = closed_only;
+            model = mesh(vertices.span(), triangles, "mesh", options);
           }
           return warned(std::move(model));
         },
-        py::arg("V"), py::arg("F"), doc::kMesh);
+        py::arg("V"), py::arg("F"), py::kw_only(), py::arg("closed_only") = false, doc::kMesh);
 }

@@ -1,5 +1,7 @@
 #include "raster/render.h"
 
+#include "covering/ray.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -37,13 +39,22 @@ std::pair<double, double> allowed(const Ray& ray, const std::optional<Plane>& se
 }
 
 /// `outside_in_result`: the expression's value with every leaf outside (once per frame).
+/// `open`: the open leaves' trees (gwn.h), or nullptr when every leaf is closed; then spans
+/// come from cast() and open_spans() (membership changes only at surface hits).
 Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
-              const std::optional<Plane>& section, bool outside_in_result) {
+              const std::optional<Plane>& section, bool outside_in_result,
+              const GwnForest* open) {
   Sample out;
   const auto [lo, hi] = allowed(ray, section);
   if (lo > hi) return out;
-  const VisibleHit v =
-      first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi, outside_in_result);
+  VisibleHit v;
+  if (open == nullptr) {
+    v = first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi, outside_in_result);
+  } else {
+    RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
+    open_spans(r, solid, *open, ray);
+    v = first_visible(r, lo, hi);
+  }
   if (!v.hit) return out;
   out.hit = true;
   out.t = v.t;
@@ -117,6 +128,12 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
   // A key light from the upper left of the camera plus a headlight and ambient.
   const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
   const int tile = std::max(1, o.tile);
+  std::optional<GwnForest> own;
+  const GwnForest* open = nullptr;
+  if (solid.has_open_leaf()) {
+    if (o.gwn == nullptr) own = build_gwn(solid);
+    open = o.gwn != nullptr ? o.gwn : &*own;
+  }
   const bool outside_in_result = !solid.tree.nodes.empty() &&
                                  solid.tree.evaluate(std::vector<uint8_t>(solid.leaves.size(), 0));
   const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
@@ -133,7 +150,7 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
         for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
           const size_t i = static_cast<size_t>(py) * cam.width + px;
           const Ray ray = cam.ray(px, py);
-          const Sample s = sample(solid, bvh, ray, o.section, outside_in_result);
+          const Sample s = sample(solid, bvh, ray, o.section, outside_in_result, open);
           std::array<uint8_t, 3> c = o.background;
           if (s.hit) {
             const std::array<uint8_t, 3> base = s.cap ? cap_colour() : leaf_colour(s.leaf);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "covering/bvh.h"
+#include "covering/gwn.h"
 #include "raster/camera.h"
 #include "solid/large_vector.h"
 
@@ -27,6 +28,10 @@ struct RenderOptions {
   /// tiles done so far and the total (non-decreasing); default: none. The image does not
   /// depend on it.
   std::function<void(size_t done, size_t total)> progress;
+  /// Open leaves' trees (covering/gwn.h; Model passes its own), or nullptr: built when needed.
+  /// An open leaf is drawn where its winding-number membership changes at a surface hit
+  /// (covering/ray.h open_spans).
+  const GwnForest* gwn = nullptr;
 };
 
 /// Per-pixel buffers, row-major from the top row, all width × height.

@@ -16,6 +16,7 @@
 #include "solid/parallel.h"
 #include "solid/primitives.h"
 #include "solid/transform.h"
+#include "solid/repair.h"
 #include "solid/validate.h"
 
 namespace cover {
@@ -285,10 +286,30 @@ class SceneReader {
     }
     ValidateOptions vo;
     vo.check_self_intersection = false;
-    const MeshReport r = validate_mesh(m, vo);
+    MeshReport r = validate_mesh(m, vo);
+    if (options.repair && r.boundary_edges > 0) {  // only open leaves are repaired (repair.h)
+      const int64_t before = r.boundary_edges;
+      const size_t welded = weld_duplicate_vertices(m);
+      const size_t dropped = drop_zero_area_faces(m);
+      if (welded > 0)
+        warnings.push_back(where + ": " + std::to_string(welded) +
+                           " duplicate vertices welded (exact coordinates)");
+      if (dropped > 0)
+        warnings.push_back(where + ": " + std::to_string(dropped) + " zero-area face(s) dropped");
+      if (welded > 0 || dropped > 0) {
+        r = validate_mesh(m, vo);
+        if (r.boundary_edges == 0)
+          warnings.push_back(where + ": closed after repair (" + std::to_string(before) +
+                             " boundary edges before)");
+      }
+    }
     if (options.require_closed && r.boundary_edges > 0)
       throw InputError(where + ": open mesh: " + std::to_string(r.boundary_edges) +
                        " boundary edges (a leaf must be a closed solid)");
+    if (r.boundary_edges > 0)
+      warnings.push_back(where + ": open mesh: " + std::to_string(r.boundary_edges) +
+                         " boundary edges; inside where the generalized winding number has "
+                         "|w| > 1/2 (--closed-only refuses)");
     if (options.repair && r.boundary_edges == 0) {
       const OrientResult o = orient_consistently(m, where);
       if (o.flipped_faces > 0)
@@ -310,6 +331,7 @@ class SceneReader {
     }
     Solid s = make_leaf(std::move(m), std::move(name), origin);
     s.leaves[0].flipped = flipped;
+    s.leaves[0].boundary_edges = r.boundary_edges;
     return s;
   }
 

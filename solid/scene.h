@@ -12,7 +12,9 @@
 namespace cover {
 
 struct LoadOptions {
-  bool require_closed = true;  ///< reject leaves with boundary edges (commands that need solids)
+  /// reject leaves with boundary edges (--closed-only); otherwise an open leaf is accepted with a
+  /// warning and is inside where its generalized winding number has |w| > 1/2 (covering/gwn.h)
+  bool require_closed = false;
   bool orient_outward = true;  ///< reverse inside-out leaves (negative covering volume), warning
   /// read repeated loops once and re-orient inconsistently oriented closed leaves, with a
   /// warning each; refuse non-orientable ones (orient.h). Off only for reports (`cover info`).

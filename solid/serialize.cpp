@@ -100,7 +100,7 @@ std::string solid_to_bytes(const Solid& s) {
     w.put(leaf.face_count);
     w.put(leaf.first_vertex);
     w.put(leaf.vertex_count);
-    w.put(static_cast<uint8_t>(leaf.flipped));
+    w.put(static_cast<uint8_t>((leaf.flipped ? 1 : 0) | (leaf.open() ? 2 : 0)));
   }
   for (const CsgNode& node : s.tree.nodes) {
     w.put(static_cast<uint8_t>(node.op));
@@ -149,9 +149,10 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
     leaf.face_count = r.get<uint32_t>();
     leaf.first_vertex = r.get<uint32_t>();
     leaf.vertex_count = r.get<uint32_t>();
-    const uint8_t flipped = r.get<uint8_t>();
-    if (flipped > 1) r.fail("a flag other than 0 or 1");
-    leaf.flipped = flipped == 1;
+    const uint8_t flags = r.get<uint8_t>();
+    if (flags > 3) r.fail("leaf flags other than 0..3");
+    leaf.flipped = (flags & 1) != 0;
+    leaf.boundary_edges = (flags & 2) != 0 ? 1 : 0;  // open: the count itself is not kept
     if (uint64_t{leaf.first_face} + leaf.face_count > nf ||
         uint64_t{leaf.first_vertex} + leaf.vertex_count > nv)
       r.fail("a leaf's faces or vertices out of range");

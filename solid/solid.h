@@ -53,6 +53,11 @@ struct Leaf {
   uint32_t first_vertex = 0, vertex_count = 0;
   Bbox bbox;
   bool flipped = false;  ///< the input was inside-out and its faces were reversed on load
+  /// Boundary edges of the leaf as loaded (solid/validate.h). 0: a closed leaf, inside by the
+  /// exact nonzero rule; > 0: an open leaf, inside where its generalized winding number has
+  /// |w| > 1/2 (covering/gwn.h). Only what the loader found: serialize keeps 0 / nonzero.
+  int64_t boundary_edges = 0;
+  bool open() const { return boundary_edges > 0; }
 };
 
 /// A CSG solid with linear storage: vertices + signed faces tagged by leaf, and the tree.
@@ -71,6 +76,12 @@ struct Solid {
     return {face_vertices.data() + face_start[f], face_start[f + 1] - face_start[f]};
   }
   Bbox bbox() const;
+  /// True when some leaf is open (Leaf::open).
+  bool has_open_leaf() const {
+    for (const Leaf& l : leaves)
+      if (l.open()) return true;
+    return false;
+  }
 };
 
 /// A solid with one leaf. Precondition: the mesh is closed and outward (callers validate).

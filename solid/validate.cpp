@@ -239,6 +239,7 @@ MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options
   MeshReport report;
   const HalfEdges he(mesh);
   const EdgeTable table = build_edges(mesh.vertices.size(), he);
+  report.edges = table.edges;
   report.boundary_edges = table.boundary;
   report.nonmanifold_edges = table.nonmanifold;
   report.closed = table.boundary == 0;

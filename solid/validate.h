@@ -35,6 +35,7 @@ struct MeshReport {
   bool manifold = false;
   bool oriented = false;
   bool outward = false;
+  int64_t edges = 0;           ///< distinct surface edges (boundary_edges is a part of them)
   int64_t boundary_edges = 0;
   int64_t nonmanifold_edges = 0;
   int64_t components = 0;

@@ -219,7 +219,7 @@ def test_wrong_arguments():
     with pytest.raises(cover.InputError, match="vertex index -1 out of range"):
         cover.mesh(V, F - 1)
     with pytest.raises(cover.InputError, match="open mesh"):
-        cover.mesh(V, F[:-1])
+        cover.mesh(V, F[:-1], closed_only=True)
     with pytest.raises(TypeError, match="integers"):
         cover.mesh(V, F.astype(float))
     with pytest.raises(ValueError, match=r"F: expected an array of shape \(m, 3\)"):

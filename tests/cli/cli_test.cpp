@@ -186,9 +186,13 @@ TEST_F(Cli, OpenAndInsideOutLeaves) {
   open.face_start.pop_back();
   open.face_vertices.resize(open.face_start.back());
   write_mesh(dir_ / "open.off", open);
-  auto r = run_cover("volume " + q(dir_ / "open.off"));
+  auto r = run_cover("volume --closed-only " + q(dir_ / "open.off"));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("4 boundary edges"), std::string::npos);
+  r = run_cover("volume " + q(dir_ / "open.off"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("open mesh: 4 boundary edges; inside where the generalized winding number"),
+            std::string::npos);
   r = run_cover("info --json " + q(dir_ / "open.off"));
   ASSERT_EQ(r.status, 0);
   EXPECT_EQ(json::parse(r.out)["leaves_info"][0]["boundary_edges"], 4);

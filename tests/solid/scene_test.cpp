@@ -141,8 +141,10 @@ TEST(Scene, MeshLeavesRelativeToSceneFolderOpenAndInsideOut) {
   EXPECT_TRUE(in.solid.leaves[1].flipped);
 
   test::write_file(dir / "o.json", R"({"union": [{"mesh": "open.off"}]})");
+  LoadOptions closed_only;
+  closed_only.require_closed = true;
   try {
-    load_input(dir / "o.json");
+    load_input(dir / "o.json", closed_only);
     ADD_FAILURE() << "open mesh accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("open mesh: 4 boundary edges"), std::string::npos);

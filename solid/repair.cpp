@@ -1,0 +1,43 @@
+#include "solid/repair.h"
+
+#include <unordered_map>
+#include <vector>
+
+#include "solid/detail/mesh_io_detail.h"
+#include "solid/predicates.h"
+
+namespace cover {
+
+size_t weld_duplicate_vertices(PolygonMesh& mesh) {
+  std::unordered_map<Vec3, uint32_t, detail::Vec3Hash> first;
+  first.reserve(mesh.vertices.size());
+  std::vector<uint32_t> to(mesh.vertices.size());
+  size_t merged = 0;
+  for (uint32_t v = 0; v < mesh.vertices.size(); ++v) {
+    const auto [it, added] = first.try_emplace(mesh.vertices[v], v);  // == treats −0 as +0
+    to[v] = it->second;
+    merged += added ? 0 : 1;
+  }
+  if (merged > 0)
+    for (uint32_t& v : mesh.face_vertices) v = to[v];
+  return merged;
+}
+
+size_t drop_zero_area_faces(PolygonMesh& mesh) {
+  PolygonMesh kept;
+  size_t dropped = 0;
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    if (all_collinear(mesh.vertices, mesh.face(f))) {
+      ++dropped;
+      continue;
+    }
+    kept.add_face(mesh.face(f));
+  }
+  if (dropped > 0) {
+    mesh.face_start = std::move(kept.face_start);
+    mesh.face_vertices = std::move(kept.face_vertices);
+  }
+  return dropped;
+}
+
+}  // namespace cover
