@@ -119,23 +119,13 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
     json leaf = leaf_json(s, l, report);
     leaf["brep"] = brep_json(mesh);
     // What loading repairs (solid/repair.h: open leaves only) and the rule the leaf then gets.
-    json repair = {{"welded_vertices", 0}, {"zero_area_faces", 0},
-                   {"boundary_edges", report.boundary_edges}, {"edges", report.edges}};
-    if (report.boundary_edges > 0) {
-      PolygonMesh repaired = mesh;
-      repair["welded_vertices"] = weld_duplicate_vertices(repaired);
-      repair["zero_area_faces"] = drop_zero_area_faces(repaired);
-      ValidateOptions quick;
-      quick.check_self_intersection = false;
-      const MeshReport after = validate_mesh(repaired, quick);
-      repair["boundary_edges"] = after.boundary_edges;
-      repair["edges"] = after.edges;
-    }
-    const int64_t open_edges = repair["boundary_edges"].get<int64_t>();
-    const int64_t edges = repair["edges"].get<int64_t>();
-    leaf["repair"] = repair;
-    leaf["rule"] = open_edges > 0 ? "generalized winding number" : "exact";
-    leaf["boundary_edge_fraction"] = edges > 0 ? static_cast<double>(open_edges) / edges : 0.0;
+    const RepairReport rr = repair_report(mesh, report);
+    leaf["repair"] = {{"welded_vertices", rr.welded_vertices},
+                      {"zero_area_faces", rr.zero_area_faces},
+                      {"boundary_edges", rr.boundary_edges},
+                      {"edges", rr.edges}};
+    leaf["rule"] = rr.rule();
+    leaf["boundary_edge_fraction"] = rr.boundary_edge_fraction();
     j["leaves_info"].push_back(std::move(leaf));
   }
   timing.lap(Timing::kKernel);

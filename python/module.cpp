@@ -15,6 +15,7 @@
 #include "brep/halfedge.h"
 #include "model/model.h"
 #include "python/arrays.h"
+#include "solid/repair.h"
 #include "solid/validate.h"
 
 namespace py = pybind11;
@@ -355,6 +356,12 @@ py::dict info_dict(const Model& model, bool self_intersection) {
     d["volume"] = r.volume;
     d["bbox"] = bbox_list(leaf.bbox);
     d["brep"] = brep_dict(reports[l].mesh);
+    const RepairReport rr = repair_report(reports[l].mesh, r);
+    d["repair"] = py::dict("welded_vertices"_a = rr.welded_vertices,
+                           "zero_area_faces"_a = rr.zero_area_faces,
+                           "boundary_edges"_a = rr.boundary_edges, "edges"_a = rr.edges);
+    d["rule"] = rr.rule();
+    d["boundary_edge_fraction"] = rr.boundary_edge_fraction();
     leaves.append(d);
   }
   return py::dict("vertices"_a = s.vertices.size(), "faces"_a = s.face_count(),

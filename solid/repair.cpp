@@ -40,4 +40,20 @@ size_t drop_zero_area_faces(PolygonMesh& mesh) {
   return dropped;
 }
 
+RepairReport repair_report(const PolygonMesh& mesh, const MeshReport& report) {
+  RepairReport out;
+  out.boundary_edges = report.boundary_edges;
+  out.edges = report.edges;
+  if (report.boundary_edges == 0) return out;
+  PolygonMesh repaired = mesh;
+  out.welded_vertices = static_cast<int64_t>(weld_duplicate_vertices(repaired));
+  out.zero_area_faces = static_cast<int64_t>(drop_zero_area_faces(repaired));
+  ValidateOptions quick;
+  quick.check_self_intersection = false;
+  const MeshReport after = validate_mesh(repaired, quick);
+  out.boundary_edges = after.boundary_edges;
+  out.edges = after.edges;
+  return out;
+}
+
 }  // namespace cover

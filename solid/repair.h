@@ -11,6 +11,7 @@
 #include <cstddef>
 
 #include "solid/polygon_mesh.h"
+#include "solid/validate.h"
 
 namespace cover {
 
@@ -20,5 +21,20 @@ size_t weld_duplicate_vertices(PolygonMesh& mesh);
 
 /// Drops faces whose vertices are all collinear (exact); returns how many were dropped.
 size_t drop_zero_area_faces(PolygonMesh& mesh);
+
+/// What loading would repair in `mesh` (validated as `report`) and what is left: `cover info`'s
+/// "repair", "rule" and "boundary_edge_fraction".
+struct RepairReport {
+  int64_t welded_vertices = 0;
+  int64_t zero_area_faces = 0;
+  int64_t boundary_edges = 0;  ///< after repair
+  int64_t edges = 0;           ///< after repair
+  bool open() const { return boundary_edges > 0; }
+  const char* rule() const { return open() ? "generalized winding number" : "exact"; }
+  double boundary_edge_fraction() const {
+    return edges > 0 ? static_cast<double>(boundary_edges) / static_cast<double>(edges) : 0.0;
+  }
+};
+RepairReport repair_report(const PolygonMesh& mesh, const MeshReport& report);
 
 }  // namespace cover

@@ -249,7 +249,10 @@ TEST(Model, LoadAndMeshFromArrays) {
   const std::vector<std::array<uint32_t, 3>> bad_index = {{0, 1, 7}};
   EXPECT_THROW(mesh(v, bad_index, "tet"), InputError);
   const std::vector<std::array<uint32_t, 3>> open = {{0, 2, 1}, {0, 1, 3}};
-  EXPECT_THROW(mesh(v, open, "tet"), InputError);
+  LoadOptions closed_only;
+  closed_only.require_closed = true;
+  EXPECT_THROW(mesh(v, open, "tet", closed_only), InputError);
+  EXPECT_TRUE(mesh(v, open, "tet").solid().leaves[0].open());  // accepted: winding-number rule
   EXPECT_THROW(box({0, 0, 0}, {0, 1, 1}), InputError);
   EXPECT_THROW(sphere({0, 0, 0}, -1), InputError);
   EXPECT_THROW(cylinder({0, 0, 0}, {0, 0, 0}, 1), InputError);
