@@ -3,7 +3,9 @@
 #include "boolean/evaluate.h"
 
 #include <chrono>
+#include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "boolean/detail/arrangement.h"
@@ -12,6 +14,7 @@
 #include "solid/errors.h"
 #include "solid/measure.h"
 #include "solid/parallel.h"
+#include "solid/triangulate.h"
 #include "solid/validate.h"
 
 namespace cover {
@@ -35,6 +38,21 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
       for (size_t l = begin; l < end; ++l)
         self[l] = self_intersects(leaf_mesh(solid, static_cast<uint32_t>(l)));
     });
+    // A face whose boundary crosses itself bounds no region to tile: refused, naming the leaf.
+    std::vector<std::array<uint32_t, 3>> tiles;
+    for (uint32_t l = 0; l < solid.leaves.size(); ++l) {
+      if (!self[l]) continue;
+      const Leaf& leaf = solid.leaves[l];
+      for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f) {
+        tiles.clear();
+        if (triangulate_face({solid.vertices.data(), solid.vertices.size()}, solid.face(f), tiles) ==
+            FaceTiling::kCrossing)
+          throw InputError((leaf.origin.empty() ? leaf.name : leaf.origin + " (" + leaf.name + ")") +
+                           ": face " + std::to_string(f - leaf.first_face) +
+                           " has a boundary that crosses itself; evaluate needs faces that bound "
+                           "a region");
+      }
+    }
   }
   r.seconds.check = since(t);
   const size_t grain = options.grain == 0 ? 1 : options.grain;
