@@ -127,7 +127,8 @@ std::vector<uint32_t> merge_equal(const std::vector<Point>& pts, const std::vect
 
 }  // namespace
 
-Arrangement build_arrangement(const Solid& solid, size_t grain, EvaluatePhases& seconds) {
+Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& self, size_t grain,
+                              EvaluatePhases& seconds) {
   using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
   auto lap = [&t0](double& into) {
@@ -144,10 +145,31 @@ Arrangement build_arrangement(const Solid& solid, size_t grain, EvaluatePhases& 
   const std::vector<Vec3>& pos = arr.originals;
   lap(seconds.triangulate);
 
-  const auto pairs = candidate_pairs(tris, pos);
+  auto pairs = candidate_pairs(tris, pos);
   arr.candidate_pairs = pairs.size();
+  // ---- self-intersecting leaves (self_pairs.cpp): their own pairs join, in pair order.
+  const bool any_self = std::find(self.begin(), self.end(), 1) != self.end();
+  if (any_self) {
+    const auto own = same_leaf_pairs(tris, pos, self);
+    const size_t mid = pairs.size();
+    pairs.insert(pairs.end(), own.begin(), own.end());
+    std::inplace_merge(pairs.begin(), pairs.begin() + mid, pairs.end());
+    arr.candidate_pairs = pairs.size();
+  }
+  // ----
   lap(seconds.pairs);
-  const std::vector<Hit> hits = intersect_pairs(tris, pos, pairs, arr.points, grain);
+  std::vector<Hit> hits = intersect_pairs(tris, pos, pairs, arr.points, grain);
+  // ---- self-intersecting leaves: contacts at shared vertices / edges are no hits; tris that
+  // overlap a coplanar tri of their own leaf are marked solo.
+  if (any_self) {
+    drop_shared(tris, pairs, arr.points, hits);
+    arr.solo.assign(tris.size(), 0);
+    for (size_t p = 0; p < pairs.size(); ++p)
+      if (tris[pairs[p].first].leaf == tris[pairs[p].second].leaf && !hits[p].empty() &&
+          hits[p].ends[0].id == kNone)
+        arr.solo[pairs[p].first] = arr.solo[pairs[p].second] = 1;
+  }
+  // ----
   lap(seconds.intersect);
 
   // Hits per tri (CSR, pair order).

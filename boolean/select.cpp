@@ -1,9 +1,12 @@
 // Steps 4–5 of evaluate() (boolean/evaluate.h): patches, exact classification, keep rule.
 //
 // Notation
-//   patch      pieces of one leaf connected across edges that are not cut edges; no other
-//              leaf's surface crosses a patch, so each leaf's winding number on either side of
-//              the patch is constant over it.
+//   patch      pieces of one leaf connected across edges that are not cut edges, where exactly
+//              two pieces of that leaf meet (at a non-manifold edge of a self-intersecting leaf
+//              the sheets stay apart), and, for a solo tri (one overlapping a coplanar tri of its
+//              own leaf), only within that tri; no surface — of another leaf or, for a
+//              self-intersecting leaf, of its own — crosses a patch, so each leaf's winding
+//              number on either side of the patch is constant over it.
 //   c          the exact centroid of the patch's first piece (interior to that piece, so on no
 //              cut edge); t its tri, n_t the tri's outward normal; sides −/+ of n_t are the
 //              tri's inner / outer side.
@@ -21,9 +24,14 @@
 //     segment lying in a triangle's plane — re-shoot with the next direction; c on the edge of a
 //     containing triangle (possible only where a coplanar face of another leaf is non-convex and
 //     its tiling differs) retries with another interior point of the piece.
+// Membership is the nonzero rule on these windings (CONTRACT.md), so a self-intersecting leaf
+// (winding 2 where two of its sheets overlap, 0 inside a hole of a figure-eight) is its
+// nonzero-winding set, as in `cover classify`.
 // Keep rule (regularized): keep the piece iff E(−) ≠ E(+); oriented as t when E(−) is inside,
-// reversed otherwise. Coincident pieces: when a leaf with a lower index also has a triangle
-// containing c, that leaf's own pieces represent the region and this patch is dropped.
+// reversed otherwise. Coincident pieces: when a leaf with a lower index, or a tri of t's own leaf
+// with a lower index than t, also contains c, those pieces represent the region and this patch
+// is dropped (the lowest tri among the coincident ones speaks for all; a solo tri's patches lie
+// within it, so the same tris contain every point of such a patch).
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
@@ -73,6 +81,7 @@ constexpr double kDirections[][3] = {
 struct Sides {
   std::vector<int> minus, plus;     ///< winding per leaf on the − / + side of n_t
   std::vector<uint8_t> coincident;  ///< leaf has a triangle containing c
+  bool lower_own = false;           ///< a tri of t's leaf with a lower index contains c
 };
 
 /// Windings of every leaf on both sides of tri `t` at the exact point c (see notation).
@@ -92,6 +101,7 @@ Sides windings(const Arrangement& arr, const Bvh& bvh, size_t leaves, uint32_t t
     const Point c2 = c + d;
     std::vector<int> count(leaves, 0), s(leaves, 0);
     std::vector<uint8_t> coincident(leaves, 0);
+    bool lower_own = false;
     const double o[3] = {cx, cy, cz};
     const double dd[3] = {reach * dir[0], reach * dir[1], reach * dir[2]};
     // Conservative segment–box test: the box widened by a margin far above the rounding of c.
@@ -126,6 +136,7 @@ Sides windings(const Arrangement& arr, const Bvh& bvh, size_t leaves, uint32_t t
           const CGAL::Sign sigma = CGAL::sign(CGAL::cross_product(b - a, e - a) * nt);
           s[w.leaf] += sigma == CGAL::POSITIVE ? 1 : -1;
           coincident[w.leaf] = 1;
+          lower_own = lower_own || (w.leaf == tri.leaf && w.face < t);
           return;
         }
         if (o2 == CGAL::COPLANAR || o1 == o2) return;
@@ -144,6 +155,7 @@ Sides windings(const Arrangement& arr, const Bvh& bvh, size_t leaves, uint32_t t
     }
     Sides r;
     r.coincident = coincident;
+    r.lower_own = lower_own;
     r.minus.resize(leaves);
     r.plus.resize(leaves);
     for (size_t l = 0; l < leaves; ++l) {
@@ -164,7 +176,8 @@ Sides windings(const Arrangement& arr, const Bvh& bvh, size_t leaves, uint32_t t
 }  // namespace
 
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
-                                                   size_t grain, size_t& patches) {
+                                                   size_t grain, std::vector<uint32_t>& leaves_of,
+                                                   size_t& patches) {
   const size_t n = arr.pieces.size();
   // Patches: union pieces of one leaf across non-cut edges.
   std::vector<std::pair<uint64_t, uint32_t>> edges;
@@ -179,10 +192,16 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
     while (j < edges.size() && edges[j].first == edges[i].first) ++j;
     if (!std::binary_search(arr.cuts.begin(), arr.cuts.end(), edges[i].first))
       for (size_t x = i; x < j; ++x)
-        for (size_t y = x + 1; y < j; ++y)
-          if (arr.tris[arr.pieces[edges[x].second].tri].leaf ==
-              arr.tris[arr.pieces[edges[y].second].tri].leaf)
-            uf.unite(edges[x].second, edges[y].second);
+        for (size_t y = x + 1; y < j; ++y) {
+          const uint32_t px = edges[x].second, py = edges[y].second;
+          const uint32_t tx = arr.pieces[px].tri, ty = arr.pieces[py].tri;
+          const uint32_t leaf = arr.tris[tx].leaf;
+          if (arr.tris[ty].leaf != leaf) continue;
+          if (tx != ty && !arr.solo.empty() && (arr.solo[tx] || arr.solo[ty])) continue;
+          size_t same = 0;  // pieces of this leaf at the edge: two on one sheet, more across sheets
+          for (size_t z = i; z < j; ++z) same += arr.tris[arr.pieces[edges[z].second].tri].leaf == leaf;
+          if (same == 2) uf.unite(px, py);
+        }
     i = j;
   }
   std::vector<uint32_t> roots;
@@ -230,7 +249,7 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
       const uint32_t leaf = arr.tris[piece.tri].leaf;
       bool lower = false;
       for (size_t l = 0; l < leaf; ++l) lower = lower || sides.coincident[l];
-      if (lower) continue;
+      if (lower || sides.lower_own) continue;
       for (size_t l = 0; l < leaves; ++l) {
         in_minus[l] = sides.minus[l] != 0;
         in_plus[l] = sides.plus[l] != 0;
@@ -241,10 +260,12 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
   });
   for (size_t r = 0; r < roots.size(); ++r) patch_of[roots[r]] = static_cast<uint32_t>(r);
   std::vector<std::array<uint32_t, 3>> kept;
+  leaves_of.clear();
   for (uint32_t p = 0; p < n; ++p) {
     const uint8_t d = decision[patch_of[uf.find(p)]];
     if (d == 0) continue;
     const auto& v = arr.pieces[p].v;
+    leaves_of.push_back(arr.tris[arr.pieces[p].tri].leaf);
     kept.push_back(d == 1 ? v : std::array<uint32_t, 3>{v[0], v[2], v[1]});
   }
   return kept;

@@ -98,7 +98,8 @@ struct ClipCommandOptions {
 
 struct EvaluateCommandOptions {
   std::string input;
-  std::string output;  ///< -o OUT.(off|obj|stl|ply)
+  std::string output;     ///< -o OUT.(off|obj|stl|ply)
+  bool leaf_ids = false;  ///< --leaf-ids: each face's source leaf (PLY face property, OBJ groups)
 };
 
 int run_info(const InfoOptions& o, const CommonOptions& common);

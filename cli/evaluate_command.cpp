@@ -1,9 +1,12 @@
-// `cover evaluate INPUT -o OUT.(off|obj|stl|ply) [--json]` (CONTRACT.md): the CSG result as one
-// closed, outward-oriented 2-manifold B-rep (boolean/evaluate.h). An empty result (e.g. disjoint
-// operands intersected) is not an error: an empty mesh (0 vertices, 0 faces) is written, exit 0,
-// with a warning on stderr.
+// `cover evaluate INPUT -o OUT.(off|obj|stl|ply) [--leaf-ids] [--json]` (CONTRACT.md): the CSG
+// result as one closed, outward-oriented 2-manifold B-rep (boolean/evaluate.h). An empty result
+// (e.g. disjoint operands intersected) is not an error: an empty mesh (0 vertices, 0 faces) is
+// written, exit 0, with a warning on stderr. --leaf-ids adds each face's source leaf (index into
+// the scene's leaves, in load order): PLY face property `int leaf`, OBJ groups `g leaf_K`; the
+// JSON then lists the leaf names under `leaf_names`.
 #include <cstdio>
 #include <iostream>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "boolean/evaluate.h"
@@ -21,6 +24,8 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   Timing timing;
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
+  if (o.leaf_ids && lower_extension(o.output) != ".ply" && lower_extension(o.output) != ".obj")
+    throw InputError(o.output + ": --leaf-ids needs a .ply or .obj output");
   const Model model = load_model(o.input, common.load_options());
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
@@ -29,7 +34,15 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
   OutputBatch outputs;
-  write_mesh(o.output, r.mesh);
+  if (o.leaf_ids) {
+    FaceLabels labels;
+    labels.ply_property = "leaf";
+    labels.labels = r.face_leaf;
+    for (size_t l = 0; l < model.leaf_count(); ++l) labels.obj_groups.push_back("leaf_" + std::to_string(l));
+    write_mesh(o.output, r.mesh, labels);
+  } else {
+    write_mesh(o.output, r.mesh);
+  }
   outputs.commit();
   timing.lap(Timing::kWrite);
   nlohmann::json j;
@@ -39,6 +52,10 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   j["faces"] = r.mesh.face_count();
   j["genus"] = r.genus;
   j["components"] = r.components;
+  if (o.leaf_ids) {
+    j["leaf_names"] = nlohmann::json::array();
+    for (const Leaf& leaf : model.solid().leaves) j["leaf_names"].push_back(leaf.name);
+  }
   timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";

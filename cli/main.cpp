@@ -222,6 +222,8 @@ int main(int argc, char** argv) {
       app.add_subcommand("evaluate", "The CSG result as one closed 2-manifold mesh (B-rep)");
   eva_cmd->add_option("INPUT", eva.input, "Mesh or scene")->required();
   eva_cmd->add_option("-o,--output", eva.output, "OUT.off, .obj, .stl or .ply")->required();
+  eva_cmd->add_flag("--leaf-ids", eva.leaf_ids,
+                    "Each face's source leaf: PLY face property 'leaf', OBJ groups leaf_<i>_<name>");
   add_common(eva_cmd, common);
 
   if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty())

@@ -121,8 +121,11 @@ camera (default orthographic). The same pixels as `cover render --size WxH`.)";
 inline constexpr const char* kEvaluate = R"(The result as one closed, outward, 2-manifold triangle mesh (exact evaluation).
 
 Returns (V float64 (n, 3), F int64 (m, 3)), faces counter-clockwise seen from outside; the
-same mesh as `cover evaluate -o out.off`. Raises NotComputable for an unbounded result,
-InputError for a self-intersecting leaf that evaluation refuses. Not interruptible.)";
+same mesh as `cover evaluate -o out.off`. leaf_ids=True returns (V, F, L) with L int32 (m,):
+each face's source leaf (index into the leaves in load order, as `cover evaluate --leaf-ids`).
+A self-intersecting leaf stands for its nonzero-winding set (as classify). Raises
+NotComputable for an unbounded result, InputError for a leaf face whose boundary crosses itself.
+Not interruptible.)";
 
 inline constexpr const char* kClip = R"(Plane clip and patch: ((V_above, F_above), (V_below, F_below)).
 

@@ -278,13 +278,16 @@ py::tuple mesh_arrays(const PolygonMesh& mesh) {
   return py::make_tuple(vertices_array(mesh.vertices), triangles_array(mesh));
 }
 
-py::tuple evaluate_mesh(const Model& model, Threads threads) {
+py::tuple evaluate_mesh(const Model& model, bool leaf_ids, Threads threads) {
   EvaluateResult r;
   {
     KernelScope scope(threads);
     r = model.evaluate();
   }
-  return mesh_arrays(r.mesh);
+  if (!leaf_ids) return mesh_arrays(r.mesh);
+  py::array_t<int32_t> leaf(static_cast<py::ssize_t>(r.face_leaf.size()));
+  std::copy(r.face_leaf.begin(), r.face_leaf.end(), leaf.mutable_data());
+  return py::make_tuple(vertices_array(r.mesh.vertices), triangles_array(r.mesh), leaf);
 }
 
 py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
@@ -526,7 +529,8 @@ PYBIND11_MODULE(_cover, m) {
       .def("render", &render_image, py::arg("width"), py::arg("height"), py::arg("view") = "iso",
            py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false, threads,
            doc::kRender)
-      .def("evaluate", &evaluate_mesh, py::kw_only(), threads, doc::kEvaluate)
+      .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false, threads,
+           doc::kEvaluate)
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 

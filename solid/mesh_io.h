@@ -37,6 +37,21 @@ PolygonMesh read_mesh(const std::filesystem::path& path,
 /// cannot be written (index out of range, face with fewer than 3 vertices, non-finite vertex).
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh);
 
+/// Per-face labels (e.g. the source leaf of each face of an evaluated mesh) for the formats
+/// that can hold them: .ply gets a face property `int <ply_property>` after vertex_indices;
+/// .obj a line "g <obj_groups[label]>" before each run of faces with the same label (faces keep
+/// their order, so indices match the unlabelled file).
+struct FaceLabels {
+  std::string ply_property = "label";
+  std::vector<uint32_t> labels;         ///< one per face
+  std::vector<std::string> obj_groups;  ///< group name per label value (no whitespace)
+};
+
+/// write_mesh with face labels. Throws InputError as above, for .off / .stl ("cannot carry face
+/// labels"), or when labels.labels does not have one label per face.
+void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh,
+                const FaceLabels& labels);
+
 /// True if the extension names a mesh format read_mesh understands.
 bool is_mesh_extension(const std::filesystem::path& path);
 

@@ -2,9 +2,11 @@
 // beside the target, renamed over it, or committed with the command's other outputs), so no
 // reader ever sees a half-written mesh; on failure the temporary is removed.
 //   .off  ASCII "OFF", V F 0, one vertex / face per line
-//   .obj  ASCII v / f lines (1-based indices)
+//   .obj  ASCII v / f lines (1-based indices); with FaceLabels a "g NAME" line before each run of
+//         faces with one label
 //   .ply  binary_little_endian, double x y z, "list uchar int vertex_indices" (uint count when a
-//         face has more than 255 vertices, uint items when there are more than 2^31-1 vertices)
+//         face has more than 255 vertices, uint items when there are more than 2^31-1 vertices);
+//         with FaceLabels then "int NAME" per face
 //   .stl  binary; polygons are fan-triangulated (v0, vi, vi+1) and coordinates rounded to float,
 //         so an STL round trip is exact only for float-representable coordinates
 // Numbers are written with std::to_chars' shortest round-trip form, so .off/.obj/.ply round trips
@@ -111,20 +113,22 @@ void write_off(Output& out, const PolygonMesh& mesh) {
   }
 }
 
-void write_obj(Output& out, const PolygonMesh& mesh) {
+void write_obj(Output& out, const PolygonMesh& mesh, const FaceLabels* labels) {
   out.text("# written by Cover\n");
   for (const Vec3& p : mesh.vertices) {
     out.text("v "), out.number(p.x), out.text(" "), out.number(p.y), out.text(" "), out.number(p.z);
     out.text("\n");
   }
   for (size_t f = 0; f < mesh.face_count(); ++f) {
+    if (labels && (f == 0 || labels->labels[f] != labels->labels[f - 1]))
+      out.text("g "), out.text(labels->obj_groups[labels->labels[f]]), out.text("\n");
     out.text("f");
     for (uint32_t v : mesh.face(f)) out.text(" "), out.number(uint64_t{v} + 1);
     out.text("\n");
   }
 }
 
-void write_ply(Output& out, const PolygonMesh& mesh) {
+void write_ply(Output& out, const PolygonMesh& mesh, const FaceLabels* labels) {
   size_t largest = 0;
   for (size_t f = 0; f < mesh.face_count(); ++f) largest = std::max(largest, mesh.face(f).size());
   const bool wide_count = largest > 255;
@@ -134,7 +138,9 @@ void write_ply(Output& out, const PolygonMesh& mesh) {
   out.text("\nproperty double x\nproperty double y\nproperty double z\nelement face ");
   out.number(uint64_t{mesh.face_count()});
   out.text(wide_count ? "\nproperty list uint " : "\nproperty list uchar ");
-  out.text(wide_index ? "uint vertex_indices\nend_header\n" : "int vertex_indices\nend_header\n");
+  out.text(wide_index ? "uint vertex_indices\n" : "int vertex_indices\n");
+  if (labels) out.text("property int "), out.text(labels->ply_property), out.text("\n");
+  out.text("end_header\n");
   for (const Vec3& p : mesh.vertices) out.binary(p.x), out.binary(p.y), out.binary(p.z);
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const auto face = mesh.face(f);
@@ -143,6 +149,7 @@ void write_ply(Output& out, const PolygonMesh& mesh) {
     else
       out.binary(static_cast<uint8_t>(face.size()));
     for (uint32_t v : face) out.binary(v);  // same bytes for int and uint (v < 2^31 for int)
+    if (labels) out.binary(static_cast<int32_t>(labels->labels[f]));
   }
 }
 
@@ -173,11 +180,34 @@ void write_stl(Output& out, const PolygonMesh& mesh, const std::string& file) {
 
 }  // namespace
 
+static void write_mesh_labelled(const std::filesystem::path& path, const PolygonMesh& mesh,
+                                const FaceLabels* labels);
+
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh) {
+  write_mesh_labelled(path, mesh, nullptr);
+}
+
+void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh,
+                const FaceLabels& labels) {
+  write_mesh_labelled(path, mesh, &labels);
+}
+
+static void write_mesh_labelled(const std::filesystem::path& path, const PolygonMesh& mesh,
+                                const FaceLabels* labels) {
   const std::string file = path.string();
   const std::string ext = lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
   check_mesh(file, mesh);
+  if (labels) {
+    if (ext != ".ply" && ext != ".obj")
+      detail::fail_file(file, "cannot carry face labels (use .ply or .obj)");
+    if (labels->labels.size() != mesh.face_count())
+      detail::fail_file(file, "cannot write: " + std::to_string(labels->labels.size()) +
+                                  " face labels for " + std::to_string(mesh.face_count()) + " faces");
+    for (uint32_t l : labels->labels)
+      if (l > 0x7FFFFFFFu || (ext == ".obj" && l >= labels->obj_groups.size()))
+        detail::fail_file(file, "cannot write: face label " + std::to_string(l) + " out of range");
+  }
   write_atomically(
       path,
       [&](const std::filesystem::path& temporary) {
@@ -189,9 +219,9 @@ void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh) {
           if (ext == ".off")
             write_off(out, mesh);
           else if (ext == ".obj")
-            write_obj(out, mesh);
+            write_obj(out, mesh, labels);
           else if (ext == ".ply")
-            write_ply(out, mesh);
+            write_ply(out, mesh, labels);
           else
             write_stl(out, mesh, file);
           out.flush();

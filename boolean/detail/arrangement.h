@@ -76,20 +76,27 @@ struct Arrangement {
   std::vector<Tri> tris;           ///< grouped by leaf, leaves in order
   std::vector<Piece> pieces;       ///< in tri order
   std::vector<uint64_t> cuts;      ///< sorted, unique edge keys of cut edges
-  size_t candidate_pairs = 0;      ///< tri pairs of different leaves with meeting boxes
+  std::vector<uint8_t> solo;       ///< per tri: overlaps a coplanar tri of its own leaf (its
+                                   ///< pieces form patches of their own, select.cpp)
+  size_t candidate_pairs = 0;      ///< tri pairs with meeting boxes (different leaves, and
+                                   ///< same-leaf pairs of self-intersecting leaves)
   size_t intersecting_pairs = 0;   ///< pairs whose triangles meet
 };
 
 /// Steps 1–3 of evaluate(): triangulation, exact pairwise intersections, per-tri constrained
-/// triangulations, global point identity. Deterministic for any thread count.
-/// `seconds` gets the triangulate, pairs, intersect, split and identify times.
-Arrangement build_arrangement(const Solid& solid, size_t grain, EvaluatePhases& seconds);
+/// triangulations, global point identity. Deterministic for any thread count. Leaves l with
+/// self[l] set (self-intersecting) also have their own tri pairs intersected (self_pairs.cpp);
+/// `self` may be empty (no such leaf). `seconds` gets the triangulate, pairs, intersect, split
+/// and identify times.
+Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& self, size_t grain,
+                              EvaluatePhases& seconds);
 
 /// Steps 4–5: patches, exact classification, the regularized keep rule and de-duplication of
-/// coincident pieces. Returns the kept triangles (point ids), oriented outward; `patches` gets
-/// the number of classified patches.
+/// coincident pieces. Returns the kept triangles (point ids), oriented outward; `leaves` gets
+/// the leaf of each (the leaf of its tri), `patches` the number of classified patches.
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
-                                                   size_t grain, size_t& patches);
+                                                   size_t grain, std::vector<uint32_t>& leaves,
+                                                   size_t& patches);
 
 /// Step 6: pairs faces around edges with more than two faces by exact angular order, splits
 /// vertices per fan, rounds the exact points to the nearest doubles.

@@ -51,6 +51,18 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
                                  const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
                                  std::vector<Point>& points, size_t grain);
 
+/// Step 2 for self-intersecting leaves (self_pairs.cpp): tri pairs (t < u) of one leaf l with
+/// self[l] set whose closed double boxes meet, less those sharing an edge whose planes differ
+/// (they meet exactly in that edge), sorted.
+std::vector<std::pair<uint32_t, uint32_t>> same_leaf_pairs(const std::vector<Tri>& tris,
+                                                           const std::vector<Vec3>& pos,
+                                                           const std::vector<uint8_t>& self);
+
+/// Clears the hits of same-leaf pairs that are only the pair's shared vertices / shared edge.
+void drop_shared(const std::vector<Tri>& tris,
+                 const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
+                 const std::vector<Point>& points, std::vector<Hit>& hits);
+
 /// Step 3's result for one tri.
 struct Local {
   std::vector<uint32_t> ids;    ///< per local point: its point id, kNone when only its value is known

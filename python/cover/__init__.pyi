@@ -1,7 +1,7 @@
 # Type stubs of the package `cover` (the extension cover._cover re-exported by __init__.py).
 # python/tests/test_stubs.py checks that these names and signatures match the module.
 import os
-from typing import Any, NamedTuple, Sequence, Union
+from typing import Any, Literal, NamedTuple, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -12,6 +12,7 @@ CLASS_NAMES: tuple[str, str, str, str, str]
 _ArrayLike = npt.ArrayLike
 _Vec3 = Union[Sequence[float], npt.NDArray[np.floating[Any]]]
 _Mesh = tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]
+_LabelledMesh = tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int32]]
 
 class InputError(ValueError): ...
 class NotComputable(RuntimeError): ...
@@ -79,7 +80,10 @@ class Model:
         perspective: bool = False,
         threads: int | None = None,
     ) -> npt.NDArray[np.uint8]: ...
-    def evaluate(self, *, threads: int | None = None) -> _Mesh: ...
+    @overload
+    def evaluate(self, *, leaf_ids: Literal[False] = False, threads: int | None = None) -> _Mesh: ...
+    @overload
+    def evaluate(self, *, leaf_ids: Literal[True], threads: int | None = None) -> _LabelledMesh: ...
     def clip(self, plane: Sequence[float], *, threads: int | None = None) -> tuple[_Mesh, _Mesh]: ...
     def info(self, *, self_intersection: bool = True) -> dict[str, Any]: ...
 

@@ -149,6 +149,35 @@ def test_render_view_and_section():
         m.render(32, 24, view="sideways")
 
 
+def test_evaluate_leaf_ids():
+    # box - sphere: faces on the box's planes come from leaf 0, the others from the sphere (1).
+    m = cover.box([0, 0, 0], [2, 2, 2]) - cover.sphere([2, 2, 1.5], 1.2, segments=16)
+    V, F = m.evaluate()
+    V2, F2, L = m.evaluate(leaf_ids=True)
+    assert np.array_equal(V, V2) and np.array_equal(F, F2)
+    assert L.dtype == np.int32 and L.shape == (len(F),)
+    T = V[F]  # (m, 3, 3)
+    on_box = np.zeros(len(F), bool)
+    for axis in range(3):
+        for c in (0.0, 2.0):
+            on_box |= np.all(T[:, :, axis] == c, axis=1)
+    assert np.array_equal(L, np.where(on_box, 0, 1))
+    assert 0 < np.count_nonzero(L == 1) < len(F)
+    assert np.array_equal(m.evaluate(leaf_ids=True, threads=1)[2], m.evaluate(leaf_ids=True, threads=2)[2])
+
+
+def test_evaluate_self_intersecting_leaf():
+    # Two overlapping cubes in one leaf: its nonzero-winding set, their union (volume 15).
+    V = np.array([[x, y, z] for x in (0, 2) for y in (0, 2) for z in (0, 2)], float)
+    F = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    m = cover.mesh(np.vstack([V, V + 1]), np.vstack([F, F + 8]))
+    Ve, Fe = m.evaluate()
+    assert signed_volume(Ve, Fe) == pytest.approx(15, rel=1e-12)
+    P = np.random.default_rng(3).uniform(-0.5, 3.5, (2000, 3))
+    assert np.array_equal(m.classify(P) == 1, cover.mesh(Ve, Fe).classify(P) == 1)
+
+
 def test_evaluate_and_clip_volumes_agree():
     m = cover.load(MODELS / "default.json")
     V, F = m.evaluate()

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
+#include <sstream>
 #include <random>
 
 #include "boolean/evaluate.h"
@@ -288,9 +290,13 @@ TEST(Evaluate, OverlappingCoplanarTops) {
   EXPECT_DOUBLE_EQ(i.volume, 0.5 * 0.75);
 }
 
-TEST(Evaluate, SelfIntersectingLeafIsRefused) {
-  const PolygonMesh cow = read_mesh(test::cgal_mesh("cow.off"));
-  EXPECT_THROW(evaluate(make_leaf(cow, "cow.off")), InputError);
+TEST(Evaluate, FaceCrossingItselfIsRefused) {
+  // A square pyramid whose base is a bow-tie (its boundary crosses itself): no region to tile.
+  PolygonMesh m;
+  m.vertices = {{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0.5, 1}};
+  m.add_face({0, 1, 2, 3});
+  for (uint32_t i = 0; i < 4; ++i) m.add_face({i, (i + 1) % 4, 4});
+  EXPECT_THROW(evaluate(make_leaf(m, "bowtie")), InputError);
 }
 
 // ---- CLI -------------------------------------------------------------------------------------
@@ -327,13 +333,81 @@ TEST(EvaluateCli, BadInputExitsTwo) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("bad.json"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "o.off"));
-  r = test::run_cover("evaluate '" + test::cgal_mesh("cow.off").string() + "' -o '" +
+  test::write_file(dir / "bowtie.off", "OFF\n5 5 0\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n0.5 0.5 1\n"
+                                      "4 0 1 2 3\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n");
+  r = test::run_cover("evaluate '" + (dir / "bowtie.off").string() + "' -o '" +
                       (dir / "o.off").string() + "'");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("self-intersecting"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bowtie.off"), std::string::npos) << r.err;
+  test::write_file(dir / "ok.json", R"({"box": {"min": [0,0,0], "max": [1,1,1]}})");
+  r = test::run_cover("evaluate '" + (dir / "ok.json").string() + "' -o '" +
+                      (dir / "o.off").string() + "' --leaf-ids");  // OFF cannot carry leaf ids
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--leaf-ids"), std::string::npos) << r.err;
   r = test::run_cover("evaluate '" + test::cgal_mesh("elephant.off").string() + "' -o '" +
                       (dir / "o.xyz").string() + "'");
   EXPECT_EQ(r.status, 2);
+  std::filesystem::remove_all(dir);
+}
+
+/// Whether a face lies in a plane of the box [0, 2]³ (all corners share x, y or z = 0 or 2).
+bool on_box_plane(const PolygonMesh& m, size_t f) {
+  for (int a = 0; a < 3; ++a)
+    for (double c : {0.0, 2.0}) {
+      bool all = true;
+      for (uint32_t v : m.face(f)) all = all && m.vertices[v][a] == c;
+      if (all) return true;
+    }
+  return false;
+}
+
+TEST(EvaluateCli, LeafIds) {
+  // box − sphere: faces on the box's planes come from leaf 0, those on the sphere from leaf 1.
+  const auto dir = test::temp_dir("evaluate-leaf-ids");
+  test::write_file(dir / "s.json", R"({"difference": [
+      {"box": {"min": [0,0,0], "max": [2,2,2]}},
+      {"sphere": {"center": [2,2,1.5], "radius": 1.2, "segments": 16}}]})");
+  auto run = [&](const std::string& out, const std::string& threads) {
+    const test::RunResult r = test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" +
+                                              (dir / out).string() + "' --leaf-ids --json --threads " +
+                                              threads);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("\"leaf_names\""), std::string::npos) << r.out;
+  };
+  run("a.ply", "1");
+  run("b.ply", "2");
+  run("a.obj", "2");
+  EXPECT_EQ(test::read_file(dir / "a.ply"), test::read_file(dir / "b.ply"));  // any thread count
+  const PolygonMesh mesh = read_mesh(dir / "a.ply");  // readers skip the extra property
+  // PLY: binary little endian; after the vertices, per face: uchar 3, int ×3, int leaf.
+  const std::string ply = test::read_file(dir / "a.ply");
+  const size_t body = ply.find("end_header\n") + 11;
+  ASSERT_NE(ply.find("property list uchar int vertex_indices\nproperty int leaf\n"), std::string::npos);
+  std::vector<int32_t> leaf;
+  for (size_t f = 0, at = body + 24 * mesh.vertices.size(); f < mesh.face_count(); ++f, at += 17) {
+    ASSERT_EQ(ply[at], 3);
+    int32_t l;
+    std::memcpy(&l, ply.data() + at + 13, 4);
+    leaf.push_back(l);
+  }
+  size_t sphere = 0;
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    EXPECT_EQ(leaf[f], on_box_plane(mesh, f) ? 0 : 1) << "face " << f;
+    sphere += leaf[f] == 1;
+  }
+  EXPECT_GT(sphere, 20u);
+  EXPECT_LT(sphere, mesh.face_count());
+  // OBJ: the same faces in the same order, each run under "g leaf_K".
+  std::istringstream obj(test::read_file(dir / "a.obj"));
+  std::string line;
+  int group = -1;
+  std::vector<int32_t> obj_leaf;
+  while (std::getline(obj, line)) {
+    if (line.rfind("g leaf_", 0) == 0) group = std::stoi(line.substr(7));
+    if (line.rfind("f ", 0) == 0) obj_leaf.push_back(group);
+  }
+  EXPECT_EQ(obj_leaf, leaf);
+  EXPECT_EQ(read_mesh(dir / "a.obj").face_count(), mesh.face_count());
   std::filesystem::remove_all(dir);
 }
 
