@@ -46,6 +46,7 @@ std::string wall_text(double c) {
 struct Part {
   PolygonMesh mesh;
   std::vector<CellFace> faces;
+  int64_t forced_ears = 0;  ///< in the clips that made it
   bool empty() const { return mesh.face_count() == 0; }
 };
 
@@ -111,6 +112,7 @@ class Cutter {
       q.mesh = std::move(half.mesh);
       q.faces.reserve(half.face_source.size());
       for (uint32_t s : half.face_source) q.faces.push_back(s == kNoFace ? kind : part.faces[s]);
+      q.forced_ears = part.forced_ears + r.forced_ears;
       return q;
     };
     return {take(r.below), take(r.above)};
@@ -119,6 +121,7 @@ class Cutter {
   static CellPiece finish(Part part, const std::array<int, 3>& cell) {
     CellPiece piece;
     piece.cell = cell;
+    piece.forced_ears = part.forced_ears;
     PolygonMesh caps;
     caps.vertices = part.mesh.vertices;
     for (size_t f = 0; f < part.faces.size(); ++f) {

@@ -58,6 +58,9 @@ struct CellPiece {
   double volume = 0;                 ///< signed_volume(mesh)
   double area = 0;                   ///< surface_area(mesh)
   double cap_area = 0;               ///< area of the cap faces
+  /// Ear-clipping fallbacks (ClipResult::forced_ears) in the clips that made this piece: 0
+  /// unless a cap ring's exact and rounded points admit no common triangulation.
+  int64_t forced_ears = 0;
 };
 
 struct CellsResult {
@@ -65,7 +68,7 @@ struct CellsResult {
   PolygonMesh glued;              ///< the pieces without interior caps, wall vertices identified
   int64_t cap_faces = 0;          ///< Σ pieces' cap_faces
   int64_t clips = 0;              ///< plane clips run (walls a piece does not cross are skipped)
-  int64_t forced_ears = 0;        ///< Σ ClipResult::forced_ears (0 unless a cap ring degenerates)
+  int64_t forced_ears = 0;        ///< Σ ClipResult::forced_ears over all clips
   double cut_seconds = 0;         ///< wall-clock time of the cuts
   double glue_seconds = 0;        ///< wall-clock time of the gluing
 };

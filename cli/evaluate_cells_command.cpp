@@ -70,7 +70,8 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
                       {"area", p.area},
                       {"cap_area", p.cap_area},
                       {"faces", p.mesh.face_count()},
-                      {"cap_faces", p.cap_faces}});
+                      {"cap_faces", p.cap_faces},
+                      {"forced_ears", p.forced_ears}});
   }
   if (!o.pieces.empty()) {
     const std::filesystem::path dir(o.pieces);
@@ -106,6 +107,7 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   j["pieces"] = r.cells.pieces.size();
   j["cap_faces"] = r.cells.cap_faces;
   j["clips"] = r.cells.clips;
+  j["forced_ears"] = r.cells.forced_ears;
   j["evaluated_faces"] = r.evaluated.mesh.face_count();
   timing.put(j);
   j["seconds_detail"]["evaluate"] = r.evaluate_seconds;
