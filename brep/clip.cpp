@@ -29,8 +29,9 @@
 namespace cover::brep {
 namespace {
 
-/// Ear-clip face f (its input vertices, in the projection of its Newell normal) with split_face.
-void triangulate_face(HalfedgeMesh& m, uint32_t f) {
+/// Ear-clip face f (its input vertices, in the projection of its Newell normal) with split_face;
+/// each new face's input face is appended to `source`.
+void triangulate_face(HalfedgeMesh& m, uint32_t f, std::vector<uint32_t>& source) {
   std::vector<uint32_t> he;
   Vec3 normal;
   {
@@ -72,8 +73,10 @@ void triangulate_face(HalfedgeMesh& m, uint32_t f) {
   // out[i]: the remainder's half-edge leaving corner i. Cutting ear (a, b, c) splits off the
   // chain a → b → c; the remainder keeps the new half-edge a → c.
   std::vector<uint32_t> out = he;
-  for (size_t t = 0; t + 1 < tris.size(); ++t)
+  for (size_t t = 0; t + 1 < tris.size(); ++t) {
     out[tris[t][0]] = m.split_face(out[tris[t][0]], out[tris[t][2]]);
+    source.push_back(source[f]);
+  }
 }
 
 }  // namespace
@@ -107,7 +110,10 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   auto sign_of = [&](uint32_t v) { return v < n0 ? side[v] : int8_t{0}; };
 
   // 2. Crossing faces that meet the plane more than twice are triangulated first.
+  // source[f]: the input face that face f is part of (split_face appends one face each time).
   const uint32_t f0 = m.face_slots();
+  std::vector<uint32_t> source(f0);
+  for (uint32_t f = 0; f < f0; ++f) source[f] = f;
   for (uint32_t f = 0; f < f0; ++f) {
     bool pos = false, neg = false;
     int meets = 0;
@@ -119,7 +125,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
       meets += (a == 0) + (a * b < 0);
       h = m.next(h);
     } while (h != m.face_halfedge(f));
-    if (pos && neg && meets > 2) triangulate_face(m, f);
+    if (pos && neg && meets > 2) triangulate_face(m, f, source);
   }
 
   // 3. Split crossing edges (each constructed point once, shared by both sides).
@@ -150,6 +156,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
     if (!(pos && neg)) continue;
     if (nz != 2) throw InternalError("clip: crossing face does not meet the plane twice");
     m.split_face(zero[0], zero[1]);
+    source.push_back(source[f]);
   }
 
   // 5. Sides of faces (0 above, 1 below).
@@ -211,6 +218,8 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
         h = m.next(h);
       } while (h != m.face_halfedge(f));
       out.add_face(ids);
+      (s == 0 ? result.above : result.below)
+          .face_source.push_back(f < source.size() ? source[f] : kNoFace);
     }
   }
   return result;

@@ -8,6 +8,7 @@
 // on the unrounded points (see cap.cpp).
 
 #include <cstdint>
+#include <vector>
 
 #include "solid/polygon_mesh.h"
 
@@ -25,7 +26,12 @@ struct ClipHalf {
   PolygonMesh mesh;        ///< closed, outward-oriented 2-manifold (empty when nothing is there)
   int64_t rings = 0;       ///< boundary rings walked on the plane (touching rings walk as one)
   int64_t cap_faces = 0;   ///< faces added on the plane
+  /// #F: per face of `mesh`, the input face it is part of, or kNoFace for a cap face.
+  std::vector<uint32_t> face_source;
 };
+
+/// ClipHalf::face_source of a cap face.
+inline constexpr uint32_t kNoFace = 0xffffffffu;
 
 struct ClipResult {
   ClipHalf above, below;

@@ -100,6 +100,9 @@ struct EvaluateCommandOptions {
   std::string input;
   std::string output;     ///< -o OUT.(off|obj|stl|ply)
   bool leaf_ids = false;  ///< --leaf-ids: each face's source leaf (PLY face property, OBJ groups)
+  int cells = 0;       ///< --cells N: through N×N×N cells (0: plain evaluation)
+  std::string pieces;  ///< --pieces DIR: DIR/cell_I_J_K.ext and DIR/pieces.json (with --cells)
+  std::string bounds;  ///< --bounds xmin,ymin,zmin,size: the cells' cube (with --cells)
 };
 
 int run_info(const InfoOptions& o, const CommonOptions& common);
@@ -111,5 +114,7 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common);
 int run_clip(const ClipCommandOptions& o, const CommonOptions& common);
 int run_octree(const OctreeCommandOptions& o, const CommonOptions& common);
 int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
+/// `cover evaluate --cells N`: the result cut into N³ cells and glued back (brep/cells.h).
+int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& common);
 
 }  // namespace cover::cli

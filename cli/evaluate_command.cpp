@@ -21,6 +21,12 @@
 namespace cover::cli {
 
 int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
+  if (o.cells > 0 && o.leaf_ids)
+    throw InputError("--leaf-ids: not available with --cells (the pieces carry no leaf ids)");
+  if (o.cells > 0) return run_evaluate_cells(o, common);
+  if (!o.pieces.empty() || !o.bounds.empty())
+    throw InputError(std::string(o.pieces.empty() ? "--bounds" : "--pieces") +
+                     ": needs --cells N");
   Timing timing;
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");

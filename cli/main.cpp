@@ -224,6 +224,13 @@ int main(int argc, char** argv) {
   eva_cmd->add_option("-o,--output", eva.output, "OUT.off, .obj, .stl or .ply")->required();
   eva_cmd->add_flag("--leaf-ids", eva.leaf_ids,
                     "Each face's source leaf: PLY face property 'leaf', OBJ groups leaf_<i>_<name>");
+  eva_cmd->add_option("--cells", eva.cells,
+                      "Evaluate through N×N×N cells (plane clip and patch); OUT = the pieces glued")
+      ->transform(whole_number(1));
+  eva_cmd->add_option("--pieces", eva.pieces,
+                      "With --cells: write DIR/cell_I_J_K.ext (closed pieces) and DIR/pieces.json");
+  eva_cmd->add_option("--bounds", eva.bounds,
+                      "With --cells: the cells' cube xmin,ymin,zmin,size (default: the box, cubic)");
   add_common(eva_cmd, common);
 
   if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty())

@@ -1,6 +1,7 @@
 #include "model/model.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <string>
@@ -441,6 +442,23 @@ brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& 
   const Solid& s = solid();
   const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
   return brep::clip(one_leaf ? leaf_mesh(s, 0) : cover::evaluate(s).mesh, plane, options);
+}
+
+CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& bounds,
+                                      const brep::CellsOptions& options) const {
+  if (n < 1) throw InputError("evaluate cells: expected at least 1 cell per axis, got " +
+                              std::to_string(n));
+  CellsEvaluation out;
+  if (!empty() && !is_bounded(solid()))
+    throw NotComputable("evaluate cells: the result is unbounded (a complement at the root)");
+  const VoxelBounds b = bounds ? *bounds : (empty() ? VoxelBounds{{0, 0, 0}, 1} : voxel_bounds(n));
+  out.grid = {b.min, b.size, n};
+  const auto start = std::chrono::steady_clock::now();
+  out.evaluated = evaluate();
+  out.evaluate_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.cells = brep::cut_cells(out.evaluated.mesh, out.grid, options);
+  return out;
 }
 
 Model load(const std::filesystem::path& path, const LoadOptions& options) {

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "boolean/evaluate.h"
+#include "brep/cells.h"
 #include "brep/clip.h"
 #include "covering/bvh.h"
 #include "covering/classify.h"
@@ -43,6 +44,14 @@
 #include "solid/transform.h"
 
 namespace cover {
+
+/// What Model::evaluate_cells() gives: the plain evaluation and its pieces per cell.
+struct CellsEvaluation {
+  brep::CellGrid grid;        ///< the cube and the cells per axis
+  EvaluateResult evaluated;   ///< evaluate(): the mesh that was cut
+  brep::CellsResult cells;    ///< pieces in (i, j, k) order and, glued, the same solid
+  double evaluate_seconds = 0;  ///< wall-clock time of evaluate()
+};
 
 class Model {
  public:
@@ -179,6 +188,16 @@ class Model {
   /// unbounded result, or (as brep::clip) a leaf that is open or non-manifold; NotComputable
   /// when the cap cannot be built.
   brep::ClipResult clip(const brep::Plane& plane, const brep::ClipOptions& options = {}) const;
+
+  /// The result through n×n×n cells (brep/cells.h): evaluate(), then its mesh cut by the plane
+  /// patcher into one closed, outward 2-manifold piece per cell it meets (a cell inside the
+  /// result gives its box), over the cube `bounds` (default voxel_bounds(n), the cube voxelize
+  /// uses). cells.glued is the pieces glued back: the same solid as evaluate() when the cube
+  /// contains the result (else the result ∩ cube). Cells are cut in parallel.
+  /// \throws InputError for n < 1, bad bounds, and as evaluate(); NotComputable as evaluate()
+  /// and brep::clip.
+  CellsEvaluation evaluate_cells(int n, const std::optional<VoxelBounds>& bounds = std::nullopt,
+                                 const brep::CellsOptions& options = {}) const;
 
  private:
   /// Open leaves: the voxels of `box` set where classify() of their centre is not outside.

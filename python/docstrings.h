@@ -134,6 +134,15 @@ outward with cap triangles on the plane; V float64 (n, 3), F int64 (m, 3): polyg
 triangulated exactly (a fan for convex faces). A single leaf is clipped as it
 is, any other expression is evaluated first (as `cover clip`). Not interruptible.)";
 
+inline constexpr const char* kEvaluateCells = R"(The result through n x n x n cells: a list of pieces, one dict per cell the result meets.
+
+Each piece is result ∩ cell, closed on the cell walls by the plane patcher (exact, as
+`cover clip`): a closed, outward, 2-manifold mesh; a cell inside the result gives its box.
+Dict keys: cell (i, j, k), vertices float64 (n, 3), faces int64 (m, 3) (cap polygons
+triangulated), volume, area, cap_area. Pieces come in (i, j, k) order, i slowest. bounds =
+(xmin, ymin, zmin, size) as in voxelize (default: the cube voxelize uses for res=n). The same
+pieces as `cover evaluate --cells n --pieces DIR`. Not interruptible.)";
+
 inline constexpr const char* kInfo = R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
 faces, leaves, bbox ((min, max) or None) and leaves_info (one dict per leaf: name, origin,
 vertices, faces, closed, manifold, oriented, outward, boundary_edges, nonmanifold_edges,

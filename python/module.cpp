@@ -302,6 +302,31 @@ py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
   return py::make_tuple(mesh_arrays(r.above.mesh), mesh_arrays(r.below.mesh));
 }
 
+/// evaluate_cells(n, bounds): one dict per non-empty cell, in (i, j, k) order.
+py::list cell_pieces(const Model& model, int n, const py::object& bounds, Threads threads) {
+  const std::optional<VoxelBounds> given = bounds_arg(bounds);
+  brep::CellsOptions o;
+  o.glue = false;
+  o.clip.triangulate_caps = true;
+  CellsEvaluation r;
+  {
+    KernelScope scope(threads);
+    r = model.evaluate_cells(n, given, o);
+  }
+  py::list out;
+  for (const brep::CellPiece& p : r.cells.pieces) {
+    py::dict d;
+    d["cell"] = py::make_tuple(p.cell[0], p.cell[1], p.cell[2]);
+    d["vertices"] = vertices_array(p.mesh.vertices);
+    d["faces"] = triangles_array(p.mesh);
+    d["volume"] = p.volume;
+    d["area"] = p.area;
+    d["cap_area"] = p.cap_area;
+    out.append(std::move(d));
+  }
+  return out;
+}
+
 py::object bbox_list(const Bbox& b) {
   if (b.empty()) return py::none();
   py::list box;
@@ -532,6 +557,8 @@ PYBIND11_MODULE(_cover, m) {
       .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false, threads,
            doc::kEvaluate)
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
+      .def("evaluate_cells", &cell_pieces, py::arg("n"), py::arg("bounds") = py::none(),
+           py::kw_only(), threads, doc::kEvaluateCells)
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 
   m.def("load",

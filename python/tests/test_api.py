@@ -190,6 +190,22 @@ def test_evaluate_and_clip_volumes_agree():
     assert signed_volume(Va, Fa) == pytest.approx(0.75) and signed_volume(Vb, Fb) == pytest.approx(0.25)
 
 
+def test_evaluate_cells_pieces_sum_to_the_result():
+    two = cover.box([0, 0, 0], [2, 2, 2])
+    pieces = two.evaluate_cells(2, bounds=(0, 0, 0, 2))
+    assert [p["cell"] for p in pieces] == [(i, j, k) for i in range(2) for j in range(2) for k in range(2)]
+    for p in pieces:  # full cells are their boxes
+        assert p["volume"] == 1 and p["area"] == 6 and p["cap_area"] == 3
+        assert signed_volume(p["vertices"], p["faces"]) == pytest.approx(1, rel=1e-12)
+    m = cover.box([0, 0, 0], [1, 1, 1]) - cover.sphere([1, 1, 1], 0.7)
+    V, F = m.evaluate()
+    pieces = m.evaluate_cells(3, threads=1)
+    assert sum(p["volume"] for p in pieces) == pytest.approx(signed_volume(V, F), rel=1e-12)
+    assert all(p["faces"].dtype == np.int64 and p["faces"].shape[1] == 3 for p in pieces)
+    with pytest.raises(cover.InputError):
+        m.evaluate_cells(0)
+
+
 def test_clip_triangulates_nonconvex_faces():
     path = MODELS / "frame.off"  # a square frame: faces with holes / non-convex polygons
     m = cover.load(path)

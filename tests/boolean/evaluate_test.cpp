@@ -17,6 +17,7 @@
 
 #include "boolean/evaluate.h"
 #include "brep/halfedge.h"
+#include "brep/cells_checks.h"
 #include "covering/volume.h"
 #include "helpers.h"
 #include "solid/errors.h"
@@ -104,6 +105,8 @@ brep::BrepReport check_manifold(const PolygonMesh& mesh) {
 /// The full check of one evaluated expression against CGAL's corefined mesh.
 void check_against(const Solid& solid, const Mesh& expected, const std::string& label) {
   const EvaluateResult r = evaluate(solid);
+  // The same result through 4³ cells (brep/cells.h): valid pieces, glued back to the same solid.
+  test::expect_valid_cells(r.mesh, test::cells_around(r.mesh, 4), label, {false, true});
   const double cgal = CGAL::to_double(PMP::volume(expected));
   const brep::BrepReport rep = check_manifold(r.mesh);
   const Mesh out = to_cgal(r.mesh);
@@ -206,6 +209,7 @@ TEST(Evaluate, DefaultSceneSameMeshForAnyThreadCountAndRun) {
     ThreadLimit limit(1);
     one = evaluate(s);
   }
+  test::expect_valid_cells(one.mesh, test::cells_around(one.mesh, 4), "default scene", {true, true});
   for (int run = 0; run < 3; ++run) {
     const EvaluateResult all = evaluate(s);
     EXPECT_EQ(all.mesh.vertices, one.mesh.vertices) << run;
@@ -221,6 +225,7 @@ Solid box(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
 TEST(Evaluate, BoxesSharingAFaceUnite) {
   const EvaluateResult r = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {2, 1, 1})}));
   check_manifold(r.mesh);
+  test::expect_valid_cells(r.mesh, {{0, 0, 0}, 2, 4}, "boxes sharing a face");
   EXPECT_DOUBLE_EQ(r.volume, 2);
   EXPECT_DOUBLE_EQ(r.area, 10);  // no internal faces
   for (const Vec3& p : r.mesh.vertices) EXPECT_TRUE(p.x == 0 || p.x == 1 || p.x == 2);
@@ -230,6 +235,7 @@ TEST(Evaluate, BoxesSharingAFaceUnite) {
 TEST(Evaluate, CubesSharingAnEdgeUnite) {
   const EvaluateResult r = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({1, 1, 0}, {2, 2, 1})}));
   const brep::BrepReport rep = check_manifold(r.mesh);
+  test::expect_valid_cells(r.mesh, {{0, 0, 0}, 2, 4}, "cubes sharing an edge");
   EXPECT_DOUBLE_EQ(r.volume, 2);
   EXPECT_DOUBLE_EQ(r.area, 12);
   EXPECT_EQ(rep.components, 2);  // the edge is duplicated: two cube surfaces, no shared vertex
@@ -243,6 +249,7 @@ TEST(Evaluate, CubesSharingAnEdgeUnite) {
 TEST(Evaluate, CubesTouchingAtAPoint) {
   const EvaluateResult r = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({1, 1, 1}, {2, 2, 2})}));
   check_manifold(r.mesh);
+  test::expect_valid_cells(r.mesh, {{0, 0, 0}, 2, 4}, "cubes touching at a point");
   EXPECT_DOUBLE_EQ(r.volume, 2);
   int corner = 0;
   for (const Vec3& p : r.mesh.vertices) corner += p == Vec3{1, 1, 1};
@@ -273,6 +280,8 @@ TEST(Evaluate, FlushCut) {
   // A slot cut flush with the top: [0,3]³ minus [1,2]×[−1,4]×[2,3].
   const EvaluateResult s = evaluate(subtract({box({0, 0, 0}, {3, 3, 3}), box({1, -1, 2}, {2, 4, 3})}));
   check_manifold(s.mesh);
+  test::expect_valid_cells(s.mesh, {{0, 0, 0}, 3, 4}, "slot");
+  test::expect_valid_cells(s.mesh, {{0, 0, 0}, 3, 3}, "slot");
   EXPECT_DOUBLE_EQ(s.volume, 27 - 3);
   EXPECT_DOUBLE_EQ(s.area, 54 - 3 - 2 + 3 + 2 * 3);  // top strip and two wall squares out, slot in
   EXPECT_FALSE(PMP::does_self_intersect(to_cgal(s.mesh)));
@@ -282,6 +291,7 @@ TEST(Evaluate, OverlappingCoplanarTops) {
   // Two boxes with flush tops and bottoms, overlapping in x: one box [0, 1.5]×[0,1]×[0,1].
   const EvaluateResult u = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({0.5, 0, 0}, {1.5, 1, 1})}));
   check_manifold(u.mesh);
+  test::expect_valid_cells(u.mesh, {{0, 0, 0}, 1.5, 4}, "coplanar tops");
   EXPECT_DOUBLE_EQ(u.volume, 1.5);
   EXPECT_DOUBLE_EQ(u.area, 2 * (1.5 + 1.5 + 1));
   const EvaluateResult i =

@@ -1,0 +1,85 @@
+#pragma once
+// A closed mesh cut into the cells of a cubic grid by the plane patcher (Erleben & Henriksen,
+// "The Plane Patcher", 2006, the octree-cell application of its introduction; DESIGN.md §6),
+// and the pieces glued back.
+//
+// Notation
+//   grid      the cube [min, min + size]³ split into n×n×n cells; wall k of axis a is the plane
+//             x_a = c_k with c_k = min_a + k·(size/n) for 0 < k < n, c_0 = min_a, c_n = min_a + size.
+//   cell      (i, j, k) = [c_i, c_i+1] × [c_j, c_j+1] × [c_k, c_k+1].
+//   piece     mesh ∩ cell, closed by caps on the cell's walls (brep::clip): a closed, outward,
+//             2-manifold mesh; a cell the mesh misses has no piece, a cell wholly inside it is
+//             its box.
+//   interior wall   c_k with 0 < k < n; caps there are the ones glue removes.
+//
+// Cutting is hierarchical: the mesh is split by the x walls (bisecting the wall list, so the two
+// halves of each level run in parallel), each slab by the y walls, each column by the z walls.
+// A clip rounds each constructed point once to the nearest double and hands the same point to
+// both halves, and later cuts split a shared wall edge identically on both sides, so the border
+// edges that the interior caps leave behind match exactly across a wall: gluing pairs them by
+// their coordinates and identifies their end vertices (no tolerance).
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "brep/clip.h"
+#include "solid/polygon_mesh.h"
+
+namespace cover::brep {
+
+/// The cube and its cells per axis.
+struct CellGrid {
+  Vec3 min;         ///< lower corner of the cube
+  double size = 1;  ///< edge length of the cube (finite, > 0)
+  int n = 1;        ///< cells per axis (≥ 1)
+};
+
+/// Coordinate c_k of wall k (0 ≤ k ≤ n) along any axis a of `grid` (see the notation above).
+double cell_wall(const CellGrid& grid, int axis, int k);
+
+struct CellsOptions {
+  bool glue = true;  ///< also build CellsResult::glued
+  ClipOptions clip;  ///< cap faces: convex polygons (default) or triangles
+};
+
+/// Face kinds of a piece.
+enum class CellFace : uint8_t {
+  kSurface = 0,   ///< part of a face of the input mesh
+  kInterior = 1,  ///< cap on an interior wall (removed by gluing)
+  kOuter = 2,     ///< cap on the cube's own boundary (where the mesh leaves the cube)
+};
+
+struct CellPiece {
+  std::array<int, 3> cell{0, 0, 0};  ///< (i, j, k)
+  PolygonMesh mesh;                  ///< closed, outward, 2-manifold
+  std::vector<CellFace> faces;       ///< #F kind of each face of `mesh`
+  int64_t cap_faces = 0;             ///< faces that are caps (interior or outer)
+  double volume = 0;                 ///< signed_volume(mesh)
+  double area = 0;                   ///< surface_area(mesh)
+  double cap_area = 0;               ///< area of the cap faces
+  /// Ear-clipping fallbacks (ClipResult::forced_ears) in the clips that made this piece: 0
+  /// unless a cap ring's exact and rounded points admit no common triangulation.
+  int64_t forced_ears = 0;
+};
+
+struct CellsResult {
+  std::vector<CellPiece> pieces;  ///< the non-empty pieces in (i, j, k) order (i slowest)
+  PolygonMesh glued;              ///< the pieces without interior caps, wall vertices identified
+  int64_t cap_faces = 0;          ///< Σ pieces' cap_faces
+  int64_t clips = 0;              ///< plane clips run (walls a piece does not cross are skipped)
+  int64_t forced_ears = 0;        ///< Σ ClipResult::forced_ears over all clips
+  double cut_seconds = 0;         ///< wall-clock time of the cuts
+  double glue_seconds = 0;        ///< wall-clock time of the gluing
+};
+
+/// Cuts `mesh` into the cells of `grid`. `mesh` is what brep::clip accepts: closed, outward,
+/// 2-manifold, without self-intersections. The glued mesh is mesh ∩ cube (the same solid as
+/// `mesh` when the cube contains it), with extra vertices where the walls cross its faces.
+/// Deterministic: the same pieces for any thread count.
+/// \throws InputError for n < 1, a non-finite min or a size that is not finite and > 0, and as
+/// brep::clip; NotComputable as brep::clip; InternalError if a wall edge finds no partner.
+CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid,
+                      const CellsOptions& options = {});
+
+}  // namespace cover::brep

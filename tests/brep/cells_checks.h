@@ -1,0 +1,85 @@
+#pragma once
+// Checks of brep::cut_cells shared by the cells tests and the evaluate tests: every piece a
+// closed, outward 2-manifold without self-intersections (kernel validity + CGAL's exact test,
+// check_half), the pieces' volumes summing to the mesh's, and the glued pieces the same solid as
+// the mesh (volume to 1e-12 relative, valid, same genus).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "brep/cells.h"
+#include "brep_checks.h"
+#include "solid/measure.h"
+
+namespace cover::test {
+
+/// The cube around `mesh`'s box, enlarged by `margin` of its largest extent on every side.
+inline brep::CellGrid cells_around(const PolygonMesh& mesh, int n, double margin = 0.01) {
+  const Bbox b = face_bbox(mesh);
+  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+  return {b.min - Vec3{margin * ext, margin * ext, margin * ext}, (1 + 2 * margin) * ext, n};
+}
+
+/// What expect_valid_cells tolerates, printing a note instead of failing.
+struct CellsTolerance {
+  /// A mesh that intersects itself (outside cut_cells' precondition) is not cut.
+  bool self_intersecting_input = false;
+  /// Caps made with ear-clipping fallbacks (CellsResult::forced_ears > 0: a ring whose exact and
+  /// rounded points admit no common triangulation, brep/cap.cpp) are not checked for
+  /// self-intersection; everything else still is.
+  bool forced_ears = false;
+};
+
+/// Cuts `mesh` (closed, outward, valid) into the cells of `grid` and checks pieces and glue; the
+/// cube is expected to contain `mesh`. Returns the result for further checks.
+inline brep::CellsResult expect_valid_cells(const PolygonMesh& mesh, const brep::CellGrid& grid,
+                                            const std::string& what,
+                                            const CellsTolerance& tolerate = {}) {
+  const std::string label = what + " n=" + std::to_string(grid.n);
+  const HalfCheck input = check_half(mesh, {}, -1);
+  if (tolerate.self_intersecting_input && input.self_intersecting) {
+    std::printf("note: %s: the mesh intersects itself; not cut into cells\n", label.c_str());
+    return {};
+  }
+  brep::CellsResult r = brep::cut_cells(mesh, grid);
+  if (tolerate.forced_ears && r.forced_ears > 0)
+    std::printf("note: %s: %lld forced ears in the caps; their pieces are not checked for "
+                "self-intersection\n", label.c_str(), static_cast<long long>(r.forced_ears));
+  const double volume = signed_volume(mesh);
+  double sum = 0;
+  for (const brep::CellPiece& piece : r.pieces) {
+    const std::string cell = label + " cell " + std::to_string(piece.cell[0]) + "," +
+                             std::to_string(piece.cell[1]) + "," + std::to_string(piece.cell[2]);
+    const HalfCheck c = check_half(piece.mesh, {}, -1);
+    EXPECT_TRUE(c.report.consistent && c.report.closed && c.report.manifold) << cell;
+    if (!tolerate.forced_ears || piece.forced_ears == 0) {
+      EXPECT_FALSE(c.self_intersecting) << cell;
+    }
+    EXPECT_GT(piece.volume, 0) << cell;
+    EXPECT_EQ(piece.faces.size(), piece.mesh.face_count()) << cell;
+    const Bbox b = face_bbox(piece.mesh);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_GE(b.min[a], brep::cell_wall(grid, a, piece.cell[a])) << cell;
+      EXPECT_LE(b.max[a], brep::cell_wall(grid, a, piece.cell[a] + 1)) << cell;
+    }
+    sum += piece.volume;
+  }
+  EXPECT_NEAR(sum, volume, 1e-11 * std::abs(volume)) << label;
+  if (mesh.face_count() == 0) {
+    EXPECT_TRUE(r.pieces.empty()) << label;
+    return r;
+  }
+  const HalfCheck glued = check_half(r.glued, {}, -1);
+  EXPECT_TRUE(glued.report.consistent && glued.report.closed && glued.report.manifold) << label;
+  EXPECT_FALSE(glued.self_intersecting) << label;
+  EXPECT_EQ(glued.report.genus, input.report.genus) << label;
+  EXPECT_EQ(glued.report.components, input.report.components) << label;
+  EXPECT_NEAR(glued.volume, volume, 1e-12 * std::abs(volume)) << label;
+  EXPECT_NEAR(surface_area(r.glued), surface_area(mesh), 1e-12 * surface_area(mesh)) << label;
+  return r;
+}
+
+}  // namespace cover::test

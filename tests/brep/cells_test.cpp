@@ -1,0 +1,258 @@
+// brep::cut_cells (brep/cells.h): pieces of evaluated CSG results over boxes, spheres and small
+// libcgal-demo meshes at N = 1..4 (each piece valid, volumes summing, glue = the input solid),
+// walls through mesh vertices and along mesh faces, full cells, a cube smaller than the solid,
+// determinism; and `cover evaluate --cells` / `--pieces` on the command line.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "boolean/evaluate.h"
+#include "model/model.h"
+#include "cells_checks.h"
+#include "helpers.h"
+#include "solid/errors.h"
+#include "solid/measure.h"
+#include "solid/mesh_io.h"
+#include "solid/parallel.h"
+#include "solid/primitives.h"
+#include "solid/scene.h"
+#include "solid/transform.h"
+
+namespace cover {
+namespace {
+
+Solid box_leaf(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
+
+brep::CellGrid grid(Vec3 min, double size, int n) { return {min, size, n}; }
+
+TEST(Cells, FullCellsAreTheirBoxes) {
+  // [0,2]³ over the cube [0,2]³ in 2³ cells: walls on the box's faces and through its middle.
+  const PolygonMesh cube = make_box({0, 0, 0}, {2, 2, 2});
+  const brep::CellsResult r = test::expect_valid_cells(cube, grid({0, 0, 0}, 2, 2), "cube");
+  ASSERT_EQ(r.pieces.size(), 8u);
+  for (const brep::CellPiece& piece : r.pieces) {
+    EXPECT_EQ(piece.volume, 1);
+    EXPECT_EQ(piece.area, 6);
+    EXPECT_EQ(piece.cap_area, 3);  // three interior walls, three faces of the input
+    for (const Vec3& p : piece.mesh.vertices)
+      for (int a = 0; a < 3; ++a)
+        EXPECT_TRUE(p[a] == piece.cell[a] || p[a] == piece.cell[a] + 1);
+  }
+  EXPECT_EQ(r.pieces.front().cell, (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(r.pieces.back().cell, (std::array<int, 3>{1, 1, 1}));
+}
+
+TEST(Cells, MeshOnWallsIsNotClipped) {
+  // [0,1]³ in the cell (0,0,0) of [0,2]³: every face lies on a wall, no clip is needed.
+  const PolygonMesh cube = make_box({0, 0, 0}, {1, 1, 1});
+  const brep::CellsResult r = test::expect_valid_cells(cube, grid({0, 0, 0}, 2, 2), "unit cube");
+  ASSERT_EQ(r.pieces.size(), 1u);
+  EXPECT_EQ(r.clips, 0);
+  EXPECT_EQ(r.cap_faces, 0);
+  EXPECT_EQ(r.glued.face_count(), 6u);
+}
+
+TEST(Cells, ResultFacesLyingInAWall) {
+  // An L: [0,1]×[0,2]×[0,2] ∪ [1,2]×[0,1]×[0,2]; its face x = 1, y ∈ [1,2] lies in the wall x = 1.
+  const EvaluateResult l =
+      evaluate(unite({box_leaf({0, 0, 0}, {1, 2, 2}), box_leaf({1, 0, 0}, {2, 1, 2})}));
+  for (int n : {1, 2, 3, 4}) {
+    const brep::CellsResult r = test::expect_valid_cells(l.mesh, grid({0, 0, 0}, 2, n), "L");
+    if (n == 2) {
+      EXPECT_EQ(r.pieces.size(), 6u);
+    }
+    if (n == 4) {
+      EXPECT_EQ(r.pieces.size(), 48u);
+    }
+  }
+  // A slot flush with walls: [0,4]³ minus [1,3]×[−1,5]×[2,4], walls at 1, 2, 3.
+  const EvaluateResult slot =
+      evaluate(subtract({box_leaf({0, 0, 0}, {4, 4, 4}), box_leaf({1, -1, 2}, {3, 5, 4})}));
+  test::expect_valid_cells(slot.mesh, grid({0, 0, 0}, 4, 4), "slot");
+  test::expect_valid_cells(slot.mesh, grid({-1, -1, -1}, 6, 3), "slot");
+}
+
+TEST(Cells, WallsThroughVertices) {
+  // A sphere centred on walls: its poles, equator and meridian vertices lie on them.
+  const PolygonMesh ball = make_sphere({0, 0, 0}, 1, 16);
+  for (int n : {2, 4}) test::expect_valid_cells(ball, grid({-1.5, -1.5, -1.5}, 3, n), "sphere");
+  // An octahedron whose six vertices lie on the walls x, y, z = 0.
+  PolygonMesh octa;
+  octa.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (uint32_t s : {4u, 5u})
+    for (auto [a, b] : {std::pair{0u, 2u}, {2u, 1u}, {1u, 3u}, {3u, 0u}})
+      octa.add_face(s == 4 ? std::initializer_list<uint32_t>{a, b, s}
+                           : std::initializer_list<uint32_t>{b, a, s});
+  const brep::CellsResult r = test::expect_valid_cells(octa, grid({-1, -1, -1}, 2, 2), "octahedron");
+  EXPECT_EQ(r.pieces.size(), 8u);
+  for (const brep::CellPiece& piece : r.pieces) EXPECT_DOUBLE_EQ(piece.volume, 1.0 / 6);
+}
+
+TEST(Cells, CubeSmallerThanTheSolid) {
+  // [0,2]³ cut to the cube [0.5,1.5]³: the glue keeps the outer caps, a box of volume 1.
+  const brep::CellsResult r =
+      brep::cut_cells(make_box({0, 0, 0}, {2, 2, 2}), grid({0.5, 0.5, 0.5}, 1, 2));
+  ASSERT_EQ(r.pieces.size(), 8u);
+  for (const brep::CellPiece& piece : r.pieces) EXPECT_EQ(piece.volume, 0.125);
+  const test::HalfCheck c = test::check_half(r.glued, {}, -1);
+  EXPECT_TRUE(c.report.closed && c.report.manifold);
+  EXPECT_EQ(c.volume, 1);
+  EXPECT_EQ(surface_area(r.glued), 6);
+}
+
+TEST(Cells, EmptyAndBadGrids) {
+  const PolygonMesh cube = make_box({0, 0, 0}, {1, 1, 1});
+  EXPECT_TRUE(brep::cut_cells(cube, grid({5, 5, 5}, 1, 3)).pieces.empty());  // misses the cube
+  EXPECT_TRUE(brep::cut_cells(PolygonMesh{}, grid({0, 0, 0}, 1, 3)).pieces.empty());
+  EXPECT_THROW(brep::cut_cells(cube, grid({0, 0, 0}, 1, 0)), InputError);
+  EXPECT_THROW(brep::cut_cells(cube, grid({0, 0, 0}, 0, 2)), InputError);
+}
+
+// ---- random CSG scenes ---------------------------------------------------------------------------
+
+/// `name` (box, sphere or a libcgal-demo mesh) scaled to `size`, turned and moved at random.
+Solid random_leaf(std::mt19937_64& rng, const std::string& name, double size) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  PolygonMesh m = name == "box"      ? make_box({-0.5, -0.35, -0.4}, {0.5, 0.35, 0.4})
+                  : name == "sphere" ? make_sphere({0, 0, 0}, 0.5, 20)
+                                     : read_mesh(test::cgal_mesh(name + ".off"));
+  const Bbox b = face_bbox(m);
+  const Vec3 c = 0.5 * (b.min + b.max);
+  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+  Vec3 axis{u(rng), u(rng), u(rng)};
+  if (dot(axis, axis) < 1e-3) axis = {0, 0, 1};
+  apply_transform(make_trs(Eigen::Vector3d::Constant(2 * size / ext), {axis.x, axis.y, axis.z},
+                           180 * u(rng), {0.25 * u(rng), 0.25 * u(rng), 0.25 * u(rng)}) *
+                      make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
+                  m);
+  return make_leaf(m, name);
+}
+
+TEST(Cells, RandomScenes) {
+  const std::vector<std::vector<std::string>> sets = {
+      {"box", "sphere"}, {"sphere", "box", "box"}, {"knot1", "box"}, {"fandisk", "sphere"}};
+  for (unsigned i = 0; i < sets.size(); ++i) {
+    std::mt19937_64 rng(300 + i);
+    std::uniform_int_distribution<int> op(0, 2);
+    Solid s = random_leaf(rng, sets[i][0], 0.8);
+    std::string label = "seed " + std::to_string(300 + i) + " " + sets[i][0];
+    for (size_t k = 1; k < sets[i].size(); ++k) {
+      Solid t = random_leaf(rng, sets[i][k], sets[i][k] == "box" ? 0.6 : 0.8);
+      const int o = op(rng);
+      s = o == 0 ? unite({std::move(s), std::move(t)})
+                 : (o == 1 ? intersect({std::move(s), std::move(t)})
+                           : subtract({std::move(s), std::move(t)}));
+      label += std::string(o == 0 ? " ∪ " : (o == 1 ? " ∩ " : " − ")) + sets[i][k];
+    }
+    const EvaluateResult e = evaluate(s);
+    // Seed 301's sphere ∩ box − box has a cut ring whose exact and rounded points admit no
+    // common ear triangulation (brep/cap.cpp's forced-ear fallback; `cover clip` of the same
+    // mesh at the same plane shows it): tolerated there with a note, as in the evaluate tests.
+    for (int n : {1, 2, 3, 4})
+      test::expect_valid_cells(e.mesh, test::cells_around(e.mesh, n), label, {false, true});
+  }
+}
+
+TEST(Cells, SamePiecesForAnyThreadCount) {
+  const PolygonMesh ball = make_sphere({0.1, 0.2, 0.3}, 1, 24);
+  const brep::CellGrid g = test::cells_around(ball, 4);
+  const brep::CellsResult all = brep::cut_cells(ball, g);
+  brep::CellsResult one;
+  {
+    ThreadLimit limit(1);
+    one = brep::cut_cells(ball, g);
+  }
+  ASSERT_EQ(all.pieces.size(), one.pieces.size());
+  for (size_t p = 0; p < all.pieces.size(); ++p) {
+    EXPECT_EQ(all.pieces[p].cell, one.pieces[p].cell);
+    EXPECT_EQ(all.pieces[p].mesh.vertices, one.pieces[p].mesh.vertices);
+    EXPECT_EQ(all.pieces[p].mesh.face_vertices, one.pieces[p].mesh.face_vertices);
+  }
+  EXPECT_EQ(all.glued.vertices, one.glued.vertices);
+  EXPECT_EQ(all.glued.face_vertices, one.glued.face_vertices);
+}
+
+// ---- the facade and the CLI ----------------------------------------------------------------
+
+TEST(Cells, ModelEvaluateCells) {
+  const Model m = cover::box({0, 0, 0}, {1, 1, 1}) - cover::sphere({1, 1, 1}, 0.7, 24);
+  const CellsEvaluation r = m.evaluate_cells(3);
+  EXPECT_EQ(r.grid.n, 3);
+  const VoxelBounds b = m.voxel_bounds(3);  // the cube voxelize uses
+  EXPECT_EQ(r.grid.min, b.min);
+  EXPECT_EQ(r.grid.size, b.size);
+  test::expect_valid_cells(r.evaluated.mesh, r.grid, "box − sphere");
+  const Model deep = cover::box({0, 0, 0}, {1, 1, 1}) - cover::sphere({1, 1, 1}, 0.9, 24);
+  const CellsEvaluation given = deep.evaluate_cells(2, VoxelBounds{{0, 0, 0}, 1});
+  EXPECT_EQ(given.cells.pieces.size(), 7u);  // the cell at (1,1,1) lies inside the sphere
+  EXPECT_THROW(m.evaluate_cells(0), InputError);
+  EXPECT_TRUE(Model().evaluate_cells(2).cells.pieces.empty());
+}
+
+TEST(CellsCli, PiecesFolder) {
+  const auto dir = test::temp_dir("cells");
+  test::write_file(dir / "s.json", R"({"difference": [
+      {"box": {"min": [0, 0, 0], "max": [2, 2, 2]}},
+      {"box": {"min": [1, 1, 1], "max": [3, 3, 3]}}]})");
+  const std::string out = (dir / "out.off").string(), pieces = (dir / "p").string();
+  const test::RunResult r = test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" +
+                                            out + "' --cells 2 --bounds 0,0,0,2 --pieces '" +
+                                            pieces + "' --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["pieces"], 7);
+  EXPECT_EQ(j["cells"], 2);
+  EXPECT_DOUBLE_EQ(j["volume"].get<double>(), 7);
+  EXPECT_EQ(j["genus"], 0);
+  EXPECT_GT(j["cap_faces"].get<int>(), 0);
+  for (const char* key : {"load", "kernel", "write", "evaluate", "cut", "glue"})
+    EXPECT_TRUE(j["seconds_detail"].contains(key)) << key;
+  const nlohmann::json index = nlohmann::json::parse(test::read_file(dir / "p" / "pieces.json"));
+  ASSERT_EQ(index["pieces"].size(), 7u);
+  double sum = 0;
+  for (const auto& p : index["pieces"]) {
+    EXPECT_NE(p["cell"], (nlohmann::json{1, 1, 1}));
+    const PolygonMesh piece = read_mesh(dir / "p" / p["file"].get<std::string>());
+    EXPECT_EQ(piece.face_count(), p["faces"].get<size_t>());
+    EXPECT_DOUBLE_EQ(signed_volume(piece), p["volume"].get<double>());
+    EXPECT_DOUBLE_EQ(p["volume"].get<double>(), 1);
+    EXPECT_GT(p["cap_area"].get<double>(), 0);
+    EXPECT_TRUE(p.contains("area"));
+    sum += p["volume"].get<double>();
+  }
+  EXPECT_EQ(sum, 7);
+  EXPECT_EQ(index["pieces"][0]["file"], "cell_0_0_0.off");
+  const PolygonMesh glued = read_mesh(out);
+  EXPECT_DOUBLE_EQ(signed_volume(glued), 7);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CellsCli, BadInputExitsTwo) {
+  const auto dir = test::temp_dir("cells-bad");
+  const std::string in = (test::source_dir() / "models" / "default.json").string();
+  const std::string out = (dir / "out.off").string();
+  auto run = [&](const std::string& extra) {
+    return test::run_cover("evaluate '" + in + "' -o '" + out + "' " + extra);
+  };
+  test::RunResult r = run("--cells 0");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--cells"), std::string::npos) << r.err;
+  r = run("--cells 100000");  // 10^15 cells: refused by the memory estimate
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
+  r = run("--cells 64 --max-memory 16");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--cells 64"), std::string::npos) << r.err;
+  r = run("--pieces '" + (dir / "p").string() + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("needs --cells"), std::string::npos) << r.err;
+  r = run("--cells 2 --bounds 0,0,0,-1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--bounds"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cover
