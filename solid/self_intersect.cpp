@@ -15,10 +15,14 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 
+#include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
+#include "solid/parallel.h"
+#include "solid/predicates.h"
 #include "solid/triangulate.h"
 #include "solid/validate.h"
 
@@ -39,8 +43,25 @@ struct Triangle {
   uint32_t face;
 };
 
+/// Whether the corners of `b` not in `skip` lie strictly on one side of the plane of `a`
+/// (exact orient3d on the doubles): then b meets a's plane at most in the skipped corners.
+bool strictly_aside(const Triangle& a, const Triangle& b, std::span<const Vec3> v,
+                    uint32_t skip) {
+  int side = 0;
+  for (uint32_t c : b.v) {
+    if (c == skip) continue;
+    const int s = orient3d(v[a.v[0]], v[a.v[1]], v[a.v[2]], v[c]);
+    if (s == 0 || (side != 0 && s != side)) return false;
+    side = s;
+  }
+  return true;
+}
+
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
-bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Point3>& p) {
+/// Before CGAL's tests, a filter of at most six exact orient3d: when the unshared corners of one
+/// triangle lie strictly on one side of the other's plane, they meet at most in the shared vertex.
+bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Point3>& p,
+                    std::span<const Vec3> v) {
   int shared = 0, ia = 0, ib = 0;
   std::array<bool, 3> a_shared{}, b_shared{};
   for (int i = 0; i < 3; ++i)
@@ -61,6 +82,8 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Poin
     return CGAL::coplanar(q0, q1, p[a.v[ra]], p[b.v[rb]]) &&
            CGAL::coplanar_orientation(q0, q1, p[a.v[ra]], p[b.v[rb]]) == CGAL::POSITIVE;
   }
+  const uint32_t skip = shared == 1 ? a.v[ia] : UINT32_MAX;
+  if (strictly_aside(a, b, v, skip) || strictly_aside(b, a, v, skip)) return false;
   const K::Triangle_3 ta(p[a.v[0]], p[a.v[1]], p[a.v[2]]);
   const K::Triangle_3 tb(p[b.v[0]], p[b.v[1]], p[b.v[2]]);
   if (shared == 1) {
@@ -99,18 +122,51 @@ bool self_intersects(const PolygonMesh& mesh) {
   box_ptrs.reserve(boxes.size());
   for (const Box& b : boxes) box_ptrs.push_back(&b);
 
+  // In parallel: boxes sorted by their lower x bound and cut into slabs of kSlab; each slab is
+  // tested against itself and against the later boxes that start before the slab's upper x bound
+  // (every overlapping pair is tested exactly once, in the slab of its earlier box). The answer
+  // does not depend on the slabs or threads; a found intersection stops the other slabs early.
+  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
+  constexpr size_t kSlab = 4096;
+  std::atomic<bool> found{false};
   auto test_pair = [&](const Box* x, const Box* y) {
     const Triangle& a = triangles[x->info()];
     const Triangle& b = triangles[y->info()];
-    if (a.face != b.face && triangles_meet(a, b, points)) throw FoundIntersection{};
+    if (a.face != b.face && triangles_meet(a, b, points, mesh.vertices)) {
+      found = true;
+      throw FoundIntersection{};
+    }
   };
-  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
-  try {
-    CGAL::box_self_intersection_d(box_ptrs.begin(), box_ptrs.end(), test_pair, kCutoff);
-  } catch (const FoundIntersection&) {
-    return true;
+  if (box_ptrs.size() <= 2 * kSlab) {
+    try {
+      CGAL::box_self_intersection_d(box_ptrs.begin(), box_ptrs.end(), test_pair, kCutoff);
+    } catch (const FoundIntersection&) {
+    }
+    return found;
   }
-  return false;
+  std::sort(box_ptrs.begin(), box_ptrs.end(), [](const Box* x, const Box* y) {
+    return x->min_coord(0) < y->min_coord(0) || (x->min_coord(0) == y->min_coord(0) && x < y);
+  });
+  const size_t slabs = (box_ptrs.size() + kSlab - 1) / kSlab;
+  parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
+    std::vector<const Box*> mine, later;
+    for (size_t s = s0; s < s1 && !found; ++s) {
+      const size_t lo = s * kSlab, hi = std::min(box_ptrs.size(), lo + kSlab);
+      mine.assign(box_ptrs.begin() + lo, box_ptrs.begin() + hi);
+      CGAL::Bbox_3 slab;
+      for (const Box* b : mine) slab += b->bbox();
+      later.clear();
+      for (size_t i = hi; i < box_ptrs.size() && box_ptrs[i]->min_coord(0) <= slab.xmax(); ++i)
+        if (CGAL::do_overlap(box_ptrs[i]->bbox(), slab)) later.push_back(box_ptrs[i]);
+      try {
+        CGAL::box_self_intersection_d(mine.begin(), mine.end(), test_pair, kCutoff);
+        CGAL::box_intersection_d(mine.begin(), mine.end(), later.begin(), later.end(), test_pair,
+                                 kCutoff);
+      } catch (const FoundIntersection&) {
+      }
+    }
+  });
+  return found;
 }
 
 }  // namespace cover

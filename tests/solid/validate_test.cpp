@@ -327,6 +327,25 @@ TEST(SelfIntersects, InterpenetratingCubes) {
   EXPECT_TRUE(self_intersects(concat(cube(), cube({0.5, 0.5, 0.5}))));
 }
 
+// bunny00 (75k triangles) goes through the parallel slab path; a small cube through the surface
+// at the largest x (the last slab) or at the smallest x (the first) is found.
+TEST(SelfIntersects, LargeMeshSlabs) {
+  const PolygonMesh bunny = read_mesh(test::cgal_mesh("bunny00.off"));
+  EXPECT_FALSE(self_intersects(bunny));
+  auto extreme = [&](bool largest) {
+    Vec3 best = bunny.vertices[0];
+    for (const Vec3& v : bunny.vertices)
+      if (largest ? v.x > best.x : v.x < best.x) best = v;
+    return best;
+  };
+  for (bool largest : {true, false}) {
+    const Vec3 p = extreme(largest);
+    const double s = 0.01 * (extreme(true).x - extreme(false).x);
+    EXPECT_TRUE(self_intersects(concat(bunny, cube({p.x - s / 2, p.y - s / 2, p.z - s / 2}, s))))
+        << (largest ? "largest x" : "smallest x");
+  }
+}
+
 TEST(SelfIntersects, ContainedCubeDoesNotIntersect) {
   EXPECT_FALSE(self_intersects(concat(cube({}, 3), cube({1, 1, 1}))));
 }
