@@ -61,6 +61,46 @@ OctantOverlap::OctantOverlap(const Vec3& a, const Vec3& b, const Vec3& c,
   std::fill(std::begin(plane_cache_), std::end(plane_cache_), kUnknown);
   std::fill(&edge_cache_[0][0], &edge_cache_[0][0] + 81, kUnknown);
   std::fill(std::begin(third_cache_), std::end(third_cache_), kUnknown);
+  std::fill(std::begin(skip_), std::end(skip_), kUnknown);
+}
+
+bool OctantOverlap::skip(int e, int axis) {
+  int8_t& skip = skip_[e * 3 + axis];
+  if (skip == kUnknown) {
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
+    bool drop = p[u] == q[u] && p[w] == q[w];  // the zero axis separates nothing
+    if (!drop) {
+      const int side = rect_sign(e, axis, 0, 2, 0, 2);
+      drop = side != 0 && side == third_sign(e, axis);
+    }
+    skip = drop ? 1 : 0;
+  }
+  return skip != 0;
+}
+
+int OctantOverlap::rect_sign(int e, int axis, int iu0, int iu1, int iw0, int iw1) const {
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
+  const double cu = p[w] - q[w], cw = q[u] - p[u];  // exact signs (one rounded subtraction)
+  const double lu = planes_[u][iu0] - p[u], hu = planes_[u][iu1] - p[u];
+  const double lw = planes_[w][iw0] - p[w], hw = planes_[w][iw1] - p[w];
+  const double min = cu * (cu > 0 ? lu : hu) + cw * (cw > 0 ? lw : hw);
+  const double max = cu * (cu > 0 ? hu : lu) + cw * (cw > 0 ? hw : lw);
+  const double mag = std::abs(cu) * std::max(std::abs(lu), std::abs(hu)) +
+                     std::abs(cw) * std::max(std::abs(lw), std::abs(hw));
+  if (!in_filter_range(mag)) return 0;
+  const double bound = kPlaneSideErr * mag;
+  if (min > bound) return 1;
+  if (max < -bound) return -1;
+  return 0;
+}
+
+int OctantOverlap::third_sign(int e, int axis) {
+  int8_t& third = third_cache_[e * 3 + axis];
+  if (third == kUnknown)
+    third = static_cast<int8_t>(orient2d(v_[e], v_[(e + 1) % 3], v_[(e + 2) % 3], axis));
+  return third;
 }
 
 int OctantOverlap::plane_sign(int ix, int iy, int iz) {
@@ -99,16 +139,15 @@ bool OctantOverlap::separated(int o, bool open) {
   // edge parallel to e_axis gives the zero axis, which separates nothing.
   for (int e = 0; e < 3; ++e)
     for (int axis = 0; axis < 3; ++axis) {
+      if (skip(e, axis)) continue;
       const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-      const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
-      if (p[u] == q[u] && p[w] == q[w]) continue;
       const int iu = bit[u], iw = bit[w];
-      const int side = common_side(
-          4, open, [&](int c) { return edge_sign(e, axis, iu + (c & 1), iw + (c >> 1)); });
+      int side = rect_sign(e, axis, iu, iu + 1, iw, iw + 1);
+      if (side == 0)
+        side = common_side(
+            4, open, [&](int c) { return edge_sign(e, axis, iu + (c & 1), iw + (c >> 1)); });
       if (side == 0) continue;
-      int8_t& third = third_cache_[e * 3 + axis];
-      if (third == kUnknown) third = static_cast<int8_t>(orient2d(p, q, v_[(e + 2) % 3], axis));
-      if (third != side) return true;
+      if (third_sign(e, axis) != side) return true;
     }
   return false;
 }
@@ -132,11 +171,23 @@ PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& bo
   if (in_filter_range(sum)) bound_ = kPlaneBoxErr * sum;
 }
 
-int PlaneSide::sign(const Vec3& p) const {
-  const double f = normal_.x * (p.x - a_.x) + normal_.y * (p.y - a_.y) + normal_.z * (p.z - a_.z);
-  if (f > bound_) return 1;
-  if (f < -bound_) return -1;
-  return orient3d(a_, b_, c_, p);
+int PlaneSide::exact_sign(const Vec3& p) const { return orient3d(a_, b_, c_, p); }
+
+void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs, int n,
+                           int8_t* out, size_t stride) const {
+  double fx[32], fy[32], fz[32];
+  for (int i = 0; i < n; ++i) {
+    fx[i] = normal_.x * (xs[i] - a_.x);
+    fy[i] = normal_.y * (ys[i] - a_.y);
+    fz[i] = normal_.z * (zs[i] - a_.z);
+  }
+  size_t o = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i, o += stride) {
+        const double f = fx[i] + fy[j] + fz[k];  // sign()'s sum, in its order
+        out[o] = static_cast<int8_t>(f > bound_ ? 1 : (f < -bound_ ? -1 : exact_sign({xs[i], ys[j], zs[k]})));
+      }
 }
 
 }  // namespace cover::detail

@@ -13,6 +13,7 @@
 #include "octree/detail/box_overlap.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
+#include "solid/predicates.h"
 
 // Notation
 //   D        maximum depth; h = size/2^D the finest cell size. Grid plane m (0 ≤ m ≤ 2^D) of axis a
@@ -49,6 +50,8 @@ constexpr int kMaxSamples = 32;     // 32³ sub-points per partial cell
 constexpr size_t kInheritMax = 64;  // parent lists up to this length are the children's candidates
 constexpr size_t kGroupMax = 64;    // planes up to which points are grouped by sides
 constexpr size_t kExactKey = 40;    // side vectors up to this length are exact base-3 keys
+constexpr size_t kSiblingMax = 16;  // last level: parent lists up to this length group a whole
+                                    // sibling set's points at once
 constexpr size_t kGrain = 512;  // cells per parallel chunk (a multiple of 8: whole sibling sets)
 constexpr size_t kBlock = size_t{1} << 18;  // cells per classification batch (multiple of kGrain)
 // Memory per node of a build: the node array (sizeof(Node) = 40 bytes), its old copy while it
@@ -82,11 +85,16 @@ struct Entry {
 
 /// Per-chunk buffers, reused from cell to cell.
 struct Scratch {
-  std::vector<detail::PlaneSide> planes;
   std::vector<int8_t> sides;     ///< points × planes
   std::vector<uint32_t> first;   ///< per group: its first point
   std::vector<uint32_t> weight;  ///< per group: its number of points
   std::vector<uint64_t> keys;    ///< per group: its side vector in base 3
+  // Sibling sets of the last level (Builder::sibling_representatives):
+  std::vector<detail::PlaneSide> planes;  ///< the parent's planes
+  std::vector<uint64_t> point_keys;       ///< per point of a cell: its side vector in base 3
+  std::vector<uint32_t> rep;              ///< per group: its representative (index in the chunk)
+  std::vector<uint32_t> last_cell;        ///< per group: the last cell that got an entry
+  std::vector<uint32_t> entry;            ///< per group: that entry (index in the chunk)
 };
 
 /// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
@@ -102,12 +110,32 @@ void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out)
       [&](const Bvh::Tri&, uint32_t i) { out.push_back(i); });
 }
 
-/// Groups `points` (all in `box`) by their sides of the planes of `tris`: equal side vectors
-/// without a zero share a group; a point on some plane gets a group of its own, and so does every
-/// point when there are more than kGroupMax planes. Fills s.first and s.weight.
+/// The samples³ sub-points of a cell (the centres of a regular sub-grid): their coordinates per
+/// axis, and the points, x fastest.
+struct SubGrid {
+  int n = 0;
+  double xs[kMaxSamples], ys[kMaxSamples], zs[kMaxSamples];
+
+  void set(const Bbox& b, int s) {
+    n = s;
+    const Vec3 step{(b.max.x - b.min.x) / s, (b.max.y - b.min.y) / s, (b.max.z - b.min.z) / s};
+    for (int i = 0; i < s; ++i) {
+      xs[i] = b.min.x + (i + 0.5) * step.x;
+      ys[i] = b.min.y + (i + 0.5) * step.y;
+      zs[i] = b.min.z + (i + 0.5) * step.z;
+    }
+  }
+  size_t size() const { return size_t(n) * n * n; }
+  /// Sub-point p = (k·n + j)·n + i.
+  Vec3 point(size_t p) const { return {xs[p % n], ys[(p / n) % n], zs[p / n / n]}; }
+};
+
+/// Groups the sub-points of `grid` (all in `box`) by their sides of the planes of `tris`: equal
+/// side vectors without a zero share a group; a point on some plane gets a group of its own, and
+/// so does every point when there are more than kGroupMax planes. Fills s.first and s.weight.
 void group_by_sides(const Bvh& bvh, std::span<const uint32_t> tris, const Bbox& box,
-                    std::span<const Vec3> points, Scratch& s) {
-  const size_t n = points.size(), k = tris.size();
+                    const SubGrid& grid, Scratch& s) {
+  const size_t n = grid.size(), k = tris.size();
   s.first.clear();
   s.weight.clear();
   if (k > kGroupMax) {
@@ -115,19 +143,18 @@ void group_by_sides(const Bvh& bvh, std::span<const uint32_t> tris, const Bbox& 
     s.weight.assign(n, 1);
     return;
   }
-  s.planes.clear();
-  for (uint32_t t : tris) {
-    const Bvh::Tri tri = bvh.triangle(t);
-    s.planes.emplace_back(tri.a, tri.b, tri.c, box);
-  }
   s.sides.resize(n * k);
+  for (size_t j = 0; j < k; ++j) {
+    const Bvh::Tri tri = bvh.triangle(tris[j]);
+    detail::PlaneSide(tri.a, tri.b, tri.c, box)
+        .grid_signs(grid.xs, grid.ys, grid.zs, grid.n, s.sides.data() + j, k);
+  }
   s.keys.clear();
   for (size_t i = 0; i < n; ++i) {
-    int8_t* side = s.sides.data() + i * k;
+    const int8_t* side = s.sides.data() + i * k;
     bool on_plane = false;
     uint64_t key = 0;  // base 3: exact up to kExactKey planes, a hash beyond
     for (size_t j = 0; j < k; ++j) {
-      side[j] = static_cast<int8_t>(s.planes[j].sign(points[i]));
       on_plane |= side[j] == 0;
       key = 3 * key + static_cast<uint64_t>(side[j] + 1);
     }
@@ -269,18 +296,6 @@ class Builder {
     return {2 * p[0] + (c & 1), 2 * p[1] + ((c >> 1) & 1), 2 * p[2] + ((c >> 2) & 1)};
   }
 
-  /// The samples³ sub-points of a cell, x fastest.
-  void sub_points(const Bbox& b, std::vector<Vec3>& out) const {
-    out.clear();
-    const int s = samples_;
-    const Vec3 step{(b.max.x - b.min.x) / s, (b.max.y - b.min.y) / s, (b.max.z - b.min.z) / s};
-    for (int k = 0; k < s; ++k)
-      for (int j = 0; j < s; ++j)
-        for (int i = 0; i < s; ++i)
-          out.push_back({b.min.x + (i + 0.5) * step.x, b.min.y + (j + 0.5) * step.y,
-                         b.min.z + (k + 0.5) * step.z});
-  }
-
   /// (A) The triangles that meet the interior of each cell of [b0, b0 + m) at level d, one list
   /// per cell.
   Lists meeting(int d, size_t b0, size_t m) const {
@@ -350,11 +365,90 @@ class Builder {
       bvh_candidates(bvh_, point, candidates);
       tris = candidates;
     }
+    const Vec3 p{x[0], x[1], x[2]};
     for (uint32_t t : tris) {
       const Bvh::Tri tri = bvh_.triangle(t);
-      if (detail::triangle_meets_box(tri.a, tri.b, tri.c, point)) return true;
+      // Off the triangle's plane (the common case, one filtered orient3d) it is off the triangle.
+      if (orient3d(tri.a, tri.b, tri.c, p) == 0 &&
+          detail::triangle_meets_box(tri.a, tri.b, tri.c, point))
+        return true;
     }
     return false;
+  }
+
+  /// (B) at the last level, for the sibling set g0 .. g0 + 7 (cells of the block) whose parent's
+  /// list T_P is short: the sub-points of its partial cells and the centres of its uncrossed
+  /// cells, grouped by their sides of the planes of T_P. T_P holds every triangle that meets
+  /// the parent's interior, so a side class is a convex part of it no surface meets, where
+  /// membership is constant: one point per class is classified for all the set's cells, and a
+  /// point ON a plane alone (it may be on a surface).
+  void sibling_representatives(int d, size_t b0, size_t g0, const Lists& lists, Scratch& s,
+                               SubGrid& subs, std::vector<Vec3>& points,
+                               std::vector<Entry>& entries) const {
+    const size_t parent = (b0 + g0) / 8;
+    const std::span<const uint32_t> tris = parent_lists_[parent];
+    const size_t k = tris.size();
+    const Bbox parent_box = box(parents_[parent], d - 1);
+    s.planes.clear();
+    for (uint32_t t : tris) {
+      const Bvh::Tri tri = bvh_.triangle(t);
+      s.planes.emplace_back(tri.a, tri.b, tri.c, parent_box);
+    }
+    s.keys.clear();  // per group: its side vector in base 3 (exact: k ≤ kExactKey), or
+    s.rep.clear();   // kOnPlane for a point on some plane, never matched
+    s.last_cell.clear();
+    s.entry.clear();
+    constexpr uint64_t kOnPlane = UINT64_MAX;
+    const size_t sub_count = size_t(samples_) * samples_ * samples_;
+    s.sides.resize(sub_count * k);
+    std::vector<uint64_t>& key = s.point_keys;
+    for (uint32_t cell = static_cast<uint32_t>(g0); cell < g0 + 8; ++cell) {
+      const Bbox b = box(coord(d, b0 + cell), d);
+      const bool partial = !lists[cell].empty();
+      Vec3 c;
+      size_t count = 1;
+      if (partial) {
+        subs.set(b, samples_);
+        count = sub_count;
+        for (size_t j = 0; j < k; ++j)
+          s.planes[j].grid_signs(subs.xs, subs.ys, subs.zs, subs.n, s.sides.data() + j * count, 1);
+      } else {
+        c = centre(b);
+        for (size_t j = 0; j < k; ++j) s.sides[j] = static_cast<int8_t>(s.planes[j].sign(c));
+      }
+      key.assign(count, 0);
+      for (size_t j = 0; j < k; ++j) {
+        const int8_t* side = s.sides.data() + j * count;
+        for (size_t p = 0; p < count; ++p)
+          key[p] = side[p] == 0 ? kOnPlane
+                                : (key[p] == kOnPlane ? kOnPlane : 3 * key[p] + (side[p] + 1));
+      }
+      uint32_t g = 0;
+      for (size_t p = 0; p < count; ++p) {
+        if (key[p] == kOnPlane || g >= s.keys.size() || s.keys[g] != key[p]) {
+          g = static_cast<uint32_t>(s.keys.size());
+          if (key[p] != kOnPlane)
+            for (uint32_t q = 0; q < s.keys.size(); ++q)
+              if (s.keys[q] == key[p]) {
+                g = q;
+                break;
+              }
+          if (g == s.keys.size()) {
+            s.keys.push_back(key[p]);
+            s.rep.push_back(static_cast<uint32_t>(points.size()));
+            points.push_back(partial ? subs.point(p) : c);
+            s.last_cell.push_back(UINT32_MAX);
+            s.entry.push_back(0);
+          }
+        }
+        if (s.last_cell[g] != cell) {
+          s.last_cell[g] = cell;
+          s.entry[g] = static_cast<uint32_t>(entries.size());
+          entries.push_back({cell, s.rep[g], 0});
+        }
+        ++entries[s.entry[g]].weight;
+      }
+    }
   }
 
   /// (B) The points to classify for the cells [b0, b0 + m) of level d, per chunk: one centre per
@@ -367,10 +461,14 @@ class Builder {
       std::vector<Vec3>& points = chunk_points[begin / kGrain];
       std::vector<Entry>& entries = chunk_entries[begin / kGrain];
       Scratch s;
-      std::vector<Vec3> subs;
+      SubGrid subs;
       std::vector<uint32_t> candidates;
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
+        if (d == depth_ && d > 0 && parent_lists_[(b0 + g0) / 8].size() <= kSiblingMax) {
+          sibling_representatives(d, b0, g0, lists, s, subs, points, entries);
+          continue;
+        }
         size_t uncrossed = 0;
         for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += lists[i].empty();
         const bool shared = uncrossed > 1 && !centre_on_surface((b0 + g0) / 8, d, candidates);
@@ -387,11 +485,11 @@ class Builder {
         for (size_t i = g0; i < g0 + siblings; ++i) {
           if (lists[i].empty()) continue;
           const Bbox b = box(coord(d, b0 + i), d);
-          sub_points(b, subs);
+          subs.set(b, samples_);
           group_by_sides(bvh_, lists[i], b, subs, s);
           const uint32_t base = static_cast<uint32_t>(points.size());
           for (uint32_t g = 0; g < s.first.size(); ++g) {
-            points.push_back(subs[s.first[g]]);
+            points.push_back(subs.point(s.first[g]));
             entries.push_back({static_cast<uint32_t>(i), base + g, s.weight[g]});
           }
         }

@@ -15,10 +15,19 @@
 // edge axes that are non-zero). A triangle touching the box only on its boundary does not cross
 // it. OctantOverlap tests the 8 children of one octree cell against one triangle, sharing the
 // signs at their common corners.
+// Edge-axis filter: orient2d(p, q, x) is linear in x, g(x) = (p_w − q_w)(x_u − p_u) +
+// (q_u − p_u)(x_w − p_w); over a rectangle its extremes are at the corners picked by the signs of
+// the two (exactly signed) coefficients, evaluated in doubles with the bound 1e-15·M (M the sum
+// of the terms' magnitudes; ≥ 9u, as kPlaneSideErr) in the filter range. When the bound
+// separates the rectangle's extreme from 0 the sign holds at all 4 corners (no orient2d call);
+// once per triangle the whole lattice's rectangle is tested, and an axis whose rectangle lies
+// strictly on the third vertex's side is dropped for all 8 octants. Otherwise the exact
+// per-corner signs decide as before.
 // PlaneSide: sign of orient3d(a, b, c, p) for many points p of one box, from a floating-point
 // evaluation n·(p − a) with one forward error bound valid for the whole box; orient3d (exact)
 // decides whenever the value is inside the bound.
 
+#include <cstddef>
 #include <cstdint>
 
 #include "solid/types.h"
@@ -39,9 +48,23 @@ class PlaneSide {
   /// Precondition: every point later passed to sign() lies in `box`.
   PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box);
 
-  int sign(const Vec3& p) const;
+  int sign(const Vec3& p) const {
+    const double f =
+        normal_.x * (p.x - a_.x) + normal_.y * (p.y - a_.y) + normal_.z * (p.z - a_.z);
+    if (f > bound_) return 1;
+    if (f < -bound_) return -1;
+    return exact_sign(p);
+  }
+
+  /// sign() at the n³ points (xs[i], ys[j], zs[k]), i fastest: out[((k·n + j)·n + i)·stride].
+  /// The same doubles as sign() (n·(p − a) summed x, y, z in that order), from 3n products.
+  /// Precondition: n ≤ 32.
+  void grid_signs(const double* xs, const double* ys, const double* zs, int n, int8_t* out,
+                  size_t stride) const;
 
  private:
+  int exact_sign(const Vec3& p) const;
+
   Vec3 a_, b_, c_;
   Vec3 normal_;   ///< (b − a) × (c − a) in floating point
   double bound_;  ///< |computed n·(p − a) − exact value| ≤ bound_ for every p in the box
@@ -69,6 +92,13 @@ class OctantOverlap {
   bool separated(int o, bool open);
   int plane_sign(int ix, int iy, int iz);
   int edge_sign(int e, int axis, int iu, int iw);
+  /// The sign of orient2d(edge e, x) shared by every x of the rectangle [planes_[u][iu0],
+  /// planes_[u][iu1]] × [planes_[w][iw0], planes_[w][iw1]] (u, w: the axes after `axis`) when
+  /// the floating-point filter proves it strictly, else 0.
+  int rect_sign(int e, int axis, int iu0, int iu1, int iw0, int iw1) const;
+  int third_sign(int e, int axis);
+  /// True when axis e_axis × edge e can separate no octant (computed once, into skip_).
+  bool skip(int e, int axis);
 
   Vec3 v_[3];
   double planes_[3][3];
@@ -77,6 +107,9 @@ class OctantOverlap {
   int8_t plane_cache_[27];
   int8_t edge_cache_[9][9];  ///< [edge·3 + axis][lattice point of the plane dropping axis]
   int8_t third_cache_[9];    ///< [edge·3 + axis]: side of the third vertex
+  /// [edge·3 + axis]: 1 when that axis can separate no octant (the edge is parallel to it, or
+  /// the lattice's rectangle lies strictly on the third vertex's side), 0 when it may.
+  int8_t skip_[9];
 };
 
 }  // namespace cover::detail
