@@ -58,42 +58,46 @@ OctantOverlap::OctantOverlap(const Vec3& a, const Vec3& b, const Vec3& c,
       hi_{std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})},
       plane_(a, b, c, lattice_box(planes)) {
   std::memcpy(planes_, planes, sizeof planes_);
-  std::fill(std::begin(plane_cache_), std::end(plane_cache_), kUnknown);
-  std::fill(&edge_cache_[0][0], &edge_cache_[0][0] + 81, kUnknown);
+  plane_.grid_signs(planes[0], planes[1], planes[2], 3, plane_cache_, 1);
   std::fill(std::begin(third_cache_), std::end(third_cache_), kUnknown);
   std::fill(std::begin(skip_), std::end(skip_), kUnknown);
 }
 
 bool OctantOverlap::skip(int e, int axis) {
   int8_t& skip = skip_[e * 3 + axis];
-  if (skip == kUnknown) {
-    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
-    bool drop = p[u] == q[u] && p[w] == q[w];  // the zero axis separates nothing
-    if (!drop) {
-      const int side = rect_sign(e, axis, 0, 2, 0, 2);
-      drop = side != 0 && side == third_sign(e, axis);
-    }
-    skip = drop ? 1 : 0;
-  }
-  return skip != 0;
-}
-
-int OctantOverlap::rect_sign(int e, int axis, int iu0, int iu1, int iw0, int iw1) const {
+  if (skip != kUnknown) return skip != 0;
   const int u = (axis + 1) % 3, w = (axis + 2) % 3;
   const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
+  skip = 1;
+  if (p[u] == q[u] && p[w] == q[w]) return true;  // the zero axis separates nothing
+  // The edge filter at the 9 lattice points of the plane dropping `axis`.
   const double cu = p[w] - q[w], cw = q[u] - p[u];  // exact signs (one rounded subtraction)
-  const double lu = planes_[u][iu0] - p[u], hu = planes_[u][iu1] - p[u];
-  const double lw = planes_[w][iw0] - p[w], hw = planes_[w][iw1] - p[w];
-  const double min = cu * (cu > 0 ? lu : hu) + cw * (cw > 0 ? lw : hw);
-  const double max = cu * (cu > 0 ? hu : lu) + cw * (cw > 0 ? hw : lw);
-  const double mag = std::abs(cu) * std::max(std::abs(lu), std::abs(hu)) +
-                     std::abs(cw) * std::max(std::abs(lw), std::abs(hw));
-  if (!in_filter_range(mag)) return 0;
-  const double bound = kPlaneSideErr * mag;
-  if (min > bound) return 1;
-  if (max < -bound) return -1;
-  return 0;
+  double gu[3], gw[3];
+  for (int i = 0; i < 3; ++i) {
+    gu[i] = cu * (planes_[u][i] - p[u]);
+    gw[i] = cw * (planes_[w][i] - p[w]);
+  }
+  const double mag = std::max(std::abs(gu[0]), std::abs(gu[2])) +
+                     std::max(std::abs(gw[0]), std::abs(gw[2]));
+  int8_t* signs = edge_cache_[e * 3 + axis];
+  int lo = 1, hi = -1;  // the signs' range, kUnknown counting as both
+  if (in_filter_range(mag)) {
+    const double bound = kPlaneSideErr * mag;
+    for (int iw = 0; iw < 3; ++iw)
+      for (int iu = 0; iu < 3; ++iu) {
+        const double g = gu[iu] + gw[iw];
+        const int8_t sign = g > bound ? 1 : (g < -bound ? -1 : kUnknown);
+        signs[iw * 3 + iu] = sign;
+        lo = std::min(lo, sign == kUnknown ? -1 : int{sign});
+        hi = std::max(hi, sign == kUnknown ? 1 : int{sign});
+      }
+  } else {
+    lo = -1;
+    hi = 1;
+  }
+  // The whole lattice strictly on the third vertex's side: no octant is separated by this axis.
+  if (!(lo == hi && lo == third_sign(e, axis))) skip = 0;
+  return skip != 0;
 }
 
 int OctantOverlap::third_sign(int e, int axis) {
@@ -101,13 +105,6 @@ int OctantOverlap::third_sign(int e, int axis) {
   if (third == kUnknown)
     third = static_cast<int8_t>(orient2d(v_[e], v_[(e + 1) % 3], v_[(e + 2) % 3], axis));
   return third;
-}
-
-int OctantOverlap::plane_sign(int ix, int iy, int iz) {
-  int8_t& s = plane_cache_[(iz * 3 + iy) * 3 + ix];
-  if (s == kUnknown)
-    s = static_cast<int8_t>(plane_.sign({planes_[0][ix], planes_[1][iy], planes_[2][iz]}));
-  return s;
 }
 
 int OctantOverlap::edge_sign(int e, int axis, int iu, int iw) {
@@ -131,7 +128,8 @@ bool OctantOverlap::separated(int o, bool open) {
   }
   // The triangle's normal: all 8 corners on one side of its plane.
   const auto corner = [&](int c) {
-    return plane_sign(bit[0] + (c & 1), bit[1] + ((c >> 1) & 1), bit[2] + (c >> 2));
+    return int{plane_cache_[((bit[2] + (c >> 2)) * 3 + bit[1] + ((c >> 1) & 1)) * 3 + bit[0] +
+                            (c & 1)]};
   };
   if (common_side(8, open, corner) != 0) return true;
   // e_axis × edge: in the plane that drops `axis`, the octant's rectangle on one side of the
@@ -142,10 +140,8 @@ bool OctantOverlap::separated(int o, bool open) {
       if (skip(e, axis)) continue;
       const int u = (axis + 1) % 3, w = (axis + 2) % 3;
       const int iu = bit[u], iw = bit[w];
-      int side = rect_sign(e, axis, iu, iu + 1, iw, iw + 1);
-      if (side == 0)
-        side = common_side(
-            4, open, [&](int c) { return edge_sign(e, axis, iu + (c & 1), iw + (c >> 1)); });
+      const int side = common_side(
+          4, open, [&](int c) { return edge_sign(e, axis, iu + (c & 1), iw + (c >> 1)); });
       if (side == 0) continue;
       if (third_sign(e, axis) != side) return true;
     }

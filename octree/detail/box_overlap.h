@@ -16,13 +16,13 @@
 // it. OctantOverlap tests the 8 children of one octree cell against one triangle, sharing the
 // signs at their common corners.
 // Edge-axis filter: orient2d(p, q, x) is linear in x, g(x) = (p_w − q_w)(x_u − p_u) +
-// (q_u − p_u)(x_w − p_w); over a rectangle its extremes are at the corners picked by the signs of
-// the two (exactly signed) coefficients, evaluated in doubles with the bound 1e-15·M (M the sum
-// of the terms' magnitudes; ≥ 9u, as kPlaneSideErr) in the filter range. When the bound
-// separates the rectangle's extreme from 0 the sign holds at all 4 corners (no orient2d call);
-// once per triangle the whole lattice's rectangle is tested, and an axis whose rectangle lies
-// strictly on the third vertex's side is dropped for all 8 octants. Otherwise the exact
-// per-corner signs decide as before.
+// (q_u − p_u)(x_w − p_w) (the coefficients' signs exact: one rounded subtraction each), so at
+// the 3 × 3 lattice points of the plane dropping an axis it is the sum of two of 6 products,
+// computed once per triangle and axis with one bound 1e-15·M for all 9 (M the largest sum of
+// the two magnitudes; ≥ 9u, as kPlaneSideErr) in the filter range; orient2d (exact) decides a
+// point the bound leaves undecided. An axis whose 9 signs are all strictly the third vertex's
+// separates no octant and is dropped. The 27 plane signs come the same way from
+// PlaneSide::grid_signs.
 // PlaneSide: sign of orient3d(a, b, c, p) for many points p of one box, from a floating-point
 // evaluation n·(p − a) with one forward error bound valid for the whole box; orient3d (exact)
 // decides whenever the value is inside the bound.
@@ -90,21 +90,17 @@ class OctantOverlap {
   /// True when one of the 13 axes separates the triangle from octant o: strictly (`open` false:
   /// the closed octant) or weakly (`open`: its interior).
   bool separated(int o, bool open);
-  int plane_sign(int ix, int iy, int iz);
   int edge_sign(int e, int axis, int iu, int iw);
-  /// The sign of orient2d(edge e, x) shared by every x of the rectangle [planes_[u][iu0],
-  /// planes_[u][iu1]] × [planes_[w][iw0], planes_[w][iw1]] (u, w: the axes after `axis`) when
-  /// the floating-point filter proves it strictly, else 0.
-  int rect_sign(int e, int axis, int iu0, int iu1, int iw0, int iw1) const;
   int third_sign(int e, int axis);
-  /// True when axis e_axis × edge e can separate no octant (computed once, into skip_).
+  /// True when axis e_axis × edge e can separate no octant. The first call fills that axis's
+  /// edge_cache_ row with the filtered signs (kUnknown where the filter cannot decide).
   bool skip(int e, int axis);
 
   Vec3 v_[3];
   double planes_[3][3];
   Vec3 lo_, hi_;  ///< the triangle's box
   PlaneSide plane_;
-  int8_t plane_cache_[27];
+  int8_t plane_cache_[27];   ///< [(iz·3 + iy)·3 + ix], all computed by the constructor
   int8_t edge_cache_[9][9];  ///< [edge·3 + axis][lattice point of the plane dropping axis]
   int8_t third_cache_[9];    ///< [edge·3 + axis]: side of the third vertex
   /// [edge·3 + axis]: 1 when that axis can separate no octant (the edge is parallel to it, or
