@@ -177,13 +177,27 @@ void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs,
     fy[i] = normal_.y * (ys[i] - a_.y);
     fz[i] = normal_.z * (zs[i] - a_.z);
   }
+  // Filtered signs first (branch-free, one row at a time), orient3d for the undecided ones.
   size_t o = 0;
   for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i, o += stride) {
-        const double f = fx[i] + fy[j] + fz[k];  // sign()'s sum, in its order
-        out[o] = static_cast<int8_t>(f > bound_ ? 1 : (f < -bound_ ? -1 : exact_sign({xs[i], ys[j], zs[k]})));
+    for (int j = 0; j < n; ++j) {
+      const double yz = fy[j];
+      const double z = fz[k];
+      bool undecided = false;
+      for (int i = 0; i < n; ++i) {
+        const double f = fx[i] + yz + z;  // sign()'s sum, in its order
+        const bool pos = f > bound_, neg = f < -bound_;
+        out[o + i * stride] = static_cast<int8_t>(int{pos} - int{neg});
+        undecided |= !(pos | neg);
       }
+      if (undecided)
+        for (int i = 0; i < n; ++i) {
+          const double f = fx[i] + yz + z;
+          if (!(f > bound_) && !(f < -bound_))
+            out[o + i * stride] = static_cast<int8_t>(exact_sign({xs[i], ys[j], zs[k]}));
+        }
+      o += size_t(n) * stride;
+    }
 }
 
 }  // namespace cover::detail

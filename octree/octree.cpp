@@ -28,7 +28,8 @@
 //            children are the cells 8·rank .. 8·rank + 7 of the next level, in Morton order.
 // One level at a time, in blocks of cells:
 //   (A) T_C for every cell, testing the parent's list (or the BVH's candidates for the cell's box
-//       when that list is long) with the exact triangle / open-box test;
+//       when that list is long) with the exact triangle / open-box test (at the last level below
+//       a short parent list, one triangle of T_C: only T_C ≠ ∅ is used there);
 //   (B) the points to classify. Uncrossed siblings: each interior is connected and meets no
 //       surface; the parent's centre p is a corner of each, so when no surface passes through p,
 //       a small ball around p joins them all into one connected set no surface meets, where
@@ -37,7 +38,10 @@
 //       Partial cells: the samples³ sub-points, grouped by their sides of the planes of T_C;
 //       every surface in the cell lies in those planes, so a side class is a convex region no
 //       surface meets: one point per class is classified, and a point ON a plane alone (it may
-//       be on a surface);
+//       be on a surface). When the parent's list T_P is short, the same grouping runs over a
+//       whole sibling set at once, with the planes of T_P (every surface in the parent lies in
+//       them): the sub-points of its partial cells and the centres of its uncrossed cells share
+//       one classification per side class of the parent;
 //   (C) one classify() call per block; (D) states, occupancies and child links.
 // Node order, ranks and results depend only on the input: every parallel step writes per cell or
 // per fixed chunk, and chunks are concatenated in order.
@@ -93,8 +97,8 @@ struct Scratch {
   std::vector<detail::PlaneSide> planes;  ///< the parent's planes
   std::vector<uint64_t> point_keys;       ///< per point of a cell: its side vector in base 3
   std::vector<uint32_t> rep;              ///< per group: its representative (index in the chunk)
-  std::vector<uint32_t> last_cell;        ///< per group: the last cell that got an entry
-  std::vector<uint32_t> entry;            ///< per group: that entry (index in the chunk)
+  std::vector<uint32_t> last_cell;        ///< the groups the current cell touches
+  std::vector<uint32_t> entry;            ///< per group: its points in the current cell
 };
 
 /// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
@@ -297,7 +301,8 @@ class Builder {
   }
 
   /// (A) The triangles that meet the interior of each cell of [b0, b0 + m) at level d, one list
-  /// per cell.
+  /// per cell; at the last level, for a sibling set whose parent's list is short (at most
+  /// kSiblingMax), only the first such triangle (whether a cell is crossed is all that is used).
   Lists meeting(int d, size_t b0, size_t m) const {
     std::vector<std::vector<uint32_t>> chunk_tris((m + kGrain - 1) / kGrain);
     std::vector<uint32_t> count(m);
@@ -315,11 +320,19 @@ class Builder {
             for (uint64_t t = 0; t < 3; ++t)
               planes[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
           for (auto& list : octant) list.clear();
+          // The last level's short-list sets need only whether a cell is crossed (see
+          // sibling_representatives): one witness triangle per cell.
+          const bool witness = d == depth_ && parent_lists_[parent].size() <= kSiblingMax;
+          int open = 8;
           for (uint32_t t : parent_lists_[parent]) {
             const Bvh::Tri tri = bvh_.triangle(t);
             detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
             for (int c = 0; c < 8; ++c)
-              if (overlap.crosses(c)) octant[c].push_back(t);
+              if (!(witness && !octant[c].empty()) && overlap.crosses(c)) {
+                octant[c].push_back(t);
+                open -= witness;
+              }
+            if (open == 0) break;
           }
           for (int c = 0; c < 8; ++c) {
             out.insert(out.end(), octant[c].begin(), octant[c].end());
@@ -396,7 +409,6 @@ class Builder {
     }
     s.keys.clear();  // per group: its side vector in base 3 (exact: k ≤ kExactKey), or
     s.rep.clear();   // kOnPlane for a point on some plane, never matched
-    s.last_cell.clear();
     s.entry.clear();
     constexpr uint64_t kOnPlane = UINT64_MAX;
     const size_t sub_count = size_t(samples_) * samples_ * samples_;
@@ -423,30 +435,34 @@ class Builder {
           key[p] = side[p] == 0 ? kOnPlane
                                 : (key[p] == kOnPlane ? kOnPlane : 3 * key[p] + (side[p] + 1));
       }
-      uint32_t g = 0;
+      // Runs of equal keys (neighbouring sub-points) skip the search; each group's weight in
+      // this cell is counted in s.entry (reset below), its first touch listed in s.last_cell.
+      s.last_cell.clear();  // the groups this cell touches, in order of first touch
+      uint32_t g = UINT32_MAX;
+      uint64_t last = kOnPlane;
       for (size_t p = 0; p < count; ++p) {
-        if (key[p] == kOnPlane || g >= s.keys.size() || s.keys[g] != key[p]) {
+        const uint64_t kp = key[p];
+        if (kp == kOnPlane || kp != last) {
           g = static_cast<uint32_t>(s.keys.size());
-          if (key[p] != kOnPlane)
+          if (kp != kOnPlane)
             for (uint32_t q = 0; q < s.keys.size(); ++q)
-              if (s.keys[q] == key[p]) {
+              if (s.keys[q] == kp) {
                 g = q;
                 break;
               }
           if (g == s.keys.size()) {
-            s.keys.push_back(key[p]);
+            s.keys.push_back(kp);
             s.rep.push_back(static_cast<uint32_t>(points.size()));
             points.push_back(partial ? subs.point(p) : c);
-            s.last_cell.push_back(UINT32_MAX);
             s.entry.push_back(0);
           }
+          last = kp;
         }
-        if (s.last_cell[g] != cell) {
-          s.last_cell[g] = cell;
-          s.entry[g] = static_cast<uint32_t>(entries.size());
-          entries.push_back({cell, s.rep[g], 0});
-        }
-        ++entries[s.entry[g]].weight;
+        if (s.entry[g]++ == 0) s.last_cell.push_back(g);
+      }
+      for (uint32_t q : s.last_cell) {
+        entries.push_back({cell, s.rep[q], s.entry[q]});
+        s.entry[q] = 0;
       }
     }
   }
