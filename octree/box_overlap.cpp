@@ -1,6 +1,7 @@
 #include "octree/detail/box_overlap.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -198,6 +199,47 @@ void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs,
         }
       o += size_t(n) * stride;
     }
+}
+
+void PlaneSide::grid_masks(const double* xs, const double* ys, const double* zs, int n,
+                           uint64_t& pos, uint64_t& neg) const {
+  if (n != 4) {
+    int8_t signs[64];
+    grid_signs(xs, ys, zs, n, signs, 1);
+    pos = neg = 0;
+    for (int p = 0; p < n * n * n; ++p) {
+      pos |= uint64_t{signs[p] > 0} << p;
+      neg |= uint64_t{signs[p] < 0} << p;
+    }
+    return;
+  }
+  // n = 4: one row of 4 points per nibble, the same sums as sign() (x, y, z in that order).
+  double fx[4], fy[4], fz[4];
+  for (int i = 0; i < 4; ++i) {
+    fx[i] = normal_.x * (xs[i] - a_.x);
+    fy[i] = normal_.y * (ys[i] - a_.y);
+    fz[i] = normal_.z * (zs[i] - a_.z);
+  }
+  const double b = bound_;
+  pos = neg = 0;
+  for (int row = 0; row < 16; ++row) {
+    const double y = fy[row & 3], z = fz[row >> 2];
+    const double f0 = (fx[0] + y) + z, f1 = (fx[1] + y) + z, f2 = (fx[2] + y) + z,
+                 f3 = (fx[3] + y) + z;
+    const uint64_t p = uint64_t{f0 > b} | uint64_t{f1 > b} << 1 | uint64_t{f2 > b} << 2 |
+                       uint64_t{f3 > b} << 3;
+    const uint64_t q = uint64_t{f0 < -b} | uint64_t{f1 < -b} << 1 | uint64_t{f2 < -b} << 2 |
+                       uint64_t{f3 < -b} << 3;
+    pos |= p << (4 * row);
+    neg |= q << (4 * row);
+  }
+  // Points the filter leaves undecided: orient3d.
+  for (uint64_t m = ~(pos | neg); m != 0; m &= m - 1) {
+    const int p = std::countr_zero(m);
+    const int sign = exact_sign({xs[p & 3], ys[(p >> 2) & 3], zs[p >> 4]});
+    pos |= uint64_t{sign > 0} << p;
+    neg |= uint64_t{sign < 0} << p;
+  }
 }
 
 }  // namespace cover::detail

@@ -2,6 +2,8 @@
 #include "octree/octree.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -87,33 +89,6 @@ struct Entry {
   uint32_t weight = 0;
 };
 
-/// Per-chunk buffers, reused from cell to cell.
-struct Scratch {
-  std::vector<int8_t> sides;     ///< points × planes
-  std::vector<uint32_t> first;   ///< per group: its first point
-  std::vector<uint32_t> weight;  ///< per group: its number of points
-  std::vector<uint64_t> keys;    ///< per group: its side vector in base 3
-  // Sibling sets of the last level (Builder::sibling_representatives):
-  std::vector<detail::PlaneSide> planes;  ///< the parent's planes
-  std::vector<uint64_t> point_keys;       ///< per point of a cell: its side vector in base 3
-  std::vector<uint32_t> rep;              ///< per group: its representative (index in the chunk)
-  std::vector<uint32_t> last_cell;        ///< the groups the current cell touches
-  std::vector<uint32_t> entry;            ///< per group: its points in the current cell
-};
-
-/// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
-/// closed box (a superset of those that meet its interior).
-void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out) {
-  walk(
-      bvh,
-      [&](const Bvh::Node& node) {
-        for (int a = 0; a < 3; ++a)
-          if (node.lo[a] > box.max[a] || node.hi[a] < box.min[a]) return false;
-        return true;
-      },
-      [&](const Bvh::Tri&, uint32_t i) { out.push_back(i); });
-}
-
 /// The samples³ sub-points of a cell (the centres of a regular sub-grid): their coordinates per
 /// axis, and the points, x fastest.
 struct SubGrid {
@@ -133,6 +108,38 @@ struct SubGrid {
   /// Sub-point p = (k·n + j)·n + i.
   Vec3 point(size_t p) const { return {xs[p % n], ys[(p / n) % n], zs[p / n / n]}; }
 };
+
+/// Per-chunk buffers, reused from cell to cell.
+struct Scratch {
+  std::vector<int8_t> sides;     ///< points × planes
+  std::vector<uint32_t> first;   ///< per group: its first point
+  std::vector<uint32_t> weight;  ///< per group: its number of points
+  std::vector<uint64_t> keys;    ///< per group: its side vector in base 3
+  // Sibling sets of the last level (Builder::sibling_representatives):
+  std::vector<detail::PlaneSide> planes;  ///< the parent's planes
+  std::vector<uint64_t> point_keys;       ///< per point of a cell: its side vector in base 3
+  // Builder::sibling_masks: point sets of a sibling set as 9 words (word c < 8: the sub-points
+  // of partial cell c, bit p = sub-point p; word 8: bit c = the centre of uncrossed cell c).
+  std::vector<std::array<uint64_t, 9>> sets, split;
+  std::vector<std::array<uint64_t, 9>> pos;  ///< per plane: the points on its positive side
+  SubGrid cell_grid[8];
+  std::vector<uint32_t> rep;              ///< per group: its representative (index in the chunk)
+  std::vector<uint32_t> last_cell;        ///< the groups the current cell touches
+  std::vector<uint32_t> entry;            ///< per group: its points in the current cell
+};
+
+/// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
+/// closed box (a superset of those that meet its interior).
+void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out) {
+  walk(
+      bvh,
+      [&](const Bvh::Node& node) {
+        for (int a = 0; a < 3; ++a)
+          if (node.lo[a] > box.max[a] || node.hi[a] < box.min[a]) return false;
+        return true;
+      },
+      [&](const Bvh::Tri&, uint32_t i) { out.push_back(i); });
+}
 
 /// Groups the sub-points of `grid` (all in `box`) by their sides of the planes of `tris`: equal
 /// side vectors without a zero share a group; a point on some plane gets a group of its own, and
@@ -389,6 +396,98 @@ class Builder {
     return false;
   }
 
+  /// sibling_representatives for samples³ ≤ 64, on bit masks: the side classes are found by
+  /// splitting the set of points on no plane by each plane's positive side (a class is an
+  /// intersection of sides), each class's weight in a cell is a popcount, and its
+  /// representative its first point; the points on some plane are classified one by one.
+  void sibling_masks(int d, size_t b0, size_t g0, const Lists& lists, Scratch& s,
+                     std::vector<Vec3>& points, std::vector<Entry>& entries) const {
+    using Set = std::array<uint64_t, 9>;
+    const size_t parent = (b0 + g0) / 8;
+    const std::span<const uint32_t> tris = parent_lists_[parent];
+    const size_t k = tris.size();
+    const Bbox parent_box = box(parents_[parent], d - 1);
+    const int n = samples_;
+    const int count = n * n * n;
+    const uint64_t all = count == 64 ? ~uint64_t{0} : (uint64_t{1} << count) - 1;
+    Set full{}, on{};
+    Vec3 centres[8];
+    for (int c = 0; c < 8; ++c) {
+      const Bbox b = box(coord(d, b0 + g0 + c), d);
+      if (lists[g0 + c].empty()) {
+        centres[c] = centre(b);
+        full[8] |= uint64_t{1} << c;
+      } else {
+        s.cell_grid[c].set(b, n);
+        full[c] = all;
+      }
+    }
+    s.pos.resize(k);
+    for (size_t j = 0; j < k; ++j) {
+      const Bvh::Tri tri = bvh_.triangle(tris[j]);
+      const detail::PlaneSide plane(tri.a, tri.b, tri.c, parent_box);
+      Set& pos = s.pos[j];
+      pos.fill(0);
+      for (int c = 0; c < 8; ++c) {
+        uint64_t neg = 0;
+        if (full[c] != 0) {
+          const SubGrid& g = s.cell_grid[c];
+          plane.grid_masks(g.xs, g.ys, g.zs, n, pos[c], neg);
+          on[c] |= full[c] & ~(pos[c] | neg);
+        } else if (full[8] >> c & 1) {
+          const int side = plane.sign(centres[c]);
+          pos[8] |= uint64_t{side > 0} << c;
+          on[8] |= uint64_t{side == 0} << c;
+        }
+      }
+    }
+    // Side classes of the points on no plane: split by every plane's positive side.
+    s.sets.clear();
+    Set start;
+    for (int w = 0; w < 9; ++w) start[w] = full[w] & ~on[w];
+    s.sets.push_back(start);
+    for (size_t j = 0; j < k; ++j) {
+      s.split.clear();
+      for (const Set& set : s.sets) {
+        Set in, out;
+        uint64_t any_in = 0, any_out = 0;
+        for (int w = 0; w < 9; ++w) {
+          in[w] = set[w] & s.pos[j][w];
+          out[w] = set[w] & ~s.pos[j][w];
+          any_in |= in[w];
+          any_out |= out[w];
+        }
+        if (any_in) s.split.push_back(in);
+        if (any_out) s.split.push_back(out);
+      }
+      std::swap(s.sets, s.split);
+    }
+    const auto point = [&](int w, int bit) {
+      return w < 8 ? s.cell_grid[w].point(static_cast<size_t>(bit)) : centres[bit];
+    };
+    const auto add = [&](const Set& set) {
+      int w = 0;
+      while (set[w] == 0) ++w;
+      const uint32_t rep = static_cast<uint32_t>(points.size());
+      points.push_back(point(w, std::countr_zero(set[w])));
+      for (int c = 0; c < 8; ++c)
+        if (set[c] != 0)
+          entries.push_back({static_cast<uint32_t>(g0 + c), rep,
+                             static_cast<uint32_t>(std::popcount(set[c]))});
+      for (uint64_t m = set[8]; m != 0; m &= m - 1)
+        entries.push_back({static_cast<uint32_t>(g0 + std::countr_zero(m)), rep, 1});
+    };
+    for (const Set& set : s.sets)
+      if (std::any_of(set.begin(), set.end(), [](uint64_t x) { return x != 0; })) add(set);
+    // Points on some plane (they may be on a surface): one by one.
+    for (int w = 0; w < 9; ++w)
+      for (uint64_t m = on[w]; m != 0; m &= m - 1) {
+        Set one{};
+        one[w] = m & (~m + 1);
+        add(one);
+      }
+  }
+
   /// (B) at the last level, for the sibling set g0 .. g0 + 7 (cells of the block) whose parent's
   /// list T_P is short: the sub-points of its partial cells and the centres of its uncrossed
   /// cells, grouped by their sides of the planes of T_P. T_P holds every triangle that meets
@@ -482,7 +581,10 @@ class Builder {
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
         if (d == depth_ && d > 0 && parent_lists_[(b0 + g0) / 8].size() <= kSiblingMax) {
-          sibling_representatives(d, b0, g0, lists, s, subs, points, entries);
+          if (samples_ * samples_ * samples_ <= 64)
+            sibling_masks(d, b0, g0, lists, s, points, entries);
+          else
+            sibling_representatives(d, b0, g0, lists, s, subs, points, entries);
           continue;
         }
         size_t uncrossed = 0;

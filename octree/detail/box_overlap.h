@@ -61,6 +61,10 @@ class PlaneSide {
   /// Precondition: n ≤ 32.
   void grid_signs(const double* xs, const double* ys, const double* zs, int n, int8_t* out,
                   size_t stride) const;
+  /// The same signs as bit masks (bit (k·n + j)·n + i): `pos` where +1, `neg` where −1.
+  /// Precondition: n³ ≤ 64.
+  void grid_masks(const double* xs, const double* ys, const double* zs, int n, uint64_t& pos,
+                  uint64_t& neg) const;
 
  private:
   int exact_sign(const Vec3& p) const;
