@@ -64,7 +64,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches);
   r.seconds.select = since(t);
   t = Clock::now();
-  r.mesh = boolean_detail::assemble(arr, kept);
+  r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf);
   for (size_t f = 0; f < r.mesh.face_count(); ++f) {
     auto t = r.mesh.face(f);
     const Vec3 a = r.mesh.vertices[t[0]], b = r.mesh.vertices[t[1]], c = r.mesh.vertices[t[2]];

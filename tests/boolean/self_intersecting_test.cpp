@@ -204,6 +204,26 @@ TEST(EvaluateSelfIntersecting, FigureEight) {
         "figure-eight ∩ sphere");
 }
 
+TEST(EvaluateSelfIntersecting, TouchingCurveOfOneEdge) {
+  // Leaf 0: a triangular prism along x through a reversed box (x ≥ 1): for x > 1 the prism's
+  // inside winds 0, the rest of the box −1. Leaf 1: boxes over x ≥ 1 except the strip
+  // 1.2 < y < 1.4. In the strip the prism's inside (x < 1) and the box outside the prism (x > 1)
+  // touch along two edges on the plane x = 1, each ending where the solids merge: assembly
+  // must split each doubled edge, or two edges would join the same two vertices.
+  PolygonMesh prism;
+  prism.vertices = {{0, 0.5, 0.2}, {0, 1.8, 0.5}, {0, 0.5, 0.9},
+                    {2, 0.5, 0.2}, {2, 1.8, 0.5}, {2, 0.5, 0.9}};
+  prism.add_face({0, 2, 1});
+  prism.add_face({3, 4, 5});
+  prism.add_face({0, 1, 4, 3});
+  prism.add_face({1, 2, 5, 4});
+  prism.add_face({2, 0, 3, 5});
+  const Solid a = leaf(concat(prism, make_box({1, 0, 0}, {3, 2, 1}), true), "prism");
+  const Solid b = make_leaf(concat(make_box({1, 0, 0}, {3, 1.2, 1}), make_box({1, 1.4, 0}, {3, 2, 1})),
+                            "boxes");
+  check(unite({a, b}), "prism ∪ boxes (touching edges)");
+}
+
 TEST(EvaluateSelfIntersecting, LibcgalMeshes) {
   const Solid cow = leaf(model("cow", {0, 0, 0}, 1, 0), "cow");
   check(cow, "cow");
