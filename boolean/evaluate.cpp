@@ -2,8 +2,8 @@
 // arrangement.cpp, select.cpp and assemble.cpp).
 #include "boolean/evaluate.h"
 
-#include <chrono>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,7 +12,6 @@
 #include "brep/halfedge.h"
 #include "covering/bounds.h"
 #include "solid/errors.h"
-#include "solid/measure.h"
 #include "solid/parallel.h"
 #include "solid/triangulate.h"
 #include "solid/validate.h"

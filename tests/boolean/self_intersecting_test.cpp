@@ -5,7 +5,8 @@
 // procedural leaves also have known volumes. Scenes: libcgal-demo meshes that intersect
 // themselves (cow, elk, bones) with boxes, spheres and each other; two overlapping boxes in
 // one leaf, nested and repeated shells (winding 2), a reversed shell (winding 0 inside), shells
-// touching along a face, and a figure-eight prism (winding +1 and −1 lobes, overlapping fan caps).
+// touching along a face, a figure-eight prism (winding +1 and −1 lobes, overlapping fan caps),
+// and a prism through a reversed box whose result touches itself along single edges.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
