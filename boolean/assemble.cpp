@@ -12,7 +12,11 @@
 // triangle, which must use p → q: each such pair becomes one manifold edge. Corners are then
 // merged across paired edges; each class of corners (one fan) becomes an output vertex, so
 // non-manifold edges and vertices (touching at an edge or a point) get topologically
-// duplicated vertices at the same position.
+// duplicated vertices at the same position. Where a touching curve is a single edge whose two
+// ends are each one fan (the solids merge beyond both ends, e.g. a region wound −1 meeting a
+// sphere's inside across a plane), both copies of the edge join the same two vertices; the
+// copies are then split at their midpoint (a new vertex per copy, at one position, its two
+// faces halved), so that no two edges join the same vertices.
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
@@ -54,7 +58,8 @@ int quadrant(const Point& p, const Point& q, const Point& r0, const Point& r) {
 
 }  // namespace
 
-PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris) {
+PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
+                     std::vector<uint32_t>* labels) {
   const size_t m = tris.size();
   auto from = [&](uint32_t h) { return tris[h / 3][h % 3]; };
   auto to = [&](uint32_t h) { return tris[h / 3][(h % 3 + 1) % 3]; };
@@ -64,9 +69,12 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
   std::sort(hs.begin(), hs.end());
 
   UnionFind corners(3 * m);
+  std::vector<uint32_t> mate(3 * m, kNone);
   auto pair_up = [&](uint32_t h, uint32_t g) {  // h: a → b, g: b → a
     corners.unite(h, 3 * (g / 3) + (g % 3 + 1) % 3);
     corners.unite(3 * (h / 3) + (h % 3 + 1) % 3, g);
+    mate[h] = g;
+    mate[g] = h;
   };
   std::vector<uint32_t> group;
   for (size_t i = 0; i < hs.size();) {
@@ -136,7 +144,40 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
     }
     vertex[c] = vertex[root];
   }
-  for (uint32_t f = 0; f < m; ++f) mesh.add_face({vertex[3 * f], vertex[3 * f + 1], vertex[3 * f + 2]});
+  // Second copies of an output edge (same two vertices, same direction): split at the midpoint.
+  std::vector<std::array<uint32_t, 3>> faces(m);
+  for (uint32_t f = 0; f < m; ++f) faces[f] = {vertex[3 * f], vertex[3 * f + 1], vertex[3 * f + 2]};
+  std::vector<std::pair<uint64_t, uint32_t>> directed(3 * m);
+  for (uint32_t h = 0; h < 3 * m; ++h)
+    directed[h] = {(uint64_t{vertex[h]} << 32) | vertex[3 * (h / 3) + (h % 3 + 1) % 3], h};
+  std::sort(directed.begin(), directed.end());
+  std::vector<uint8_t> split(m, 0);
+  std::vector<std::pair<std::array<uint32_t, 3>, uint32_t>> extra;  // (face, split-from face)
+  for (size_t i = 0, j; i < directed.size(); i = j) {
+    for (j = i + 1; j < directed.size() && directed[j].first == directed[i].first;) ++j;
+    if (j - i < 2) continue;
+    // Every copy gets its own midpoint vertex (all at one position, like the ends).
+    for (size_t x = i; x < j; ++x) {
+      const uint32_t h = directed[x].second, g = mate[h];
+      if (g == kNone) continue;
+      const uint32_t f = h / 3, f2 = g / 3;
+      if (f == f2 || split[f] || split[f2]) continue;  // (not seen in practice)
+      split[f] = split[f2] = 1;
+      const uint32_t a = vertex[h], b = vertex[g];
+      const uint32_t c1 = faces[f][(h % 3 + 2) % 3], c2 = faces[f2][(g % 3 + 2) % 3];
+      const uint32_t mid = static_cast<uint32_t>(mesh.vertices.size());
+      mesh.vertices.push_back(0.5 * (mesh.vertices[a] + mesh.vertices[b]));
+      faces[f] = {a, mid, c1};
+      extra.push_back({{mid, b, c1}, f});
+      faces[f2] = {b, mid, c2};
+      extra.push_back({{mid, a, c2}, f2});
+    }
+  }
+  for (const auto& t : faces) mesh.add_face({t[0], t[1], t[2]});
+  for (const auto& [t, from] : extra) {
+    mesh.add_face({t[0], t[1], t[2]});
+    if (labels) labels->push_back((*labels)[from]);
+  }
   return mesh;
 }
 

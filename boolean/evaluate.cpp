@@ -2,8 +2,8 @@
 // arrangement.cpp, select.cpp and assemble.cpp).
 #include "boolean/evaluate.h"
 
-#include <chrono>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,7 +12,6 @@
 #include "brep/halfedge.h"
 #include "covering/bounds.h"
 #include "solid/errors.h"
-#include "solid/measure.h"
 #include "solid/parallel.h"
 #include "solid/triangulate.h"
 #include "solid/validate.h"
@@ -64,7 +63,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches);
   r.seconds.select = since(t);
   t = Clock::now();
-  r.mesh = boolean_detail::assemble(arr, kept);
+  r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf);
   for (size_t f = 0; f < r.mesh.face_count(); ++f) {
     auto t = r.mesh.face(f);
     const Vec3 a = r.mesh.vertices[t[0]], b = r.mesh.vertices[t[1]], c = r.mesh.vertices[t[2]];

@@ -120,7 +120,7 @@ class Model {
   /// (method "brep", error_bound 0), when evaluate() accepts the leaves (otherwise the ray
   /// result, target_met false, stays).
   /// \throws NotComputable for an unbounded result; with options.exact, InputError when the
-  /// B-rep cannot be evaluated (a leaf that intersects itself in a way evaluate() refuses).
+  /// B-rep cannot be evaluated (a leaf face whose boundary crosses itself).
   VolumeResult volume(const VolumeOptions& options = {}) const;
 
   /// The default grid cube of voxelize() and octree() for n cells per side: the result's box made
@@ -178,9 +178,11 @@ class Model {
   /// The same through a given camera.
   Image render(const Camera& camera, const RenderOptions& options = {}) const;
 
-  /// The result as one closed, outward 2-manifold triangle mesh (boolean/evaluate.h).
-  /// \throws NotComputable for an unbounded result; InputError for a self-intersecting leaf
-  /// that is not a union of outward shells.
+  /// The result as one closed, outward 2-manifold triangle mesh (boolean/evaluate.h), with each
+  /// face's source leaf (EvaluateResult::face_leaf, indices into solid().leaves). A
+  /// self-intersecting leaf stands for its nonzero-winding set, as in classify().
+  /// \throws NotComputable for an unbounded result; InputError for a leaf face whose boundary
+  /// crosses itself.
   EvaluateResult evaluate(const EvaluateOptions& options = {}) const;
 
   /// Plane clip and patch (brep/clip.h) of the result: a single leaf is clipped as it is, any

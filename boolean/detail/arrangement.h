@@ -99,7 +99,10 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
                                                    size_t& patches);
 
 /// Step 6: pairs faces around edges with more than two faces by exact angular order, splits
-/// vertices per fan, rounds the exact points to the nearest doubles.
-PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris);
+/// vertices per fan, rounds the exact points to the nearest doubles. Face f of the mesh is
+/// tris[f], except that faces split at a doubled edge append their second halves at the end;
+/// `labels` (one per tri, when given) gets their labels appended likewise.
+PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
+                     std::vector<uint32_t>* labels = nullptr);
 
 }  // namespace cover::boolean_detail
