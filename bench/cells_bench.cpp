@@ -1,7 +1,10 @@
 // `cover evaluate --cells N` against plain `cover evaluate` (docs/benchmarks.md): for each scene
 // and N = 2, 4, 8, the median wall time of Model::evaluate() and of Model::evaluate_cells(N)
 // (the same evaluation, then the cut into N³ cells and the gluing), interleaved A/B runs, and
-// the faces the caps add. Usage: cells_bench [RUNS] (default 5); prints a Markdown table.
+// the faces the caps add. The cells' cube is the evaluated result's box made cubic with 1 %
+// margin per side (`--bounds`), so that every N really cuts the solid (the default cube of
+// `voxelize` leaves one empty cell of margin per side). Usage: cells_bench [RUNS] (default 5);
+// prints a Markdown table.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -42,6 +45,9 @@ int main(int argc, char** argv) {
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Scene& s : scenes) {
     for (int n : {2, 4, 8}) {
+      const cover::Bbox box = cover::face_bbox(s.model.evaluate().mesh);
+      const double ext = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+      const cover::VoxelBounds cube{box.min - cover::Vec3{0.01 * ext, 0.01 * ext, 0.01 * ext}, 1.02 * ext};
       std::vector<double> plain, cells, cut, glue;
       cover::CellsEvaluation last;
       size_t faces = 0;
@@ -50,7 +56,7 @@ int main(int argc, char** argv) {
         faces = s.model.evaluate().mesh.face_count();
         plain.push_back(seconds_since(t));
         t = std::chrono::steady_clock::now();
-        last = s.model.evaluate_cells(n);
+        last = s.model.evaluate_cells(n, cube);
         cells.push_back(seconds_since(t));
         cut.push_back(last.cells.cut_seconds);
         glue.push_back(last.cells.glue_seconds);
