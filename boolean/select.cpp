@@ -306,24 +306,36 @@ std::vector<Sides> batch_windings(const Arrangement& arr, const std::vector<uint
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
                                                    size_t grain, size_t& patches) {
   const size_t n = arr.pieces.size();
-  // Patches: union pieces of one leaf across non-cut edges.
-  std::vector<std::pair<uint64_t, uint32_t>> edges;
-  edges.reserve(3 * n);
-  for (uint32_t p = 0; p < n; ++p)
-    for (int e = 0; e < 3; ++e)
-      edges.emplace_back(edge_key(arr.pieces[p].v[e], arr.pieces[p].v[(e + 1) % 3]), p);
-  std::sort(edges.begin(), edges.end());
+  // Patches: union pieces of one leaf across non-cut edges. Edges are bucketed by their smaller
+  // point id (counting sort), each bucket's few entries sorted by the larger id: linear, where
+  // sorting all 3n (edge, piece) pairs cost most of this step on large scenes.
+  std::vector<uint32_t> start(arr.points.size() + 1, 0);
+  for (const Piece& piece : arr.pieces)
+    for (int e = 0; e < 3; ++e) ++start[std::min(piece.v[e], piece.v[(e + 1) % 3]) + 1];
+  for (size_t x = 1; x < start.size(); ++x) start[x] += start[x - 1];
+  std::vector<std::pair<uint32_t, uint32_t>> bucket(3 * n);  // (larger id, piece)
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t p = 0; p < n; ++p)
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t u = arr.pieces[p].v[e], w = arr.pieces[p].v[(e + 1) % 3];
+        bucket[fill[std::min(u, w)]++] = {std::max(u, w), p};
+      }
+  }
   UnionFind uf(n);
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-    if (!std::binary_search(arr.cuts.begin(), arr.cuts.end(), edges[i].first))
-      for (size_t x = i; x < j; ++x)
-        for (size_t y = x + 1; y < j; ++y)
-          if (arr.tris[arr.pieces[edges[x].second].tri].leaf ==
-              arr.tris[arr.pieces[edges[y].second].tri].leaf)
-            uf.unite(edges[x].second, edges[y].second);
-    i = j;
+  for (uint32_t lo = 0; lo + 1 < start.size(); ++lo) {
+    const auto first = bucket.begin() + start[lo], last = bucket.begin() + start[lo + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && j->first == i->first) ++j;
+      if (!std::binary_search(arr.cuts.begin(), arr.cuts.end(), edge_key(lo, i->first)))
+        for (auto x = i; x != j; ++x)
+          for (auto y = x + 1; y != j; ++y)
+            if (arr.tris[arr.pieces[x->second].tri].leaf == arr.tris[arr.pieces[y->second].tri].leaf)
+              uf.unite(x->second, y->second);
+      i = j;
+    }
   }
   std::vector<uint32_t> roots;
   std::vector<uint32_t> patch_of(n);
