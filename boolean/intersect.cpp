@@ -170,11 +170,10 @@ Hit coplanar_hit(const Tri& a, const Tri& b, const std::vector<Point>& pts) {
 /// against those of the later leaves (bipartite), each side first reduced to the boxes meeting the
 /// other side's bounding box: a self-intersection over all tris spent most of its time on the
 /// many same-leaf neighbours (bunny00 − elephant: 0.33–0.48 s → 0.02 s). Leaf l's boxes are cut
-/// into slabs along z, each slab against the other boxes meeting it, in parallel (the sorted
-/// result does not depend on the slabs or threads); the other boxes are sorted by z so that each
-/// slab visits only those in its z range. Slabs are thin in z, not x: CGAL's box intersection
-/// scans along x at the bottom of its recursion (ranges under the cutoff), which degenerates to
-/// all pairs when every box of the range overlaps every other in x.
+/// into slabs along x, each slab against the other boxes meeting it, in parallel (the sorted
+/// result does not depend on the slabs or threads); the other boxes are sorted by x so that each
+/// slab visits only those in its x range (10-leaf preview scene: 0.88 → 0.82 s of CPU; slabs
+/// along z cost 1.43 s here, unlike in self_intersects, whose scans are larger).
 std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri>& tris,
                                                            const std::vector<Vec3>& pos) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, uint32_t,
@@ -205,17 +204,17 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri
     for (size_t i = end; i < tris.size(); ++i)
       if (CGAL::do_overlap(boxes[i].bbox(), mine)) b.push_back(boxes[i]);
     std::sort(a.begin(), a.end(), [](const Box& x, const Box& y) {
-      const double cx = x.min_coord(2) + x.max_coord(2), cy = y.min_coord(2) + y.max_coord(2);
+      const double cx = x.min_coord(0) + x.max_coord(0), cy = y.min_coord(0) + y.max_coord(0);
       return cx < cy || (cx == cy && x.info() < y.info());
     });
-    // b by lower z bound: the boxes meeting a slab [z0, z1] in z lie in the range whose lower
-    // bound is in [z0 − w, z1] (w: b's largest z extent), found by binary search; the search
-    // starts at z0 − 2w so that the rounding of the subtraction cannot skip a box.
+    // b by lower x bound: the boxes meeting a slab [x0, x1] in x lie in the range whose lower
+    // bound is in [x0 − w, x1] (w: b's largest x extent), found by binary search; the search
+    // starts at x0 − 2w so that the rounding of the subtraction cannot skip a box.
     std::sort(b.begin(), b.end(), [](const Box& x, const Box& y) {
-      return x.min_coord(2) < y.min_coord(2) || (x.min_coord(2) == y.min_coord(2) && x.info() < y.info());
+      return x.min_coord(0) < y.min_coord(0) || (x.min_coord(0) == y.min_coord(0) && x.info() < y.info());
     });
     double widest = 0;
-    for (const Box& x : b) widest = std::max(widest, x.max_coord(2) - x.min_coord(2));
+    for (const Box& x : b) widest = std::max(widest, x.max_coord(0) - x.min_coord(0));
     const size_t slabs = (a.size() + kSlab - 1) / kSlab;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(slabs);
     parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
@@ -224,9 +223,9 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri
         std::vector<Box> mine_s(a.begin() + lo, a.begin() + hi), other;
         const CGAL::Bbox_3 slab = bounds(a, lo, hi);
         auto first = std::partition_point(b.begin(), b.end(), [&](const Box& x) {
-          return x.min_coord(2) < slab.zmin() - 2 * widest;
+          return x.min_coord(0) < slab.xmin() - 2 * widest;
         });
-        for (auto x = first; x != b.end() && x->min_coord(2) <= slab.zmax(); ++x)
+        for (auto x = first; x != b.end() && x->min_coord(0) <= slab.xmax(); ++x)
           if (CGAL::do_overlap(x->bbox(), slab)) other.push_back(*x);
         // Closed boxes with exact double bounds: touching triangles are candidates too.
         CGAL::box_intersection_d(mine_s.begin(), mine_s.end(), other.begin(), other.end(),
