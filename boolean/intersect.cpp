@@ -172,7 +172,8 @@ Hit coplanar_hit(const Tri& a, const Tri& b, const std::vector<Point>& pts) {
 /// many same-leaf neighbours (bunny00 − elephant: 0.33–0.48 s → 0.02 s). Leaf l's boxes are cut
 /// into slabs along x, each slab against the other boxes meeting it, in parallel (the sorted
 /// result does not depend on the slabs or threads); the other boxes are sorted by x so that each
-/// slab visits only those in its x range (the 10-leaf preview scene scanned all of them per slab).
+/// slab visits only those in its x range (10-leaf preview scene: 0.88 → 0.82 s of CPU; slabs
+/// along z cost 1.43 s here, unlike in self_intersects, whose scans are larger).
 std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri>& tris,
                                                            const std::vector<Vec3>& pos) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, uint32_t,

@@ -11,8 +11,12 @@
 //              cut edge); t its tri, n_t the tri's outward normal; sides −/+ of n_t are the
 //              tri's inner / outer side.
 //   ray        c + s·D, s ∈ (0, 1], D one of a fixed list of generic double directions, long
-//              enough to leave the scene box; only triangles whose float BVH boxes the segment
-//              may meet (conservative slab test) are tested, each with exact Epeck predicates.
+//              enough to leave the scene box. All patches' rays are shot in one batch per
+//              direction: one pass over the tris projects each along D (doubles, boxes widened
+//              far above the rounding) and finds the rays whose projected origins its box holds
+//              (a grid over those origins); only those tri–ray pairs are tested, each with exact
+//              Epeck predicates. (A BVH over all tris cost 10× the rays themselves: a scene has
+//              few patches, hundreds against 10⁵–10⁶ tris.)
 //
 // Winding numbers at both sides (nonzero rule per leaf, then the CSG tree):
 //   * a triangle containing c is coplanar with t (any other would cross t through c, making an
@@ -39,30 +43,11 @@
 #include <stdexcept>
 
 #include "boolean/detail/arrangement.h"
-#include "covering/bvh.h"
-#include "covering/detail/bvh_walk.h"
 #include "solid/parallel.h"
 #include "solid/errors.h"
 
 namespace cover::boolean_detail {
 namespace {
-
-/// A Solid whose faces are the arrangement's tris (leaf orientation, sign +1), so the covering
-/// BVH over it holds exactly those triangles with face = tri index.
-Solid tri_solid(const Solid& solid, const Arrangement& arr) {
-  Solid s;
-  s.vertices.assign(arr.originals.begin(), arr.originals.end());
-  s.leaves.resize(solid.leaves.size());
-  s.tree = solid.tree;
-  s.face_vertices.reserve(arr.tris.size() * 3);
-  for (const Tri& t : arr.tris) {
-    s.face_vertices.insert(s.face_vertices.end(), t.v.begin(), t.v.end());
-    s.face_start.push_back(static_cast<uint32_t>(s.face_vertices.size()));
-    s.face_leaf.push_back(t.leaf);
-    s.face_sign.push_back(1);
-  }
-  return s;
-}
 
 struct Degenerate {};  // the ray met an edge / vertex / plane exactly: re-shoot
 struct BadPoint {};    // c lies on the boundary of a coplanar triangle: take another point
@@ -77,6 +62,11 @@ constexpr double kDirections[][3] = {
     {0.5403023058681398, 0.8414709848078965, 0.1732050807568877},
     {-0.1234567890123457, 0.9876543210987654, -0.3333333333333333},
 };
+constexpr int kDirectionCount = sizeof kDirections / sizeof kDirections[0];
+
+/// Interior points of a piece: barycentric weights (w0, w1, w2)/sum, all positive.
+constexpr int kWeights[][3] = {{1, 1, 1}, {2, 3, 5}, {7, 3, 2}, {3, 11, 5}, {13, 2, 7}};
+constexpr int kWeightCount = sizeof kWeights / sizeof kWeights[0];
 
 struct Sides {
   std::vector<int> minus, plus;     ///< winding per leaf on the − / + side of n_t
@@ -84,93 +74,245 @@ struct Sides {
   bool lower_own = false;           ///< a tri of t's leaf with a lower index contains c
 };
 
-/// Windings of every leaf on both sides of tri `t` at the exact point c (see notation).
-Sides windings(const Arrangement& arr, const Bvh& bvh, size_t leaves, uint32_t t, const Point& c,
-               double reach) {
-  const Tri& tri = arr.tris[t];
-  const Point& ta = arr.points[tri.v[0]];
-  const Point& tb = arr.points[tri.v[1]];
-  const Point& tc = arr.points[tri.v[2]];
-  const K::Vector_3 nt = CGAL::cross_product(tb - ta, tc - ta);
-  const double cx = CGAL::to_double(c.x()), cy = CGAL::to_double(c.y()),
-               cz = CGAL::to_double(c.z());
-  for (const auto& dir : kDirections) {
-    const K::Vector_3 d(reach * dir[0], reach * dir[1], reach * dir[2]);
-    const CGAL::Sign side = CGAL::sign(d * nt);
-    if (side == CGAL::ZERO) continue;
-    const Point c2 = c + d;
-    std::vector<int> count(leaves, 0), s(leaves, 0);
-    std::vector<uint8_t> coincident(leaves, 0);
-    bool lower_own = false;
-    const double o[3] = {cx, cy, cz};
-    const double dd[3] = {reach * dir[0], reach * dir[1], reach * dir[2]};
-    // Conservative segment–box test: the box widened by a margin far above the rounding of c.
-    auto meets = [&](const Bvh::Node& node) {
-      double lo = 0, hi = 1;
-      for (int a = 0; a < 3; ++a) {
-        const double pad = 1e-7 * (std::abs(node.lo[a]) + std::abs(node.hi[a]) + reach);
-        const double t0 = (node.lo[a] - pad - o[a]) / dd[a], t1 = (node.hi[a] + pad - o[a]) / dd[a];
-        lo = std::max(lo, std::min(t0, t1));
-        hi = std::min(hi, std::max(t0, t1));
-      }
-      return lo <= hi;
-    };
-    try {
-      walk(bvh, meets, [&](const Bvh::Tri& w, uint32_t) {
-        const Tri& wt = arr.tris[w.face];
-        const Point& a = arr.points[wt.v[0]];
-        const Point& b = arr.points[wt.v[1]];
-        const Point& e = arr.points[wt.v[2]];
-        const CGAL::Orientation o1 = CGAL::orientation(a, b, e, c);
-        const CGAL::Orientation o2 = CGAL::orientation(a, b, e, c2);
-        if (o1 == CGAL::COPLANAR) {
-          if (o2 == CGAL::COPLANAR) {
-            if (K::Triangle_3(a, b, e).has_on(c)) throw BadPoint{};
-            throw Degenerate{};  // D lies in the plane: cannot tell
-          }
-          const K::Triangle_3 tw(a, b, e);
-          if (!tw.has_on(c)) return;
-          // c inside or on the boundary of w: interior only is usable.
-          if (CGAL::collinear(a, b, c) || CGAL::collinear(b, e, c) || CGAL::collinear(e, a, c))
-            throw BadPoint{};
-          const CGAL::Sign sigma = CGAL::sign(CGAL::cross_product(b - a, e - a) * nt);
-          s[w.leaf] += sigma == CGAL::POSITIVE ? 1 : -1;
-          coincident[w.leaf] = 1;
-          lower_own = lower_own || (w.leaf == tri.leaf && w.face < t);
-          return;
-        }
-        if (o2 == CGAL::COPLANAR || o1 == o2) return;
-        const CGAL::Orientation s1 = CGAL::orientation(c, c2, a, b);
-        const CGAL::Orientation s2 = CGAL::orientation(c, c2, b, e);
-        const CGAL::Orientation s3 = CGAL::orientation(c, c2, e, a);
-        const bool has_pos = s1 == CGAL::POSITIVE || s2 == CGAL::POSITIVE || s3 == CGAL::POSITIVE;
-        const bool has_neg = s1 == CGAL::NEGATIVE || s2 == CGAL::NEGATIVE || s3 == CGAL::NEGATIVE;
-        if (has_pos && has_neg) return;  // the line passes beside the triangle
-        if (s1 == CGAL::COPLANAR || s2 == CGAL::COPLANAR || s3 == CGAL::COPLANAR)
-          throw Degenerate{};  // through an edge or a vertex
-        count[w.leaf] += o1 == CGAL::NEGATIVE ? 1 : -1;
-      });
-    } catch (const Degenerate&) {
-      continue;
+/// One ray of the batch: patch `root`'s piece, its interior point number `weight`, direction
+/// number `dir`; c, c2 = c + D and the side of n_t that D points to.
+struct Query {
+  uint32_t root = 0;
+  uint8_t weight = 0, dir = 0;
+  Point c, c2;
+  CGAL::Sign side = CGAL::ZERO;
+  double o[3] = {0, 0, 0};  ///< c rounded
+};
+
+/// Adds tri w's contribution to the ray c → c2 of a point c on tri t (normal nt) to the counts
+/// (see notation); throws Degenerate / BadPoint.
+void ray_test(const Arrangement& arr, uint32_t w, const Query& q, const K::Vector_3& nt,
+              uint32_t t, std::vector<int>& count, std::vector<int>& s,
+              std::vector<uint8_t>& coincident, bool& lower_own) {
+  const Tri& wt = arr.tris[w];
+  const Point& a = arr.points[wt.v[0]];
+  const Point& b = arr.points[wt.v[1]];
+  const Point& e = arr.points[wt.v[2]];
+  const Point& c = q.c;
+  const CGAL::Orientation o1 = CGAL::orientation(a, b, e, c);
+  const CGAL::Orientation o2 = CGAL::orientation(a, b, e, q.c2);
+  if (o1 == CGAL::COPLANAR) {
+    if (o2 == CGAL::COPLANAR) {
+      if (K::Triangle_3(a, b, e).has_on(c)) throw BadPoint{};
+      throw Degenerate{};  // D lies in the plane: cannot tell
     }
-    Sides r;
-    r.coincident = coincident;
-    r.lower_own = lower_own;
-    r.minus.resize(leaves);
-    r.plus.resize(leaves);
-    for (size_t l = 0; l < leaves; ++l) {
-      // w(+) = w(−) − S
-      if (side == CGAL::POSITIVE) {
-        r.plus[l] = count[l];
-        r.minus[l] = count[l] + s[l];
-      } else {
-        r.minus[l] = count[l];
-        r.plus[l] = count[l] - s[l];
-      }
-    }
-    return r;
+    const K::Triangle_3 tw(a, b, e);
+    if (!tw.has_on(c)) return;
+    // c inside or on the boundary of w: interior only is usable.
+    if (CGAL::collinear(a, b, c) || CGAL::collinear(b, e, c) || CGAL::collinear(e, a, c))
+      throw BadPoint{};
+    const CGAL::Sign sigma = CGAL::sign(CGAL::cross_product(b - a, e - a) * nt);
+    s[wt.leaf] += sigma == CGAL::POSITIVE ? 1 : -1;
+    coincident[wt.leaf] = 1;
+    lower_own = lower_own || (wt.leaf == arr.tris[t].leaf && w < t);
+    return;
   }
-  throw InternalError("evaluate: every ray direction was degenerate");
+  if (o2 == CGAL::COPLANAR || o1 == o2) return;
+  const CGAL::Orientation s1 = CGAL::orientation(c, q.c2, a, b);
+  const CGAL::Orientation s2 = CGAL::orientation(c, q.c2, b, e);
+  const CGAL::Orientation s3 = CGAL::orientation(c, q.c2, e, a);
+  const bool has_pos = s1 == CGAL::POSITIVE || s2 == CGAL::POSITIVE || s3 == CGAL::POSITIVE;
+  const bool has_neg = s1 == CGAL::NEGATIVE || s2 == CGAL::NEGATIVE || s3 == CGAL::NEGATIVE;
+  if (has_pos && has_neg) return;  // the line passes beside the triangle
+  if (s1 == CGAL::COPLANAR || s2 == CGAL::COPLANAR || s3 == CGAL::COPLANAR)
+    throw Degenerate{};  // through an edge or a vertex
+  count[wt.leaf] += o1 == CGAL::NEGATIVE ? 1 : -1;
+}
+
+/// The tris each ray of `qs` (all with direction `dir`) may meet, as (query, tri) pairs sorted:
+/// a conservative filter in doubles — tri and ray projected along D onto a plane orthogonal to
+/// it, boxes widened by `pad` (far above the rounding of the projections) — over one pass of all
+/// tris, the rays bucketed in a grid of their projected points.
+std::vector<std::pair<uint32_t, uint32_t>> ray_candidates(const Arrangement& arr,
+                                                          const std::vector<Query>& qs,
+                                                          const std::vector<uint32_t>& members,
+                                                          int dir, double reach, size_t grain) {
+  const double* d0 = kDirections[dir];
+  const double dn = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
+  const double D[3] = {d0[0] / dn, d0[1] / dn, d0[2] / dn};
+  const int k = std::abs(D[0]) < std::abs(D[1]) ? (std::abs(D[0]) < std::abs(D[2]) ? 0 : 2)
+                                                : (std::abs(D[1]) < std::abs(D[2]) ? 1 : 2);
+  double U[3] = {0, 0, 0};  // U = normalize(D × e_k), V = D × U
+  U[(k + 1) % 3] = D[(k + 2) % 3];
+  U[(k + 2) % 3] = -D[(k + 1) % 3];
+  const double un = std::sqrt(U[0] * U[0] + U[1] * U[1] + U[2] * U[2]);
+  for (double& x : U) x /= un;
+  const double V[3] = {D[1] * U[2] - D[2] * U[1], D[2] * U[0] - D[0] * U[2],
+                       D[0] * U[1] - D[1] * U[0]};
+  auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const double length = reach * dn, pad = 1e-7 * reach;
+  // Rays: projected origin (u, v) and extent [d, d + length] along D; a grid over (u, v).
+  const size_t m = members.size();
+  std::vector<double> ru(m), rv(m), rd(m);
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (size_t i = 0; i < m; ++i) {
+    const double* o = qs[members[i]].o;
+    ru[i] = dot(o, U), rv[i] = dot(o, V), rd[i] = dot(o, D);
+    lo[0] = std::min(lo[0], ru[i]), hi[0] = std::max(hi[0], ru[i]);
+    lo[1] = std::min(lo[1], rv[i]), hi[1] = std::max(hi[1], rv[i]);
+  }
+  const int g = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(m))), 1, 256);
+  const double cu = std::max((hi[0] - lo[0]) / g, 1e-300), cv = std::max((hi[1] - lo[1]) / g, 1e-300);
+  auto cell = [&](double x, double l, double w) {
+    return std::clamp(static_cast<int>(std::floor((x - l) / w)), 0, g - 1);
+  };
+  std::vector<uint32_t> start(static_cast<size_t>(g) * g + 1, 0), order(m);
+  for (size_t i = 0; i < m; ++i) ++start[cell(ru[i], lo[0], cu) * g + cell(rv[i], lo[1], cv) + 1];
+  for (size_t x = 1; x < start.size(); ++x) start[x] += start[x - 1];
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < m; ++i)
+      order[fill[cell(ru[i], lo[0], cu) * g + cell(rv[i], lo[1], cv)]++] = static_cast<uint32_t>(i);
+  }
+  const size_t n = arr.tris.size(), chunk = grain * 64;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found((n + chunk - 1) / chunk);
+  parallel_for(found.size(), 1, [&](size_t c0, size_t c1) {
+    for (size_t c = c0; c < c1; ++c)
+      for (size_t t = c * chunk; t < std::min(n, (c + 1) * chunk); ++t) {
+        double bl[3] = {INFINITY, INFINITY, INFINITY}, bh[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (uint32_t v : arr.tris[t].v) {
+          const Vec3& p = arr.originals[v];
+          const double xyz[3] = {p.x, p.y, p.z};
+          const double pr[3] = {dot(xyz, U), dot(xyz, V), dot(xyz, D)};
+          for (int a = 0; a < 3; ++a) bl[a] = std::min(bl[a], pr[a]), bh[a] = std::max(bh[a], pr[a]);
+        }
+        for (double& x : bl) x -= pad;
+        for (double& x : bh) x += pad;
+        if (bh[0] < lo[0] || bl[0] > hi[0] || bh[1] < lo[1] || bl[1] > hi[1]) continue;
+        const int i0 = cell(bl[0], lo[0], cu), i1 = cell(bh[0], lo[0], cu);
+        const int j0 = cell(bl[1], lo[1], cv), j1 = cell(bh[1], lo[1], cv);
+        for (int i = i0; i <= i1; ++i)
+          for (int j = j0; j <= j1; ++j)
+            for (uint32_t x = start[i * g + j]; x < start[i * g + j + 1]; ++x) {
+              const uint32_t r = order[x];
+              if (ru[r] < bl[0] || ru[r] > bh[0] || rv[r] < bl[1] || rv[r] > bh[1]) continue;
+              if (bh[2] < rd[r] || bl[2] > rd[r] + length) continue;
+              found[c].emplace_back(members[r], static_cast<uint32_t>(t));
+            }
+      }
+  });
+  std::vector<std::pair<uint32_t, uint32_t>> out;
+  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Windings of every leaf on both sides of each root piece's tri at an exact interior point
+/// (see notation): all rays of a round in one batch per direction; a ray that meets an edge, a
+/// vertex or a plane exactly is shot again in the next direction, a point on the boundary of a
+/// coplanar triangle is replaced by the next interior point. Deterministic (tri order).
+std::vector<Sides> batch_windings(const Arrangement& arr, const std::vector<uint32_t>& roots,
+                                  size_t leaves, double reach, size_t grain) {
+  std::vector<Sides> out(roots.size());
+  std::vector<Query> qs(roots.size());
+  for (uint32_t r = 0; r < roots.size(); ++r) qs[r].root = r;
+  std::vector<uint32_t> pending(roots.size());
+  for (uint32_t r = 0; r < roots.size(); ++r) pending[r] = r;
+  // Sets c, c2 and side for q's weight and direction, skipping directions parallel to t.
+  auto prepare = [&](Query& q) {
+    const Piece& piece = arr.pieces[roots[q.root]];
+    const Tri& tri = arr.tris[piece.tri];
+    const K::Vector_3 nt = CGAL::cross_product(arr.points[tri.v[1]] - arr.points[tri.v[0]],
+                                               arr.points[tri.v[2]] - arr.points[tri.v[0]]);
+    const auto& wgt = kWeights[q.weight];
+    const Point& p0 = arr.points[piece.v[0]];
+    const Point& p1 = arr.points[piece.v[1]];
+    const Point& p2 = arr.points[piece.v[2]];
+    q.c = CGAL::ORIGIN + ((p0 - CGAL::ORIGIN) * K::FT(wgt[0]) + (p1 - CGAL::ORIGIN) * K::FT(wgt[1]) +
+                          (p2 - CGAL::ORIGIN) * K::FT(wgt[2])) /
+                             K::FT(wgt[0] + wgt[1] + wgt[2]);
+    q.o[0] = CGAL::to_double(q.c.x()), q.o[1] = CGAL::to_double(q.c.y());
+    q.o[2] = CGAL::to_double(q.c.z());
+    for (; q.dir < kDirectionCount; ++q.dir) {
+      const double* dir = kDirections[q.dir];
+      const K::Vector_3 d(reach * dir[0], reach * dir[1], reach * dir[2]);
+      q.side = CGAL::sign(d * nt);
+      if (q.side == CGAL::ZERO) continue;
+      q.c2 = q.c + d;
+      return;
+    }
+    throw InternalError("evaluate: every ray direction was degenerate");
+  };
+  parallel_for(pending.size(), std::max<size_t>(1, grain / 16), [&](size_t b, size_t e) {
+    for (size_t x = b; x < e; ++x) prepare(qs[pending[x]]);
+  });
+  while (!pending.empty()) {
+    std::vector<std::pair<uint32_t, uint32_t>> cand;
+    for (int dir = 0; dir < kDirectionCount; ++dir) {
+      std::vector<uint32_t> members;
+      for (uint32_t r : pending)
+        if (qs[r].dir == dir) members.push_back(r);
+      if (members.empty()) continue;
+      const auto c = ray_candidates(arr, qs, members, dir, reach, grain);
+      cand.insert(cand.end(), c.begin(), c.end());
+    }
+    std::sort(cand.begin(), cand.end());
+    // 0: done; 1: next direction; 2: next interior point.
+    std::vector<uint8_t> outcome(pending.size(), 0);
+    parallel_for(pending.size(), std::max<size_t>(1, grain / 16), [&](size_t b, size_t e) {
+      std::vector<int> count, s;
+      std::vector<uint8_t> coincident;
+      for (size_t x = b; x < e; ++x) {
+        const Query& q = qs[pending[x]];
+        const uint32_t t = arr.pieces[roots[q.root]].tri;
+        const Tri& tri = arr.tris[t];
+        bool lower_own = false;
+        const K::Vector_3 nt = CGAL::cross_product(arr.points[tri.v[1]] - arr.points[tri.v[0]],
+                                                   arr.points[tri.v[2]] - arr.points[tri.v[0]]);
+        count.assign(leaves, 0), s.assign(leaves, 0), coincident.assign(leaves, 0);
+        auto it = std::lower_bound(cand.begin(), cand.end(), std::pair<uint32_t, uint32_t>{q.root, 0});
+        try {
+          for (; it != cand.end() && it->first == q.root; ++it)
+            ray_test(arr, it->second, q, nt, t, count, s, coincident, lower_own);
+        } catch (const Degenerate&) {
+          outcome[x] = 1;
+          continue;
+        } catch (const BadPoint&) {
+          outcome[x] = 2;
+          continue;
+        }
+        Sides& r = out[q.root];
+        r.coincident = coincident;
+        r.lower_own = lower_own;
+        r.minus.resize(leaves);
+        r.plus.resize(leaves);
+        for (size_t l = 0; l < leaves; ++l) {
+          // w(+) = w(−) − S
+          if (q.side == CGAL::POSITIVE) {
+            r.plus[l] = count[l];
+            r.minus[l] = count[l] + s[l];
+          } else {
+            r.minus[l] = count[l];
+            r.plus[l] = count[l] - s[l];
+          }
+        }
+      }
+    });
+    std::vector<uint32_t> again;
+    for (size_t x = 0; x < pending.size(); ++x) {
+      if (outcome[x] == 0) continue;
+      Query& q = qs[pending[x]];
+      if (outcome[x] == 1) {
+        ++q.dir;
+      } else {
+        if (++q.weight == kWeightCount)
+          throw InternalError("evaluate: no usable interior point in a patch");
+        q.dir = 0;
+      }
+      if (q.dir == kDirectionCount) throw InternalError("evaluate: every ray direction was degenerate");
+      again.push_back(pending[x]);
+    }
+    parallel_for(again.size(), 1, [&](size_t b, size_t e) {
+      for (size_t x = b; x < e; ++x) prepare(qs[again[x]]);
+    });
+    pending = std::move(again);
+  }
+  return out;
 }
 
 }  // namespace
@@ -179,30 +321,43 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
                                                    size_t grain, std::vector<uint32_t>& leaves_of,
                                                    size_t& patches) {
   const size_t n = arr.pieces.size();
-  // Patches: union pieces of one leaf across non-cut edges.
-  std::vector<std::pair<uint64_t, uint32_t>> edges;
-  edges.reserve(3 * n);
-  for (uint32_t p = 0; p < n; ++p)
-    for (int e = 0; e < 3; ++e)
-      edges.emplace_back(edge_key(arr.pieces[p].v[e], arr.pieces[p].v[(e + 1) % 3]), p);
-  std::sort(edges.begin(), edges.end());
+  // Patches: union pieces of one leaf across non-cut edges. Edges are bucketed by their smaller
+  // point id (counting sort), each bucket's few entries sorted by the larger id: linear, where
+  // sorting all 3n (edge, piece) pairs cost most of this step on large scenes.
+  std::vector<uint32_t> start(arr.points.size() + 1, 0);
+  for (const Piece& piece : arr.pieces)
+    for (int e = 0; e < 3; ++e) ++start[std::min(piece.v[e], piece.v[(e + 1) % 3]) + 1];
+  for (size_t x = 1; x < start.size(); ++x) start[x] += start[x - 1];
+  std::vector<std::pair<uint32_t, uint32_t>> bucket(3 * n);  // (larger id, piece)
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t p = 0; p < n; ++p)
+      for (int e = 0; e < 3; ++e) {
+        const uint32_t u = arr.pieces[p].v[e], w = arr.pieces[p].v[(e + 1) % 3];
+        bucket[fill[std::min(u, w)]++] = {std::max(u, w), p};
+      }
+  }
   UnionFind uf(n);
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-    if (!std::binary_search(arr.cuts.begin(), arr.cuts.end(), edges[i].first))
-      for (size_t x = i; x < j; ++x)
-        for (size_t y = x + 1; y < j; ++y) {
-          const uint32_t px = edges[x].second, py = edges[y].second;
-          const uint32_t tx = arr.pieces[px].tri, ty = arr.pieces[py].tri;
-          const uint32_t leaf = arr.tris[tx].leaf;
-          if (arr.tris[ty].leaf != leaf) continue;
-          if (tx != ty && !arr.solo.empty() && (arr.solo[tx] || arr.solo[ty])) continue;
-          size_t same = 0;  // pieces of this leaf at the edge: two on one sheet, more across sheets
-          for (size_t z = i; z < j; ++z) same += arr.tris[arr.pieces[edges[z].second].tri].leaf == leaf;
-          if (same == 2) uf.unite(px, py);
-        }
-    i = j;
+  for (uint32_t lo = 0; lo + 1 < start.size(); ++lo) {
+    const auto first = bucket.begin() + start[lo], last = bucket.begin() + start[lo + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && j->first == i->first) ++j;
+      if (!std::binary_search(arr.cuts.begin(), arr.cuts.end(), edge_key(lo, i->first)))
+        for (auto x = i; x != j; ++x)
+          for (auto y = x + 1; y != j; ++y) {
+            const uint32_t px = x->second, py = y->second;
+            const uint32_t tx = arr.pieces[px].tri, ty = arr.pieces[py].tri;
+            const uint32_t leaf = arr.tris[tx].leaf;
+            if (arr.tris[ty].leaf != leaf) continue;
+            if (tx != ty && !arr.solo.empty() && (arr.solo[tx] || arr.solo[ty])) continue;
+            size_t same = 0;  // pieces of this leaf at the edge: two on one sheet, more across sheets
+            for (auto z = i; z != j; ++z) same += arr.tris[arr.pieces[z->second].tri].leaf == leaf;
+            if (same == 2) uf.unite(px, py);
+          }
+      i = j;
+    }
   }
   std::vector<uint32_t> roots;
   std::vector<uint32_t> patch_of(n);
@@ -211,41 +366,20 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
   }
   patches = roots.size();
 
-  const Solid ts = tri_solid(solid, arr);
-  const Bvh bvh(ts);
-  const Bbox box = bvh.bounds();
   double reach = 1;
-  for (int a = 0; a < 3; ++a) reach = std::max({reach, std::abs(box.min[a]), std::abs(box.max[a])});
+  for (const Vec3& p : arr.originals)
+    reach = std::max({reach, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   reach *= 8;  // |D| ≥ reach ≥ 4·(scene diameter): c + D leaves the box
 
   // Decision per patch: 0 drop, 1 keep, 2 keep reversed.
   const size_t leaves = solid.leaves.size();
+  const std::vector<Sides> all = batch_windings(arr, roots, leaves, reach, grain);
   std::vector<uint8_t> decision(roots.size(), 0);
   parallel_for(roots.size(), std::max<size_t>(1, grain / 16), [&](size_t begin, size_t end) {
     std::vector<uint8_t> in_minus(leaves), in_plus(leaves);
     for (size_t r = begin; r < end; ++r) {
       const Piece& piece = arr.pieces[roots[r]];
-      const Point& p0 = arr.points[piece.v[0]];
-      const Point& p1 = arr.points[piece.v[1]];
-      const Point& p2 = arr.points[piece.v[2]];
-      // Interior points of the piece: barycentric weights (w0, w1, w2)/sum, all positive.
-      constexpr int kWeights[][3] = {{1, 1, 1}, {2, 3, 5}, {7, 3, 2}, {3, 11, 5}, {13, 2, 7}};
-      Sides sides;
-      bool found = false;
-      for (const auto& wgt : kWeights) {
-        const K::FT sum(wgt[0] + wgt[1] + wgt[2]);
-        const Point c = CGAL::ORIGIN +
-                        ((p0 - CGAL::ORIGIN) * K::FT(wgt[0]) + (p1 - CGAL::ORIGIN) * K::FT(wgt[1]) +
-                         (p2 - CGAL::ORIGIN) * K::FT(wgt[2])) /
-                            sum;
-        try {
-          sides = windings(arr, bvh, leaves, piece.tri, c, reach);
-          found = true;
-          break;
-        } catch (const BadPoint&) {
-        }
-      }
-      if (!found) throw InternalError("evaluate: no usable interior point in a patch");
+      const Sides& sides = all[r];
       const uint32_t leaf = arr.tris[piece.tri].leaf;
       bool lower = false;
       for (size_t l = 0; l < leaf; ++l) lower = lower || sides.coincident[l];

@@ -122,9 +122,11 @@ bool self_intersects(const PolygonMesh& mesh) {
   box_ptrs.reserve(boxes.size());
   for (const Box& b : boxes) box_ptrs.push_back(&b);
 
-  // In parallel: boxes sorted by their lower x bound and cut into slabs of kSlab; each slab is
-  // tested against itself and against the later boxes that start before the slab's upper x bound
-  // (every overlapping pair is tested exactly once, in the slab of its earlier box). The answer
+  // In parallel: boxes sorted by their lower z bound and cut into slabs of kSlab; each slab is
+  // tested against itself and against the later boxes that start before the slab's upper z bound
+  // (every overlapping pair is tested exactly once, in the slab of its earlier box). Slabs are
+  // thin in z, not x: CGAL's box intersection scans along x at the bottom of its recursion, which
+  // degenerates to all pairs among boxes that all overlap in x. The answer
   // does not depend on the slabs or threads; a found intersection stops the other slabs early.
   constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
   constexpr size_t kSlab = 4096;
@@ -145,7 +147,7 @@ bool self_intersects(const PolygonMesh& mesh) {
     return found;
   }
   std::sort(box_ptrs.begin(), box_ptrs.end(), [](const Box* x, const Box* y) {
-    return x->min_coord(0) < y->min_coord(0) || (x->min_coord(0) == y->min_coord(0) && x < y);
+    return x->min_coord(2) < y->min_coord(2) || (x->min_coord(2) == y->min_coord(2) && x < y);
   });
   const size_t slabs = (box_ptrs.size() + kSlab - 1) / kSlab;
   parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
@@ -156,7 +158,7 @@ bool self_intersects(const PolygonMesh& mesh) {
       CGAL::Bbox_3 slab;
       for (const Box* b : mine) slab += b->bbox();
       later.clear();
-      for (size_t i = hi; i < box_ptrs.size() && box_ptrs[i]->min_coord(0) <= slab.xmax(); ++i)
+      for (size_t i = hi; i < box_ptrs.size() && box_ptrs[i]->min_coord(2) <= slab.zmax(); ++i)
         if (CGAL::do_overlap(box_ptrs[i]->bbox(), slab)) later.push_back(box_ptrs[i]);
       try {
         CGAL::box_self_intersection_d(mine.begin(), mine.end(), test_pair, kCutoff);
