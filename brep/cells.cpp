@@ -35,7 +35,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A wall coordinate as the shortest text that reads back to it.
+/// A wall coordinate with 17 significant digits (it reads back to the same double).
 std::string wall_text(double c) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", c);
