@@ -168,12 +168,14 @@ struct OpenRule {
   const GwnForest* forest = nullptr;
   GwnOptions options;
   bool direct = false;
+  /// Per tree, every point's membership from gwn_inside_bulk (empty: decide per point).
+  std::vector<std::vector<uint8_t>> bulk;
 };
 
 PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> winding,
                   std::span<const uint8_t> on_surface, std::vector<uint8_t>& inside,
                   const std::function<const LeafTriangles&()>& triangles,
-                  const OpenRule& open = {}) {
+                  const OpenRule& open = {}, size_t point = 0) {
   inside.resize(winding.size());
   bool any_on = false;
   for (size_t l = 0; l < winding.size(); ++l) {
@@ -181,7 +183,9 @@ PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> windi
     any_on |= on_surface[l] != 0;
     if (open.forest == nullptr || open.forest->tree_of_leaf[l] < 0 || on_surface[l]) continue;
     const GwnTree& t = open.forest->trees[open.forest->tree_of_leaf[l]];
-    if (open.direct) {
+    if (!open.bulk.empty()) {
+      inside[l] = open.bulk[open.forest->tree_of_leaf[l]][point];
+    } else if (open.direct) {
       const GwnValue v = generalized_winding_direct(t, q);
       inside[l] = std::abs(std::abs(v.w) - 0.5) > v.error && std::abs(v.w) > 0.5;
     } else {
@@ -246,6 +250,8 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
     if (options.gwn == nullptr) own = build_gwn(solid, options.gwn_options);
     open.forest = options.gwn != nullptr ? options.gwn : &*own;
     open.options = options.gwn_options;
+    for (size_t k = 0; k < open.forest->trees.size(); ++k)  // every point at once (closure)
+      open.bulk.push_back(open_inside(*open.forest, k, points, open.options));
   }
   // Many queries: first label the grid cells no surface touches (exact, see cell_grid.h). Only
   // for closed leaves: an open leaf's membership changes away from its surface too.
@@ -292,7 +298,7 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
         out[ids[j]] = finish(points[ids[j]], solid.tree,
                              std::span<const int>(winding).subspan(j * leaves, leaves),
                              std::span<const uint8_t>(on_surface).subspan(j * leaves, leaves),
-                             inside, triangles, open);
+                             inside, triangles, open, ids[j]);
     }
   });
   return out;

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 
+#include "covering/classify.h"
 #include "covering/detail/triangles.h"
+#include "solid/union_find.h"
+#include "solid/parallel.h"
 #include "solid/predicates.h"
 
 namespace cover {
@@ -75,7 +79,7 @@ void build_node(GwnTree& tree, uint32_t at, uint32_t first, uint32_t count, uint
 }
 
 /// First-order far field of a node at q (see gwn.h), in steradians.
-double far_field(const GwnTree::Node& n, const Vec3& q) {
+double far_field(const GwnTree::Node& n, const Vec3& q) {  // NOLINT
   const Vec3 y = n.center - q;
   const double d2 = dot(y, y), d = std::sqrt(d2), inv3 = 1 / (d2 * d), inv5 = inv3 / d2;
   double value = dot(n.dipole, y) * inv3;
@@ -108,6 +112,90 @@ double triangle_winding(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
   return 2 * std::atan2(det, denom) * kInv4Pi;
 }
 
+namespace {
+
+bool vec_less(const Vec3& a, const Vec3& b) {
+  if (a.x != b.x) return a.x < b.x;
+  if (a.y != b.y) return a.y < b.y;
+  return a.z < b.z;
+}
+
+/// Builds tree.nodes over tree.tris.
+void build_tree(GwnTree& tree, const GwnOptions& options) {
+  if (tree.tris.empty()) return;
+  tree.nodes.reserve(2 * tree.tris.size() / std::max<uint32_t>(1, options.leaf_size / 2) + 2);
+  tree.nodes.resize(1);
+  build_node(tree, 0, 0, static_cast<uint32_t>(tree.tris.size()),
+             std::max<uint32_t>(1, options.leaf_size));
+}
+
+/// The closure of the leaf whose covering triangles are `tris` (see GwnClosure).
+GwnClosure make_closure(const std::vector<GwnTree::Tri>& tris, const GwnOptions& options) {
+  // Net multiplicity of each directed edge, by exact coordinates: +1 for a → b, −1 for b → a,
+  // kept under the lexicographically smaller endpoint first.
+  auto less = [](const std::pair<Vec3, Vec3>& x, const std::pair<Vec3, Vec3>& y) {
+    if (x.first != y.first) return vec_less(x.first, y.first);
+    return vec_less(x.second, y.second);
+  };
+  std::map<std::pair<Vec3, Vec3>, int64_t, decltype(less)> net(less);
+  auto add = [&](const Vec3& a, const Vec3& b) {
+    if (a == b) return;
+    if (vec_less(a, b))
+      ++net[{a, b}];
+    else
+      --net[{b, a}];
+  };
+  for (const GwnTree::Tri& t : tris) {
+    add(t.a, t.b);
+    add(t.b, t.c);
+    add(t.c, t.a);
+  }
+  // Chain edges u → v (with multiplicity), their vertices numbered, components by union-find.
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  std::map<Vec3, uint32_t, decltype(&vec_less)> index(&vec_less);
+  std::vector<Vec3> verts;
+  auto id = [&](const Vec3& p) {
+    const auto [it, added] = index.try_emplace(p, static_cast<uint32_t>(verts.size()));
+    if (added) verts.push_back(p);
+    return it->second;
+  };
+  for (const auto& [e, m] : net) {
+    if (m == 0) continue;
+    const uint32_t a = id(e.first), b = id(e.second);
+    for (int64_t k = 0; k < std::abs(m); ++k) edges.push_back(m > 0 ? std::pair{a, b} : std::pair{b, a});
+  }
+  UnionFind uf(static_cast<uint32_t>(verts.size()));
+  for (const auto& [a, b] : edges) uf.unite(a, b);
+  std::vector<Vec3> sum(verts.size(), Vec3{0, 0, 0});
+  std::vector<double> count(verts.size(), 0);
+  for (uint32_t v = 0; v < verts.size(); ++v) {
+    sum[uf.find(v)] = sum[uf.find(v)] + verts[v];
+    count[uf.find(v)] += 1;
+  }
+  GwnClosure c;
+  PolygonMesh mesh;
+  auto push = [&](const Vec3& a, const Vec3& b, const Vec3& d) {
+    const uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back(a);
+    mesh.vertices.push_back(b);
+    mesh.vertices.push_back(d);
+    mesh.add_face({base, base + 1, base + 2});
+  };
+  for (const GwnTree::Tri& t : tris) push(t.a, t.b, t.c);
+  for (const auto& [u, v] : edges) {
+    const uint32_t r = uf.find(u);
+    const Vec3 apex = (1.0 / count[r]) * sum[r];
+    push(verts[v], verts[u], apex);
+    c.cone.tris.push_back({verts[v], verts[u], apex});
+  }
+  c.solid = make_leaf(std::move(mesh), "closure");
+  c.bvh = std::make_shared<const Bvh>(c.solid);
+  build_tree(c.cone, options);
+  return c;
+}
+
+}  // namespace
+
 GwnForest build_gwn(const Solid& solid, const GwnOptions& options) {
   GwnForest forest;
   forest.tree_of_leaf.assign(solid.leaves.size(), -1);
@@ -119,13 +207,141 @@ GwnForest build_gwn(const Solid& solid, const GwnOptions& options) {
     GwnTree& tree = forest.trees.emplace_back();
     for (uint32_t i = lt.leaf_start[l]; i < lt.leaf_start[l + 1]; ++i)
       tree.tris.push_back({lt.tris[i].a, lt.tris[i].b, lt.tris[i].c});
-    if (tree.tris.empty()) continue;
-    tree.nodes.reserve(2 * tree.tris.size() / std::max<uint32_t>(1, options.leaf_size / 2) + 2);
-    tree.nodes.resize(1);
-    build_node(tree, 0, 0, static_cast<uint32_t>(tree.tris.size()),
-               std::max<uint32_t>(1, options.leaf_size));
+    forest.closures.push_back(make_closure(tree.tris, options));
+    build_tree(tree, options);
   }
   return forest;
+}
+
+namespace {
+
+/// Decides |W − w_C(q)| > 1/2 by bounds alone where it can: unexpanded nodes are bounded by
+/// |w_node| ≤ A/(4π·gap²) (a surface of area A seen from at least gap away subtends at most
+/// A/gap² sr), leaves are summed exactly; the node with the largest bound is expanded first,
+/// at most kMaxExpansions times. Returns false when undecided.
+bool decide_by_bounds(const GwnTree& cone, const Vec3& q, int32_t W, bool& inside) {
+  constexpr int kMaxExpansions = 48;
+  struct Item {
+    double bound;
+    uint32_t node;
+  };
+  auto lower = [](const Item& x, const Item& y) { return x.bound < y.bound; };
+  Item heap[2 * kMaxExpansions + 2];
+  int size = 0, unbounded = 0;  // unbounded: nodes whose sphere contains q (no bound)
+  double exact = 0, open_bound = 0, rounding = 0, peak = 0;
+  auto push = [&](uint32_t id) {
+    const GwnTree::Node& n = cone.nodes[id];
+    const double gap = norm(n.center - q) - n.radius;
+    const double b = gap > 0 ? n.area / (gap * gap) * kInv4Pi * (1 + 1e-12) : INFINITY;
+    heap[size++] = {b, id};
+    std::push_heap(heap, heap + size, lower);
+    if (std::isinf(b)) {
+      ++unbounded;
+    } else {
+      open_bound += b;
+      peak = std::max(peak, open_bound);
+    }
+  };
+  auto decided = [&] {
+    if (unbounded > 0) return false;
+    // The running sum (additions and removals, < 200 of them) is off by at most 1e-12·peak.
+    const double slack = std::max(open_bound, 0.0) + 1e-12 * peak + rounding;
+    const double lo = W - exact - slack, hi = W - exact + slack;
+    if (hi < 0.5 && lo > -0.5) return inside = false, true;
+    if (lo > 0.5 || hi < -0.5) return inside = true, true;
+    return false;
+  };
+  push(0);
+  for (int e = 0; e < kMaxExpansions && size > 0; ++e) {
+    if (decided()) return true;
+    std::pop_heap(heap, heap + size, lower);
+    const Item top = heap[--size];
+    if (std::isinf(top.bound))
+      --unbounded;
+    else
+      open_bound -= top.bound;
+    const GwnTree::Node& n = cone.nodes[top.node];
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        const GwnTree::Tri& t = cone.tris[i];
+        exact += triangle_winding(t.a, t.b, t.c, q);
+      }
+      rounding += n.count * kGwnRoundingPerTerm;
+    } else {
+      push(n.first);
+      push(n.first + 1);
+    }
+  }
+  return decided();
+}
+
+}  // namespace
+
+std::vector<uint8_t> open_inside(const GwnForest& forest, size_t k, std::span<const Vec3> points,
+                                 const GwnOptions& options) {
+  const GwnTree& tree = forest.trees[k];
+  const GwnClosure& c = forest.closures[k];
+  std::vector<uint8_t> inside(points.size(), 0);
+  if (tree.nodes.empty()) return inside;
+  const LeafWindings lw = leaf_windings(c.solid, *c.bvh, points);
+  parallel_for(points.size(), 256, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (lw.on_surface[i] == 0) {
+        bool in = false;
+        if (decide_by_bounds(c.cone, points[i], lw.winding[i], in)) {
+          inside[i] = in;
+          continue;
+        }
+        const GwnValue v = generalized_winding(c.cone, points[i], options.cone_beta);
+        const double w = lw.winding[i] - v.w;  // w_S = W − w_C
+        if (std::abs(std::abs(w) - 0.5) > v.error) {
+          inside[i] = std::abs(w) > 0.5;
+          continue;
+        }
+      }
+      inside[i] = gwn_inside(tree, points[i], options);
+    }
+  });
+  return inside;
+}
+
+GwnValue generalized_winding_budget(const GwnTree& tree, const Vec3& q, double budget) {
+  GwnValue out;
+  if (tree.nodes.empty()) return out;
+  // A node is expanded unless its truncation bound is within its share of the budget,
+  // budget·A_node/A_total: the far-field error then sums to at most `budget`.
+  const double scale = budget * 4 * std::numbers::pi / std::max(tree.nodes[0].area, 1e-300);
+  double omega = 0, error = 0;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const GwnTree::Node& n = tree.nodes[stack[--top]];
+    const double d = norm(n.center - q);
+    const double gap = d - n.radius;
+    if (n.area > 0 && gap > 0.25 * n.radius) {
+      const double g2 = gap * gap;
+      const double bound = 3 * n.area * n.radius * n.radius / (g2 * g2);
+      if (bound <= scale * n.area) {
+        omega += far_field(n, q) * kInv4Pi;
+        error += bound * kInv4Pi + kGwnRoundingPerTerm;
+        continue;
+      }
+    }
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        const GwnTree::Tri& t = tree.tris[i];
+        omega += triangle_winding(t.a, t.b, t.c, q);
+      }
+      error += n.count * kGwnRoundingPerTerm;
+      continue;
+    }
+    stack[top++] = n.first + 1;
+    stack[top++] = n.first;
+  }
+  out.w = omega;
+  out.error = error;
+  return out;
 }
 
 GwnValue generalized_winding(const GwnTree& tree, const Vec3& q, double beta) {
@@ -167,6 +383,139 @@ GwnValue generalized_winding_direct(const GwnTree& tree, const Vec3& q) {
   for (const GwnTree::Tri& t : tree.tris) out.w += triangle_winding(t.a, t.b, t.c, q);
   out.error = static_cast<double>(tree.tris.size()) * kGwnRoundingPerTerm;
   return out;
+}
+
+bool generalized_winding_box(const GwnTree& tree, const Bbox& box, double beta, GwnValue& out) {
+  out = {};
+  if (tree.nodes.empty()) return true;
+  const Vec3 c = 0.5 * (box.min + box.max);
+  const double h = 0.5 * norm(box.max - box.min) * (1 + 1e-12);
+  double omega = 0, error = 0;
+  uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const GwnTree::Node& n = tree.nodes[stack[--top]];
+    const double d = norm(n.center - c);
+    const double gap = d - h - n.radius;  // every point of the box to every point of the node
+    if (n.area > 0 && d > beta * (n.radius + h)) {
+      omega += far_field(n, c) * kInv4Pi;
+      const double g = d - n.radius;
+      error += (3 * n.area * n.radius * n.radius / (g * g * g * g) +
+                2 * n.area * h / (gap * gap * gap)) * kInv4Pi + kGwnRoundingPerTerm;
+      continue;
+    }
+    if (n.count > 0) {
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
+        const GwnTree::Tri& t = tree.tris[i];
+        // Distance from the triangle's box to the box: a lower bound of their distance.
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) {
+          const double lo = std::min({t.a[a], t.b[a], t.c[a]}), hi = std::max({t.a[a], t.b[a], t.c[a]});
+          const double g = std::max({lo - box.max[a], box.min[a] - hi, 0.0});
+          d2 += g * g;
+        }
+        if (!(d2 > 0)) return false;
+        const double dist = std::sqrt(d2) * (1 - 1e-12);
+        const double area = 0.5 * norm(cross(t.b - t.a, t.c - t.a));
+        omega += triangle_winding(t.a, t.b, t.c, c);
+        error += 2 * area * h / (dist * dist * dist) * kInv4Pi + kGwnRoundingPerTerm;
+      }
+      if (error > 0.5) return false;  // cannot decide anything any more
+      continue;
+    }
+    stack[top++] = n.first + 1;
+    stack[top++] = n.first;
+  }
+  out.w = omega;
+  out.error = error;
+  return true;
+}
+
+namespace {
+
+/// Decides ids (points inside `box`) into `inside`: the whole box when its bound allows, else
+/// eight sub-boxes, down to kFewPoints points or kMaxLevels levels.
+void decide_box(const GwnTree& tree, std::span<const Vec3> points, const Bbox& box,
+                std::span<uint32_t> ids, int level, const GwnOptions& options,
+                std::vector<uint8_t>& inside) {
+  constexpr size_t kFewPoints = 6;
+  constexpr int kMaxLevels = 12;
+  if (ids.empty()) return;
+  if (ids.size() > kFewPoints && level < kMaxLevels) {
+    GwnValue v;
+    if (generalized_winding_box(tree, box, options.beta, v) &&
+        std::abs(std::abs(v.w) - 0.5) > v.error) {
+      const uint8_t in = std::abs(v.w) > 0.5;
+      for (uint32_t i : ids) inside[i] = in;
+      return;
+    }
+    // Eight children split at the centre (points on a plane go to the lower side).
+    const Vec3 c = 0.5 * (box.min + box.max);
+    auto octant = [&](uint32_t i) {
+      const Vec3& p = points[i];
+      return (p.x > c.x ? 1 : 0) | (p.y > c.y ? 2 : 0) | (p.z > c.z ? 4 : 0);
+    };
+    size_t count[9] = {};
+    for (uint32_t i : ids) ++count[octant(i) + 1];
+    for (int o = 1; o < 9; ++o) count[o] += count[o - 1];
+    std::vector<uint32_t> sorted(ids.size());
+    size_t at[8];
+    std::copy(count, count + 8, at);
+    for (uint32_t i : ids) sorted[at[octant(i)]++] = i;
+    std::copy(sorted.begin(), sorted.end(), ids.begin());
+    for (int o = 0; o < 8; ++o) {
+      Bbox child;
+      child.min = {o & 1 ? c.x : box.min.x, o & 2 ? c.y : box.min.y, o & 4 ? c.z : box.min.z};
+      child.max = {o & 1 ? box.max.x : c.x, o & 2 ? box.max.y : c.y, o & 4 ? box.max.z : c.z};
+      decide_box(tree, points, child, ids.subspan(count[o], count[o + 1] - count[o]), level + 1,
+                 options, inside);
+    }
+    return;
+  }
+  for (uint32_t i : ids) inside[i] = gwn_inside(tree, points[i], options);
+}
+
+}  // namespace
+
+std::vector<uint8_t> gwn_inside_bulk(const GwnTree& tree, std::span<const Vec3> points,
+                                     const GwnOptions& options) {
+  std::vector<uint8_t> inside(points.size(), 0);
+  if (points.empty() || tree.nodes.empty()) return inside;
+  // A G³ grid of the points' box (exact cell bounds from the same doubles as the split), bucketed,
+  // then each cell decided on its own thread.
+  Bbox all;
+  for (const Vec3& p : points) all.add(p);
+  const int g = points.size() >= 4096 ? 8 : 1;
+  auto cell_of = [&](const Vec3& p) {
+    int idx = 0;
+    for (int a = 2; a >= 0; --a) {
+      const double ext = all.max[a] - all.min[a];
+      int k = ext > 0 ? static_cast<int>((p[a] - all.min[a]) / ext * g) : 0;
+      k = std::clamp(k, 0, g - 1);
+      idx = idx * g + k;
+    }
+    return idx;
+  };
+  const size_t cells = static_cast<size_t>(g) * g * g;
+  std::vector<uint32_t> start(cells + 1, 0), ids(points.size());
+  std::vector<uint32_t> cell(points.size());
+  for (size_t i = 0; i < points.size(); ++i) ++start[(cell[i] = cell_of(points[i])) + 1];
+  for (size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  {
+    std::vector<uint32_t> at(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < points.size(); ++i) ids[at[cell[i]]++] = static_cast<uint32_t>(i);
+  }
+  parallel_for(cells, 1, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      if (start[c] == start[c + 1]) continue;
+      Bbox box;  // the cell's points' own box: tight, and exact for them
+      for (uint32_t k = start[c]; k < start[c + 1]; ++k) box.add(points[ids[k]]);
+      decide_box(tree, points, box, std::span(ids).subspan(start[c], start[c + 1] - start[c]), 0,
+                 options, inside);
+    }
+  });
+  return inside;
 }
 
 bool gwn_inside(const GwnTree& tree, const Vec3& q, const GwnOptions& options) {

@@ -21,18 +21,25 @@
 //                 the larger refine_beta, then by the direct sum over every triangle (error: the
 //                 rounding allowance only). A direct-sum value within that allowance of ±1/2 is
 //                 classified outside (the nonzero rule's tie, stated in docs/design.md).
+//   closure       many points at once (open_inside, used by classify): w = W − w_C through a
+//                 closed cap (GwnClosure), W exact; see docs/design.md "Open leaves".
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
+#include "covering/bvh.h"
 #include "solid/solid.h"
 
 namespace cover {
 
 struct GwnOptions {
-  double beta = 3.0;           ///< first pass: expand nodes with d ≤ beta·r (> 1)
+  double beta = 4.0;           ///< first pass: expand nodes with d ≤ beta·r (> 1)
   double refine_beta = 16.0;   ///< second pass, for points the first pass cannot decide
   uint32_t leaf_size = 8;      ///< triangles per tree leaf, at most
+  /// open_inside: β of the cones' w_C where the bounds alone do not decide (see open_inside).
+  double cone_beta = 3.0;
 };
 
 /// Rounding allowance per evaluated term (solid angles / 4π of order 1, each formed with a
@@ -63,12 +70,34 @@ struct GwnValue {
   double error = 0;
 };
 
+/// The closure of an open leaf S (why: w_S = W − w_C with W an exact integer): its boundary
+/// chain ∂S (each directed edge's net multiplicity over the covering triangles, exact
+/// coordinates; always a cycle) is capped by cones C — per connected component of the chain, the
+/// triangles (v, u, apex) over its edges u → v, apex = the component's vertex centroid — so S + C
+/// is a closed 2-cycle whose winding number W (the exact crossing count, classify.h
+/// leaf_windings) is an integer, and w_S = W − w_C. Only the cones' w_C (few triangles, near the
+/// holes) is then summed by its tree; W carries no error.
+struct GwnClosure {
+  Solid solid;                ///< one leaf: S's covering triangles + the cone triangles
+  std::shared_ptr<const Bvh> bvh;  ///< of `solid`
+  GwnTree cone;               ///< tree over the cone triangles only
+};
+
 /// One tree per open leaf of a solid; tree_of_leaf[l] = index into trees, or −1 (closed leaf).
 struct GwnForest {
   std::vector<int32_t> tree_of_leaf;
   std::vector<GwnTree> trees;
+  std::vector<GwnClosure> closures;  ///< by tree index
   bool empty() const { return trees.empty(); }
 };
+
+/// Membership of every point in the open leaf of trees[k], through the closure: |W − w_C| > 1/2
+/// decided first by bounds alone (unexpanded cone nodes bounded by A/(4π·gap²), the largest
+/// expanded first, 48 expansions at most), then by w_C at cone_beta with its error bound, else
+/// (and on the closure's surface) by gwn_inside on the leaf's own tree. The same memberships as
+/// gwn_inside, faster. Parallel; thread-count independent.
+std::vector<uint8_t> open_inside(const GwnForest& forest, size_t k, std::span<const Vec3> points,
+                                 const GwnOptions& options = {});
 
 /// Builds the tree of every open leaf (Leaf::open) over its non-degenerate covering triangles.
 GwnForest build_gwn(const Solid& solid, const GwnOptions& options = {});
@@ -76,11 +105,27 @@ GwnForest build_gwn(const Solid& solid, const GwnOptions& options = {});
 /// Fast evaluation with the far-field expansion at `beta` and its error bound.
 GwnValue generalized_winding(const GwnTree& tree, const Vec3& q, double beta);
 
+/// Fast evaluation where a node is expanded unless its truncation bound fits its area share of
+/// `budget` (so the far-field error is at most `budget`, plus rounding).
+GwnValue generalized_winding_budget(const GwnTree& tree, const Vec3& q, double budget);
+
 /// The direct sum over every triangle (error: the rounding allowance).
 GwnValue generalized_winding_direct(const GwnTree& tree, const Vec3& q);
 
 /// Membership |w(q)| > 1/2, decided as stated above. Precondition: q is on no triangle.
 bool gwn_inside(const GwnTree& tree, const Vec3& q, const GwnOptions& options = {});
+
+/// w over an axis-aligned box: out.w = w at the box's centre c and out.error bounds |w(x) − out.w|
+/// for every x in the box — the far-field truncation at c plus the variation over the box,
+/// h·sup|∇w| with h the half diagonal and |∇_q Ω| ≤ 2·A/dist³ per node or triangle (the kernel's
+/// first derivatives are ≤ 2/|y|³). False when a triangle's box meets the box (no bound).
+bool generalized_winding_box(const GwnTree& tree, const Bbox& box, double beta, GwnValue& out);
+
+/// gwn_inside for many points at once (the same memberships): boxes of points whose whole box is
+/// decided by generalized_winding_box are settled together, the others split in eight down to a
+/// few points, which are decided one by one. Parallel; results do not depend on the threads.
+std::vector<uint8_t> gwn_inside_bulk(const GwnTree& tree, std::span<const Vec3> points,
+                                     const GwnOptions& options = {});
 
 /// Solid angle of triangle abc seen from q, over 4π (exact sign handling, see above).
 double triangle_winding(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q);

@@ -108,7 +108,7 @@ TEST_F(OpenMeshes, InfoReportsRepairAndRule) {
   EXPECT_GT(leaf["repair"]["welded_vertices"].get<int>(), 0);
   EXPECT_EQ(leaf["rule"], "generalized winding number");
   EXPECT_GT(leaf["boundary_edge_fraction"].get<double>(), 0.0);
-  r = run_cover("volume " + q(wuson));
+  r = run_cover("volume --rays 16 " + q(wuson));
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.err.find("duplicate vertices welded"), std::string::npos);
   EXPECT_NE(r.err.find("open mesh: 412 boundary edges"), std::string::npos);
