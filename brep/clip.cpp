@@ -16,8 +16,11 @@
 //      shared plane vertices and the fans of pinched vertices.
 #include "brep/clip.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "brep/detail/clip_internal.h"
@@ -30,7 +33,7 @@ namespace cover::brep {
 namespace {
 
 /// Ear-clip face f (its input vertices, in the projection of its Newell normal) with split_face.
-void triangulate_face(HalfedgeMesh& m, uint32_t f) {
+void triangulate_face(HalfedgeMesh& m, uint32_t f, std::vector<uint32_t>& source) {
   std::vector<uint32_t> he;
   Vec3 normal;
   {
@@ -74,16 +77,15 @@ void triangulate_face(HalfedgeMesh& m, uint32_t f) {
   std::vector<uint32_t> out = he;
   for (size_t t = 0; t + 1 < tris.size(); ++t)
     out[tris[t][0]] = m.split_face(out[tris[t][0]], out[tris[t][2]]);
+  source.resize(m.face_slots(), source[f]);
 }
 
-}  // namespace
-
-ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& options) {
+/// The clip by `plane`, or, when `through` is set, by the exact plane through those points (then
+/// `plane` is a rounded stand-in whose normal's dominant component has the exact sign).
+ClipResult clip_impl(const PolygonMesh& mesh, const Plane& plane,
+                     const std::optional<std::array<Vec3, 3>>& through, int axis,
+                     const ClipOptions& options) {
   const Vec3 n = plane.normal;
-  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) ||
-      !std::isfinite(plane.offset))
-    throw InputError("clip plane: expected finite numbers");
-  if (n.x == 0 && n.y == 0 && n.z == 0) throw InputError("clip plane: the normal must be non-zero");
   HalfedgeMesh m = HalfedgeMesh::from_polygon_mesh(mesh);
   {
     int64_t border = 0;
@@ -92,7 +94,8 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   }
   detail::CapContext ctx;
   ctx.plane = plane;
-  ctx.axis = dominant_axis(n);
+  ctx.through = through;
+  ctx.axis = axis;
   ctx.original_vertices = m.vertex_slots();
   ctx.input_points.assign(mesh.vertices.begin(), mesh.vertices.end());
   ctx.triangulate = options.triangulate_caps;
@@ -102,12 +105,16 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   std::vector<int8_t> side(n0);
   parallel_for(n0, 4096, [&](size_t b, size_t e) {
     for (size_t v = b; v < e; ++v)
-      side[v] = static_cast<int8_t>(plane_side(n, plane.offset, mesh.vertices[v]));
+      side[v] = static_cast<int8_t>(
+          through ? orient3d((*through)[0], (*through)[1], (*through)[2], mesh.vertices[v])
+                  : plane_side(n, plane.offset, mesh.vertices[v]));
   });
   auto sign_of = [&](uint32_t v) { return v < n0 ? side[v] : int8_t{0}; };
 
   // 2. Crossing faces that meet the plane more than twice are triangulated first.
   const uint32_t f0 = m.face_slots();
+  std::vector<uint32_t> source(f0);  // per face: the input face it is part of (kNoSource: cap)
+  for (uint32_t f = 0; f < f0; ++f) source[f] = f;
   for (uint32_t f = 0; f < f0; ++f) {
     bool pos = false, neg = false;
     int meets = 0;
@@ -119,7 +126,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
       meets += (a == 0) + (a * b < 0);
       h = m.next(h);
     } while (h != m.face_halfedge(f));
-    if (pos && neg && meets > 2) triangulate_face(m, f);
+    if (pos && neg && meets > 2) triangulate_face(m, f, source);
   }
 
   // 3. Split crossing edges (each constructed point once, shared by both sides).
@@ -130,7 +137,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
     const Vec3 pa = mesh.vertices[a], pb = mesh.vertices[b];
     // Provisional position; cap.cpp replaces it by the exact point rounded to nearest.
     const double t = (plane.offset - dot(n, pa)) / (dot(n, pb) - dot(n, pa));
-    m.split_edge(h, pa + t * (pb - pa));
+    m.split_edge(h, pa + (std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.5) * (pb - pa));
     ctx.constructed_from.push_back({a, b});
   }
 
@@ -150,6 +157,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
     if (!(pos && neg)) continue;
     if (nz != 2) throw InternalError("clip: crossing face does not meet the plane twice");
     m.split_face(zero[0], zero[1]);
+    source.resize(m.face_slots(), source[f]);
   }
 
   // 5. Sides of faces (0 above, 1 below).
@@ -180,6 +188,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   // 7. Caps, then one vertex per fan.
   const auto cap_start = std::chrono::steady_clock::now();
   const detail::CapStats stats = detail::add_caps(m, ctx);
+  source.resize(m.face_slots(), kNoSource);
   const double cap_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - cap_start).count();
   ClipResult result;
@@ -211,9 +220,43 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
         h = m.next(h);
       } while (h != m.face_halfedge(f));
       out.add_face(ids);
+      (s == 0 ? result.above : result.below).face_source.push_back(source[f]);
     }
   }
   return result;
+}
+
+}  // namespace
+
+ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& options) {
+  const Vec3 n = plane.normal;
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) ||
+      !std::isfinite(plane.offset))
+    throw InputError("clip plane: expected finite numbers");
+  if (n.x == 0 && n.y == 0 && n.z == 0) throw InputError("clip plane: the normal must be non-zero");
+  return clip_impl(mesh, plane, std::nullopt, dominant_axis(n), options);
+}
+
+ClipResult clip(const PolygonMesh& mesh, const std::array<Vec3, 3>& through,
+                const ClipOptions& options) {
+  for (const Vec3& p : through)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError("clip plane: expected finite points");
+  const Vec3 &p0 = through[0], &p1 = through[1], &p2 = through[2];
+  const Vec3 approx = cross(p1 - p0, p2 - p0);
+  // The cap projects along an axis where the exact normal is non-zero (orient2d is the sign of
+  // that component of (p1 − p0) × (p2 − p0)); the largest rounded component first.
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int a, int b) { return std::abs(approx[a]) > std::abs(approx[b]); });
+  for (int axis : order) {
+    const int sign = orient2d(p0, p1, p2, axis);
+    if (sign == 0) continue;
+    double c[3] = {approx.x, approx.y, approx.z};
+    c[axis] = sign * std::max(std::abs(c[axis]), std::numeric_limits<double>::min());
+    const Vec3 normal{c[0], c[1], c[2]};
+    return clip_impl(mesh, Plane{normal, dot(normal, p0)}, through, axis, options);
+  }
+  throw InputError("clip plane: the three points are collinear");
 }
 
 }  // namespace cover::brep
