@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <unordered_map>
@@ -37,12 +38,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// The most (relative to the input volume) the hull of an uncut piece may add.
+constexpr double kUncutTolerance = 1e-11;
+
 struct ReflexEdge {
   uint32_t a, b;  ///< input vertices (a → b in triangle f)
   uint32_t f, g;  ///< input triangles
   double bend;    ///< angle between the outward normals (larger: more reflex)
-  double dent;    ///< volume of the tetrahedron (a, b, w, x) of the two triangles: what the hull
-                  ///< of a piece may add where the edge is left uncut
 };
 
 /// A mesh edge u → v of a piece (vertex ids of the piece) on reflex edge `reflex`, between
@@ -86,24 +88,17 @@ class Decomposer {
         if (orient3d(P[a], P[b], P[w], P[x]) <= 0) continue;  // convex or flat
         const Vec3 nf = unit_normal(P[v[0]], P[v[1]], P[v[2]]);
         const Vec3 ng = unit_normal(P[gv[0]], P[gv[1]], P[gv[2]]);
-        const double dent = std::abs(dot(cross(P[b] - P[a], P[w] - P[a]), P[x] - P[a])) / 6;
-        reflex_.push_back({a, b, f, g, std::acos(std::clamp(dot(nf, ng), -1.0, 1.0)), dent});
+        const Vec3 s = cross(nf, ng);  // |s| = sin(bend): accurate for small bends, unlike acos
+        reflex_.push_back({a, b, f, g, std::atan2(std::sqrt(dot(s, s)), dot(nf, ng))});
       }
     }
-    // Nearly flat reflex edges (decompose.h "flat budget"): smallest dents first, while their sum
-    // stays within the budget; the others are cut.
-    std::vector<uint32_t> order(reflex_.size());
-    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](uint32_t x, uint32_t y) { return reflex_[x].dent < reflex_[y].dent; });
-    double budget = o_.flat_volume * signed_volume(t_), used = 0;
+    // Nearly flat reflex edges (decompose.h "nearly flat") are left uncut.
     std::vector<uint8_t> flat(reflex_.size(), 0);
-    for (uint32_t i : order) {
-      if (used + reflex_[i].dent > budget) break;
-      used += reflex_[i].dent;
-      flat[i] = 1;
-      ++nearly_flat_;
-    }
+    for (uint32_t i = 0; i < reflex_.size(); ++i)
+      if (reflex_[i].bend <= o_.flat_angle) {
+        flat[i] = 1;
+        ++nearly_flat_;
+      }
     std::vector<ReflexEdge> cut;
     for (uint32_t i = 0; i < reflex_.size(); ++i)
       if (!flat[i]) {
@@ -196,8 +191,24 @@ class Decomposer {
       else if (side == 0) side = s;
       else if (s != side) return 0;
     }
-    if (zero) return side == 0 && own ? -1 : 0;
-    return side;
+    if (!zero) return side;
+    if (side != 0) return 0;
+    // In the plane: the clip sends a face of zero area above, else by its normal (below when the
+    // plane was built from the face's own vertices).
+    return collinear(p, f) ? 1 : (own ? -1 : 0);
+  }
+
+  /// All points of face f lie on one line (exactly): a face of zero area.
+  static bool collinear(const Piece& p, uint32_t f) {
+    const auto v = p.mesh.face(f);
+    const auto& P = p.mesh.vertices;
+    size_t j = 1;
+    while (j < v.size() && P[v[j]] == P[v[0]]) ++j;
+    if (j == v.size()) return true;
+    for (size_t i = 1; i < v.size(); ++i)
+      for (int axis = 0; axis < 3; ++axis)
+        if (orient2d(P[v[0]], P[v[j]], P[v[i]], axis) != 0) return false;
+    return true;
   }
 
   /// Planes through the stored points of mesh edge e that part its two faces (checked exactly
@@ -330,6 +341,7 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
 
   // Depth-first: a stack of pieces, finished pieces in the order they are found.
   std::vector<Piece> todo, finished, parts;
+  std::vector<size_t> uncut;  // finished pieces that kept reflex edges
   todo.push_back(std::move(root));
   while (!todo.empty()) {
     Piece p = std::move(todo.back());
@@ -343,13 +355,35 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
     // before, so the first one should do; otherwise the next candidate is tried).
     bool done = false;
     for (const auto& cut : d.rank(p, r)) {
-      const ClipResult c = clip(p.mesh, cut.plane);
+      ClipResult c;
       ++result.cuts;
+      try {
+        c = clip(p.mesh, cut.plane);
+      } catch (const std::runtime_error&) {
+        // InputError / NotComputable: the piece or its rings are degenerate through rounding
+        // (the input itself was checked above): the next plane
+        ++result.failed_cuts;
+        continue;
+      }
       parts.clear();
       components(c.below, p.source, parts);
       components(c.above, p.source, parts);
       const Vec3 a = p.mesh.vertices[cut.edge.u], b = p.mesh.vertices[cut.edge.v];
-      done = std::none_of(parts.begin(), parts.end(), [&](const Piece& part) {
+      // Rounding can leave a half that is no closed 2-manifold (a constructed point rounded
+      // across a sliver): then this plane fails too.
+      // Components of zero exact volume (slivers whose rounded volume is ~0 or negative) are
+      // dropped.
+      const double sliver = kUncutTolerance * result.input_volume;
+      const bool valid = std::all_of(parts.begin(), parts.end(), [&](const Piece& part) {
+        try {
+          const BrepReport v = validate(HalfedgeMesh::from_polygon_mesh(part.mesh));
+          return v.closed && v.manifold && signed_volume(part.mesh) > -sliver;
+        } catch (const InputError&) {
+          return false;
+        }
+      });
+      std::erase_if(parts, [&](const Piece& part) { return signed_volume(part.mesh) <= 0; });
+      done = valid && std::none_of(parts.begin(), parts.end(), [&](const Piece& part) {
         for (const PieceEdge& e : d.reflex_of(part)) {
           const Vec3 x = part.mesh.vertices[e.u], y = part.mesh.vertices[e.v];
           if (e.reflex == cut.edge.reflex && ((x == a && y == b) || (x == b && y == a))) return true;
@@ -359,9 +393,15 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
       if (done) break;
       ++result.failed_cuts;
     }
-    if (!done)
-      throw NotComputable("decompose: no cut removes any of a piece's " +
-                          std::to_string(r.size()) + " reflex edges");
+    if (!done) {
+      // Every plane through its reflex edges is undone by rounding (slivers of zero area next
+      // to the edge): the piece is kept as it is, and its hull must then change it by no more
+      // than rounding (checked below).
+      ++result.uncut_pieces;
+      uncut.push_back(finished.size());
+      finished.push_back(std::move(p));
+      continue;
+    }
     for (Piece& part : parts) todo.push_back(std::move(part));
     if (static_cast<int64_t>(todo.size() + finished.size()) > options.max_pieces)
       throw NotComputable("decompose: more than " + std::to_string(options.max_pieces) + " pieces");
@@ -381,6 +421,11 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
       change[i] = std::abs(signed_volume(hulls[i]) - signed_volume(finished[i].mesh));
     }
   });
+  for (size_t i : uncut)
+    if (change[i] > kUncutTolerance * result.input_volume)
+      throw NotComputable("decompose: a piece whose reflex edges no plane could cut changes by " +
+                          std::to_string(change[i] / result.input_volume * 1e12) + "e-12" +
+                          " of the volume in its hull");
   for (size_t i = 0; i < hulls.size(); ++i) {
     result.hull_change = std::max(result.hull_change, change[i] / result.input_volume);
     if (hulls[i].face_count() == 0) continue;

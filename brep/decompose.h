@@ -20,12 +20,15 @@
 //                 scored with each of their planes: (input reflex edges the plane crosses, which
 //                 the cut splits in two) − (those lying in the plane, which it removes as well);
 //                 the lowest score is cut first. docs/design.md gives the measured effect.
-//   flat budget   an exactly reflex edge bent by a rounding-sized angle (the diagonal of a quad
+//   nearly flat   an exactly reflex edge bent by a rounding-sized angle (the diagonal of a quad
 //                 that is planar only up to rounding) cannot be cut reliably: its half-angle
-//                 plane is itself decided by rounding. Its dent — the tetrahedron of its two
-//                 triangles, which is what the hull adds where it is left uncut — is measured,
-//                 and the smallest dents are left uncut while their sum stays under
-//                 DecomposeOptions::flat_volume × input volume (1e-12 by default).
+//                 plane is itself decided by rounding. Edges bent by at most
+//                 DecomposeOptions::flat_angle are left uncut; the hull then fills their dent
+//                 (≈ edge length × face width² × angle / 2).
+//   fallback      a plane whose clip fails or leaves its edge in a half (rounded points of
+//                 earlier cuts next to the edge) is discarded and the next candidate tried; a
+//                 piece that no candidate cuts is finished as it is, and its hull may then add
+//                 at most 1e-11 of the input volume (else NotComputable).
 //   rounding      clip.h rounds constructed points to the nearest double, so a finished piece is
 //                 convex in exact arithmetic but its written points may be very slightly
 //                 non-convex. Each finished piece is therefore replaced by the exact convex hull
@@ -43,11 +46,9 @@ struct DecomposeOptions {
   bool face_planes = true;  ///< also score the planes of the edge's two faces (not only the
                             ///< half-angle plane); true: fewer pieces on mechanical parts
   int candidates = 16;      ///< reflex edges scored per cut (the most reflex first); ≥ 1
-  /// Flat budget, relative to the input volume: reflex edges whose dents (see below) sum to at
-  /// most this are left uncut, smallest first. Exactly reflex but bent by ~1e-8 rad or less
-  /// (e.g. the diagonal of a non-planar quad), their cut planes are decided by rounding; the
-  /// hull then fills them. 0: cut every reflex edge.
-  double flat_volume = 1e-12;
+  /// Reflex edges bent by at most this angle (radians, between the faces' normals) are left
+  /// uncut (decompose.h "nearly flat"); 0: cut every reflex edge.
+  double flat_angle = 1e-8;
   int64_t max_pieces = 1000000;  ///< NotComputable beyond this many pieces
 };
 
@@ -55,9 +56,12 @@ struct DecomposeResult {
   /// The convex pieces: closed, outward triangle meshes (exact convex hulls, see above).
   std::vector<PolygonMesh> pieces;
   int64_t reflex_edges = 0;  ///< reflex edges of the input (after triangulating its faces)
-  int64_t nearly_flat_edges = 0;  ///< of those, left uncut by DecomposeOptions::flat_volume
+  int64_t nearly_flat_edges = 0;  ///< of those, left uncut by DecomposeOptions::flat_angle
   int64_t cuts = 0;          ///< plane clips made (failed_cuts included)
   int64_t failed_cuts = 0;   ///< clips discarded because they left their edge in a half
+  /// Pieces finished with reflex edges that every plane failed to cut (rounding slivers); their
+  /// hulls add at most 1e-11 of the input volume each (else NotComputable).
+  int64_t uncut_pieces = 0;
   double input_volume = 0;   ///< signed volume of the input
   double volume = 0;         ///< Σ piece volumes
   /// max over pieces of |hull volume − cut piece volume| / input volume: what the hull changed

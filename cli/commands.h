@@ -99,6 +99,12 @@ struct EvaluateCommandOptions {
   std::string output;  ///< -o OUT.(off|obj|stl|ply)
 };
 
+struct DecomposeCommandOptions {
+  std::string input;
+  std::string output;        ///< -o DIR: piece_NNNN.EXT and pieces.json
+  std::string ext = ".off";  ///< --ext: the pieces' mesh format
+};
+
 int run_info(const InfoOptions& o, const CommonOptions& common);
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
@@ -108,5 +114,7 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common);
 int run_clip(const ClipCommandOptions& o, const CommonOptions& common);
 int run_octree(const OctreeCommandOptions& o, const CommonOptions& common);
 int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
+/// `cover decompose`: exact convex pieces by reflex-edge plane cuts (brep/decompose.h).
+int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common);
 
 }  // namespace cover::cli

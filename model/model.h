@@ -28,6 +28,7 @@
 
 #include "boolean/evaluate.h"
 #include "brep/clip.h"
+#include "brep/decompose.h"
 #include "covering/bvh.h"
 #include "covering/classify.h"
 #include "covering/ray.h"
@@ -175,6 +176,13 @@ class Model {
   /// unbounded result, or (as brep::clip) a leaf that is open or non-manifold; NotComputable
   /// when the cap cannot be built.
   brep::ClipResult clip(const brep::Plane& plane, const brep::ClipOptions& options = {}) const;
+
+  /// Exact convex decomposition (brep/decompose.h) of the result: a single leaf as it is, any
+  /// other expression evaluated first. Every piece is a closed, outward triangle mesh, convex
+  /// exactly on its doubles; the volumes sum to the result's. \throws InputError for an unbounded
+  /// result or (as brep::decompose) an open, non-manifold or inside-out leaf; NotComputable when
+  /// a cut cannot be made (a self-intersecting leaf).
+  brep::DecomposeResult decompose(const brep::DecomposeOptions& options = {}) const;
 
  private:
   struct State;
