@@ -131,6 +131,14 @@ outward with cap triangles on the plane; V float64 (n, 3), F int64 (m, 3): polyg
 triangulated exactly (a fan for convex faces). A single leaf is clipped as it
 is, any other expression is evaluated first (as `cover clip`). Not interruptible.)";
 
+inline constexpr const char* kDecompose = R"(Exact convex decomposition by plane cuts through reflex edges: a list of pieces.
+
+Each piece is (V float64 (n, 3), F int64 (m, 3)): a closed, outward triangle mesh, convex
+exactly on its doubles (every vertex on the inner side of, or on, every face's plane); the
+volumes sum to the result's. A single leaf is decomposed as it is, any other expression is
+evaluated first (as `cover decompose`). Raises InputError for an open or inside-out leaf.
+Not interruptible.)";
+
 inline constexpr const char* kInfo = R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
 faces, leaves, bbox ((min, max) or None) and leaves_info (one dict per leaf: name, origin,
 vertices, faces, closed, manifold, oriented, outward, boundary_edges, nonmanifold_edges,

@@ -298,6 +298,17 @@ py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
   return py::make_tuple(mesh_arrays(r.above.mesh), mesh_arrays(r.below.mesh));
 }
 
+py::list decompose_pieces(const Model& model, Threads threads) {
+  brep::DecomposeResult r;
+  {
+    KernelScope scope(threads);
+    r = model.decompose();
+  }
+  py::list pieces;
+  for (const PolygonMesh& piece : r.pieces) pieces.append(mesh_arrays(piece));
+  return pieces;
+}
+
 py::object bbox_list(const Bbox& b) {
   if (b.empty()) return py::none();
   py::list box;
@@ -521,6 +532,7 @@ PYBIND11_MODULE(_cover, m) {
            doc::kRender)
       .def("evaluate", &evaluate_mesh, py::kw_only(), threads, doc::kEvaluate)
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
+      .def("decompose", &decompose_pieces, py::kw_only(), threads, doc::kDecompose)
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 
   m.def("load",
