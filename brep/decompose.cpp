@@ -7,9 +7,10 @@
 //   piece    a polygon mesh with, per face, its triangle in T (kNoSource for a cap)
 //   R(piece) the reflex edges of R that the piece still holds: an edge of the piece between a
 //            face from f and one from g (decompose.h "provenance")
-// A piece is cut by one plane through an edge of R(piece); each half is split into connected
-// components, each a new piece. R(component) ⊆ R(piece) − {cut edge}, so every root-to-leaf path
-// has at most |R| cuts; the guard below checks it.
+// A piece is cut by one plane through the stored points of one of its reflex mesh edges; each
+// half is split into connected components, each a new piece. A cut creates no reflex edge and
+// removes its own, so R(component) ⊆ R(piece) in exact terms; the loop checks that the cut's mesh
+// edge is gone from every half (else the next plane is tried) and bounds the piece count.
 #include "brep/decompose.h"
 
 #include <algorithm>
