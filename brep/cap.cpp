@@ -120,9 +120,18 @@ class CapBuilder {
  private:
   // --- exact points ------------------------------------------------------------------------
   FT parameter(uint32_t a, uint32_t b) const {
-    const Vec3& n = c_.plane.normal;
     const Vec3& pa = c_.input_points[a];
     const Vec3& pb = c_.input_points[b];
+    if (c_.through) {  // plane through p0, p1, p2: det[p1 − p0, p2 − p0, x − p0] is affine in x
+      const auto& [p0, p1, p2] = *c_.through;
+      const FT ux = FT(p1.x) - p0.x, uy = FT(p1.y) - p0.y, uz = FT(p1.z) - p0.z;
+      const FT vx = FT(p2.x) - p0.x, vy = FT(p2.y) - p0.y, vz = FT(p2.z) - p0.z;
+      const FT nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+      const FT da = nx * (FT(pa.x) - p0.x) + ny * (FT(pa.y) - p0.y) + nz * (FT(pa.z) - p0.z);
+      const FT db = nx * (FT(pb.x) - p0.x) + ny * (FT(pb.y) - p0.y) + nz * (FT(pb.z) - p0.z);
+      return da / (da - db);
+    }
+    const Vec3& n = c_.plane.normal;
     const FT na = FT(n.x) * pa.x + FT(n.y) * pa.y + FT(n.z) * pa.z;
     const FT nb = FT(n.x) * pb.x + FT(n.y) * pb.y + FT(n.z) * pb.z;
     return (FT(c_.plane.offset) - na) / (nb - na);
@@ -147,7 +156,9 @@ class CapBuilder {
     const L num = L(c_.plane.offset) - na, den = nb - na;
     const L err_num = 2 * 6 * u * (ma + std::abs(L(c_.plane.offset)));
     const L err_den = 2 * 8 * u * (ma + mb);
-    const bool filtered = std::abs(num) > 2 * err_num && std::abs(den) > 2 * err_den;
+    // A plane through three points has no (n, d) in doubles: its points go the exact way.
+    const bool filtered =
+        !c_.through && std::abs(num) > 2 * err_num && std::abs(den) > 2 * err_den;
     const L t = num / den;
     const L rel_t = filtered ? 2 * (err_num / std::abs(num) + err_den / std::abs(den) + u) : 0;
     std::optional<FT> exact_t;
@@ -159,7 +170,7 @@ class CapBuilder {
         *out[k] = ak;
         continue;
       }
-      if (n[(k + 1) % 3] == 0 && n[(k + 2) % 3] == 0) {  // plane n_k·x_k = d: x_k = d/n_k exactly
+      if (!c_.through && n[(k + 1) % 3] == 0 && n[(k + 2) % 3] == 0) {  // plane n_k·x_k = d: x_k = d/n_k exactly
         *out[k] = c_.plane.offset / n[k];                // (IEEE division rounds to nearest)
         continue;
       }

@@ -16,8 +16,11 @@
 //      shared plane vertices and the fans of pinched vertices.
 #include "brep/clip.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "brep/detail/clip_internal.h"
@@ -79,14 +82,12 @@ void triangulate_face(HalfedgeMesh& m, uint32_t f, std::vector<uint32_t>& source
   }
 }
 
-}  // namespace
-
-ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& options) {
+/// The clip by `plane`, or, when `through` is set, by the exact plane through those points (then
+/// `plane` is a rounded stand-in whose normal's dominant component has the exact sign).
+ClipResult clip_impl(const PolygonMesh& mesh, const Plane& plane,
+                     const std::optional<std::array<Vec3, 3>>& through, int axis,
+                     const ClipOptions& options) {
   const Vec3 n = plane.normal;
-  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) ||
-      !std::isfinite(plane.offset))
-    throw InputError("clip plane: expected finite numbers");
-  if (n.x == 0 && n.y == 0 && n.z == 0) throw InputError("clip plane: the normal must be non-zero");
   HalfedgeMesh m = HalfedgeMesh::from_polygon_mesh(mesh);
   {
     int64_t border = 0;
@@ -95,7 +96,8 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   }
   detail::CapContext ctx;
   ctx.plane = plane;
-  ctx.axis = dominant_axis(n);
+  ctx.through = through;
+  ctx.axis = axis;
   ctx.original_vertices = m.vertex_slots();
   ctx.input_points.assign(mesh.vertices.begin(), mesh.vertices.end());
   ctx.triangulate = options.triangulate_caps;
@@ -105,7 +107,9 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   std::vector<int8_t> side(n0);
   parallel_for(n0, 4096, [&](size_t b, size_t e) {
     for (size_t v = b; v < e; ++v)
-      side[v] = static_cast<int8_t>(plane_side(n, plane.offset, mesh.vertices[v]));
+      side[v] = static_cast<int8_t>(
+          through ? orient3d((*through)[0], (*through)[1], (*through)[2], mesh.vertices[v])
+                  : plane_side(n, plane.offset, mesh.vertices[v]));
   });
   auto sign_of = [&](uint32_t v) { return v < n0 ? side[v] : int8_t{0}; };
 
@@ -136,7 +140,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
     const Vec3 pa = mesh.vertices[a], pb = mesh.vertices[b];
     // Provisional position; cap.cpp replaces it by the exact point rounded to nearest.
     const double t = (plane.offset - dot(n, pa)) / (dot(n, pb) - dot(n, pa));
-    m.split_edge(h, pa + t * (pb - pa));
+    m.split_edge(h, pa + (std::isfinite(t) ? std::clamp(t, 0.0, 1.0) : 0.5) * (pb - pa));
     ctx.constructed_from.push_back({a, b});
   }
 
@@ -187,6 +191,7 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
   // 7. Caps, then one vertex per fan.
   const auto cap_start = std::chrono::steady_clock::now();
   const detail::CapStats stats = detail::add_caps(m, ctx);
+  source.resize(m.face_slots(), kNoFace);
   const double cap_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - cap_start).count();
   ClipResult result;
@@ -223,6 +228,39 @@ ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& 
     }
   }
   return result;
+}
+
+}  // namespace
+
+ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& options) {
+  const Vec3 n = plane.normal;
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z) ||
+      !std::isfinite(plane.offset))
+    throw InputError("clip plane: expected finite numbers");
+  if (n.x == 0 && n.y == 0 && n.z == 0) throw InputError("clip plane: the normal must be non-zero");
+  return clip_impl(mesh, plane, std::nullopt, dominant_axis(n), options);
+}
+
+ClipResult clip(const PolygonMesh& mesh, const std::array<Vec3, 3>& through,
+                const ClipOptions& options) {
+  for (const Vec3& p : through)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError("clip plane: expected finite points");
+  const Vec3 &p0 = through[0], &p1 = through[1], &p2 = through[2];
+  const Vec3 approx = cross(p1 - p0, p2 - p0);
+  // The cap projects along an axis where the exact normal is non-zero (orient2d is the sign of
+  // that component of (p1 − p0) × (p2 − p0)); the largest rounded component first.
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int a, int b) { return std::abs(approx[a]) > std::abs(approx[b]); });
+  for (int axis : order) {
+    const int sign = orient2d(p0, p1, p2, axis);
+    if (sign == 0) continue;
+    double c[3] = {approx.x, approx.y, approx.z};
+    c[axis] = sign * std::max(std::abs(c[axis]), std::numeric_limits<double>::min());
+    const Vec3 normal{c[0], c[1], c[2]};
+    return clip_impl(mesh, Plane{normal, dot(normal, p0)}, through, axis, options);
+  }
+  throw InputError("clip plane: the three points are collinear");
 }
 
 }  // namespace cover::brep

@@ -7,6 +7,7 @@
 // shared by both halves and rounded to the nearest double; every 2D decision of the cap is exact
 // on the unrounded points (see cap.cpp).
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -48,5 +49,12 @@ struct ClipResult {
 /// Throws InputError for a zero or non-finite plane, an open or non-manifold mesh; NotComputable
 /// when the cap's rings are inconsistent (which only a self-intersecting input can cause).
 ClipResult clip(const PolygonMesh& mesh, const Plane& plane, const ClipOptions& options = {});
+
+/// The same clip by the exact plane through three points (not collinear; throws InputError
+/// otherwise): its positive side (`above`) is where the normal (p1 − p0) × (p2 − p0) points
+/// (orient3d > 0). The plane then contains p0, p1, p2 exactly, which a rounded (n, d) cannot:
+/// decompose.h cuts through a mesh edge this way.
+ClipResult clip(const PolygonMesh& mesh, const std::array<Vec3, 3>& through,
+                const ClipOptions& options = {});
 
 }  // namespace cover::brep

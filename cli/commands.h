@@ -105,6 +105,12 @@ struct EvaluateCommandOptions {
   std::string bounds;  ///< --bounds xmin,ymin,zmin,size: the cells' cube (with --cells)
 };
 
+struct DecomposeCommandOptions {
+  std::string input;
+  std::string output;        ///< -o DIR: piece_NNNN.EXT and pieces.json
+  std::string ext = ".off";  ///< --ext: the pieces' mesh format
+};
+
 int run_info(const InfoOptions& o, const CommonOptions& common);
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
@@ -116,5 +122,7 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common);
 int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
 /// `cover evaluate --cells N`: the result cut into N³ cells and glued back (brep/cells.h).
 int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& common);
+/// `cover decompose`: exact convex pieces by reflex-edge plane cuts (brep/decompose.h).
+int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common);
 
 }  // namespace cover::cli

@@ -233,6 +233,16 @@ int main(int argc, char** argv) {
                       "With --cells: the cells' cube xmin,ymin,zmin,size (default: the box, cubic)");
   add_common(eva_cmd, common);
 
+  cover::cli::DecomposeCommandOptions dec;
+  CLI::App* dec_cmd = app.add_subcommand(
+      "decompose", "Exact convex decomposition by plane cuts through reflex edges");
+  dec_cmd->add_option("INPUT", dec.input, "Closed mesh or scene (evaluated first)")->required();
+  dec_cmd->add_option("-o,--output", dec.output, "DIR: piece_NNNN.EXT and pieces.json")
+      ->required();
+  dec_cmd->add_option("--ext", dec.ext, "Pieces' mesh format: .off, .obj, .stl or .ply")
+      ->capture_default_str();
+  add_common(dec_cmd, common);
+
   if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty())
     return fail(2, unknown);
   try {
@@ -257,6 +267,7 @@ int main(int argc, char** argv) {
     if (oct_cmd->parsed()) return cover::cli::run_octree(oct, common);
     if (eva_cmd->parsed()) return cover::cli::run_evaluate(eva, common);
     if (clp_cmd->parsed()) return cover::cli::run_clip(clp, common);
+    if (dec_cmd->parsed()) return cover::cli::run_decompose(dec, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
     return fail(2, e.what());

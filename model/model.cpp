@@ -461,6 +461,15 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
   return out;
 }
 
+brep::DecomposeResult Model::decompose(const brep::DecomposeOptions& options) const {
+  if (empty()) return brep::DecomposeResult{};
+  if (!is_bounded(solid()))
+    throw InputError("decompose: the result is unbounded (a complement at the root)");
+  const Solid& s = solid();
+  const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
+  return brep::decompose(one_leaf ? leaf_mesh(s, 0) : cover::evaluate(s).mesh, options);
+}
+
 Model load(const std::filesystem::path& path, const LoadOptions& options) {
   LoadedInput in = load_input(path, options);
   return Model(std::move(in.solid), std::move(in.warnings));

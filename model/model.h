@@ -29,6 +29,7 @@
 #include "boolean/evaluate.h"
 #include "brep/cells.h"
 #include "brep/clip.h"
+#include "brep/decompose.h"
 #include "covering/bvh.h"
 #include "covering/classify.h"
 #include "covering/ray.h"
@@ -200,6 +201,13 @@ class Model {
   /// and brep::clip.
   CellsEvaluation evaluate_cells(int n, const std::optional<VoxelBounds>& bounds = std::nullopt,
                                  const brep::CellsOptions& options = {}) const;
+
+  /// Exact convex decomposition (brep/decompose.h) of the result: a single leaf as it is, any
+  /// other expression evaluated first. Every piece is a closed, outward triangle mesh, convex
+  /// exactly on its doubles; the volumes sum to the result's. \throws InputError for an unbounded
+  /// result or (as brep::decompose) an open, non-manifold or inside-out leaf; NotComputable when
+  /// a cut cannot be made (a self-intersecting leaf).
+  brep::DecomposeResult decompose(const brep::DecomposeOptions& options = {}) const;
 
  private:
   /// Open leaves: the voxels of `box` set where classify() of their centre is not outside.

@@ -142,6 +142,13 @@ Dict keys: cell (i, j, k), vertices float64 (n, 3), faces int64 (m, 3) (cap poly
 triangulated), volume, area, cap_area. Pieces come in (i, j, k) order, i slowest. bounds =
 (xmin, ymin, zmin, size) as in voxelize (default: the cube voxelize uses for res=n). The same
 pieces as `cover evaluate --cells n --pieces DIR`. Not interruptible.)";
+inline constexpr const char* kDecompose = R"(Exact convex decomposition by plane cuts through reflex edges: a list of pieces.
+
+Each piece is (V float64 (n, 3), F int64 (m, 3)): a closed, outward triangle mesh, convex
+exactly on its doubles (every vertex on the inner side of, or on, every face's plane); the
+volumes sum to the result's. A single leaf is decomposed as it is, any other expression is
+evaluated first (as `cover decompose`). Raises InputError for an open or inside-out leaf.
+Not interruptible.)";
 
 inline constexpr const char* kInfo = R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
 faces, leaves, bbox ((min, max) or None) and leaves_info (one dict per leaf: name, origin,

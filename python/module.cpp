@@ -327,6 +327,17 @@ py::list cell_pieces(const Model& model, int n, const py::object& bounds, Thread
   return out;
 }
 
+py::list decompose_pieces(const Model& model, Threads threads) {
+  brep::DecomposeResult r;
+  {
+    KernelScope scope(threads);
+    r = model.decompose();
+  }
+  py::list pieces;
+  for (const PolygonMesh& piece : r.pieces) pieces.append(mesh_arrays(piece));
+  return pieces;
+}
+
 py::object bbox_list(const Bbox& b) {
   if (b.empty()) return py::none();
   py::list box;
@@ -559,6 +570,7 @@ PYBIND11_MODULE(_cover, m) {
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
       .def("evaluate_cells", &cell_pieces, py::arg("n"), py::arg("bounds") = py::none(),
            py::kw_only(), threads, doc::kEvaluateCells)
+      .def("decompose", &decompose_pieces, py::kw_only(), threads, doc::kDecompose)
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 
   m.def("load",

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "brep/clip.h"
@@ -15,7 +16,9 @@ namespace cover::brep::detail {
 
 /// What the cap needs to know about the clipped mesh.
 struct CapContext {
-  Plane plane;
+  Plane plane;  ///< with `through`: a rounded plane whose normal[axis] has the exact sign
+  /// The plane through three points (clip.h), exact; then `plane` only orients the cap frame.
+  std::optional<std::array<Vec3, 3>> through;
   int axis = 2;                          ///< dominant axis of the normal (largest |n_k|)
   uint32_t original_vertices = 0;        ///< vertex ids below this are input vertices
   /// For vertex id original_vertices + i: the input vertices of the edge it splits.

@@ -204,6 +204,20 @@ def test_evaluate_cells_pieces_sum_to_the_result():
     assert all(p["faces"].dtype == np.int64 and p["faces"].shape[1] == 3 for p in pieces)
     with pytest.raises(cover.InputError):
         m.evaluate_cells(0)
+def test_decompose_gives_convex_pieces_summing_to_the_volume():
+    m = cover.box([0, 0, 0], [4, 4, 2]) - cover.cylinder([2, 2, -1], [2, 2, 3], 1, segments=12)
+    pieces = m.decompose()
+    assert len(pieces) > 1
+    total = 0.0
+    for V, F in pieces:
+        assert V.dtype == np.float64 and F.shape[1] == 3
+        total += signed_volume(V, F)
+        # convex: every vertex on the inner side of every face plane (up to float noise here;
+        # the C++ tests check it exactly)
+        n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+        side = np.einsum("fk,fvk->fv", n, V[None, :, :] - V[F[:, 0]][:, None, :])
+        assert side.max() <= 1e-9
+    assert total == pytest.approx(m.volume(exact=True), rel=1e-9)
 
 
 def test_clip_triangulates_nonconvex_faces():

@@ -1,0 +1,451 @@
+// Convex decomposition by reflex-edge plane cuts (decompose.h; paper §7 Fig. 20).
+//
+// Notation
+//   T        the input triangles (faces triangulated exactly, solid/triangulate.h)
+//   R        the input reflex edges: per edge, its two vertices a, b, its triangles f (holding
+//            a → b) and g, and its bend (angle between the rounded unit normals: the cut order)
+//   piece    a polygon mesh with, per face, its triangle in T (kNoFace for a cap)
+//   R(piece) the reflex edges of R that the piece still holds: an edge of the piece between a
+//            face from f and one from g (decompose.h "provenance")
+// A piece is cut by one plane through the stored points of one of its reflex mesh edges; each
+// half is split into connected components, each a new piece. A cut creates no reflex edge and
+// removes its own, so R(component) ⊆ R(piece) in exact terms; the loop checks that the cut's mesh
+// edge is gone from every half (else the next plane is tried) and bounds the piece count.
+#include "brep/decompose.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+#include "brep/clip.h"
+#include "brep/detail/convex_hull.h"
+#include "brep/halfedge.h"
+#include "solid/errors.h"
+#include "solid/measure.h"
+#include "solid/parallel.h"
+#include "solid/predicates.h"
+#include "solid/triangulate.h"
+#include "solid/union_find.h"
+
+namespace cover::brep {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The most (relative to the input volume) the hull of an uncut piece may add.
+constexpr double kUncutTolerance = 1e-11;
+
+struct ReflexEdge {
+  uint32_t a, b;  ///< input vertices (a → b in triangle f)
+  uint32_t f, g;  ///< input triangles
+  double bend;    ///< angle between the outward normals (larger: more reflex)
+};
+
+/// A mesh edge u → v of a piece (vertex ids of the piece) on reflex edge `reflex`, between
+/// face ff (from the input triangle f) and face fg (from g).
+struct PieceEdge {
+  uint32_t reflex, u, v, ff, fg;
+};
+
+struct Piece {
+  PolygonMesh mesh;
+  std::vector<uint32_t> source;  ///< per face: input triangle, or kNoFace (cap)
+};
+
+uint64_t key(uint32_t a, uint32_t b) { return uint64_t{a} << 32 | b; }
+
+Vec3 unit_normal(const Vec3& p, const Vec3& q, const Vec3& r) {
+  const Vec3 n = cross(q - p, r - p);
+  const double len = std::sqrt(dot(n, n));
+  return len > 0 ? (1 / len) * n : n;
+}
+
+class Decomposer {
+ public:
+  Decomposer(PolygonMesh tris, const DecomposeOptions& o) : t_(std::move(tris)), o_(o) {
+    // Directed edge → triangle; the reflex test on each undirected edge once (a < b).
+    std::unordered_map<uint64_t, uint32_t> directed;
+    directed.reserve(3 * t_.face_count());
+    for (uint32_t f = 0; f < t_.face_count(); ++f) {
+      const auto v = t_.face(f);
+      for (int k = 0; k < 3; ++k) directed.emplace(key(v[k], v[(k + 1) % 3]), f);
+    }
+    for (uint32_t f = 0; f < t_.face_count(); ++f) {
+      const auto v = t_.face(f);
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = v[k], b = v[(k + 1) % 3], w = v[(k + 2) % 3];
+        const uint32_t g = directed.at(key(b, a));
+        if (f > g) continue;  // each edge once
+        const auto gv = t_.face(g);
+        const uint32_t x = gv[0] != a && gv[0] != b ? gv[0] : (gv[1] != a && gv[1] != b ? gv[1] : gv[2]);
+        const auto& P = t_.vertices;
+        if (orient3d(P[a], P[b], P[w], P[x]) <= 0) continue;  // convex or flat
+        const Vec3 nf = unit_normal(P[v[0]], P[v[1]], P[v[2]]);
+        const Vec3 ng = unit_normal(P[gv[0]], P[gv[1]], P[gv[2]]);
+        const Vec3 s = cross(nf, ng);  // |s| = sin(bend): accurate for small bends, unlike acos
+        reflex_.push_back({a, b, f, g, std::atan2(std::sqrt(dot(s, s)), dot(nf, ng))});
+      }
+    }
+    // Nearly flat reflex edges (decompose.h "nearly flat") are left uncut.
+    std::vector<uint8_t> flat(reflex_.size(), 0);
+    for (uint32_t i = 0; i < reflex_.size(); ++i)
+      if (reflex_[i].bend <= o_.flat_angle) {
+        flat[i] = 1;
+        ++nearly_flat_;
+      }
+    std::vector<ReflexEdge> cut;
+    for (uint32_t i = 0; i < reflex_.size(); ++i)
+      if (!flat[i]) {
+        pair_[key(reflex_[i].f, reflex_[i].g)] = static_cast<uint32_t>(cut.size());
+        cut.push_back(reflex_[i]);
+      }
+    total_ = static_cast<int64_t>(reflex_.size());
+    reflex_ = std::move(cut);
+  }
+
+  int64_t total_reflex() const { return total_; }
+  int64_t nearly_flat() const { return nearly_flat_; }
+
+  const std::vector<ReflexEdge>& reflex() const { return reflex_; }
+
+  /// The piece's mesh edges on reflex edges (decompose.h "provenance"), by reflex edge and
+  /// vertex ids (deterministic order). A reflex edge is usually one mesh edge of a piece.
+  std::vector<PieceEdge> reflex_of(const Piece& p) const {
+    std::unordered_map<uint64_t, uint32_t> directed;
+    const PolygonMesh& m = p.mesh;
+    for (uint32_t f = 0; f < m.face_count(); ++f) {
+      if (p.source[f] == kNoFace) continue;
+      const auto v = m.face(f);
+      for (size_t k = 0; k < v.size(); ++k) directed.emplace(key(v[k], v[(k + 1) % v.size()]), f);
+    }
+    std::vector<PieceEdge> out;
+    for (const auto& [uv, ff] : directed) {
+      const uint32_t u = static_cast<uint32_t>(uv >> 32), v = static_cast<uint32_t>(uv);
+      const auto it = directed.find(key(v, u));
+      if (it == directed.end()) continue;
+      const uint32_t sf = p.source[ff], sg = p.source[it->second];
+      const auto r = pair_.find(key(std::min(sf, sg), std::max(sf, sg)));
+      // Each mesh edge once: from the face on the input triangle that holds a → b.
+      if (r != pair_.end() && sf == reflex_[r->second].f) out.push_back({r->second, u, v, ff, it->second});
+    }
+    std::sort(out.begin(), out.end(), [](const PieceEdge& x, const PieceEdge& y) {
+      return std::tie(x.reflex, x.u, x.v) < std::tie(y.reflex, y.u, y.v);
+    });
+    return out;
+  }
+
+  struct Cut {
+    long score;                 ///< crossed − contained reflex edges (lower first)
+    std::array<Vec3, 3> plane;  ///< through the mesh edge's two stored points
+    PieceEdge edge;             ///< the mesh edge the plane goes through
+  };
+
+  /// The candidate cuts of piece p holding reflex mesh edges r, best first (decompose.h "order");
+  /// ties keep the candidate order (most reflex edge, then half-angle, f, g planes).
+  std::vector<Cut> rank(const Piece& p, const std::vector<PieceEdge>& r) const {
+    std::vector<uint32_t> cand(r.size());
+    for (uint32_t i = 0; i < cand.size(); ++i) cand[i] = i;
+    const size_t k = std::min(cand.size(), static_cast<size_t>(std::max(1, o_.candidates)));
+    std::partial_sort(cand.begin(), cand.begin() + static_cast<long>(k), cand.end(),
+                      [&](uint32_t x, uint32_t y) {
+                        const double bx = reflex_[r[x].reflex].bend, by = reflex_[r[y].reflex].bend;
+                        return bx != by ? bx > by : x < y;
+                      });
+    const auto& P = t_.vertices;
+    std::vector<Cut> cuts;
+    for (size_t i = 0; i < k; ++i) {
+      const PieceEdge& e = r[cand[i]];
+      for (const std::array<Vec3, 3>& plane : planes(p, e)) {
+        long score = 0;
+        for (const PieceEdge& o : r) {
+          if (o.reflex == e.reflex) continue;
+          const int sa = orient3d(plane[0], plane[1], plane[2], P[reflex_[o.reflex].a]);
+          const int sb = orient3d(plane[0], plane[1], plane[2], P[reflex_[o.reflex].b]);
+          score += sa * sb < 0 ? 1 : (sa == 0 && sb == 0 ? -1 : 0);
+        }
+        cuts.push_back({score, plane, e});
+      }
+    }
+    std::stable_sort(cuts.begin(), cuts.end(),
+                     [](const Cut& x, const Cut& y) { return x.score < y.score; });
+    return cuts;
+  }
+
+ private:
+  /// The side all vertices of face f other than u, v take (±1), −1 when all lie on the plane and
+  /// the plane was built from f's own consecutive vertices (the clip then sends f below), else 0.
+  static int face_side(const Piece& p, uint32_t f, const PieceEdge& e,
+                       const std::array<Vec3, 3>& plane, bool own) {
+    int side = 0;
+    bool zero = false;
+    for (uint32_t v : p.mesh.face(f)) {
+      if (v == e.u || v == e.v) continue;
+      const int s = orient3d(plane[0], plane[1], plane[2], p.mesh.vertices[v]);
+      if (s == 0) zero = true;
+      else if (side == 0) side = s;
+      else if (s != side) return 0;
+    }
+    if (!zero) return side;
+    if (side != 0) return 0;
+    // In the plane: the clip sends a face of zero area above, else by its normal (below when the
+    // plane was built from the face's own vertices).
+    return collinear(p, f) ? 1 : (own ? -1 : 0);
+  }
+
+  /// All points of face f lie on one line (exactly): a face of zero area.
+  static bool collinear(const Piece& p, uint32_t f) {
+    const auto v = p.mesh.face(f);
+    const auto& P = p.mesh.vertices;
+    size_t j = 1;
+    while (j < v.size() && P[v[j]] == P[v[0]]) ++j;
+    if (j == v.size()) return true;
+    for (size_t i = 1; i < v.size(); ++i)
+      for (int axis = 0; axis < 3; ++axis)
+        if (orient2d(P[v[0]], P[v[j]], P[v[i]], axis) != 0) return false;
+    return true;
+  }
+
+  /// Planes through the stored points of mesh edge e that part its two faces (checked exactly
+  /// as the clip will decide): the half-angle plane, then the planes of the two faces.
+  std::vector<std::array<Vec3, 3>> planes(const Piece& p, const PieceEdge& e) const {
+    const auto& P = t_.vertices;
+    const ReflexEdge& re = reflex_[e.reflex];
+    const auto fv = t_.face(re.f), gv = t_.face(re.g);
+    const Vec3 nf = unit_normal(P[fv[0]], P[fv[1]], P[fv[2]]);
+    const Vec3 ng = unit_normal(P[gv[0]], P[gv[1]], P[gv[2]]);
+    const Vec3 a = p.mesh.vertices[e.u], b = p.mesh.vertices[e.v], d = b - a;
+    std::vector<std::array<Vec3, 3>> out;
+    auto keep = [&](const std::array<Vec3, 3>& plane, int own) {
+      const int sf = face_side(p, e.ff, e, plane, own == 0);
+      const int sg = face_side(p, e.fg, e, plane, own == 1);
+      if (sf * sg < 0) out.push_back(plane);
+    };
+    // The bisecting plane of the dihedral has normal nf − ng; q ⟂ d lies in it.
+    const Vec3 q = cross(nf - ng, d);
+    const double lq = std::sqrt(dot(q, q));
+    if (lq > 0) keep({a, b, a + (std::sqrt(dot(d, d)) / lq) * q}, -1);
+    if (o_.face_planes || out.empty()) {
+      // A face's next vertex after the edge, in the face's own order (u → v → w in ff).
+      auto after = [&](uint32_t f, uint32_t from) {
+        const auto v = p.mesh.face(f);
+        for (size_t i = 0; i < v.size(); ++i)
+          if (v[i] == from) return v[(i + 1) % v.size()];
+        return from;
+      };
+      keep({a, b, p.mesh.vertices[after(e.ff, e.v)]}, 0);
+      keep({b, a, p.mesh.vertices[after(e.fg, e.u)]}, 1);
+    }
+    return out;
+  }
+
+  PolygonMesh t_;  ///< the input triangles T
+  const DecomposeOptions& o_;
+  std::vector<ReflexEdge> reflex_;
+  std::unordered_map<uint64_t, uint32_t> pair_;  ///< (min, max) triangle pair → reflex edge
+  int64_t total_ = 0, nearly_flat_ = 0;
+};
+
+/// The input with every face triangulated (same vertices). Throws InputError for a face whose
+/// boundary crosses itself.
+PolygonMesh triangulated(const PolygonMesh& mesh) {
+  PolygonMesh out;
+  out.vertices = mesh.vertices;
+  std::vector<std::array<uint32_t, 3>> tris;
+  const std::span<const Vec3> points(mesh.vertices.data(), mesh.vertices.size());
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    tris.clear();
+    if (triangulate_face(points, mesh.face(f), tris) == FaceTiling::kCrossing)
+      throw InputError("face " + std::to_string(f) + " crosses itself");
+    for (const auto& t : tris) out.add_face({t[0], t[1], t[2]});
+  }
+  return out;
+}
+
+/// The connected components of one clip half, each with its faces' input triangles.
+void components(const ClipHalf& half, const std::vector<uint32_t>& parent_source,
+                std::vector<Piece>& out) {
+  const PolygonMesh& m = half.mesh;
+  if (m.face_count() == 0) return;
+  UnionFind uf(m.vertices.size());
+  for (size_t f = 0; f < m.face_count(); ++f) {
+    const auto v = m.face(f);
+    for (size_t k = 1; k < v.size(); ++k) uf.unite(v[0], v[k]);
+  }
+  std::vector<uint32_t> comp(m.vertices.size(), kNone), local(m.vertices.size(), kNone);
+  const size_t first = out.size();
+  for (size_t f = 0; f < m.face_count(); ++f) {
+    const auto v = m.face(f);
+    const uint32_t root = uf.find(v[0]);
+    if (comp[root] == kNone) {
+      comp[root] = static_cast<uint32_t>(out.size() - first);
+      out.emplace_back();
+    }
+    Piece& p = out[first + comp[root]];
+    std::vector<uint32_t> ids(v.size());
+    for (size_t k = 0; k < v.size(); ++k) {
+      if (local[v[k]] == kNone) {
+        local[v[k]] = static_cast<uint32_t>(p.mesh.vertices.size());
+        p.mesh.vertices.push_back(m.vertices[v[k]]);
+      }
+      ids[k] = local[v[k]];
+    }
+    p.mesh.add_face(ids);
+    const uint32_t s = half.face_source[f];
+    p.source.push_back(s == kNoFace ? kNoFace : parent_source[s]);
+  }
+}
+
+/// Four points of `pts` not on one plane exist.
+bool spans_volume(std::span<const Vec3> pts) {
+  size_t i1 = 1;
+  while (i1 < pts.size() && pts[i1] == pts[0]) ++i1;
+  if (i1 >= pts.size()) return false;
+  size_t i2 = i1 + 1;
+  while (i2 < pts.size() && orient2d(pts[0], pts[i1], pts[i2], 0) == 0 &&
+         orient2d(pts[0], pts[i1], pts[i2], 1) == 0 && orient2d(pts[0], pts[i1], pts[i2], 2) == 0)
+    ++i2;
+  if (i2 >= pts.size()) return false;
+  for (size_t i3 = 0; i3 < pts.size(); ++i3)
+    if (orient3d(pts[0], pts[i1], pts[i2], pts[i3]) != 0) return true;
+  return false;
+}
+
+}  // namespace
+
+DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& options) {
+  const auto start = Clock::now();
+  DecomposeResult result;
+  if (mesh.face_count() == 0) return result;
+  Piece root{triangulated(mesh), {}};
+  {
+    const HalfedgeMesh h = HalfedgeMesh::from_polygon_mesh(root.mesh);
+    int64_t border = 0;
+    for (uint32_t e = 0; e < h.halfedge_slots(); ++e) border += !h.edge_deleted(e) && h.is_border(e);
+    if (border > 0) throw InputError("open mesh: " + std::to_string(border) + " boundary edges");
+  }
+  result.input_volume = signed_volume(root.mesh);
+  if (!(result.input_volume > 0))
+    throw InputError("the mesh is inside out or has no volume (volume " +
+                     std::to_string(result.input_volume) + ")");
+  root.source.resize(root.mesh.face_count());
+  for (uint32_t f = 0; f < root.source.size(); ++f) root.source[f] = f;
+  const Decomposer d(root.mesh, options);  // keeps its own copy of T
+  result.reflex_edges = d.total_reflex();
+  result.nearly_flat_edges = d.nearly_flat();
+
+  // Depth-first: a stack of pieces, finished pieces in the order they are found.
+  std::vector<Piece> todo, finished, parts;
+  std::vector<size_t> uncut;  // finished pieces that kept reflex edges
+  todo.push_back(std::move(root));
+  while (!todo.empty()) {
+    Piece p = std::move(todo.back());
+    todo.pop_back();
+    const std::vector<PieceEdge> r = d.reflex_of(p);
+    if (r.empty()) {
+      finished.push_back(std::move(p));
+      continue;
+    }
+    // The best cut whose halves no longer hold its mesh edge (a guard: the planes are checked
+    // before, so the first one should do; otherwise the next candidate is tried).
+    bool done = false;
+    for (const auto& cut : d.rank(p, r)) {
+      ClipResult c;
+      ++result.cuts;
+      try {
+        c = clip(p.mesh, cut.plane);
+      } catch (const std::runtime_error&) {
+        // InputError / NotComputable: the piece or its rings are degenerate through rounding
+        // (the input itself was checked above): the next plane
+        ++result.failed_cuts;
+        continue;
+      }
+      parts.clear();
+      components(c.below, p.source, parts);
+      components(c.above, p.source, parts);
+      const Vec3 a = p.mesh.vertices[cut.edge.u], b = p.mesh.vertices[cut.edge.v];
+      // Rounding can leave a half that is no closed 2-manifold (a constructed point rounded
+      // across a sliver): then this plane fails too.
+      // Components of zero exact volume (slivers whose rounded volume is ~0 or negative) are
+      // dropped.
+      const double sliver = kUncutTolerance * result.input_volume;
+      const bool valid = std::all_of(parts.begin(), parts.end(), [&](const Piece& part) {
+        try {
+          const BrepReport v = validate(HalfedgeMesh::from_polygon_mesh(part.mesh));
+          return v.closed && v.manifold && signed_volume(part.mesh) > -sliver;
+        } catch (const InputError&) {
+          return false;
+        }
+      });
+      std::erase_if(parts, [&](const Piece& part) { return signed_volume(part.mesh) <= 0; });
+      done = valid && std::none_of(parts.begin(), parts.end(), [&](const Piece& part) {
+        for (const PieceEdge& e : d.reflex_of(part)) {
+          const Vec3 x = part.mesh.vertices[e.u], y = part.mesh.vertices[e.v];
+          if (e.reflex == cut.edge.reflex && ((x == a && y == b) || (x == b && y == a))) return true;
+        }
+        return false;
+      });
+      if (done) break;
+      ++result.failed_cuts;
+    }
+    if (!done) {
+      // Every plane through its reflex edges is undone by rounding (slivers of zero area next
+      // to the edge): the piece is kept as it is, and its hull must then change it by no more
+      // than rounding (checked below).
+      ++result.uncut_pieces;
+      uncut.push_back(finished.size());
+      finished.push_back(std::move(p));
+      continue;
+    }
+    for (Piece& part : parts) todo.push_back(std::move(part));
+    if (static_cast<int64_t>(todo.size() + finished.size()) > options.max_pieces)
+      throw NotComputable("decompose: more than " + std::to_string(options.max_pieces) + " pieces");
+  }
+  const auto hull_start = Clock::now();
+  result.cut_seconds = std::chrono::duration<double>(hull_start - start).count();
+
+  // Exact hulls (decompose.h "rounding"); a piece whose points span no volume is dropped.
+  std::vector<PolygonMesh> hulls(finished.size());
+  std::vector<double> change(finished.size(), 0);
+  parallel_for(finished.size(), 1, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const auto& v = finished[i].mesh.vertices;
+      const std::span<const Vec3> pts(v.data(), v.size());
+      if (!spans_volume(pts)) continue;
+      hulls[i] = detail::convex_hull(pts);
+      change[i] = std::abs(signed_volume(hulls[i]) - signed_volume(finished[i].mesh));
+    }
+  });
+  for (size_t i : uncut)
+    if (change[i] > kUncutTolerance * result.input_volume)
+      throw NotComputable("decompose: a piece whose reflex edges no plane could cut changes by " +
+                          std::to_string(change[i] / result.input_volume * 1e12) + "e-12" +
+                          " of the volume in its hull");
+  for (size_t i = 0; i < hulls.size(); ++i) {
+    result.hull_change = std::max(result.hull_change, change[i] / result.input_volume);
+    if (hulls[i].face_count() == 0) continue;
+    result.volume += signed_volume(hulls[i]);
+    result.pieces.push_back(std::move(hulls[i]));
+  }
+  result.hull_seconds = std::chrono::duration<double>(Clock::now() - hull_start).count();
+  return result;
+}
+
+bool is_convex_exact(const PolygonMesh& piece) {
+  const auto& P = piece.vertices;
+  for (size_t f = 0; f < piece.face_count(); ++f) {
+    const auto v = piece.face(f);
+    for (size_t k = 1; k + 1 < v.size(); ++k)
+      for (size_t i = 0; i < P.size(); ++i)
+        if (orient3d(P[v[0]], P[v[k]], P[v[k + 1]], P[i]) > 0) return false;
+  }
+  return true;
+}
+
+}  // namespace cover::brep
