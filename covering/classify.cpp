@@ -168,7 +168,7 @@ struct OpenRule {
   const GwnForest* forest = nullptr;
   GwnOptions options;
   bool direct = false;
-  /// Per tree, every point's membership from gwn_inside_bulk (empty: decide per point).
+  /// Per tree, every point's membership from open_inside (empty: decide per point).
   std::vector<std::vector<uint8_t>> bulk;
 };
 

@@ -105,27 +105,11 @@ GwnForest build_gwn(const Solid& solid, const GwnOptions& options = {});
 /// Fast evaluation with the far-field expansion at `beta` and its error bound.
 GwnValue generalized_winding(const GwnTree& tree, const Vec3& q, double beta);
 
-/// Fast evaluation where a node is expanded unless its truncation bound fits its area share of
-/// `budget` (so the far-field error is at most `budget`, plus rounding).
-GwnValue generalized_winding_budget(const GwnTree& tree, const Vec3& q, double budget);
-
 /// The direct sum over every triangle (error: the rounding allowance).
 GwnValue generalized_winding_direct(const GwnTree& tree, const Vec3& q);
 
 /// Membership |w(q)| > 1/2, decided as stated above. Precondition: q is on no triangle.
 bool gwn_inside(const GwnTree& tree, const Vec3& q, const GwnOptions& options = {});
-
-/// w over an axis-aligned box: out.w = w at the box's centre c and out.error bounds |w(x) − out.w|
-/// for every x in the box — the far-field truncation at c plus the variation over the box,
-/// h·sup|∇w| with h the half diagonal and |∇_q Ω| ≤ 2·A/dist³ per node or triangle (the kernel's
-/// first derivatives are ≤ 2/|y|³). False when a triangle's box meets the box (no bound).
-bool generalized_winding_box(const GwnTree& tree, const Bbox& box, double beta, GwnValue& out);
-
-/// gwn_inside for many points at once (the same memberships): boxes of points whose whole box is
-/// decided by generalized_winding_box are settled together, the others split in eight down to a
-/// few points, which are decided one by one. Parallel; results do not depend on the threads.
-std::vector<uint8_t> gwn_inside_bulk(const GwnTree& tree, std::span<const Vec3> points,
-                                     const GwnOptions& options = {});
 
 /// Solid angle of triangle abc seen from q, over 4π (exact sign handling, see above).
 double triangle_winding(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& q);
