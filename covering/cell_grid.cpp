@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "solid/parallel.h"
+
 namespace cover::detail {
 namespace {
 
@@ -15,7 +17,8 @@ std::pair<int, int> cell_range(const std::vector<double>& planes, double lo, dou
 
 }  // namespace
 
-CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(const Vec3&)>& member) {
+CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(const Vec3&)>& member,
+                   const std::function<bool(const Bbox&)>& settled) {
   if (bvh.nodes().empty() || resolution < 1) return;
   n_ = resolution;
   const Bbox& box = bvh.bounds();
@@ -34,6 +37,39 @@ CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(cons
     for (int k = r[2].first; k <= r[2].second; ++k)
       for (int j = r[1].first; j <= r[1].second; ++j)
         for (int i = r[0].first; i <= r[0].second; ++i) state_[index(i, j, k)] = -1;
+  }
+  if (settled) {
+    // Blocks of kBlock³ cells (each owned by one task), refined into octants where unsettled.
+    constexpr int kBlock = 8;
+    const int nb = (n_ + kBlock - 1) / kBlock;
+    const std::function<void(int, int, int, int)> refine = [&](int i0, int j0, int k0, int s) {
+      const int i1 = std::min(i0 + s, n_), j1 = std::min(j0 + s, n_), k1 = std::min(k0 + s, n_);
+      if (i0 >= i1 || j0 >= j1 || k0 >= k1) return;
+      bool any_empty = false;
+      for (int k = k0; k < k1 && !any_empty; ++k)
+        for (int j = j0; j < j1 && !any_empty; ++j)
+          for (int i = i0; i < i1 && !any_empty; ++i) any_empty = state_[index(i, j, k)] == 2;
+      if (!any_empty) return;
+      Bbox box;
+      box.min = {planes_[0][i0], planes_[1][j0], planes_[2][k0]};
+      box.max = {planes_[0][i1], planes_[1][j1], planes_[2][k1]};
+      if (settled(box)) return;
+      if (s == 1) {
+        state_[index(i0, j0, k0)] = -1;
+        return;
+      }
+      const int h = s / 2;
+      for (int dk : {0, h})
+        for (int dj : {0, h})
+          for (int di : {0, h}) refine(i0 + di, j0 + dj, k0 + dk, h);
+    };
+    parallel_for(static_cast<size_t>(nb) * nb * nb, 1, [&](size_t begin, size_t end) {
+      for (size_t b = begin; b < end; ++b) {
+        const int bi = static_cast<int>(b % nb), bj = static_cast<int>(b / nb % nb),
+                  bk = static_cast<int>(b / nb / nb);
+        refine(bi * kBlock, bj * kBlock, bk * kBlock, kBlock);
+      }
+    });
   }
   // Flood fill each component of empty cells from one exactly classified centre.
   std::vector<std::array<int, 3>> queue;

@@ -22,6 +22,11 @@ namespace {
 
 using detail::LeafTriangles;
 
+/// The grid settles a cell of open leaves where each closure's cones subtend less than this
+/// (|w_C| < 0.4 leaves |W − w_C| at least 0.1 from 1/2, far beyond the per-point rounding
+/// allowance, so the per-point path decides every point of the cell the same way).
+constexpr double kSettledCone = 0.4;
+
 /// An axis-aligned half-line direction s·e_k; u, w are the other two axes in cyclic order.
 struct AxisRay {
   int k = 0, u = 1, w = 2;
@@ -250,21 +255,31 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
     if (options.gwn == nullptr) own = build_gwn(solid, options.gwn_options);
     open.forest = options.gwn != nullptr ? options.gwn : &*own;
     open.options = options.gwn_options;
-    for (size_t k = 0; k < open.forest->trees.size(); ++k)  // every point at once (closure)
-      open.bulk.push_back(open_inside(*open.forest, k, points, open.options));
   }
-  // Many queries: first label the grid cells no surface touches (exact, see cell_grid.h). Only
-  // for closed leaves: an open leaf's membership changes away from its surface too.
+  // Many queries: first label the grid cells no surface touches (exact, see cell_grid.h). With
+  // open leaves, only cells where every closure's cones provably subtend |w_C| < 0.4 (there the
+  // membership is W ≠ 0, constant on the cell like a closed leaf's; docs/design.md "Open
+  // leaves"); a component's label is the per-point membership at one cell centre.
   std::optional<detail::CellGrid> grid;
-  if (points.size() >= options.grid_min_points && open.forest == nullptr) {
+  if (points.size() >= options.grid_min_points) {
     const int res = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(points.size()))),
                                8, options.grid_max_resolution);
-    grid.emplace(bvh, res, [&](const Vec3& c) {
-      std::vector<int> w(solid.leaves.size());
-      std::vector<uint8_t> on(solid.leaves.size()), in;
-      bvh_windings(bvh, c, w, on);
-      return finish(c, solid.tree, w, on, in, triangles) == PointClass::kInside;
-    });
+    std::function<bool(const Bbox&)> settled;
+    if (open.forest != nullptr)
+      settled = [&](const Bbox& box) {
+        for (const GwnClosure& c : open.forest->closures)
+          if (!winding_below(c.cone, box, kSettledCone)) return false;
+        return true;
+      };
+    grid.emplace(
+        bvh, res,
+        [&](const Vec3& c) {
+          std::vector<int> w(solid.leaves.size());
+          std::vector<uint8_t> on(solid.leaves.size()), in;
+          bvh_windings(bvh, c, w, on);
+          return finish(c, solid.tree, w, on, in, triangles, open) == PointClass::kInside;
+        },
+        settled);
   }
   // Points the grid answers are done; the rest go through the BVH in spatial order.
   std::vector<uint32_t> todo;
@@ -284,6 +299,14 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
     for (size_t i = 0; i < todo.size(); ++i) todo[i] = static_cast<uint32_t>(i);
   }
   if (todo.size() >= 4096 && !bvh.nodes().empty()) bucket_order(points, bvh.bounds(), todo);
+  // Open leaves: every remaining point at once through the closure (open_inside), by its
+  // position in todo.
+  if (open.forest != nullptr) {
+    std::vector<Vec3> rest(todo.size());
+    for (size_t i = 0; i < todo.size(); ++i) rest[i] = points[todo[i]];
+    for (size_t k = 0; k < open.forest->trees.size(); ++k)
+      open.bulk.push_back(open_inside(*open.forest, k, rest, open.options));
+  }
   // Batches of points walk the BVH together (walk_batch); per-point results are the same.
   const size_t leaves = solid.leaves.size();
   const size_t batch = std::clamp<size_t>(16384 / std::max<size_t>(leaves, 1), 1, 256);
@@ -298,7 +321,7 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
         out[ids[j]] = finish(points[ids[j]], solid.tree,
                              std::span<const int>(winding).subspan(j * leaves, leaves),
                              std::span<const uint8_t>(on_surface).subspan(j * leaves, leaves),
-                             inside, triangles, open, ids[j]);
+                             inside, triangles, open, b + j);
     }
   });
   return out;

@@ -275,7 +275,83 @@ bool decide_by_bounds(const GwnTree& cone, const Vec3& q, int32_t W, bool& insid
   return decided();
 }
 
+/// Lower bound of the distance between two boxes (0 when they meet).
+double box_gap(const Bbox& a, const double* lo, const double* hi) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double g = std::max({lo[k] - a.max[k], a.min[k] - hi[k], 0.0});
+    d2 += g * g;
+  }
+  return std::sqrt(d2) * (1 - 1e-12);
+}
+
 }  // namespace
+
+bool winding_below(const GwnTree& tree, const Bbox& box, double limit, int budget) {
+  if (tree.nodes.empty()) return true;
+  constexpr int kMaxBudget = 128;
+  budget = std::clamp(budget, 1, kMaxBudget);
+  struct Item {
+    double bound;
+    int64_t node;  ///< node id, or −1 − triangle index (not expandable)
+  };
+  auto lower = [](const Item& x, const Item& y) { return x.bound < y.bound; };
+  thread_local std::vector<Item> heap;
+  heap.clear();
+  double total = 0;  // Σ bounds of the items in the heap (kept as a fresh sum below)
+  auto push_node = [&](uint32_t id) {
+    const GwnTree::Node& n = tree.nodes[id];
+    const Vec3 p = n.center;
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double g = std::max({box.min[k] - p[k], p[k] - box.max[k], 0.0});
+      d2 += g * g;
+    }
+    const double dist = std::sqrt(d2);
+    const double gap = dist * (1 - 1e-12) - n.radius;
+    // A margin against rounding: a sphere within 1e-9 of the box counts as meeting it.
+    const double b = gap > 1e-9 * (dist + n.radius) ? n.area / (gap * gap) * kInv4Pi : INFINITY;
+    heap.push_back({b, id});
+    std::push_heap(heap.begin(), heap.end(), lower);
+    total += b;
+  };
+  auto push_tri = [&](uint32_t i) {
+    const GwnTree::Tri& t = tree.tris[i];
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min({t.a[k], t.b[k], t.c[k]});
+      hi[k] = std::max({t.a[k], t.b[k], t.c[k]});
+    }
+    bool apart = false;  // exact: the triangle's box and `box` are disjoint along some axis
+    for (int k = 0; k < 3; ++k) apart |= lo[k] > box.max[k] || hi[k] < box.min[k];
+    const double area = 0.5 * norm(cross(t.b - t.a, t.c - t.a)) * (1 + 1e-12);
+    const double gap = box_gap(box, lo, hi);
+    const double b = !apart ? INFINITY : area == 0 ? 0 : gap > 0 ? area / (gap * gap) * kInv4Pi : INFINITY;
+    heap.push_back({b, -1 - static_cast<int64_t>(i)});
+    std::push_heap(heap.begin(), heap.end(), lower);
+    total += b;
+  };
+  // The bounds and their sum are formed with relative errors far below this factor.
+  auto below = [&] { return total * (1 + 1e-9) < limit; };
+  push_node(0);
+  for (int e = 0; e < budget; ++e) {
+    if (below()) return true;
+    std::pop_heap(heap.begin(), heap.end(), lower);
+    const Item top = heap.back();
+    heap.pop_back();
+    if (top.node < 0) return false;  // the largest is a triangle: no expansion helps
+    const GwnTree::Node& n = tree.nodes[top.node];
+    if (n.count > 0)
+      for (uint32_t i = n.first; i < n.first + n.count; ++i) push_tri(i);
+    else {
+      push_node(n.first);
+      push_node(n.first + 1);
+    }
+    total = 0;  // re-summed: no cancellation of infinities
+    for (const Item& it : heap) total += it.bound;
+  }
+  return below();
+}
 
 std::vector<uint8_t> open_inside(const GwnForest& forest, size_t k, std::span<const Vec3> points,
                                  const GwnOptions& options) {

@@ -99,6 +99,15 @@ struct GwnForest {
 std::vector<uint8_t> open_inside(const GwnForest& forest, size_t k, std::span<const Vec3> points,
                                  const GwnOptions& options = {});
 
+/// Whether |w_C(q)| < limit provably for every q in the closed `box`, w_C the winding number of
+/// the triangles of `tree` (used with a closure's cones): a node at gap g > 0 from the box (box
+/// to sphere) adds at most A/(4π·g²) (a surface of area A seen from at least g subtends at most
+/// A/g² sr); a triangle whose box is disjoint from `box` (exact comparisons) adds at most
+/// area/(4π·g²) with g the box-to-box distance; the node with the largest bound is expanded
+/// first, at most `budget` times. True also implies that no triangle of the tree meets the box.
+/// The empty-cell grid of classify() uses it to settle cells of open leaves (docs/design.md).
+bool winding_below(const GwnTree& tree, const Bbox& box, double limit, int budget = 64);
+
 /// Builds the tree of every open leaf (Leaf::open) over its non-degenerate covering triangles.
 GwnForest build_gwn(const Solid& solid, const GwnOptions& options = {});
 

@@ -20,7 +20,14 @@ namespace cover::detail {
 class CellGrid {
  public:
   /// `member(p)` must return the result's membership at a point p on no surface.
-  CellGrid(const Bvh& bvh, int resolution, const std::function<bool(const Vec3&)>& member);
+  /// `settled(box)` (optional), for results with open leaves: true only when, on the closed box,
+  /// every open leaf's membership is that of the closed-up leaf (W ≠ 0: no cone triangle meets
+  /// the box and |w_C| < 1/2 there, gwn.h winding_below). Empty cells it does not settle are
+  /// marked like surface cells (−1), so the membership is again constant on each component of
+  /// the rest (W is, as no surface of any closure meets it). Checked on blocks of 8³ cells,
+  /// split into octants where it fails.
+  CellGrid(const Bvh& bvh, int resolution, const std::function<bool(const Vec3&)>& member,
+           const std::function<bool(const Bbox&)>& settled = {});
 
   /// 1 inside, 0 outside, −1 unknown (p is in a surface cell or outside the grid).
   int lookup(const Vec3& p) const;

@@ -113,6 +113,75 @@ TEST(Gwn, ClosedMeshesWithHolesPunched) {
   }
 }
 
+TEST(Gwn, GridCellsSettledByConeBound) {
+  // A sphere with every 7th face dropped, and a CSG of it with a closed box.
+  const PolygonMesh m = make_sphere({0, 0, 0}, 1, 32);
+  PolygonMesh holed;
+  holed.vertices = m.vertices;
+  std::vector<Vec3> hole_centres;
+  for (size_t f = 0; f < m.face_count(); ++f) {
+    if (f % 7 != 3) {
+      holed.add_face(m.face(f));
+      continue;
+    }
+    Vec3 c{0, 0, 0};
+    for (uint32_t v : m.face(f)) c = c + m.vertices[v];
+    hole_centres.push_back((1.0 / static_cast<double>(m.face(f).size())) * c);
+  }
+  const Solid s = open_leaf(std::move(holed), "holed sphere");
+  const GwnForest forest = build_gwn(s);
+  const GwnTree& cone = forest.closures[0].cone;
+  ASSERT_FALSE(cone.tris.empty());
+  // 1. winding_below against the direct sum of the cones at points of the boxes it settles
+  //    (boxes near the holes, limits down to 0.002: a bound 5× too small fails here).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.3, 1.3), size(0.001, 0.1), f01(0, 1);
+  std::normal_distribution<double> off(0, 0.08), far(0, 0.25);
+  const double limits[] = {0.002, 0.01, 0.05, 0.2, 0.4};
+  int settled = 0, unsettled = 0;
+  for (int b = 0; b < 1500; ++b) {
+    Bbox box;
+    std::normal_distribution<double>& o = b % 2 ? off : far;
+    const Vec3 c = hole_centres[b % hole_centres.size()] + Vec3{o(rng), o(rng), o(rng)};
+    const double h = size(rng), limit = limits[b % 5];
+    box.add(c - Vec3{h, h, h});
+    box.add(c + Vec3{h, h, h});
+    if (!winding_below(cone, box, limit)) {
+      ++unsettled;
+      continue;
+    }
+    ++settled;
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 q = box.min + Vec3{f01(rng) * 2 * h, f01(rng) * 2 * h, f01(rng) * 2 * h};
+      EXPECT_LT(std::abs(generalized_winding_direct(cone, q).w), limit) << b;
+    }
+  }
+  EXPECT_GT(settled, 60) << unsettled;
+  EXPECT_GT(unsettled, 100);
+  // 2. classify with the grid (cells settled by the bound) = the per-point path, on uniform
+  //    points and on points near the holes.
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 30000; ++i) pts.push_back({u(rng), u(rng), u(rng)});
+  std::normal_distribution<double> near(0, 0.05);
+  for (int i = 0; i < 30000; ++i)
+    pts.push_back(hole_centres[i % hole_centres.size()] + Vec3{near(rng), near(rng), near(rng)});
+  for (int variant = 0; variant < 2; ++variant) {
+    const Solid solid = variant == 0 ? s : subtract({s, make_leaf(make_box({0, 0, 0}, {1.2, 0.5, 0.5}), "box")});
+    ClassifyOptions with_grid, per_point;
+    with_grid.grid_min_points = 0;
+    per_point.grid_min_points = SIZE_MAX;
+    const std::vector<PointClass> a = classify(solid, pts, with_grid);
+    const std::vector<PointClass> b = classify(solid, pts, per_point);
+    int differ = 0, inside = 0;
+    for (size_t i = 0; i < pts.size(); ++i) {
+      differ += a[i] != b[i];
+      inside += b[i] == PointClass::kInside;
+    }
+    EXPECT_EQ(differ, 0) << variant;
+    EXPECT_GT(inside, 5000) << variant;
+  }
+}
+
 class OpenModels : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(OpenModels, ClassifyAgreesWithBruteForceSum) {
