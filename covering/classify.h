@@ -46,8 +46,9 @@ struct ClassifyOptions {
 /// Classifies every point with a prebuilt BVH of `solid`. Thread-count independent.
 /// Open leaves: membership by the generalized winding number (|w| > 1/2, gwn.h) for points off
 /// their surface; a point on an open leaf's surface is classified by the same local analysis as
-/// on a closed leaf (its faces read as the leaf's boundary there). The empty-cell grid is used
-/// only when every leaf is closed. \pre points are finite (Model::classify checks).
+/// on a closed leaf (its faces read as the leaf's boundary there). With open leaves the empty-cell
+/// grid keeps only cells where every closure's cones subtend |w_C| < 0.4 (gwn.h winding_below;
+/// docs/design.md "Open leaves"). \pre points are finite (Model::classify checks).
 std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
 

@@ -255,17 +255,23 @@ VoxelGrid Model::voxelize(const VoxelizeOptions& options) const {
 void Model::open_voxelize(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const {
   grid = empty_voxel_grid(lattice, box);
   const auto d = box.dims();
+  // Whole x slabs, about 2^20 centres at a time: bounded memory, and classify's empty-cell grid
+  // (which settles the cells far from the holes) is built once per batch.
+  const size_t slab = static_cast<size_t>(d[1]) * d[2];
+  const int per_batch = static_cast<int>(std::max<size_t>(1, (size_t{1} << 20) / std::max<size_t>(slab, 1)));
   std::vector<Vec3> centres;
-  centres.reserve(static_cast<size_t>(d[1]) * d[2]);
-  for (int i = box.lo[0]; i < box.hi[0]; ++i) {  // one x slab at a time: bounded memory
+  for (int i0 = box.lo[0]; i0 < box.hi[0]; i0 += per_batch) {
+    const int i1 = std::min(box.hi[0], i0 + per_batch);
     centres.clear();
-    for (int j = box.lo[1]; j < box.hi[1]; ++j)
-      for (int k = box.lo[2]; k < box.hi[2]; ++k) centres.push_back(lattice.centre(i, j, k));
+    for (int i = i0; i < i1; ++i)
+      for (int j = box.lo[1]; j < box.hi[1]; ++j)
+        for (int k = box.lo[2]; k < box.hi[2]; ++k) centres.push_back(lattice.centre(i, j, k));
     const std::vector<PointClass> c = classify(centres);
     size_t at = 0;
-    for (int j = 0; j < d[1]; ++j)
-      for (int k = 0; k < d[2]; ++k)
-        if (c[at++] != PointClass::kOutside) grid.set(i - box.lo[0], j, k);
+    for (int i = i0; i < i1; ++i)
+      for (int j = 0; j < d[1]; ++j)
+        for (int k = 0; k < d[2]; ++k)
+          if (c[at++] != PointClass::kOutside) grid.set(i - box.lo[0], j, k);
   }
 }
 
