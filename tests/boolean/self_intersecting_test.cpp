@@ -1,19 +1,15 @@
 // evaluate() on self-intersecting leaves (boolean/evaluate.h): each leaf is its nonzero-winding
 // set, as in classify(). Every result must be a closed, outward 2-manifold without
-// self-intersections (brep validate + CGAL does_self_intersect) that agrees with classify() of
+// self-intersections (brep validate + the exact self_intersects of solid/validate.h) that agrees with classify() of
 // the non-evaluated scene on 20,000 random points (0 disagreements off the boundary); the
 // procedural leaves also have known volumes. Scenes: libcgal-demo meshes that intersect
 // themselves (cow, elk, bones) with boxes, spheres and each other; two overlapping boxes in
 // one leaf, nested and repeated shells (winding 2), a reversed shell (winding 0 inside), shells
 // touching along a face, a figure-eight prism (winding +1 and −1 lobes, overlapping fan caps),
 // and a prism through a reversed box whose result touches itself along single edges.
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <map>
 #include <random>
 
 #include "boolean/evaluate.h"
@@ -23,46 +19,20 @@
 #include "helpers.h"
 #include "solid/mesh_io.h"
 #include "solid/primitives.h"
+#include "solid/repair.h"
 #include "solid/transform.h"
 #include "solid/validate.h"
 
 namespace cover {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Mesh = CGAL::Surface_mesh<K::Point_3>;
-
-/// The mesh with vertices of equal coordinates merged: where the result touches itself (two
-/// lobes of a figure-eight meeting along a line) evaluate() duplicates vertices per fan, and
-/// the touching faces then share indices, so a self-intersection test counts only crossings.
-PolygonMesh welded(const PolygonMesh& m) {
-  std::map<std::array<double, 3>, uint32_t> index;
-  std::vector<uint32_t> id(m.vertices.size());
-  PolygonMesh out;
-  for (size_t v = 0; v < m.vertices.size(); ++v) {
-    const Vec3 p = m.vertices[v];
-    auto [it, fresh] = index.try_emplace({p.x, p.y, p.z}, static_cast<uint32_t>(out.vertices.size()));
-    if (fresh) out.vertices.push_back(p);
-    id[v] = it->second;
-  }
-  for (size_t f = 0; f < m.face_count(); ++f) {
-    std::vector<uint32_t> loop;
-    for (uint32_t v : m.face(f)) loop.push_back(id[v]);
-    out.add_face(loop);
-  }
-  return out;
-}
-
-[[maybe_unused]] bool cgal_self_intersects(const PolygonMesh& m) {
-  Mesh out;
-  std::vector<Mesh::Vertex_index> vs;
-  for (const Vec3& p : m.vertices) vs.push_back(out.add_vertex(K::Point_3(p.x, p.y, p.z)));
-  for (size_t f = 0; f < m.face_count(); ++f) {
-    auto face = m.face(f);
-    for (size_t i = 1; i + 1 < face.size(); ++i)
-      out.add_face(vs[face[0]], vs[face[i]], vs[face[i + 1]]);
-  }
-  return CGAL::Polygon_mesh_processing::does_self_intersect(out);
+/// The mesh with vertices of equal coordinates merged (solid/repair.h): where the result
+/// touches itself (two lobes of a figure-eight meeting along a line) evaluate() duplicates
+/// vertices per fan, and the touching faces then share indices, so a self-intersection test
+/// counts only crossings.
+PolygonMesh welded(PolygonMesh m) {
+  weld_duplicate_vertices(m);
+  return m;
 }
 
 /// `b` appended to `a` (one leaf of several shells); `reverse` flips b's faces.
