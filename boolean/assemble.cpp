@@ -59,7 +59,7 @@ int quadrant(const Point& p, const Point& q, const Point& r0, const Point& r) {
 }  // namespace
 
 PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
-                     std::vector<uint32_t>* labels) {
+                     std::vector<uint32_t>* labels, std::vector<uint8_t>* rounded_vertex) {
   const size_t m = tris.size();
   auto from = [&](uint32_t h) { return tris[h / 3][h % 3]; };
   auto to = [&](uint32_t h) { return tris[h / 3][(h % 3 + 1) % 3]; };
@@ -141,6 +141,7 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
               ? arr.originals[id]
               : rounded[std::lower_bound(constructed.begin(), constructed.end(), id) -
                         constructed.begin()]);
+      if (rounded_vertex) rounded_vertex->push_back(id >= arr.originals.size());
     }
     vertex[c] = vertex[root];
   }
@@ -167,6 +168,7 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
       const uint32_t c1 = faces[f][(h % 3 + 2) % 3], c2 = faces[f2][(g % 3 + 2) % 3];
       const uint32_t mid = static_cast<uint32_t>(mesh.vertices.size());
       mesh.vertices.push_back(0.5 * (mesh.vertices[a] + mesh.vertices[b]));
+      if (rounded_vertex) rounded_vertex->push_back(1);
       faces[f] = {a, mid, c1};
       extra.push_back({{mid, b, c1}, f});
       faces[f2] = {b, mid, c2};

@@ -13,6 +13,7 @@
 #include "covering/bounds.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
+#include "solid/rounding_repair.h"
 #include "solid/triangulate.h"
 #include "solid/validate.h"
 
@@ -63,7 +64,22 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches);
   r.seconds.select = since(t);
   t = Clock::now();
-  r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf);
+  std::vector<uint8_t> rounded;
+  r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf, &rounded);
+  r.seconds.assemble = since(t);
+  // Contacts made by rounding the constructed points independently (solid/rounding_repair.h).
+  t = Clock::now();
+  const RoundingRepair repair = repair_rounding(r.mesh, rounded);
+  if (repair.changed()) {
+    std::vector<uint32_t> leaf;
+    leaf.reserve(repair.face_origin.size());
+    for (uint32_t f : repair.face_origin) leaf.push_back(r.face_leaf[f]);
+    r.face_leaf = std::move(leaf);
+  }
+  r.collapsed_edges = repair.collapsed_edges;
+  r.rounding_contacts = repair.remaining_pairs;
+  r.seconds.repair = since(t);
+  t = Clock::now();
   for (size_t f = 0; f < r.mesh.face_count(); ++f) {
     auto t = r.mesh.face(f);
     const Vec3 a = r.mesh.vertices[t[0]], b = r.mesh.vertices[t[1]], c = r.mesh.vertices[t[2]];
@@ -76,7 +92,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
     r.components = report.components;
     r.genus = report.genus;
   }
-  r.seconds.assemble = since(t);
+  r.seconds.assemble += since(t);
   return r;
 }
 

@@ -16,7 +16,10 @@
 //   5. a piece is kept iff the expression differs on its two sides (regularized), oriented
 //      outward; coincident pieces (of several leaves, or of one) are kept once (lowest tri);
 //   6. edges with more than two kept faces are paired by exact angular order, and vertices are
-//      split per fan, so the output is a 2-manifold; exact points are rounded to nearest doubles.
+//      split per fan, so the output is a 2-manifold; exact points are rounded to nearest doubles;
+//   7. faces that the independent rounding made touch or cross (distinct exact points a few
+//      ulps apart, or on one double point) are found exactly among the faces with a rounded
+//      vertex, and repaired by collapsing rounding-scale edges (solid/rounding_repair.h).
 
 #include <cstdint>
 #include <vector>
@@ -44,6 +47,7 @@ struct EvaluatePhases {
   double identify = 0;     ///< step 3: global point identity, pieces and cut edges
   double select = 0;       ///< steps 4–5
   double assemble = 0;     ///< step 6 and the mesh report
+  double repair = 0;       ///< step 7: rounding contacts found and repaired
 };
 
 struct EvaluateResult {
@@ -58,6 +62,8 @@ struct EvaluateResult {
                                   ///< or of one self-intersecting leaf)
   size_t intersecting_pairs = 0;  ///< pairs that really meet
   size_t patches = 0;             ///< classified patches
+  int64_t collapsed_edges = 0;    ///< step 7: rounding-scale edges collapsed (usually 0)
+  int64_t rounding_contacts = 0;  ///< step 7: face pairs still meeting (0: none left)
   EvaluatePhases seconds;         ///< time per step
 };
 

@@ -33,6 +33,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <unordered_map>
 
@@ -430,6 +431,199 @@ class CapBuilder {
   }
 
   // --- §4: convex decomposition ------------------------------------------------------------
+  /// orient in the exact (rounded = false) or the rounded (true) geometry.
+  int orient_in(bool rounded, uint32_t a, uint32_t b, uint32_t c) const {
+    return rounded ? (swap_ ? -1 : 1) * orient2d(rounded_[a], rounded_[b], rounded_[c], c_.axis)
+                   : orient(a, b, c);
+  }
+
+  /// Is the diagonal from node i to node j of the polygon `idx` (node indices into poly) valid in
+  /// both geometries: inside both corners' wedges and meeting no polygon side (conservatively:
+  /// any touch or collinear overlap counts)?
+  bool diagonal_ok(const std::vector<Node>& poly, const std::vector<uint32_t>& idx, size_t i,
+                   size_t j) const {
+    const size_t n = idx.size();
+    const uint32_t si = poly[idx[i]].slot, sj = poly[idx[j]].slot;
+    const uint32_t vi = poly[idx[i]].vid, vj = poly[idx[j]].vid;
+    for (bool r : {false, true}) {
+      for (auto [at, to] : {std::pair{i, sj}, std::pair{j, si}}) {
+        const uint32_t a = poly[idx[at]].slot, a0 = poly[idx[(at + n - 1) % n]].slot,
+                       a1 = poly[idx[(at + 1) % n]].slot;
+        const bool ok = orient_in(r, a, a1, a0) > 0
+                            ? orient_in(r, a, to, a0) > 0 && orient_in(r, to, a, a1) > 0
+                            : !(orient_in(r, a, to, a1) >= 0 && orient_in(r, to, a, a0) >= 0);
+        if (!ok) return false;
+      }
+      for (size_t e = 0; e < n; ++e) {
+        const Node& p = poly[idx[e]];
+        const Node& q = poly[idx[(e + 1) % n]];
+        if (p.vid == vi || p.vid == vj || q.vid == vi || q.vid == vj) continue;
+        if (!r && boxes_apart(si, sj, p.slot, q.slot)) continue;
+        const int o1 = orient_in(r, si, sj, p.slot), o2 = orient_in(r, si, sj, q.slot);
+        const int o3 = orient_in(r, p.slot, q.slot, si), o4 = orient_in(r, p.slot, q.slot, sj);
+        if (o1 * o2 <= 0 && o3 * o4 <= 0) return false;
+      }
+    }
+    return true;
+  }
+
+  /// Triangles of `poly` (node indices): ear clipping of the whole polygon, and where that needs
+  /// forced ears, split_and_clip if it needs fewer.
+  template <class Geometry>
+  std::vector<std::array<uint32_t, 3>> triangulate(const std::vector<Node>& poly, const Geometry& g,
+                                                   int64_t& forced) const {
+    int64_t whole = 0;
+    auto tris = ear_clip(static_cast<uint32_t>(poly.size()), g, whole);
+    if (whole > 0) {
+      int64_t parts = 0;
+      auto other = split_and_clip(poly, g, parts);
+      if (parts < whole) {
+        tris = std::move(other);
+        whole = parts;
+      }
+    }
+    if (whole > 0) {
+      // No triangulation valid on both the exact and the rounded points was found: the written
+      // (rounded) points decide alone, so that the cap as written is valid.
+      struct Rounded {
+        const CapBuilder& b;
+        const Geometry& g;
+        const std::vector<Node>& poly;
+        std::array<double, 2> at(uint32_t i) const {
+          const Vec3& r = b.rounded_[poly[i].slot];
+          const int u = b.c_.axis == 2 ? 0 : b.c_.axis + 1, w = b.c_.axis == 0 ? 2 : (b.c_.axis == 1 ? 0 : 1);
+          return b.swap_ ? std::array<double, 2>{r[w], r[u]} : std::array<double, 2>{r[u], r[w]};
+        }
+        int orient(uint32_t i, uint32_t j, uint32_t k) const {
+          return b.orient_in(true, poly[i].slot, poly[j].slot, poly[k].slot);
+        }
+        uint32_t id(uint32_t i) const { return g.id(i); }
+        bool thin(uint32_t i, uint32_t j, uint32_t k) const { return g.thin(i, j, k); }
+        std::array<double, 4> bounds(uint32_t i) const {
+          const auto p = at(i);
+          return {p[0], p[0], p[1], p[1]};
+        }
+        bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
+          const auto q = at(p), x = at(a), y = at(c), z = at(d);
+          return !(q[0] < std::min({x[0], y[0], z[0]}) || q[0] > std::max({x[0], y[0], z[0]}) ||
+                   q[1] < std::min({x[1], y[1], z[1]}) || q[1] > std::max({x[1], y[1], z[1]}));
+        }
+      } rounded{*this, g, poly};
+      // Consecutive nodes at one rounded point (distinct exact points that round alike) bound
+      // no triangle on the rounded points: the polygon without the first of each such pair is
+      // clipped, and each dropped node d between p and e gets the zero-area triangle (p, d, e)
+      // on the diagonal p–e (the rounding repair later collapses d–e, cells.h).
+      const uint32_t n = static_cast<uint32_t>(poly.size());
+      std::vector<uint32_t> keep;
+      std::vector<uint8_t> dropped(n, 0);
+      for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t e = (i + 1) % n;
+        if (rounded_[poly[i].slot] == rounded_[poly[e].slot] && !dropped[e] && keep.size() + (n - i) > 3)
+          dropped[i] = 1;
+        else
+          keep.push_back(i);
+      }
+      int64_t alone = 0;
+      std::vector<std::array<uint32_t, 3>> other;
+      if (keep.size() >= 3) {
+        struct Sub {
+          const Rounded& r;
+          const std::vector<uint32_t>& idx;
+          int orient(uint32_t i, uint32_t j, uint32_t k) const { return r.orient(idx[i], idx[j], idx[k]); }
+          uint32_t id(uint32_t i) const { return r.id(idx[i]); }
+          bool thin(uint32_t i, uint32_t j, uint32_t k) const { return r.thin(idx[i], idx[j], idx[k]); }
+          std::array<double, 4> bounds(uint32_t i) const { return r.bounds(idx[i]); }
+          bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
+            return r.box_may_contain(idx[p], idx[a], idx[c], idx[d]);
+          }
+        } sub{rounded, keep};
+        for (const auto& t : ear_clip(static_cast<uint32_t>(keep.size()), sub, alone))
+          other.push_back({keep[t[0]], keep[t[1]], keep[t[2]]});
+        // Dropped nodes, last first: each fills between its kept (or refilled) neighbours.
+        for (uint32_t i = 0; i < n; ++i) {
+          if (!dropped[i]) continue;
+          uint32_t p = (i + n - 1) % n;
+          while (dropped[p]) p = (p + n - 1) % n;
+          uint32_t e = (i + 1) % n;
+          other.push_back({p, i, e});
+        }
+      } else {
+        alone = whole + 1;
+      }
+      if (alone < whole) {
+        tris = std::move(other);
+        whole = alone;
+      }
+    }
+    forced += whole;
+    return tris;
+  }
+
+  /// A corner whose turn the exact and the rounded points disagree on can be no ear's tip, and
+  /// ear clipping can end with it as the tip of the last triangle (a forced ear: folded in the
+  /// rounded output). Here each such corner first gets a diagonal valid in both geometries,
+  /// nearest candidates first, which splits the polygon in two; then each part is ear-clipped.
+  template <class Geometry>
+  std::vector<std::array<uint32_t, 3>> split_and_clip(const std::vector<Node>& poly,
+                                                      const Geometry& g, int64_t& forced) const {
+    std::vector<std::array<uint32_t, 3>> tris;
+    std::vector<std::vector<uint32_t>> parts(1);
+    parts[0].resize(poly.size());
+    std::iota(parts[0].begin(), parts[0].end(), 0u);
+    while (!parts.empty()) {
+      std::vector<uint32_t> idx = std::move(parts.back());
+      parts.pop_back();
+      const size_t n = idx.size();
+      bool split = false;
+      for (size_t i = 0; i < n && n > 3 && !split; ++i) {
+        const uint32_t sa = poly[idx[(i + n - 1) % n]].slot, sb = poly[idx[i]].slot,
+                       sc = poly[idx[(i + 1) % n]].slot;
+        if (orient_in(false, sa, sb, sc) == orient_in(true, sa, sb, sc)) continue;
+        const auto& bi = iv(poly[idx[i]].slot);
+        std::vector<std::pair<double, size_t>> cands;
+        for (size_t j = 0; j < n; ++j) {
+          if (j == i || j == (i + 1) % n || j == (i + n - 1) % n) continue;
+          if (poly[idx[j]].vid == poly[idx[i]].vid) continue;
+          const auto& bj = iv(poly[idx[j]].slot);
+          const double dx = bj[0] - bi[0], dy = bj[2] - bi[2];
+          cands.push_back({dx * dx + dy * dy, j});
+        }
+        std::sort(cands.begin(), cands.end());
+        for (const auto& [d2, j] : cands) {
+          if (!diagonal_ok(poly, idx, i, j)) continue;
+          std::vector<uint32_t> a, b;
+          for (size_t k = i;; k = (k + 1) % n) {
+            a.push_back(idx[k]);
+            if (k == j) break;
+          }
+          for (size_t k = j;; k = (k + 1) % n) {
+            b.push_back(idx[k]);
+            if (k == i) break;
+          }
+          parts.push_back(std::move(a));
+          parts.push_back(std::move(b));
+          split = true;
+          break;
+        }
+      }
+      if (split) continue;
+      struct Sub {
+        const Geometry& g;
+        const std::vector<uint32_t>& idx;
+        int orient(uint32_t i, uint32_t j, uint32_t k) const { return g.orient(idx[i], idx[j], idx[k]); }
+        uint32_t id(uint32_t i) const { return g.id(idx[i]); }
+        bool thin(uint32_t i, uint32_t j, uint32_t k) const { return g.thin(idx[i], idx[j], idx[k]); }
+        std::array<double, 4> bounds(uint32_t i) const { return g.bounds(idx[i]); }
+        bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
+          return g.box_may_contain(idx[p], idx[a], idx[c], idx[d]);
+        }
+      } sub{g, idx};
+      for (const auto& t : ear_clip(static_cast<uint32_t>(n), sub, forced))
+        tris.push_back({idx[t[0]], idx[t[1]], idx[t[2]]});
+    }
+    return tris;
+  }
+
   /// Ear-clips the polygon, removes diagonals while both ends stay convex (Hertel–Mehlhorn)
   /// unless triangulating, and makes the cap faces. Returns the number of faces made.
   int64_t decompose(const std::vector<Node>& poly, int64_t& forced) {
@@ -452,7 +646,7 @@ class CapBuilder {
                  q[3] < std::min({x[2], y[2], z[2]}) || q[2] > std::max({x[3], y[3], z[3]}));
       }
     } geometry{*this, poly};
-    const auto tris = ear_clip(n, geometry, forced);
+    const auto tris = triangulate(poly, geometry, forced);
     // Local half-edges: 3 per triangle; a side from node i to node i+1 is a ring side, any other
     // is a diagonal shared (reversed) by two triangles.
     const uint32_t nl = static_cast<uint32_t>(3 * tris.size());

@@ -29,6 +29,7 @@
 #include "solid/errors.h"
 #include "solid/measure.h"
 #include "solid/parallel.h"
+#include "solid/rounding_repair.h"
 
 namespace cover::brep {
 namespace {
@@ -49,6 +50,8 @@ struct Part {
   int64_t forced_ears = 0;  ///< in the clips that made it
   bool empty() const { return mesh.face_count() == 0; }
 };
+
+void measure(CellPiece& piece);
 
 class Cutter {
  public:
@@ -122,18 +125,9 @@ class Cutter {
     CellPiece piece;
     piece.cell = cell;
     piece.forced_ears = part.forced_ears;
-    PolygonMesh caps;
-    caps.vertices = part.mesh.vertices;
-    for (size_t f = 0; f < part.faces.size(); ++f) {
-      if (part.faces[f] == CellFace::kSurface) continue;
-      caps.add_face(part.mesh.face(f));
-      ++piece.cap_faces;
-    }
-    piece.cap_area = surface_area(caps);
-    piece.volume = signed_volume(part.mesh);
-    piece.area = surface_area(part.mesh);
     piece.mesh = std::move(part.mesh);
     piece.faces = std::move(part.faces);
+    measure(piece);
     return piece;
   }
 
@@ -141,6 +135,42 @@ class Cutter {
   const CellsOptions& options_;
   std::atomic<int64_t> clips_{0}, forced_{0};
 };
+
+/// Volume, areas and cap faces of `piece` from its mesh and face kinds.
+void measure(CellPiece& piece) {
+  PolygonMesh caps;
+  caps.vertices = piece.mesh.vertices;
+  piece.cap_faces = 0;
+  for (size_t f = 0; f < piece.faces.size(); ++f) {
+    if (piece.faces[f] == CellFace::kSurface) continue;
+    caps.add_face(piece.mesh.face(f));
+    ++piece.cap_faces;
+  }
+  piece.cap_area = surface_area(caps);
+  piece.volume = signed_volume(piece.mesh);
+  piece.area = surface_area(piece.mesh);
+}
+
+/// The rounding repair of one piece (module comment of cells.h): vertices on the cell's walls
+/// are the rounded ones.
+void repair_piece(CellPiece& piece, const CellGrid& grid) {
+  std::vector<uint8_t> rounded(piece.mesh.vertices.size(), 0);
+  for (size_t v = 0; v < rounded.size(); ++v)
+    for (int a = 0; a < 3; ++a) {
+      const double x = piece.mesh.vertices[v][a];
+      if (x == cell_wall(grid, a, piece.cell[a]) || x == cell_wall(grid, a, piece.cell[a] + 1))
+        rounded[v] = 1;
+    }
+  RoundingRepair r = repair_rounding(piece.mesh, rounded);
+  piece.rounding_contacts = r.remaining_pairs;
+  if (!r.changed()) return;
+  piece.collapsed_edges = r.collapsed_edges;
+  std::vector<CellFace> faces;
+  faces.reserve(r.face_origin.size());
+  for (uint32_t f : r.face_origin) faces.push_back(piece.faces[f]);
+  piece.faces = std::move(faces);
+  measure(piece);
+}
 
 /// Coordinates as an ordered key; −0 becomes +0 so that equal values compare equal.
 std::array<double, 3> key(const Vec3& p) { return {p.x + 0.0, p.y + 0.0, p.z + 0.0}; }
@@ -255,6 +285,17 @@ CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid, const Cells
     result.glued = glue(result.pieces);
     result.glue_seconds = std::chrono::duration<double>(Clock::now() - cut_end).count();
   }
+  const auto repair_start = Clock::now();
+  parallel_for(result.pieces.size(), 1, [&](size_t p0, size_t p1) {
+    for (size_t p = p0; p < p1; ++p) repair_piece(result.pieces[p], grid);
+  });
+  for (const CellPiece& piece : result.pieces) {
+    result.collapsed_edges += piece.collapsed_edges;
+    result.rounding_contacts += piece.rounding_contacts;
+  }
+  result.cap_faces = 0;
+  for (const CellPiece& piece : result.pieces) result.cap_faces += piece.cap_faces;
+  result.repair_seconds = std::chrono::duration<double>(Clock::now() - repair_start).count();
   return result;
 }
 

@@ -18,6 +18,16 @@
 // both halves, and later cuts split a shared wall edge identically on both sides, so the border
 // edges that the interior caps leave behind match exactly across a wall: gluing pairs them by
 // their coordinates and identifies their end vertices (no tolerance).
+//
+// Rounding repair: a wall within rounding distance of a vertex makes the fan of edges at that
+// vertex cross the wall at exact points that round to one double point (or to points an ulp
+// apart across each other), and a cap ring of such points may admit no triangulation valid on
+// both the exact and the rounded points (ClipResult::forced_ears). The written piece would touch
+// itself there. After gluing (which uses the pieces as cut), each piece is checked exactly for
+// faces that meet, among the faces with a vertex on one of its walls (every constructed vertex
+// lies on a wall), and such contacts are removed by collapsing rounding-scale edges
+// (solid/rounding_repair.h). A repaired piece may then differ from its neighbour by that
+// collapsed edge on their common wall.
 
 #include <array>
 #include <cstdint>
@@ -61,6 +71,11 @@ struct CellPiece {
   /// Ear-clipping fallbacks (ClipResult::forced_ears) in the clips that made this piece: 0
   /// unless a cap ring's exact and rounded points admit no common triangulation.
   int64_t forced_ears = 0;
+  /// Rounding-scale edges collapsed by the rounding repair (module comment): 0 unless rounding
+  /// made the piece touch itself.
+  int64_t collapsed_edges = 0;
+  /// Face pairs still meeting after the repair (0 unless the repair found no allowed collapse).
+  int64_t rounding_contacts = 0;
 };
 
 struct CellsResult {
@@ -69,8 +84,11 @@ struct CellsResult {
   int64_t cap_faces = 0;          ///< Σ pieces' cap_faces
   int64_t clips = 0;              ///< plane clips run (walls a piece does not cross are skipped)
   int64_t forced_ears = 0;        ///< Σ ClipResult::forced_ears over all clips
+  int64_t collapsed_edges = 0;    ///< Σ pieces' collapsed_edges
+  int64_t rounding_contacts = 0;  ///< Σ pieces' rounding_contacts (0: every piece valid)
   double cut_seconds = 0;         ///< wall-clock time of the cuts
   double glue_seconds = 0;        ///< wall-clock time of the gluing
+  double repair_seconds = 0;      ///< wall-clock time of the rounding repair of the pieces
 };
 
 /// Cuts `mesh` into the cells of `grid`. `mesh` is what brep::clip accepts: closed, outward,

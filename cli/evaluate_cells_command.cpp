@@ -71,7 +71,8 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
                       {"cap_area", p.cap_area},
                       {"faces", p.mesh.face_count()},
                       {"cap_faces", p.cap_faces},
-                      {"forced_ears", p.forced_ears}});
+                      {"forced_ears", p.forced_ears},
+                      {"collapsed_edges", p.collapsed_edges}});
   }
   if (!o.pieces.empty()) {
     const std::filesystem::path dir(o.pieces);
@@ -108,11 +109,14 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   j["cap_faces"] = r.cells.cap_faces;
   j["clips"] = r.cells.clips;
   j["forced_ears"] = r.cells.forced_ears;
+  j["collapsed_edges"] = r.cells.collapsed_edges;
+  j["rounding_contacts"] = r.cells.rounding_contacts;
   j["evaluated_faces"] = r.evaluated.mesh.face_count();
   timing.put(j);
   j["seconds_detail"]["evaluate"] = r.evaluate_seconds;
   j["seconds_detail"]["cut"] = r.cells.cut_seconds;
   j["seconds_detail"]["glue"] = r.cells.glue_seconds;
+  j["seconds_detail"]["repair"] = r.cells.repair_seconds;
   if (common.json) {
     std::cout << j.dump() << "\n";
   } else {

@@ -58,6 +58,7 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   j["faces"] = r.mesh.face_count();
   j["genus"] = r.genus;
   j["components"] = r.components;
+  j["collapsed_edges"] = r.collapsed_edges;
   if (o.leaf_ids) {
     j["leaf_names"] = nlohmann::json::array();
     for (const Leaf& leaf : model.solid().leaves) j["leaf_names"].push_back(leaf.name);

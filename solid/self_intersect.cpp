@@ -172,3 +172,77 @@ bool self_intersects(const PolygonMesh& mesh) {
 }
 
 }  // namespace cover
+
+namespace cover {
+
+std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
+    const PolygonMesh& mesh, std::span<const uint8_t> suspect) {
+  const bool all = suspect.empty();
+  const size_t faces = mesh.face_count();
+  // With suspects, only faces whose box meets a suspect face's box are tiled (face boxes first:
+  // most faces of a large mesh are far from the few suspects).
+  std::vector<uint8_t> needed(faces, all ? 1 : 0);
+  if (!all) {
+    // Boxes stay in place and are handled by pointer (their ids are their addresses).
+    std::vector<Box> face_boxes;
+    face_boxes.reserve(faces);
+    std::vector<const Box*> all_ptrs, suspect_ptrs;
+    for (uint32_t f = 0; f < faces; ++f) {
+      CGAL::Bbox_3 b;
+      for (uint32_t v : mesh.face(f)) b += to_point(mesh.vertices[v]).bbox();
+      face_boxes.emplace_back(b, f);
+    }
+    for (uint32_t f = 0; f < faces; ++f) {
+      all_ptrs.push_back(&face_boxes[f]);
+      if (suspect[f]) suspect_ptrs.push_back(&face_boxes[f]), needed[f] = 1;
+    }
+    if (suspect_ptrs.empty()) return {};
+    CGAL::box_intersection_d(suspect_ptrs.begin(), suspect_ptrs.end(), all_ptrs.begin(),
+                             all_ptrs.end(),
+                             [&](const Box*, const Box* y) { needed[y->info()] = 1; });
+  }
+  std::vector<Point3> points;
+  points.reserve(mesh.vertices.size());
+  for (const Vec3& v : mesh.vertices) points.push_back(to_point(v));
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  std::vector<Triangle> triangles;
+  std::vector<std::array<uint32_t, 3>> tiles;
+  for (size_t f = 0; f < faces; ++f) {
+    if (!needed[f]) continue;
+    tiles.clear();
+    if (triangulate_face(mesh.vertices, mesh.face(f), tiles) != FaceTiling::kSimple) {
+      if (all || suspect[f]) pairs.push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
+      continue;
+    }
+    for (const auto& t : tiles) triangles.push_back({t, static_cast<uint32_t>(f)});
+  }
+  std::vector<Box> boxes;
+  boxes.reserve(triangles.size());
+  for (uint32_t t = 0; t < triangles.size(); ++t) {
+    const auto& v = triangles[t].v;
+    boxes.emplace_back(points[v[0]].bbox() + points[v[1]].bbox() + points[v[2]].bbox(), t);
+  }
+  std::vector<const Box*> box_ptrs, suspects;
+  for (const Box& b : boxes) {
+    box_ptrs.push_back(&b);
+    if (!all && suspect[triangles[b.info()].face]) suspects.push_back(&b);
+  }
+  auto test_pair = [&](const Box* x, const Box* y) {
+    const Triangle& a = triangles[x->info()];
+    const Triangle& b = triangles[y->info()];
+    if (a.face != b.face && triangles_meet(a, b, points, mesh.vertices))
+      pairs.push_back({std::min(a.face, b.face), std::max(a.face, b.face)});
+  };
+  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
+  if (all)
+    CGAL::box_self_intersection_d(box_ptrs.begin(), box_ptrs.end(), test_pair, kCutoff);
+  else if (!suspects.empty())
+    // Suspect against every triangle: a pair of two suspects is met twice (deduplicated below).
+    CGAL::box_intersection_d(suspects.begin(), suspects.end(), box_ptrs.begin(), box_ptrs.end(),
+                             test_pair, kCutoff);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+}  // namespace cover

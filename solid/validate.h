@@ -21,6 +21,9 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <utility>
+#include <vector>
 
 #include "solid/polygon_mesh.h"
 
@@ -57,5 +60,13 @@ MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options
 /// the shared vertices (CGAL::Polygon_mesh_processing::self_intersections' rules); distinct indices
 /// at equal coordinates are a contact, hence an intersection.
 bool self_intersects(const PolygonMesh& mesh);
+
+/// The pairs (f, g), f ≤ g, of faces that meet by self_intersects()' rules, sorted; (f, f) for a
+/// face whose boundary crosses itself or winds more than once. With `suspect` (one flag per
+/// face) only pairs with at least one suspect face are tested: a caller that knows which faces
+/// may have moved (e.g. those with rounded vertices) skips the pairs of unchanged faces.
+/// Sequential; meant for the few faces near rounded points, or for tests.
+std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
+    const PolygonMesh& mesh, std::span<const uint8_t> suspect = {});
 
 }  // namespace cover

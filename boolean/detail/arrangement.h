@@ -101,8 +101,11 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
 /// Step 6: pairs faces around edges with more than two faces by exact angular order, splits
 /// vertices per fan, rounds the exact points to the nearest doubles. Face f of the mesh is
 /// tris[f], except that faces split at a doubled edge append their second halves at the end;
-/// `labels` (one per tri, when given) gets their labels appended likewise.
+/// `labels` (one per tri, when given) gets their labels appended likewise. `rounded_vertex`
+/// (when given) gets one flag per output vertex: set where its coordinates were rounded (a
+/// constructed point or a midpoint), not an input vertex's own doubles.
 PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
-                     std::vector<uint32_t>* labels = nullptr);
+                     std::vector<uint32_t>* labels = nullptr,
+                     std::vector<uint8_t>* rounded_vertex = nullptr);
 
 }  // namespace cover::boolean_detail

@@ -27,10 +27,6 @@ inline brep::CellGrid cells_around(const PolygonMesh& mesh, int n, double margin
 struct CellsTolerance {
   /// A mesh that intersects itself (outside cut_cells' precondition) is not cut.
   bool self_intersecting_input = false;
-  /// Caps made with ear-clipping fallbacks (CellsResult::forced_ears > 0: a ring whose exact and
-  /// rounded points admit no common triangulation, brep/cap.cpp) are not checked for
-  /// self-intersection; everything else still is.
-  bool forced_ears = false;
 };
 
 /// Cuts `mesh` (closed, outward, valid) into the cells of `grid` and checks pieces and glue; the
@@ -45,9 +41,10 @@ inline brep::CellsResult expect_valid_cells(const PolygonMesh& mesh, const brep:
     return {};
   }
   brep::CellsResult r = brep::cut_cells(mesh, grid);
-  if (tolerate.forced_ears && r.forced_ears > 0)
-    std::printf("note: %s: %lld forced ears in the caps; their pieces are not checked for "
-                "self-intersection\n", label.c_str(), static_cast<long long>(r.forced_ears));
+  EXPECT_EQ(r.rounding_contacts, 0) << label;
+  if (r.forced_ears > 0 || r.collapsed_edges > 0)
+    std::printf("note: %s: %lld forced ears, %lld rounding-scale edges collapsed\n", label.c_str(),
+                static_cast<long long>(r.forced_ears), static_cast<long long>(r.collapsed_edges));
   const double volume = signed_volume(mesh);
   double sum = 0;
   for (const brep::CellPiece& piece : r.pieces) {
@@ -55,9 +52,7 @@ inline brep::CellsResult expect_valid_cells(const PolygonMesh& mesh, const brep:
                              std::to_string(piece.cell[1]) + "," + std::to_string(piece.cell[2]);
     const HalfCheck c = check_half(piece.mesh, {}, -1);
     EXPECT_TRUE(c.report.consistent && c.report.closed && c.report.manifold) << cell;
-    if (!tolerate.forced_ears || piece.forced_ears == 0) {
-      EXPECT_FALSE(c.self_intersecting) << cell;
-    }
+    EXPECT_FALSE(c.self_intersecting) << cell;
     EXPECT_GT(piece.volume, 0) << cell;
     EXPECT_EQ(piece.faces.size(), piece.mesh.face_count()) << cell;
     const Bbox b = face_bbox(piece.mesh);
