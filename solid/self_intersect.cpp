@@ -175,46 +175,135 @@ bool self_intersects(const PolygonMesh& mesh) {
 
 namespace cover {
 
+namespace {
+
+/// For every overlapping pair (x in `probe`, y in `base`) calls on_pair(slab, x, y), in parallel
+/// over slabs of kSlab probe boxes taken in order of their lower z bound; each slab meets the
+/// base boxes whose z range overlaps its own (found by binary search on the lower z bounds,
+/// widened by the tallest base box). `slab` indexes per-slab results. Returns the slab count.
+template <class OnPair>
+size_t bipartite_slabs(std::vector<const Box*> probe, std::vector<const Box*> base,
+                       const OnPair& on_pair) {
+  constexpr size_t kSlab = 1024;
+  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
+  auto by_zmin = [](const Box* x, const Box* y) {
+    return x->min_coord(2) < y->min_coord(2) || (x->min_coord(2) == y->min_coord(2) && x < y);
+  };
+  std::sort(probe.begin(), probe.end(), by_zmin);
+  std::sort(base.begin(), base.end(), by_zmin);
+  double tallest = 0;
+  for (const Box* b : base) tallest = std::max(tallest, b->max_coord(2) - b->min_coord(2));
+  const size_t slabs = (probe.size() + kSlab - 1) / kSlab;
+  parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
+    std::vector<const Box*> mine, others;
+    for (size_t s = s0; s < s1; ++s) {
+      const size_t lo = s * kSlab, hi = std::min(probe.size(), lo + kSlab);
+      mine.assign(probe.begin() + lo, probe.begin() + hi);
+      const double zlo = mine.front()->min_coord(2);
+      double zhi = zlo;
+      for (const Box* b : mine) zhi = std::max(zhi, b->max_coord(2));
+      auto first = std::lower_bound(base.begin(), base.end(), zlo - tallest,
+                                    [](const Box* b, double z) { return b->min_coord(2) < z; });
+      auto last = std::upper_bound(base.begin(), base.end(), zhi,
+                                   [](double z, const Box* b) { return z < b->min_coord(2); });
+      others.clear();
+      for (auto it = first; it != last; ++it)
+        if ((*it)->max_coord(2) >= zlo) others.push_back(*it);
+      CGAL::box_intersection_d(mine.begin(), mine.end(), others.begin(), others.end(),
+                               [&](const Box* x, const Box* y) { on_pair(s, x, y); }, kCutoff);
+    }
+  });
+  return slabs;
+}
+
+/// For every overlapping pair of `boxes` calls on_pair(slab, x, y) once, in parallel over slabs
+/// of kSlab boxes in order of their lower z bound (as self_intersects does). Returns the slab
+/// count.
+template <class OnPair>
+size_t self_slabs(std::vector<const Box*> boxes, const OnPair& on_pair) {
+  constexpr size_t kSlab = 4096;
+  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
+  std::sort(boxes.begin(), boxes.end(), [](const Box* x, const Box* y) {
+    return x->min_coord(2) < y->min_coord(2) || (x->min_coord(2) == y->min_coord(2) && x < y);
+  });
+  const size_t slabs = (boxes.size() + kSlab - 1) / kSlab;
+  parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
+    std::vector<const Box*> mine, later;
+    for (size_t s = s0; s < s1; ++s) {
+      const size_t lo = s * kSlab, hi = std::min(boxes.size(), lo + kSlab);
+      mine.assign(boxes.begin() + lo, boxes.begin() + hi);
+      CGAL::Bbox_3 slab;
+      for (const Box* b : mine) slab += b->bbox();
+      later.clear();
+      for (size_t i = hi; i < boxes.size() && boxes[i]->min_coord(2) <= slab.zmax(); ++i)
+        if (CGAL::do_overlap(boxes[i]->bbox(), slab)) later.push_back(boxes[i]);
+      auto call = [&](const Box* x, const Box* y) { on_pair(s, x, y); };
+      CGAL::box_self_intersection_d(mine.begin(), mine.end(), call, kCutoff);
+      CGAL::box_intersection_d(mine.begin(), mine.end(), later.begin(), later.end(), call, kCutoff);
+    }
+  });
+  return slabs;
+}
+
+}  // namespace
+
 std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     const PolygonMesh& mesh, std::span<const uint8_t> suspect) {
   const bool all = suspect.empty();
   const size_t faces = mesh.face_count();
   // With suspects, only faces whose box meets a suspect face's box are tiled (face boxes first:
-  // most faces of a large mesh are far from the few suspects).
-  std::vector<uint8_t> needed(faces, all ? 1 : 0);
-  if (!all) {
-    // Boxes stay in place and are handled by pointer (their ids are their addresses).
-    std::vector<Box> face_boxes;
-    face_boxes.reserve(faces);
-    std::vector<const Box*> all_ptrs, suspect_ptrs;
+  // most faces of a large mesh are far from the few suspects). Boxes stay in place and are
+  // handled by pointer (their ids are their addresses).
+  const size_t suspect_faces =
+      all ? faces : static_cast<size_t>(std::count(suspect.begin(), suspect.end(), uint8_t{1}));
+  if (suspect_faces == 0) return {};
+  std::vector<uint8_t> needed(faces, 4 * suspect_faces >= faces ? 1 : 0);
+  if (!needed.empty() && !needed[0]) {
+    std::vector<Box> face_boxes(faces);
+    parallel_for(faces, 4096, [&](size_t f0, size_t f1) {
+      for (size_t f = f0; f < f1; ++f) {
+        CGAL::Bbox_3 b;
+        for (uint32_t v : mesh.face(f)) b += to_point(mesh.vertices[v]).bbox();
+        face_boxes[f] = Box(b, static_cast<uint32_t>(f));
+      }
+    });
+    std::vector<const Box*> all_ptrs(faces), suspect_ptrs;
     for (uint32_t f = 0; f < faces; ++f) {
-      CGAL::Bbox_3 b;
-      for (uint32_t v : mesh.face(f)) b += to_point(mesh.vertices[v]).bbox();
-      face_boxes.emplace_back(b, f);
-    }
-    for (uint32_t f = 0; f < faces; ++f) {
-      all_ptrs.push_back(&face_boxes[f]);
+      all_ptrs[f] = &face_boxes[f];
       if (suspect[f]) suspect_ptrs.push_back(&face_boxes[f]), needed[f] = 1;
     }
     if (suspect_ptrs.empty()) return {};
-    CGAL::box_intersection_d(suspect_ptrs.begin(), suspect_ptrs.end(), all_ptrs.begin(),
-                             all_ptrs.end(),
-                             [&](const Box*, const Box* y) { needed[y->info()] = 1; });
+    // Concurrent slabs may mark one face: relaxed atomic byte stores.
+    bipartite_slabs(std::move(suspect_ptrs), std::move(all_ptrs),
+                    [&](size_t, const Box*, const Box* y) {
+                      std::atomic_ref<uint8_t>(needed[y->info()]).store(1, std::memory_order_relaxed);
+                    });
   }
-  std::vector<Point3> points;
-  points.reserve(mesh.vertices.size());
-  for (const Vec3& v : mesh.vertices) points.push_back(to_point(v));
+  std::vector<Point3> points(mesh.vertices.size());
+  for (size_t v = 0; v < points.size(); ++v) points[v] = to_point(mesh.vertices[v]);
+  // Tiles of the needed faces, per chunk of faces, then in face order.
+  constexpr size_t kGrain = 1024;
+  const size_t chunks = (faces + kGrain - 1) / kGrain;
+  std::vector<std::vector<Triangle>> chunk_tris(chunks);
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> chunk_bad(chunks);
+  parallel_for(faces, kGrain, [&](size_t f0, size_t f1) {
+    std::vector<std::array<uint32_t, 3>> tiles;
+    const size_t c = f0 / kGrain;
+    for (size_t f = f0; f < f1; ++f) {
+      if (!needed[f]) continue;
+      tiles.clear();
+      if (triangulate_face(mesh.vertices, mesh.face(f), tiles) != FaceTiling::kSimple) {
+        if (all || suspect[f]) chunk_bad[c].push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
+        continue;
+      }
+      for (const auto& t : tiles) chunk_tris[c].push_back({t, static_cast<uint32_t>(f)});
+    }
+  });
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   std::vector<Triangle> triangles;
-  std::vector<std::array<uint32_t, 3>> tiles;
-  for (size_t f = 0; f < faces; ++f) {
-    if (!needed[f]) continue;
-    tiles.clear();
-    if (triangulate_face(mesh.vertices, mesh.face(f), tiles) != FaceTiling::kSimple) {
-      if (all || suspect[f]) pairs.push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
-      continue;
-    }
-    for (const auto& t : tiles) triangles.push_back({t, static_cast<uint32_t>(f)});
+  for (size_t c = 0; c < chunks; ++c) {
+    pairs.insert(pairs.end(), chunk_bad[c].begin(), chunk_bad[c].end());
+    triangles.insert(triangles.end(), chunk_tris[c].begin(), chunk_tris[c].end());
   }
   std::vector<Box> boxes;
   boxes.reserve(triangles.size());
@@ -227,19 +316,34 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     box_ptrs.push_back(&b);
     if (!all && suspect[triangles[b.info()].face]) suspects.push_back(&b);
   }
-  auto test_pair = [&](const Box* x, const Box* y) {
+  auto meet = [&](const Box* x, const Box* y) {
     const Triangle& a = triangles[x->info()];
     const Triangle& b = triangles[y->info()];
-    if (a.face != b.face && triangles_meet(a, b, points, mesh.vertices))
-      pairs.push_back({std::min(a.face, b.face), std::max(a.face, b.face)});
+    return a.face != b.face && triangles_meet(a, b, points, mesh.vertices);
   };
-  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
-  if (all)
-    CGAL::box_self_intersection_d(box_ptrs.begin(), box_ptrs.end(), test_pair, kCutoff);
-  else if (!suspects.empty())
-    // Suspect against every triangle: a pair of two suspects is met twice (deduplicated below).
-    CGAL::box_intersection_d(suspects.begin(), suspects.end(), box_ptrs.begin(), box_ptrs.end(),
-                             test_pair, kCutoff);
+  auto key = [&](const Box* x, const Box* y) {
+    const uint32_t f = triangles[x->info()].face, g = triangles[y->info()].face;
+    return std::pair{std::min(f, g), std::max(f, g)};
+  };
+  if (all || 4 * suspects.size() >= box_ptrs.size()) {
+    // Mostly suspects: one self-intersection pass over the tiles (each pair once), skipping
+    // pairs without a suspect.
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found((box_ptrs.size() + 4095) / 4096);
+    self_slabs(std::move(box_ptrs), [&](size_t s, const Box* x, const Box* y) {
+      if (!all && !suspect[triangles[x->info()].face] && !suspect[triangles[y->info()].face])
+        return;
+      if (meet(x, y)) found[s].push_back(key(x, y));
+    });
+    for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  } else if (!suspects.empty()) {
+    // Suspects against every triangle: a pair of two suspects is met twice (deduplicated below).
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found((suspects.size() + 1023) / 1024);
+    bipartite_slabs(std::move(suspects), std::move(box_ptrs),
+                    [&](size_t s, const Box* x, const Box* y) {
+                      if (meet(x, y)) found[s].push_back(key(x, y));
+                    });
+    for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
