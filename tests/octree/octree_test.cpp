@@ -315,6 +315,15 @@ TEST(Octree, BoxSphereElephantAndDifferenceAreExactAndConservative) {
   expect_occupancy_by_points(hollow, th, 4, 30);
 }
 
+TEST(Octree, MoreThan64SubPointsPerCellGroupWithoutMasks) {
+  // 5³ sub-points do not fit one 64-bit mask per cell: the last level groups them by side
+  // vectors instead (octree.cpp, sibling_representatives); the same exact occupancies.
+  const Solid sphere = make_leaf(make_sphere({0.1, -0.2, 0.3}, 0.75, 24), "sphere");
+  const Octree t = build(sphere, default_bounds(sphere, 4), 4, 5);
+  check_leaves(sphere, t);
+  expect_occupancy_by_points(sphere, t, 5, 40);
+}
+
 TEST(Octree, GridAlignedBoxHasNoPartialCells) {
   // Faces on grid planes only touch the cells on either side (their boundaries), so no cell is
   // crossed below the box's own level: every leaf is full or empty and the full ones tile it.
