@@ -93,6 +93,9 @@ bool OctantOverlap::skip(int e, int axis) {
         hi = std::max(hi, sign == kUnknown ? 1 : int{sign});
       }
   } else {
+    // No filter (e.g. mag = 0: a point box on the edge's line): every sign is left to
+    // orient2d. The row must be marked, it is read by edge_sign() next.
+    std::fill(signs, signs + 9, kUnknown);
     lo = -1;
     hi = 1;
   }
