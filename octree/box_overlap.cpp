@@ -152,6 +152,46 @@ bool OctantOverlap::separated(int o, bool open) {
   return false;
 }
 
+uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
+  // Octant o has bit (o >> k) & 1 = half h along axis k: the octants of a half along k, and of
+  // a quadrant (hu, hw) of the plane dropping `axis`.
+  constexpr uint8_t kHalf[3][2] = {{0x55, 0xAA}, {0x33, 0xCC}, {0x0F, 0xF0}};
+  uint8_t alive = wanted;
+  // Box normals (exact comparisons), per half: the same test as separated(o, true).
+  for (int k = 0; k < 3 && alive != 0; ++k)
+    for (int h = 0; h < 2; ++h) {
+      const double lo = planes_[k][h], hi = planes_[k][h + 1];
+      if (lo_[k] >= hi || hi_[k] <= lo) alive &= static_cast<uint8_t>(~kHalf[k][h]);
+    }
+  // The triangle's normal: the 8 corners of the octant on one side of its plane (or on it).
+  for (uint8_t m = alive; m != 0; m &= static_cast<uint8_t>(m - 1)) {
+    const int o = std::countr_zero(m);
+    const int bx = o & 1, by = (o >> 1) & 1, bz = (o >> 2) & 1;
+    int lo = 1, hi = -1;
+    for (int c = 0; c < 8; ++c) {
+      const int s = plane_sign(bx + (c & 1), by + ((c >> 1) & 1), bz + (c >> 2));
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+    if (!(lo < 0 && hi > 0)) alive &= static_cast<uint8_t>(~(1u << o));
+  }
+  // e_axis × edge, per quadrant of the plane dropping `axis` that holds a live octant.
+  for (int e = 0; e < 3 && alive != 0; ++e)
+    for (int axis = 0; axis < 3 && alive != 0; ++axis) {
+      if (skip(e, axis)) continue;
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      for (int hu = 0; hu < 2; ++hu)
+        for (int hw = 0; hw < 2; ++hw) {
+          const uint8_t quadrant = kHalf[u][hu] & kHalf[w][hw];
+          if ((alive & quadrant) == 0) continue;
+          const int side = common_side(
+              4, true, [&](int c) { return edge_sign(e, axis, hu + (c & 1), hw + (c >> 1)); });
+          if (side != 0 && third_sign(e, axis) != side) alive &= static_cast<uint8_t>(~quadrant);
+        }
+    }
+  return alive;
+}
+
 PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box)
     : a_(a), b_(b), c_(c), bound_(std::numeric_limits<double>::infinity()) {
   const Vec3 u = b - a, v = c - a;

@@ -336,15 +336,14 @@ class Builder {
           // The last level's short-list sets need only whether a cell is crossed (see
           // sibling_representatives): one witness triangle per cell.
           const bool witness = d == depth_ && parent_lists_[parent].size() <= kSiblingMax;
-          int open = 8;
+          uint8_t open = 0xFF;  // the octants still tested (witness: those without one yet)
           for (uint32_t t : parent_lists_[parent]) {
             const Bvh::Tri tri = bvh_.triangle(t);
             detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
-            for (int c = 0; c < 8; ++c)
-              if (!(witness && !octant[c].empty()) && overlap.crosses(c)) {
-                octant[c].push_back(t);
-                open -= witness;
-              }
+            const uint8_t crossed = overlap.crossed_octants(open);
+            for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
+              octant[std::countr_zero(m)].push_back(t);
+            if (witness) open &= static_cast<uint8_t>(~crossed);
             if (open == 0) break;
           }
           for (int c = 0; c < 8; ++c) {
@@ -428,13 +427,34 @@ class Builder {
         full[c] = all;
       }
     }
+    // The 27 corners of the 8 cells (the parent's lattice: the same grid planes as their boxes).
+    double lattice[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (uint64_t t = 0; t < 3; ++t)
+        lattice[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
     s.pos.resize(k);
     for (size_t j = 0; j < k; ++j) {
       const Bvh::Tri tri = bvh_.triangle(tris[j]);
       const detail::PlaneSide plane(tri.a, tri.b, tri.c, parent_box);
+      int8_t corner[27];  // exact signs, [(iz·3 + iy)·3 + ix]
+      plane.grid_signs(lattice[0], lattice[1], lattice[2], 3, corner, 1);
       Set& pos = s.pos[j];
       pos.fill(0);
       for (int c = 0; c < 8; ++c) {
+        // A cell whose 8 corners lie strictly on one side has all its points there (the sign
+        // of orient3d is affine in the point): no per-point signs.
+        int lo = 1, hi = -1;
+        for (int q = 0; q < 8; ++q) {
+          const int sign = corner[(((c >> 2) + (q >> 2)) * 3 + ((c >> 1) & 1) + ((q >> 1) & 1)) *
+                                      3 + (c & 1) + (q & 1)];
+          lo = std::min(lo, sign);
+          hi = std::max(hi, sign);
+        }
+        if (lo == hi && lo != 0) {
+          if (lo > 0) pos[c] = full[c];
+          if (lo > 0 && (full[8] >> c & 1)) pos[8] |= uint64_t{1} << c;
+          continue;
+        }
         uint64_t neg = 0;
         if (full[c] != 0) {
           const SubGrid& g = s.cell_grid[c];

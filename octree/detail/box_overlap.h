@@ -87,6 +87,13 @@ class OctantOverlap {
   /// True when the triangle meets the interior of octant o. Precondition: octant o has positive
   /// size on every axis.
   bool crosses(int o) { return !separated(o, true); }
+  /// The octants among `wanted` (bit o = octant o) whose interior the triangle meets: crosses()
+  /// for all of them at once, each axis tested per half (box normals) or per quadrant of the
+  /// plane dropping it (edge axes) instead of per octant. Precondition: the octants have
+  /// positive size on every axis.
+  uint8_t crossed_octants(uint8_t wanted);
+  /// The exact plane sign at lattice point (ix, iy, iz), each 0..2.
+  int plane_sign(int ix, int iy, int iz) const { return plane_cache_[(iz * 3 + iy) * 3 + ix]; }
 
  private:
   static constexpr int8_t kUnknown = 2;  ///< cache entry not computed yet

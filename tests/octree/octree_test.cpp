@@ -280,6 +280,35 @@ TEST(BoxOverlap, PointBoxesAgreeWithCgal) {
   }
 }
 
+TEST(BoxOverlap, CrossedOctantsIsCrossesPerOctant) {
+  // OctantOverlap::crossed_octants (all octants at once, as the octree's lists use it) against
+  // crosses(o) octant by octant, on quarter-grid triangles and lattices (touching cases) and on
+  // random ones, for every subset of wanted octants drawn at random.
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-0.6, 1.6);
+  std::uniform_int_distribution<int> grid(-2, 6), step(1, 3), mask(0, 255);
+  for (int i = 0; i < 20000; ++i) {
+    const bool on_grid = i % 2 == 0;
+    const auto x = [&] { return on_grid ? grid(rng) / 4.0 : u(rng); };
+    const Vec3 a{x(), x(), x()}, c{x(), x(), x()}, d{x(), x(), x()};
+    if (orient2d(a, c, d, 0) == 0 && orient2d(a, c, d, 1) == 0 && orient2d(a, c, d, 2) == 0)
+      continue;  // collinear: never a covering triangle
+    double planes[3][3];
+    for (auto& axis : planes) {
+      axis[0] = grid(rng) / 8.0;
+      axis[1] = axis[0] + step(rng) / 8.0;
+      axis[2] = axis[1] + step(rng) / 8.0;
+    }
+    detail::OctantOverlap one(a, c, d, planes);
+    const uint8_t wanted = static_cast<uint8_t>(i % 4 == 1 ? mask(rng) : 0xFF);
+    uint8_t expected = 0;
+    for (int o = 0; o < 8; ++o)
+      if ((wanted >> o & 1) && one.crosses(o)) expected |= static_cast<uint8_t>(1 << o);
+    detail::OctantOverlap all(a, c, d, planes);
+    EXPECT_EQ(all.crossed_octants(wanted), expected) << i;
+  }
+}
+
 TEST(BoxOverlap, PlaneSideIsExact) {
   Bbox b;
   b.add(Vec3{-1, -1, -1});
