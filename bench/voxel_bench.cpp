@@ -10,7 +10,8 @@
 //              meshToLevelSet (narrow band, half width 3) and, up to 512³,
 //              meshToSignedDistanceField with the interior band unlimited (the filled volume that
 //              Cover's occupancy corresponds to); same thread count
-//   octree     build_octree() at the given depths
+//   octree     build_octree() at the given depths, median of 3, interleaved with voxelize() of
+//              the same cube at (2^D)³ (its finest cells) into a reused and a fresh grid
 //   peak       ru_maxrss after the runs (run --peak-only to measure one voxelization alone)
 // Usage: voxel_bench MESH --res N [--res N ...] [--octree D ...] [--threads T] [--no-openvdb]
 //                     [--peak-only]
@@ -20,6 +21,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -40,6 +42,13 @@ using bench::since;
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
+}
+/// CPU seconds of the process so far (user + system, all threads): under a loaded host a steadier
+/// measure of work than wall time.
+double cpu_s() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 double peak_mib() {
   rusage u{};
@@ -160,16 +169,48 @@ int main(int argc, char** argv) {
     oo.depth = depths[d];
     const cover::Bbox box = solid.bbox();
     const auto bounds = cover::default_voxel_bounds(box, 1 << std::min(depths[d], 20));
-    const auto t0 = Clock::now();
-    const cover::Octree tree = cover::build_octree(solid, bounds, oo);
-    const double t = since(t0);
-    const auto counts = tree.leaf_counts();
+    // Interleaved with the voxelization of the same cube at the octree's finest cells
+    // ((2^D)³ voxels): into one reused grid (as the --res rows) and into a fresh grid (as
+    // `cover voxelize` does).
+    cover::VoxelizeOptions vo;
+    vo.resolution = 1 << depths[d];
+    vo.bounds = bounds;
+    cover::VoxelGrid reused;
+    cover::voxelize(solid, vo, reused);  // the reused grid's pages, touched once
+    std::vector<double> t_tree, t_reused, t_fresh, c_tree, c_reused;
+    size_t nodes = 0;
+    std::array<uint64_t, 3> counts{};
+    for (int k = 0; k < (peak_only ? 1 : 3); ++k) {
+      auto t0 = Clock::now();
+      double c0 = cpu_s();
+      const cover::Octree tree = cover::build_octree(solid, bounds, oo);
+      t_tree.push_back(since(t0));
+      c_tree.push_back(cpu_s() - c0);
+      nodes = tree.nodes.size();
+      counts = tree.leaf_counts();
+      if (depths[d] > 12) continue;  // no grid beyond 4096³
+      t0 = Clock::now();
+      c0 = cpu_s();
+      cover::voxelize(solid, vo, reused);
+      t_reused.push_back(since(t0));
+      c_reused.push_back(cpu_s() - c0);
+      t0 = Clock::now();
+      cover::VoxelGrid fresh;
+      cover::voxelize(solid, vo, fresh);
+      t_fresh.push_back(since(t0));
+    }
+    const double t = median(t_tree);
+    const double v = t_reused.empty() ? 0 : median(t_reused);
+    const double vf = t_fresh.empty() ? 0 : median(t_fresh);
+    const double ct = median(c_tree), cv = c_reused.empty() ? 0 : median(c_reused);
     std::printf(
-        "  {\"octree_depth\": %d, \"seconds\": %.3f, \"nodes\": %zu, \"full\": %llu, \"empty\": "
-        "%llu, "
-        "\"partial\": %llu}%s\n",
-        depths[d], t, tree.nodes.size(), static_cast<unsigned long long>(counts[1]),
-        static_cast<unsigned long long>(counts[0]), static_cast<unsigned long long>(counts[2]),
+        "  {\"octree_depth\": %d, \"seconds\": %.3f, \"nodes\": %zu, \"full\": %llu, "
+        "\"empty\": %llu, \"partial\": %llu, \"voxelize_s\": %.4f, \"voxelize_fresh_s\": %.4f, "
+        "\"octree_over_voxelize\": %.1f, \"octree_over_voxelize_fresh\": %.1f, \"octree_cpu_s\": "
+        "%.3f, \"voxelize_cpu_s\": %.4f, \"cpu_ratio\": %.1f}%s\n",
+        depths[d], t, nodes, static_cast<unsigned long long>(counts[1]),
+        static_cast<unsigned long long>(counts[0]), static_cast<unsigned long long>(counts[2]), v,
+        vf, v > 0 ? t / v : 0.0, vf > 0 ? t / vf : 0.0, ct, cv, cv > 0 ? ct / cv : 0.0,
         d + 1 < depths.size() ? "," : "");
   }
   std::printf("]}\n");

@@ -1,6 +1,7 @@
 #include "octree/detail/box_overlap.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -58,16 +59,56 @@ OctantOverlap::OctantOverlap(const Vec3& a, const Vec3& b, const Vec3& c,
       hi_{std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})},
       plane_(a, b, c, lattice_box(planes)) {
   std::memcpy(planes_, planes, sizeof planes_);
-  std::fill(std::begin(plane_cache_), std::end(plane_cache_), kUnknown);
-  std::fill(&edge_cache_[0][0], &edge_cache_[0][0] + 81, kUnknown);
+  plane_.grid_signs(planes[0], planes[1], planes[2], 3, plane_cache_, 1);
   std::fill(std::begin(third_cache_), std::end(third_cache_), kUnknown);
+  std::fill(std::begin(skip_), std::end(skip_), kUnknown);
 }
 
-int OctantOverlap::plane_sign(int ix, int iy, int iz) {
-  int8_t& s = plane_cache_[(iz * 3 + iy) * 3 + ix];
-  if (s == kUnknown)
-    s = static_cast<int8_t>(plane_.sign({planes_[0][ix], planes_[1][iy], planes_[2][iz]}));
-  return s;
+bool OctantOverlap::skip(int e, int axis) {
+  int8_t& skip = skip_[e * 3 + axis];
+  if (skip != kUnknown) return skip != 0;
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
+  skip = 1;
+  if (p[u] == q[u] && p[w] == q[w]) return true;  // the zero axis separates nothing
+  // The edge filter at the 9 lattice points of the plane dropping `axis`.
+  const double cu = p[w] - q[w], cw = q[u] - p[u];  // exact signs (one rounded subtraction)
+  double gu[3], gw[3];
+  for (int i = 0; i < 3; ++i) {
+    gu[i] = cu * (planes_[u][i] - p[u]);
+    gw[i] = cw * (planes_[w][i] - p[w]);
+  }
+  const double mag = std::max(std::abs(gu[0]), std::abs(gu[2])) +
+                     std::max(std::abs(gw[0]), std::abs(gw[2]));
+  int8_t* signs = edge_cache_[e * 3 + axis];
+  int lo = 1, hi = -1;  // the signs' range, kUnknown counting as both
+  if (in_filter_range(mag)) {
+    const double bound = kPlaneSideErr * mag;
+    for (int iw = 0; iw < 3; ++iw)
+      for (int iu = 0; iu < 3; ++iu) {
+        const double g = gu[iu] + gw[iw];
+        const int8_t sign = g > bound ? 1 : (g < -bound ? -1 : kUnknown);
+        signs[iw * 3 + iu] = sign;
+        lo = std::min(lo, sign == kUnknown ? -1 : int{sign});
+        hi = std::max(hi, sign == kUnknown ? 1 : int{sign});
+      }
+  } else {
+    // No filter (e.g. mag = 0: a point box on the edge's line): every sign is left to
+    // orient2d. The row must be marked, it is read by edge_sign() next.
+    std::fill(signs, signs + 9, kUnknown);
+    lo = -1;
+    hi = 1;
+  }
+  // The whole lattice strictly on the third vertex's side: no octant is separated by this axis.
+  if (!(lo == hi && lo == third_sign(e, axis))) skip = 0;
+  return skip != 0;
+}
+
+int OctantOverlap::third_sign(int e, int axis) {
+  int8_t& third = third_cache_[e * 3 + axis];
+  if (third == kUnknown)
+    third = static_cast<int8_t>(orient2d(v_[e], v_[(e + 1) % 3], v_[(e + 2) % 3], axis));
+  return third;
 }
 
 int OctantOverlap::edge_sign(int e, int axis, int iu, int iw) {
@@ -91,7 +132,8 @@ bool OctantOverlap::separated(int o, bool open) {
   }
   // The triangle's normal: all 8 corners on one side of its plane.
   const auto corner = [&](int c) {
-    return plane_sign(bit[0] + (c & 1), bit[1] + ((c >> 1) & 1), bit[2] + (c >> 2));
+    return int{plane_cache_[((bit[2] + (c >> 2)) * 3 + bit[1] + ((c >> 1) & 1)) * 3 + bit[0] +
+                            (c & 1)]};
   };
   if (common_side(8, open, corner) != 0) return true;
   // e_axis × edge: in the plane that drops `axis`, the octant's rectangle on one side of the
@@ -99,18 +141,55 @@ bool OctantOverlap::separated(int o, bool open) {
   // edge parallel to e_axis gives the zero axis, which separates nothing.
   for (int e = 0; e < 3; ++e)
     for (int axis = 0; axis < 3; ++axis) {
+      if (skip(e, axis)) continue;
       const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-      const Vec3 &p = v_[e], &q = v_[(e + 1) % 3];
-      if (p[u] == q[u] && p[w] == q[w]) continue;
       const int iu = bit[u], iw = bit[w];
       const int side = common_side(
           4, open, [&](int c) { return edge_sign(e, axis, iu + (c & 1), iw + (c >> 1)); });
       if (side == 0) continue;
-      int8_t& third = third_cache_[e * 3 + axis];
-      if (third == kUnknown) third = static_cast<int8_t>(orient2d(p, q, v_[(e + 2) % 3], axis));
-      if (third != side) return true;
+      if (third_sign(e, axis) != side) return true;
     }
   return false;
+}
+
+uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
+  // Octant o has bit (o >> k) & 1 = half h along axis k: the octants of a half along k, and of
+  // a quadrant (hu, hw) of the plane dropping `axis`.
+  constexpr uint8_t kHalf[3][2] = {{0x55, 0xAA}, {0x33, 0xCC}, {0x0F, 0xF0}};
+  uint8_t alive = wanted;
+  // Box normals (exact comparisons), per half: the same test as separated(o, true).
+  for (int k = 0; k < 3 && alive != 0; ++k)
+    for (int h = 0; h < 2; ++h) {
+      const double lo = planes_[k][h], hi = planes_[k][h + 1];
+      if (lo_[k] >= hi || hi_[k] <= lo) alive &= static_cast<uint8_t>(~kHalf[k][h]);
+    }
+  // The triangle's normal: the 8 corners of the octant on one side of its plane (or on it).
+  for (uint8_t m = alive; m != 0; m &= static_cast<uint8_t>(m - 1)) {
+    const int o = std::countr_zero(m);
+    const int bx = o & 1, by = (o >> 1) & 1, bz = (o >> 2) & 1;
+    int lo = 1, hi = -1;
+    for (int c = 0; c < 8; ++c) {
+      const int s = plane_sign(bx + (c & 1), by + ((c >> 1) & 1), bz + (c >> 2));
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+    if (!(lo < 0 && hi > 0)) alive &= static_cast<uint8_t>(~(1u << o));
+  }
+  // e_axis × edge, per quadrant of the plane dropping `axis` that holds a live octant.
+  for (int e = 0; e < 3 && alive != 0; ++e)
+    for (int axis = 0; axis < 3 && alive != 0; ++axis) {
+      if (skip(e, axis)) continue;
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      for (int hu = 0; hu < 2; ++hu)
+        for (int hw = 0; hw < 2; ++hw) {
+          const uint8_t quadrant = kHalf[u][hu] & kHalf[w][hw];
+          if ((alive & quadrant) == 0) continue;
+          const int side = common_side(
+              4, true, [&](int c) { return edge_sign(e, axis, hu + (c & 1), hw + (c >> 1)); });
+          if (side != 0 && third_sign(e, axis) != side) alive &= static_cast<uint8_t>(~quadrant);
+        }
+    }
+  return alive;
 }
 
 PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box)
@@ -132,11 +211,78 @@ PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& bo
   if (in_filter_range(sum)) bound_ = kPlaneBoxErr * sum;
 }
 
-int PlaneSide::sign(const Vec3& p) const {
-  const double f = normal_.x * (p.x - a_.x) + normal_.y * (p.y - a_.y) + normal_.z * (p.z - a_.z);
-  if (f > bound_) return 1;
-  if (f < -bound_) return -1;
-  return orient3d(a_, b_, c_, p);
+int PlaneSide::exact_sign(const Vec3& p) const { return orient3d(a_, b_, c_, p); }
+
+void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs, int n,
+                           int8_t* out, size_t stride) const {
+  double fx[32], fy[32], fz[32];
+  for (int i = 0; i < n; ++i) {
+    fx[i] = normal_.x * (xs[i] - a_.x);
+    fy[i] = normal_.y * (ys[i] - a_.y);
+    fz[i] = normal_.z * (zs[i] - a_.z);
+  }
+  // Filtered signs first (branch-free, one row at a time), orient3d for the undecided ones.
+  size_t o = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j) {
+      const double yz = fy[j];
+      const double z = fz[k];
+      bool undecided = false;
+      for (int i = 0; i < n; ++i) {
+        const double f = fx[i] + yz + z;  // sign()'s sum, in its order
+        const bool pos = f > bound_, neg = f < -bound_;
+        out[o + i * stride] = static_cast<int8_t>(int{pos} - int{neg});
+        undecided |= !(pos | neg);
+      }
+      if (undecided)
+        for (int i = 0; i < n; ++i) {
+          const double f = fx[i] + yz + z;
+          if (!(f > bound_) && !(f < -bound_))
+            out[o + i * stride] = static_cast<int8_t>(exact_sign({xs[i], ys[j], zs[k]}));
+        }
+      o += size_t(n) * stride;
+    }
+}
+
+void PlaneSide::grid_masks(const double* xs, const double* ys, const double* zs, int n,
+                           uint64_t& pos, uint64_t& neg) const {
+  if (n != 4) {
+    int8_t signs[64];
+    grid_signs(xs, ys, zs, n, signs, 1);
+    pos = neg = 0;
+    for (int p = 0; p < n * n * n; ++p) {
+      pos |= uint64_t{signs[p] > 0} << p;
+      neg |= uint64_t{signs[p] < 0} << p;
+    }
+    return;
+  }
+  // n = 4: one row of 4 points per nibble, the same sums as sign() (x, y, z in that order).
+  double fx[4], fy[4], fz[4];
+  for (int i = 0; i < 4; ++i) {
+    fx[i] = normal_.x * (xs[i] - a_.x);
+    fy[i] = normal_.y * (ys[i] - a_.y);
+    fz[i] = normal_.z * (zs[i] - a_.z);
+  }
+  const double b = bound_;
+  pos = neg = 0;
+  for (int row = 0; row < 16; ++row) {
+    const double y = fy[row & 3], z = fz[row >> 2];
+    const double f0 = (fx[0] + y) + z, f1 = (fx[1] + y) + z, f2 = (fx[2] + y) + z,
+                 f3 = (fx[3] + y) + z;
+    const uint64_t p = uint64_t{f0 > b} | uint64_t{f1 > b} << 1 | uint64_t{f2 > b} << 2 |
+                       uint64_t{f3 > b} << 3;
+    const uint64_t q = uint64_t{f0 < -b} | uint64_t{f1 < -b} << 1 | uint64_t{f2 < -b} << 2 |
+                       uint64_t{f3 < -b} << 3;
+    pos |= p << (4 * row);
+    neg |= q << (4 * row);
+  }
+  // Points the filter leaves undecided: orient3d.
+  for (uint64_t m = ~(pos | neg); m != 0; m &= m - 1) {
+    const int p = std::countr_zero(m);
+    const int sign = exact_sign({xs[p & 3], ys[(p >> 2) & 3], zs[p >> 4]});
+    pos |= uint64_t{sign > 0} << p;
+    neg |= uint64_t{sign < 0} << p;
+  }
 }
 
 }  // namespace cover::detail

@@ -4,6 +4,8 @@
 #include <optional>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -15,6 +17,7 @@
 #include "octree/detail/box_overlap.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
+#include "solid/predicates.h"
 
 // Notation
 //   D        maximum depth; h = size/2^D the finest cell size. Grid plane m (0 ≤ m ≤ 2^D) of axis a
@@ -29,7 +32,8 @@
 //            children are the cells 8·rank .. 8·rank + 7 of the next level, in Morton order.
 // One level at a time, in blocks of cells:
 //   (A) T_C for every cell, testing the parent's list (or the BVH's candidates for the cell's box
-//       when that list is long) with the exact triangle / open-box test;
+//       when that list is long) with the exact triangle / open-box test (at the last level below
+//       a short parent list, one triangle of T_C: only T_C ≠ ∅ is used there);
 //   (B) the points to classify. Uncrossed siblings: each interior is connected and meets no
 //       surface; the parent's centre p is a corner of each, so when no surface passes through p,
 //       a small ball around p joins them all into one connected set no surface meets, where
@@ -38,7 +42,10 @@
 //       Partial cells: the samples³ sub-points, grouped by their sides of the planes of T_C;
 //       every surface in the cell lies in those planes, so a side class is a convex region no
 //       surface meets: one point per class is classified, and a point ON a plane alone (it may
-//       be on a surface);
+//       be on a surface). When the parent's list T_P is short, the same grouping runs over a
+//       whole sibling set at once, with the planes of T_P (every surface in the parent lies in
+//       them): the sub-points of its partial cells and the centres of its uncrossed cells share
+//       one classification per side class of the parent;
 //   (C) one classify() call per block; (D) states, occupancies and child links.
 // Node order, ranks and results depend only on the input: every parallel step writes per cell or
 // per fixed chunk, and chunks are concatenated in order.
@@ -51,6 +58,8 @@ constexpr int kMaxSamples = 32;     // 32³ sub-points per partial cell
 constexpr size_t kInheritMax = 64;  // parent lists up to this length are the children's candidates
 constexpr size_t kGroupMax = 64;    // planes up to which points are grouped by sides
 constexpr size_t kExactKey = 40;    // side vectors up to this length are exact base-3 keys
+constexpr size_t kSiblingMax = 16;  // last level: parent lists up to this length group a whole
+                                    // sibling set's points at once
 constexpr size_t kGrain = 512;  // cells per parallel chunk (a multiple of 8: whole sibling sets)
 constexpr size_t kBlock = size_t{1} << 18;  // cells per classification batch (multiple of kGrain)
 // Memory per node of a build: the node array (sizeof(Node) = 40 bytes), its old copy while it
@@ -82,13 +91,43 @@ struct Entry {
   uint32_t weight = 0;
 };
 
+/// The samples³ sub-points of a cell (the centres of a regular sub-grid): their coordinates per
+/// axis, and the points, x fastest.
+struct SubGrid {
+  int n = 0;
+  double xs[kMaxSamples], ys[kMaxSamples], zs[kMaxSamples];
+
+  void set(const Bbox& b, int s) {
+    n = s;
+    const Vec3 step{(b.max.x - b.min.x) / s, (b.max.y - b.min.y) / s, (b.max.z - b.min.z) / s};
+    for (int i = 0; i < s; ++i) {
+      xs[i] = b.min.x + (i + 0.5) * step.x;
+      ys[i] = b.min.y + (i + 0.5) * step.y;
+      zs[i] = b.min.z + (i + 0.5) * step.z;
+    }
+  }
+  size_t size() const { return size_t(n) * n * n; }
+  /// Sub-point p = (k·n + j)·n + i.
+  Vec3 point(size_t p) const { return {xs[p % n], ys[(p / n) % n], zs[p / n / n]}; }
+};
+
 /// Per-chunk buffers, reused from cell to cell.
 struct Scratch {
-  std::vector<detail::PlaneSide> planes;
   std::vector<int8_t> sides;     ///< points × planes
   std::vector<uint32_t> first;   ///< per group: its first point
   std::vector<uint32_t> weight;  ///< per group: its number of points
   std::vector<uint64_t> keys;    ///< per group: its side vector in base 3
+  // Sibling sets of the last level (Builder::sibling_representatives):
+  std::vector<detail::PlaneSide> planes;  ///< the parent's planes
+  std::vector<uint64_t> point_keys;       ///< per point of a cell: its side vector in base 3
+  // Builder::sibling_masks: point sets of a sibling set as 9 words (word c < 8: the sub-points
+  // of partial cell c, bit p = sub-point p; word 8: bit c = the centre of uncrossed cell c).
+  std::vector<std::array<uint64_t, 9>> sets, split;
+  std::vector<std::array<uint64_t, 9>> pos;  ///< per plane: the points on its positive side
+  SubGrid cell_grid[8];
+  std::vector<uint32_t> rep;              ///< per group: its representative (index in the chunk)
+  std::vector<uint32_t> last_cell;        ///< the groups the current cell touches
+  std::vector<uint32_t> entry;            ///< per group: its points in the current cell
 };
 
 /// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
@@ -104,12 +143,12 @@ void bvh_candidates(const Bvh& bvh, const Bbox& box, std::vector<uint32_t>& out)
       [&](const Bvh::Tri&, uint32_t i) { out.push_back(i); });
 }
 
-/// Groups `points` (all in `box`) by their sides of the planes of `tris`: equal side vectors
-/// without a zero share a group; a point on some plane gets a group of its own, and so does every
-/// point when there are more than kGroupMax planes. Fills s.first and s.weight.
+/// Groups the sub-points of `grid` (all in `box`) by their sides of the planes of `tris`: equal
+/// side vectors without a zero share a group; a point on some plane gets a group of its own, and
+/// so does every point when there are more than kGroupMax planes. Fills s.first and s.weight.
 void group_by_sides(const Bvh& bvh, std::span<const uint32_t> tris, const Bbox& box,
-                    std::span<const Vec3> points, Scratch& s) {
-  const size_t n = points.size(), k = tris.size();
+                    const SubGrid& grid, Scratch& s) {
+  const size_t n = grid.size(), k = tris.size();
   s.first.clear();
   s.weight.clear();
   if (k > kGroupMax) {
@@ -117,19 +156,18 @@ void group_by_sides(const Bvh& bvh, std::span<const uint32_t> tris, const Bbox& 
     s.weight.assign(n, 1);
     return;
   }
-  s.planes.clear();
-  for (uint32_t t : tris) {
-    const Bvh::Tri tri = bvh.triangle(t);
-    s.planes.emplace_back(tri.a, tri.b, tri.c, box);
-  }
   s.sides.resize(n * k);
+  for (size_t j = 0; j < k; ++j) {
+    const Bvh::Tri tri = bvh.triangle(tris[j]);
+    detail::PlaneSide(tri.a, tri.b, tri.c, box)
+        .grid_signs(grid.xs, grid.ys, grid.zs, grid.n, s.sides.data() + j, k);
+  }
   s.keys.clear();
   for (size_t i = 0; i < n; ++i) {
-    int8_t* side = s.sides.data() + i * k;
+    const int8_t* side = s.sides.data() + i * k;
     bool on_plane = false;
     uint64_t key = 0;  // base 3: exact up to kExactKey planes, a hash beyond
     for (size_t j = 0; j < k; ++j) {
-      side[j] = static_cast<int8_t>(s.planes[j].sign(points[i]));
       on_plane |= side[j] == 0;
       key = 3 * key + static_cast<uint64_t>(side[j] + 1);
     }
@@ -275,20 +313,9 @@ class Builder {
     return {2 * p[0] + (c & 1), 2 * p[1] + ((c >> 1) & 1), 2 * p[2] + ((c >> 2) & 1)};
   }
 
-  /// The samples³ sub-points of a cell, x fastest.
-  void sub_points(const Bbox& b, std::vector<Vec3>& out) const {
-    out.clear();
-    const int s = samples_;
-    const Vec3 step{(b.max.x - b.min.x) / s, (b.max.y - b.min.y) / s, (b.max.z - b.min.z) / s};
-    for (int k = 0; k < s; ++k)
-      for (int j = 0; j < s; ++j)
-        for (int i = 0; i < s; ++i)
-          out.push_back({b.min.x + (i + 0.5) * step.x, b.min.y + (j + 0.5) * step.y,
-                         b.min.z + (k + 0.5) * step.z});
-  }
-
   /// (A) The triangles that meet the interior of each cell of [b0, b0 + m) at level d, one list
-  /// per cell.
+  /// per cell; at the last level, for a sibling set whose parent's list is short (at most
+  /// kSiblingMax), only the first such triangle (whether a cell is crossed is all that is used).
   Lists meeting(int d, size_t b0, size_t m) const {
     std::vector<std::vector<uint32_t>> chunk_tris((m + kGrain - 1) / kGrain);
     std::vector<uint32_t> count(m);
@@ -306,11 +333,18 @@ class Builder {
             for (uint64_t t = 0; t < 3; ++t)
               planes[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
           for (auto& list : octant) list.clear();
+          // The last level's short-list sets need only whether a cell is crossed (see
+          // sibling_representatives): one witness triangle per cell.
+          const bool witness = d == depth_ && parent_lists_[parent].size() <= kSiblingMax;
+          uint8_t open = 0xFF;  // the octants still tested (witness: those without one yet)
           for (uint32_t t : parent_lists_[parent]) {
             const Bvh::Tri tri = bvh_.triangle(t);
             detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
-            for (int c = 0; c < 8; ++c)
-              if (overlap.crosses(c)) octant[c].push_back(t);
+            const uint8_t crossed = overlap.crossed_octants(open);
+            for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
+              octant[std::countr_zero(m)].push_back(t);
+            if (witness) open &= static_cast<uint8_t>(~crossed);
+            if (open == 0) break;
           }
           for (int c = 0; c < 8; ++c) {
             out.insert(out.end(), octant[c].begin(), octant[c].end());
@@ -356,11 +390,206 @@ class Builder {
       bvh_candidates(bvh_, point, candidates);
       tris = candidates;
     }
+    const Vec3 p{x[0], x[1], x[2]};
     for (uint32_t t : tris) {
       const Bvh::Tri tri = bvh_.triangle(t);
-      if (detail::triangle_meets_box(tri.a, tri.b, tri.c, point)) return true;
+      // Off the triangle's plane (the common case, one filtered orient3d) it is off the triangle.
+      if (orient3d(tri.a, tri.b, tri.c, p) == 0 &&
+          detail::triangle_meets_box(tri.a, tri.b, tri.c, point))
+        return true;
     }
     return false;
+  }
+
+  /// sibling_representatives for samples³ ≤ 64, on bit masks: the side classes are found by
+  /// splitting the set of points on no plane by each plane's positive side (a class is an
+  /// intersection of sides), each class's weight in a cell is a popcount, and its
+  /// representative its first point; the points on some plane are classified one by one.
+  void sibling_masks(int d, size_t b0, size_t g0, const Lists& lists, Scratch& s,
+                     std::vector<Vec3>& points, std::vector<Entry>& entries) const {
+    using Set = std::array<uint64_t, 9>;
+    const size_t parent = (b0 + g0) / 8;
+    const std::span<const uint32_t> tris = parent_lists_[parent];
+    const size_t k = tris.size();
+    const Bbox parent_box = box(parents_[parent], d - 1);
+    const int n = samples_;
+    const int count = n * n * n;
+    const uint64_t all = count == 64 ? ~uint64_t{0} : (uint64_t{1} << count) - 1;
+    Set full{}, on{};
+    Vec3 centres[8];
+    for (int c = 0; c < 8; ++c) {
+      const Bbox b = box(coord(d, b0 + g0 + c), d);
+      if (lists[g0 + c].empty()) {
+        centres[c] = centre(b);
+        full[8] |= uint64_t{1} << c;
+      } else {
+        s.cell_grid[c].set(b, n);
+        full[c] = all;
+      }
+    }
+    // The 27 corners of the 8 cells (the parent's lattice: the same grid planes as their boxes).
+    double lattice[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (uint64_t t = 0; t < 3; ++t)
+        lattice[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
+    s.pos.resize(k);
+    for (size_t j = 0; j < k; ++j) {
+      const Bvh::Tri tri = bvh_.triangle(tris[j]);
+      const detail::PlaneSide plane(tri.a, tri.b, tri.c, parent_box);
+      int8_t corner[27];  // exact signs, [(iz·3 + iy)·3 + ix]
+      plane.grid_signs(lattice[0], lattice[1], lattice[2], 3, corner, 1);
+      Set& pos = s.pos[j];
+      pos.fill(0);
+      for (int c = 0; c < 8; ++c) {
+        // A cell whose 8 corners lie strictly on one side has all its points there (the sign
+        // of orient3d is affine in the point): no per-point signs.
+        int lo = 1, hi = -1;
+        for (int q = 0; q < 8; ++q) {
+          const int sign = corner[(((c >> 2) + (q >> 2)) * 3 + ((c >> 1) & 1) + ((q >> 1) & 1)) *
+                                      3 + (c & 1) + (q & 1)];
+          lo = std::min(lo, sign);
+          hi = std::max(hi, sign);
+        }
+        if (lo == hi && lo != 0) {
+          if (lo > 0) pos[c] = full[c];
+          if (lo > 0 && (full[8] >> c & 1)) pos[8] |= uint64_t{1} << c;
+          continue;
+        }
+        uint64_t neg = 0;
+        if (full[c] != 0) {
+          const SubGrid& g = s.cell_grid[c];
+          plane.grid_masks(g.xs, g.ys, g.zs, n, pos[c], neg);
+          on[c] |= full[c] & ~(pos[c] | neg);
+        } else if (full[8] >> c & 1) {
+          const int side = plane.sign(centres[c]);
+          pos[8] |= uint64_t{side > 0} << c;
+          on[8] |= uint64_t{side == 0} << c;
+        }
+      }
+    }
+    // Side classes of the points on no plane: split by every plane's positive side.
+    s.sets.clear();
+    Set start;
+    for (int w = 0; w < 9; ++w) start[w] = full[w] & ~on[w];
+    s.sets.push_back(start);
+    for (size_t j = 0; j < k; ++j) {
+      s.split.clear();
+      for (const Set& set : s.sets) {
+        Set in, out;
+        uint64_t any_in = 0, any_out = 0;
+        for (int w = 0; w < 9; ++w) {
+          in[w] = set[w] & s.pos[j][w];
+          out[w] = set[w] & ~s.pos[j][w];
+          any_in |= in[w];
+          any_out |= out[w];
+        }
+        if (any_in) s.split.push_back(in);
+        if (any_out) s.split.push_back(out);
+      }
+      std::swap(s.sets, s.split);
+    }
+    const auto point = [&](int w, int bit) {
+      return w < 8 ? s.cell_grid[w].point(static_cast<size_t>(bit)) : centres[bit];
+    };
+    const auto add = [&](const Set& set) {
+      int w = 0;
+      while (set[w] == 0) ++w;
+      const uint32_t rep = static_cast<uint32_t>(points.size());
+      points.push_back(point(w, std::countr_zero(set[w])));
+      for (int c = 0; c < 8; ++c)
+        if (set[c] != 0)
+          entries.push_back({static_cast<uint32_t>(g0 + c), rep,
+                             static_cast<uint32_t>(std::popcount(set[c]))});
+      for (uint64_t m = set[8]; m != 0; m &= m - 1)
+        entries.push_back({static_cast<uint32_t>(g0 + std::countr_zero(m)), rep, 1});
+    };
+    for (const Set& set : s.sets)
+      if (std::any_of(set.begin(), set.end(), [](uint64_t x) { return x != 0; })) add(set);
+    // Points on some plane (they may be on a surface): one by one.
+    for (int w = 0; w < 9; ++w)
+      for (uint64_t m = on[w]; m != 0; m &= m - 1) {
+        Set one{};
+        one[w] = m & (~m + 1);
+        add(one);
+      }
+  }
+
+  /// (B) at the last level, for the sibling set g0 .. g0 + 7 (cells of the block) whose parent's
+  /// list T_P is short: the sub-points of its partial cells and the centres of its uncrossed
+  /// cells, grouped by their sides of the planes of T_P. T_P holds every triangle that meets
+  /// the parent's interior, so a side class is a convex part of it no surface meets, where
+  /// membership is constant: one point per class is classified for all the set's cells, and a
+  /// point ON a plane alone (it may be on a surface).
+  void sibling_representatives(int d, size_t b0, size_t g0, const Lists& lists, Scratch& s,
+                               SubGrid& subs, std::vector<Vec3>& points,
+                               std::vector<Entry>& entries) const {
+    const size_t parent = (b0 + g0) / 8;
+    const std::span<const uint32_t> tris = parent_lists_[parent];
+    const size_t k = tris.size();
+    const Bbox parent_box = box(parents_[parent], d - 1);
+    s.planes.clear();
+    for (uint32_t t : tris) {
+      const Bvh::Tri tri = bvh_.triangle(t);
+      s.planes.emplace_back(tri.a, tri.b, tri.c, parent_box);
+    }
+    s.keys.clear();  // per group: its side vector in base 3 (exact: k ≤ kExactKey), or
+    s.rep.clear();   // kOnPlane for a point on some plane, never matched
+    s.entry.clear();
+    constexpr uint64_t kOnPlane = UINT64_MAX;
+    const size_t sub_count = size_t(samples_) * samples_ * samples_;
+    s.sides.resize(sub_count * k);
+    std::vector<uint64_t>& key = s.point_keys;
+    for (uint32_t cell = static_cast<uint32_t>(g0); cell < g0 + 8; ++cell) {
+      const Bbox b = box(coord(d, b0 + cell), d);
+      const bool partial = !lists[cell].empty();
+      Vec3 c;
+      size_t count = 1;
+      if (partial) {
+        subs.set(b, samples_);
+        count = sub_count;
+        for (size_t j = 0; j < k; ++j)
+          s.planes[j].grid_signs(subs.xs, subs.ys, subs.zs, subs.n, s.sides.data() + j * count, 1);
+      } else {
+        c = centre(b);
+        for (size_t j = 0; j < k; ++j) s.sides[j] = static_cast<int8_t>(s.planes[j].sign(c));
+      }
+      key.assign(count, 0);
+      for (size_t j = 0; j < k; ++j) {
+        const int8_t* side = s.sides.data() + j * count;
+        for (size_t p = 0; p < count; ++p)
+          key[p] = side[p] == 0 ? kOnPlane
+                                : (key[p] == kOnPlane ? kOnPlane : 3 * key[p] + (side[p] + 1));
+      }
+      // Runs of equal keys (neighbouring sub-points) skip the search; each group's weight in
+      // this cell is counted in s.entry (reset below), its first touch listed in s.last_cell.
+      s.last_cell.clear();  // the groups this cell touches, in order of first touch
+      uint32_t g = UINT32_MAX;
+      uint64_t last = kOnPlane;
+      for (size_t p = 0; p < count; ++p) {
+        const uint64_t kp = key[p];
+        if (kp == kOnPlane || kp != last) {
+          g = static_cast<uint32_t>(s.keys.size());
+          if (kp != kOnPlane)
+            for (uint32_t q = 0; q < s.keys.size(); ++q)
+              if (s.keys[q] == kp) {
+                g = q;
+                break;
+              }
+          if (g == s.keys.size()) {
+            s.keys.push_back(kp);
+            s.rep.push_back(static_cast<uint32_t>(points.size()));
+            points.push_back(partial ? subs.point(p) : c);
+            s.entry.push_back(0);
+          }
+          last = kp;
+        }
+        if (s.entry[g]++ == 0) s.last_cell.push_back(g);
+      }
+      for (uint32_t q : s.last_cell) {
+        entries.push_back({cell, s.rep[q], s.entry[q]});
+        s.entry[q] = 0;
+      }
+    }
   }
 
   /// (B) The points to classify for the cells [b0, b0 + m) of level d, per chunk: one centre per
@@ -373,10 +602,17 @@ class Builder {
       std::vector<Vec3>& points = chunk_points[begin / kGrain];
       std::vector<Entry>& entries = chunk_entries[begin / kGrain];
       Scratch s;
-      std::vector<Vec3> subs;
+      SubGrid subs;
       std::vector<uint32_t> candidates;
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
+        if (d == depth_ && d > 0 && parent_lists_[(b0 + g0) / 8].size() <= kSiblingMax) {
+          if (samples_ * samples_ * samples_ <= 64)
+            sibling_masks(d, b0, g0, lists, s, points, entries);
+          else
+            sibling_representatives(d, b0, g0, lists, s, subs, points, entries);
+          continue;
+        }
         size_t uncrossed = 0;
         for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += lists[i].empty();
         const bool shared = uncrossed > 1 && !open_ &&
@@ -394,11 +630,11 @@ class Builder {
         for (size_t i = g0; i < g0 + siblings; ++i) {
           if (lists[i].empty()) continue;
           const Bbox b = box(coord(d, b0 + i), d);
-          sub_points(b, subs);
+          subs.set(b, samples_);
           group_by_sides(bvh_, lists[i], b, subs, s);
           const uint32_t base = static_cast<uint32_t>(points.size());
           for (uint32_t g = 0; g < s.first.size(); ++g) {
-            points.push_back(subs[s.first[g]]);
+            points.push_back(subs.point(s.first[g]));
             entries.push_back({static_cast<uint32_t>(i), base + g, s.weight[g]});
           }
         }

@@ -15,10 +15,19 @@
 // edge axes that are non-zero). A triangle touching the box only on its boundary does not cross
 // it. OctantOverlap tests the 8 children of one octree cell against one triangle, sharing the
 // signs at their common corners.
+// Edge-axis filter: orient2d(p, q, x) is linear in x, g(x) = (p_w − q_w)(x_u − p_u) +
+// (q_u − p_u)(x_w − p_w) (the coefficients' signs exact: one rounded subtraction each), so at
+// the 3 × 3 lattice points of the plane dropping an axis it is the sum of two of 6 products,
+// computed once per triangle and axis with one bound 1e-15·M for all 9 (M the largest sum of
+// the two magnitudes; ≥ 9u, as kPlaneSideErr) in the filter range; orient2d (exact) decides a
+// point the bound leaves undecided. An axis whose 9 signs are all strictly the third vertex's
+// separates no octant and is dropped. The 27 plane signs come the same way from
+// PlaneSide::grid_signs.
 // PlaneSide: sign of orient3d(a, b, c, p) for many points p of one box, from a floating-point
 // evaluation n·(p − a) with one forward error bound valid for the whole box; orient3d (exact)
 // decides whenever the value is inside the bound.
 
+#include <cstddef>
 #include <cstdint>
 
 #include "solid/types.h"
@@ -39,9 +48,27 @@ class PlaneSide {
   /// Precondition: every point later passed to sign() lies in `box`.
   PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box);
 
-  int sign(const Vec3& p) const;
+  int sign(const Vec3& p) const {
+    const double f =
+        normal_.x * (p.x - a_.x) + normal_.y * (p.y - a_.y) + normal_.z * (p.z - a_.z);
+    if (f > bound_) return 1;
+    if (f < -bound_) return -1;
+    return exact_sign(p);
+  }
+
+  /// sign() at the n³ points (xs[i], ys[j], zs[k]), i fastest: out[((k·n + j)·n + i)·stride].
+  /// The same doubles as sign() (n·(p − a) summed x, y, z in that order), from 3n products.
+  /// Precondition: n ≤ 32.
+  void grid_signs(const double* xs, const double* ys, const double* zs, int n, int8_t* out,
+                  size_t stride) const;
+  /// The same signs as bit masks (bit (k·n + j)·n + i): `pos` where +1, `neg` where −1.
+  /// Precondition: n³ ≤ 64.
+  void grid_masks(const double* xs, const double* ys, const double* zs, int n, uint64_t& pos,
+                  uint64_t& neg) const;
 
  private:
+  int exact_sign(const Vec3& p) const;
+
   Vec3 a_, b_, c_;
   Vec3 normal_;   ///< (b − a) × (c − a) in floating point
   double bound_;  ///< |computed n·(p − a) − exact value| ≤ bound_ for every p in the box
@@ -60,6 +87,13 @@ class OctantOverlap {
   /// True when the triangle meets the interior of octant o. Precondition: octant o has positive
   /// size on every axis.
   bool crosses(int o) { return !separated(o, true); }
+  /// The octants among `wanted` (bit o = octant o) whose interior the triangle meets: crosses()
+  /// for all of them at once, each axis tested per half (box normals) or per quadrant of the
+  /// plane dropping it (edge axes) instead of per octant. Precondition: the octants have
+  /// positive size on every axis.
+  uint8_t crossed_octants(uint8_t wanted);
+  /// The exact plane sign at lattice point (ix, iy, iz), each 0..2.
+  int plane_sign(int ix, int iy, int iz) const { return plane_cache_[(iz * 3 + iy) * 3 + ix]; }
 
  private:
   static constexpr int8_t kUnknown = 2;  ///< cache entry not computed yet
@@ -67,16 +101,22 @@ class OctantOverlap {
   /// True when one of the 13 axes separates the triangle from octant o: strictly (`open` false:
   /// the closed octant) or weakly (`open`: its interior).
   bool separated(int o, bool open);
-  int plane_sign(int ix, int iy, int iz);
   int edge_sign(int e, int axis, int iu, int iw);
+  int third_sign(int e, int axis);
+  /// True when axis e_axis × edge e can separate no octant. The first call fills that axis's
+  /// edge_cache_ row with the filtered signs (kUnknown where the filter cannot decide).
+  bool skip(int e, int axis);
 
   Vec3 v_[3];
   double planes_[3][3];
   Vec3 lo_, hi_;  ///< the triangle's box
   PlaneSide plane_;
-  int8_t plane_cache_[27];
+  int8_t plane_cache_[27];   ///< [(iz·3 + iy)·3 + ix], all computed by the constructor
   int8_t edge_cache_[9][9];  ///< [edge·3 + axis][lattice point of the plane dropping axis]
   int8_t third_cache_[9];    ///< [edge·3 + axis]: side of the third vertex
+  /// [edge·3 + axis]: 1 when that axis can separate no octant (the edge is parallel to it, or
+  /// the lattice's rectangle lies strictly on the third vertex's side), 0 when it may.
+  int8_t skip_[9];
 };
 
 }  // namespace cover::detail

@@ -263,6 +263,52 @@ TEST(BoxOverlap, CrossesIsTheOpenBox) {
   }
 }
 
+TEST(BoxOverlap, PointBoxesAgreeWithCgal) {
+  // A box of zero size (Builder::centre_on_surface asks whether a triangle passes through a
+  // point): on an edge's line the edge filter has no magnitude and orient2d decides every sign
+  // (a wrong sign from an unset cache entry shows under valgrind even where the answer holds).
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<int> grid(-2, 6);
+  const auto v = [&] { return Vec3{grid(rng) / 4.0, grid(rng) / 4.0, grid(rng) / 4.0}; };
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 a = v(), c = v(), d = v(), p = i % 2 ? v() : a + 0.5 * (c - a);
+    if (orient2d(a, c, d, 0) == 0 && orient2d(a, c, d, 1) == 0 && orient2d(a, c, d, 2) == 0)
+      continue;  // collinear: never a covering triangle
+    Bbox b;
+    b.add(p);
+    EXPECT_EQ(detail::triangle_meets_box(a, c, d, b), cgal_meets({a, c, d}, b)) << i;
+  }
+}
+
+TEST(BoxOverlap, CrossedOctantsIsCrossesPerOctant) {
+  // OctantOverlap::crossed_octants (all octants at once, as the octree's lists use it) against
+  // crosses(o) octant by octant, on quarter-grid triangles and lattices (touching cases) and on
+  // random ones, for every subset of wanted octants drawn at random.
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-0.6, 1.6);
+  std::uniform_int_distribution<int> grid(-2, 6), step(1, 3), mask(0, 255);
+  for (int i = 0; i < 20000; ++i) {
+    const bool on_grid = i % 2 == 0;
+    const auto x = [&] { return on_grid ? grid(rng) / 4.0 : u(rng); };
+    const Vec3 a{x(), x(), x()}, c{x(), x(), x()}, d{x(), x(), x()};
+    if (orient2d(a, c, d, 0) == 0 && orient2d(a, c, d, 1) == 0 && orient2d(a, c, d, 2) == 0)
+      continue;  // collinear: never a covering triangle
+    double planes[3][3];
+    for (auto& axis : planes) {
+      axis[0] = grid(rng) / 8.0;
+      axis[1] = axis[0] + step(rng) / 8.0;
+      axis[2] = axis[1] + step(rng) / 8.0;
+    }
+    detail::OctantOverlap one(a, c, d, planes);
+    const uint8_t wanted = static_cast<uint8_t>(i % 4 == 1 ? mask(rng) : 0xFF);
+    uint8_t expected = 0;
+    for (int o = 0; o < 8; ++o)
+      if ((wanted >> o & 1) && one.crosses(o)) expected |= static_cast<uint8_t>(1 << o);
+    detail::OctantOverlap all(a, c, d, planes);
+    EXPECT_EQ(all.crossed_octants(wanted), expected) << i;
+  }
+}
+
 TEST(BoxOverlap, PlaneSideIsExact) {
   Bbox b;
   b.add(Vec3{-1, -1, -1});
@@ -313,6 +359,15 @@ TEST(Octree, BoxSphereElephantAndDifferenceAreExactAndConservative) {
   check_leaves(hollow, th);
   expect_volume_bounds(th, 8 - covering_volume(ball));
   expect_occupancy_by_points(hollow, th, 4, 30);
+}
+
+TEST(Octree, MoreThan64SubPointsPerCellGroupWithoutMasks) {
+  // 5³ sub-points do not fit one 64-bit mask per cell: the last level groups them by side
+  // vectors instead (octree.cpp, sibling_representatives); the same exact occupancies.
+  const Solid sphere = make_leaf(make_sphere({0.1, -0.2, 0.3}, 0.75, 24), "sphere");
+  const Octree t = build(sphere, default_bounds(sphere, 4), 4, 5);
+  check_leaves(sphere, t);
+  expect_occupancy_by_points(sphere, t, 5, 40);
 }
 
 TEST(Octree, GridAlignedBoxHasNoPartialCells) {
