@@ -27,7 +27,10 @@
 // will close it (each is the twin of a face side on the cut). A node is one corner of a ring or
 // of a merged polygon: its point slot, its vertex id and the half-edge leaving it.
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <bit>
@@ -47,6 +50,7 @@ namespace {
 using K = CGAL::Exact_predicates_exact_constructions_kernel;
 using FT = K::FT;
 using Point2 = K::Point_2;
+using KI = CGAL::Exact_predicates_inexact_constructions_kernel;  // the rounded (double) points
 
 /// The exact value x rounded to the nearest double (ties to even).
 double nearest_double(const FT& x) {
@@ -467,16 +471,73 @@ class CapBuilder {
     return true;
   }
 
+  /// The constrained Delaunay triangulation of `poly` on its rounded points (its inside
+  /// triangles, counter-clockwise, as node indices); false when the rounded ring is not simple
+  /// with n distinct points, or when the result is not n − 2 triangles.
+  bool rounded_cdt(const std::vector<Node>& poly, std::vector<std::array<uint32_t, 3>>& out) const {
+    using Vb = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, KI>;
+    using Fb = CGAL::Constrained_triangulation_face_base_2<KI>;
+    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+    using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
+        KI, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+    const uint32_t n = static_cast<uint32_t>(poly.size());
+    const int u = c_.axis == 2 ? 0 : c_.axis + 1, w = c_.axis == 0 ? 2 : (c_.axis == 1 ? 0 : 1);
+    Cdt cdt;
+    std::vector<Cdt::Vertex_handle> vh(n);
+    try {
+      for (uint32_t i = 0; i < n; ++i) {
+        const Vec3& r = rounded_[poly[i].slot];
+        vh[i] = cdt.insert(swap_ ? KI::Point_2(r[w], r[u]) : KI::Point_2(r[u], r[w]));
+        if (cdt.number_of_vertices() != i + 1) return false;  // a repeated point
+        vh[i]->info() = i;
+      }
+      for (uint32_t i = 0; i < n; ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % n]);
+    } catch (const std::exception&) {
+      return false;  // constraints cross: the rounded ring is not simple
+    }
+    if (cdt.number_of_vertices() != n) return false;
+    // Inside: faces reached from the infinite face across an odd number of constraints.
+    std::unordered_map<Cdt::Face_handle, int> level;
+    std::vector<std::pair<Cdt::Face_handle, int>> stack{{cdt.infinite_face(), 0}};
+    while (!stack.empty()) {
+      auto [f, l] = stack.back();
+      stack.pop_back();
+      if (!level.emplace(f, l).second) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Cdt::Face_handle g = f->neighbor(k);
+        if (!level.count(g)) stack.push_back({g, cdt.is_constrained({f, k}) ? l + 1 : l});
+      }
+    }
+    out.clear();
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+      if (level[f] % 2 == 1)
+        out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+    return out.size() + 2 == n;
+  }
+
   /// Triangles of `poly` (node indices): ear clipping of the whole polygon, and where that needs
   /// forced ears, split_and_clip if it needs fewer.
   template <class Geometry>
   std::vector<std::array<uint32_t, 3>> triangulate(const std::vector<Node>& poly, const Geometry& g,
                                                    int64_t& forced) const {
+    // A method's cost: its forced ears, or (more honest, as a forced ear can still give a valid
+    // triangle while the final remainder is never tested) its triangles that are not strictly
+    // counter-clockwise on the rounded points, if more.
+    auto folded = [&](const std::vector<std::array<uint32_t, 3>>& t, int64_t ears) {
+      int64_t bad = 0;
+      for (const auto& x : t)
+        if (rounded_[poly[x[1]].slot] != rounded_[poly[x[2]].slot] &&
+            orient_in(true, poly[x[0]].slot, poly[x[1]].slot, poly[x[2]].slot) <= 0)
+          ++bad;
+      return std::max(bad, ears);
+    };
     int64_t whole = 0;
     auto tris = ear_clip(static_cast<uint32_t>(poly.size()), g, whole);
+    whole = folded(tris, whole);
     if (whole > 0) {
       int64_t parts = 0;
       auto other = split_and_clip(poly, g, parts);
+      parts = folded(other, parts);
       if (parts < whole) {
         tris = std::move(other);
         whole = parts;
@@ -550,9 +611,24 @@ class CapBuilder {
       } else {
         alone = whole + 1;
       }
+      alone = folded(other, alone);
       if (alone < whole) {
         tris = std::move(other);
         whole = alone;
+      }
+    }
+    if (whole > 0) {
+      // Ear clipping on the rounded points can still corner itself on long exactly collinear
+      // chains (a cell edge crossing an earlier cap: every node on one line). A constrained
+      // Delaunay triangulation of the rounded polygon never does (exact predicates on the
+      // doubles); it needs distinct rounded points, a simple rounded ring and no repeated node.
+      std::vector<std::array<uint32_t, 3>> other;
+      if (rounded_cdt(poly, other)) {
+        const int64_t bad = folded(other, 0);
+        if (bad < whole) {
+          tris = std::move(other);
+          whole = bad;
+        }
       }
     }
     forced += whole;
