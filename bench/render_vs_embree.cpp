@@ -21,6 +21,7 @@
 // identical (rgb, depth, ids); the later frame equals the first; and for a single mesh (no CSG)
 // the pixels Cover and Embree see as covered agree (reported as a fraction: Embree uses floats).
 // Usage: render_vs_embree INPUT [--runs 3] [--threads 2] [--size 1024] [--png OUT.png]
+//        [--cover-only]   (--cover-only: Cover's timings alone, for profiling or A/B runs)
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -278,6 +279,12 @@ struct CoverRun {
   double load_s = 0, bvh_s = 0, frame_s = 0, first_frame_s = 0, later_frame_s = 0;
 };
 
+double median_of(const std::vector<CoverRun>& runs, double CoverRun::*field) {
+  std::vector<double> v;
+  for (const CoverRun& c : runs) v.push_back(c.*field);
+  return median(v);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -292,8 +299,11 @@ int main(int argc, char** argv) {
   const int threads = static_cast<int>(bench::arg(argc, argv, "--threads", 2));
   const int size = static_cast<int>(bench::arg(argc, argv, "--size", 1024));
   std::string png;
-  for (int i = 2; i + 1 < argc; ++i)
-    if (std::string(argv[i]) == "--png") png = argv[i + 1];
+  bool cover_only = false;
+  for (int i = 2; i < argc; ++i) {
+    if (i + 1 < argc && std::string(argv[i]) == "--png") png = argv[i + 1];
+    cover_only |= std::string(argv[i]) == "--cover-only";
+  }
   const std::vector<LeafFile> leaves = input_leaves(input);
 
   cover::ThreadLimit limit(threads);  // Cover's TBB (and every TBB arena in the process)
@@ -329,6 +339,7 @@ int main(int argc, char** argv) {
       if (run == 0) reference = first;
       cover_runs.push_back(c);
     }
+    if (cover_only) continue;
     {  // Embree
       EmbreeScene e;
       const auto t0 = Clock::now();
@@ -364,6 +375,15 @@ int main(int argc, char** argv) {
     threads_identical = single.rgb == reference.rgb && single.depth == reference.depth &&
                         single.ids == reference.ids;
   }
+  if (cover_only) {
+    std::printf("{\"cover_load_s\": %.4f, \"cover_bvh_s\": %.4f, \"cover_frame_s\": %.4f, "
+                "\"cover_later_frame_s\": %.4f, \"images_identical_1_vs_%d_threads\": %s}\n",
+                median_of(cover_runs, &CoverRun::load_s), median_of(cover_runs, &CoverRun::bvh_s),
+                median_of(cover_runs, &CoverRun::frame_s),
+                median_of(cover_runs, &CoverRun::later_frame_s), threads,
+                threads_identical ? "true" : "false");
+    return threads_identical && later_identical ? 0 : 1;
+  }
   // Coverage agreement (meaningful for a single mesh: no CSG on Embree's side).
   size_t agree = 0;
   const size_t pixels = static_cast<size_t>(cam.width) * cam.height;
@@ -371,11 +391,7 @@ int main(int argc, char** argv) {
     agree += (reference.ids[i] != cover::Image::kBackgroundId) == (e_image[i] != 0);
   if (!png.empty()) cover::write_png_rgb(png, reference.width, reference.height, reference.rgb);
 
-  auto cm = [&](double CoverRun::*f) {
-    std::vector<double> v;
-    for (const CoverRun& c : cover_runs) v.push_back(c.*f);
-    return median(v);
-  };
+  auto cm = [&](double CoverRun::*f) { return median_of(cover_runs, f); };
   const double c_first = cm(&CoverRun::first_frame_s), c_later = cm(&CoverRun::later_frame_s);
   const double ns = 1e9 / static_cast<double>(pixels);
   std::printf("{\"input\": \"%s\", \"leaves\": %zu, \"embree_triangles\": %zu, \"pixels\": \"%dx%d\",\n",
