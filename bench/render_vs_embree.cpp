@@ -17,12 +17,15 @@
 //                       what a CSG ray caster needs before any span logic).
 // Every frame writes an RGB image (headlight shading), so no side does less than drawing.
 // Figures: medians of --runs (default 3) interleaved runs (Cover, Embree, Cover, ...); per-ray
-// times are a frame's wall time over its pixels. Checks: Cover's images for 1 and N threads are
+// times are a frame's wall time over its pixels; cpu_s: the same spans in process CPU time (user
+// + system of all threads), a measure a loaded host disturbs less. Embree's device (its thread
+// pool) is created outside the timings, as Cover's TBB pool exists before its load. Checks: Cover's images for 1 and N threads are
 // identical (rgb, depth, ids); the later frame equals the first; and for a single mesh (no CSG)
 // the pixels Cover and Embree see as covered agree (reported as a fraction: Embree uses floats).
 // Usage: render_vs_embree INPUT [--runs 3] [--threads 2] [--size 1024] [--png OUT.png]
 //        [--cover-only]   (--cover-only: Cover's timings alone, for profiling or A/B runs)
 #include <embree3/rtcore.h>
+#include <sys/resource.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -277,7 +280,16 @@ size_t embree_frame(const EmbreeScene& e, const cover::Camera& cam, EmbreeFrame 
 
 struct CoverRun {
   double load_s = 0, bvh_s = 0, frame_s = 0, first_frame_s = 0, later_frame_s = 0;
+  double first_cpu_s = 0, later_cpu_s = 0;  ///< process CPU time (user + system, all threads)
 };
+
+/// CPU seconds of the whole process so far (user + system, every thread): a second measure that a
+/// loaded host disturbs less than wall time (time spent waiting for a core is not counted).
+double cpu_seconds() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 double median_of(const std::vector<CoverRun>& runs, double CoverRun::*field) {
   std::vector<double> v;
@@ -314,7 +326,8 @@ int main(int argc, char** argv) {
   const cover::Camera cam = cover::load(input).camera(co);
 
   std::vector<CoverRun> cover_runs;
-  std::vector<double> e_load, e_build, e_first, e_single, e_packet, e_every;
+  std::vector<double> e_load, e_build, e_first, e_single, e_packet, e_every, e_first_cpu,
+      e_every_cpu;
   size_t e_triangles = 0, e_hits = 0;
   cover::Image reference;
   bool later_identical = true;
@@ -324,6 +337,7 @@ int main(int argc, char** argv) {
     {  // Cover
       CoverRun c;
       const auto t0 = Clock::now();
+      const double cpu0 = cpu_seconds();
       const cover::Model model = cover::load(input);
       c.load_s = since(t0);
       model.bvh();  // built once per Model (render() would build it): timed apart
@@ -331,9 +345,12 @@ int main(int argc, char** argv) {
       const cover::Image first = model.render(cam);
       c.first_frame_s = since(t0);
       c.frame_s = c.first_frame_s - c.load_s - c.bvh_s;
+      c.first_cpu_s = cpu_seconds() - cpu0;
       const auto t1 = Clock::now();
+      const double cpu1 = cpu_seconds();
       const cover::Image later = model.render(cam);
       c.later_frame_s = since(t1);
+      c.later_cpu_s = cpu_seconds() - cpu1;
       later_identical &= later.rgb == first.rgb && later.depth == first.depth &&
                          later.ids == first.ids;
       if (run == 0) reference = first;
@@ -342,8 +359,9 @@ int main(int argc, char** argv) {
     if (cover_only) continue;
     {  // Embree
       EmbreeScene e;
+      e.device = rtcNewDevice(config.c_str());  // its thread pool: started once per program
       const auto t0 = Clock::now();
-      e.device = rtcNewDevice(config.c_str());
+      const double cpu0 = cpu_seconds();
       e.scene = rtcNewScene(e.device);
       rtcSetSceneFlags(e.scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
       e_build.push_back(embree_load(leaves, e));
@@ -353,6 +371,7 @@ int main(int argc, char** argv) {
       embree_frame(e, cam, EmbreeFrame::kPacket, arena, e_image);
       const double packet_first = since(t1);
       e_first.back() += packet_first;
+      e_first_cpu.push_back(cpu_seconds() - cpu0);
       e_load.push_back(load_build);
       e_triangles = e.triangles;
       const auto t2 = Clock::now();
@@ -363,8 +382,10 @@ int main(int argc, char** argv) {
       embree_frame(e, cam, EmbreeFrame::kPacket, arena, img);
       e_packet.push_back(since(t3));
       const auto t4 = Clock::now();
+      const double cpu4 = cpu_seconds();
       e_hits = embree_frame(e, cam, EmbreeFrame::kEveryHit, arena, img);
       e_every.push_back(since(t4));
+      e_every_cpu.push_back(cpu_seconds() - cpu4);
     }
   }
   // Cover with one thread: the same image.
@@ -416,8 +437,15 @@ int main(int argc, char** argv) {
               c_first / median(e_first), c_later / median(e_every), c_later / median(e_single),
               c_later / median(e_packet));
   std::printf(" \"images_identical_1_vs_%d_threads\": %s, \"later_frame_identical\": %s, "
-              "\"covered_pixels_agree\": %.5f}\n",
+              "\"covered_pixels_agree\": %.5f,\n",
               threads, threads_identical ? "true" : "false", later_identical ? "true" : "false",
               static_cast<double>(agree) / pixels);
+  std::printf(" \"cpu_s\": {\"cover_first_frame\": %.4f, \"cover_later_frame\": %.4f, "
+              "\"embree_first_frame\": %.4f, \"embree_every_hit_frame\": %.4f},\n",
+              cm(&CoverRun::first_cpu_s), cm(&CoverRun::later_cpu_s), median(e_first_cpu),
+              median(e_every_cpu));
+  std::printf(" \"cpu_first_frame_ratio\": %.3f, \"cpu_later_vs_every_hit_ratio\": %.3f}\n",
+              cm(&CoverRun::first_cpu_s) / median(e_first_cpu),
+              cm(&CoverRun::later_cpu_s) / median(e_every_cpu));
   return threads_identical && later_identical ? 0 : 1;
 }
