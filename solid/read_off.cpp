@@ -6,16 +6,24 @@
 //   F lines  n i0 .. i(n-1) [numbers]   0-based indices, n >= 3; a trailing colour is ignored
 // Before reserving memory the counts are checked against the bytes left in the file: a vertex
 // line takes at least 6 bytes ("0 0 0\n") and a face line at least 7 ("3 0 1 2").
+// A body of 1 MiB or more is parsed in parallel (read_body_parallel), the same mesh as serially.
 
+#include <algorithm>
+#include <atomic>
 #include <string>
+#include <vector>
 
 #include "solid/detail/mesh_io_detail.h"
+#include "solid/errors.h"
+#include "solid/parallel.h"
 
 namespace cover::detail {
 namespace {
 
 constexpr uint64_t kMinVertexBytes = 6;
 constexpr uint64_t kMinFaceBytes = 7;
+/// Bodies (vertex and face lines) of at least this many bytes are read in parallel.
+constexpr uint64_t kParallelBytes = uint64_t{1} << 20;
 
 /// Line source that skips blank lines and strips comments.
 class ContentLines {
@@ -59,6 +67,108 @@ uint64_t parse_count(std::string_view token, const std::string& file, uint64_t l
   return value;
 }
 
+/// The vertex and face lines of a large file (what follows the counts line) read in parallel:
+/// content lines are found per chunk of about kChunkBytes (chunks end at a newline), then
+/// vertices and faces are parsed in fixed ranges and the faces' indices placed by prefix sums.
+/// The lines mean exactly what the serial loop in read_off() reads. Returns false on anything
+/// unexpected (a bad token, a count that does not match): the serial loop then reads the file
+/// again and reports its first error with its line number, so errors do not depend on this path.
+bool read_body_parallel(std::string_view body, uint64_t vertex_count, uint64_t face_count,
+                        const std::string& file, PolygonMesh& mesh) {
+  constexpr size_t kChunkBytes = size_t{1} << 18;
+  std::vector<size_t> cut{0};
+  while (cut.back() < body.size()) {
+    size_t next = std::min(body.size(), cut.back() + kChunkBytes);
+    if (next < body.size()) {
+      const size_t newline = body.find('\n', next);
+      next = newline == std::string_view::npos ? body.size() : newline + 1;
+    }
+    cut.push_back(next);
+  }
+  const size_t chunks = cut.size() - 1;
+  std::vector<std::vector<std::string_view>> content(chunks);
+  parallel_for(chunks, 1, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      LineReader lines(body.substr(cut[c], cut[c + 1] - cut[c]));
+      std::string_view line;
+      while (lines.next(line)) {  // as ContentLines::next
+        line = strip_comment(line);
+        if (!only_blanks(line)) content[c].push_back(line);
+      }
+    }
+  });
+  std::vector<std::string_view> all;
+  for (const auto& c : content) all.insert(all.end(), c.begin(), c.end());
+  content = {};
+  if (all.size() != vertex_count + face_count) return false;
+  std::atomic<bool> failed{false};
+  constexpr size_t kGrain = size_t{1} << 14;
+  mesh.vertices.resize(vertex_count);
+  parallel_for(vertex_count, kGrain, [&](size_t begin, size_t end) {
+    try {
+      for (size_t v = begin; v < end; ++v) {
+        std::string_view line = all[v];
+        Vec3& p = mesh.vertices[v];
+        p.x = parse_coordinate(next_token(line), file, 0, 'x');
+        p.y = parse_coordinate(next_token(line), file, 0, 'y');
+        p.z = parse_coordinate(next_token(line), file, 0, 'z');
+        check_numeric_tail(line, file, 0);
+      }
+    } catch (const InputError&) {
+      failed = true;
+    }
+  });
+  if (failed) return false;
+  // Faces in ranges of kGrain: each range's sizes and indices, then placed by prefix sums.
+  const size_t ranges = (face_count + kGrain - 1) / kGrain;
+  std::vector<std::vector<uint32_t>> sizes(ranges), indices(ranges);
+  parallel_for(face_count, kGrain, [&](size_t begin, size_t end) {
+    const size_t r = begin / kGrain;
+    try {
+      sizes[r].reserve(end - begin);
+      indices[r].reserve(3 * (end - begin));
+      for (size_t f = begin; f < end; ++f) {
+        std::string_view line = all[vertex_count + f];
+        uint64_t size;
+        if (!parse_integer(next_token(line), size) || size < 3 || size > kMaxIndexCount) {
+          failed = true;
+          return;
+        }
+        for (uint64_t k = 0; k < size; ++k) {
+          int64_t index;
+          if (!parse_integer(next_token(line), index) || index < 0 ||
+              static_cast<uint64_t>(index) >= vertex_count) {
+            failed = true;
+            return;
+          }
+          indices[r].push_back(static_cast<uint32_t>(index));
+        }
+        check_numeric_tail(line, file, 0);
+        sizes[r].push_back(static_cast<uint32_t>(size));
+      }
+    } catch (const InputError&) {
+      failed = true;
+    }
+  });
+  if (failed) return false;
+  std::vector<uint64_t> offset(ranges + 1, 0);
+  for (size_t r = 0; r < ranges; ++r) offset[r + 1] = offset[r] + indices[r].size();
+  if (offset[ranges] > kMaxIndexCount) return false;
+  mesh.face_start.resize(face_count + 1);
+  mesh.face_vertices.resize(offset[ranges]);
+  parallel_for(ranges, 1, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) {
+      uint32_t at = static_cast<uint32_t>(offset[r]);
+      std::copy(indices[r].begin(), indices[r].end(), mesh.face_vertices.begin() + at);
+      for (size_t k = 0; k < sizes[r].size(); ++k) {
+        at += sizes[r][k];
+        mesh.face_start[r * kGrain + k + 1] = at;
+      }
+    }
+  });
+  return true;
+}
+
 }  // namespace
 
 PolygonMesh read_off(const std::string& file, std::string_view data) {
@@ -97,6 +207,12 @@ PolygonMesh read_off(const std::string& file, std::string_view data) {
               std::to_string(vertex_count) + " vertices and " + std::to_string(face_count) +
                   " faces cannot fit in the " + std::to_string(left) + " bytes left in the file");
 
+  // A large body is read in parallel (read_body_parallel); any error there: read serially below.
+  if (left >= kParallelBytes) {
+    PolygonMesh mesh;
+    if (read_body_parallel(data.substr(data.size() - left), vertex_count, face_count, file, mesh))
+      return mesh;
+  }
   PolygonMesh mesh;
   mesh.vertices.reserve(vertex_count);
   mesh.face_start.reserve(face_count + 1);

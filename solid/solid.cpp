@@ -1,5 +1,6 @@
 #include "solid/solid.h"
 #include "solid/errors.h"
+#include "solid/parallel.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -83,19 +84,37 @@ Solid complement(Solid a) {
 namespace {
 
 /// Concatenates parts (paper §4 union) and roots them under a new node of kind `op`.
-/// Reverses the faces of parts[1..] when `flip_rest` (difference).
+/// Reverses the faces of parts[1..] when `flip_rest` (difference). The arrays are reserved once
+/// for all parts (growing them part by part reallocated and copied them again, into fresh
+/// memory) and filled in parallel chunks (each element on its own: the same for any threads).
 Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
   if (parts.empty()) throw PreconditionError("CSG operation without operands");
   Solid out = std::move(parts[0]);
   std::vector<uint32_t> roots{out.tree.root};
+  size_t vertices = out.vertices.size(), indices = out.face_vertices.size(),
+         faces = out.face_count();
+  for (size_t p = 1; p < parts.size(); ++p) {
+    vertices += parts[p].vertices.size();
+    indices += parts[p].face_vertices.size();
+    faces += parts[p].face_count();
+  }
+  out.vertices.reserve(vertices);
+  out.face_vertices.reserve(indices);
+  out.face_start.reserve(faces + 1);
+  out.face_leaf.reserve(faces);
+  out.face_sign.reserve(faces);
+  constexpr size_t kGrain = size_t{1} << 16;
   for (size_t p = 1; p < parts.size(); ++p) {
     Solid& s = parts[p];
+    const size_t nf = s.face_count();
     if (flip_rest) {
-      for (size_t f = 0; f < s.face_count(); ++f) {
-        std::reverse(s.face_vertices.begin() + s.face_start[f],
-                     s.face_vertices.begin() + s.face_start[f + 1]);
-        s.face_sign[f] = static_cast<int8_t>(-s.face_sign[f]);
-      }
+      parallel_for(nf, kGrain, [&](size_t begin, size_t end) {
+        for (size_t f = begin; f < end; ++f) {
+          std::reverse(s.face_vertices.begin() + s.face_start[f],
+                       s.face_vertices.begin() + s.face_start[f + 1]);
+          s.face_sign[f] = static_cast<int8_t>(-s.face_sign[f]);
+        }
+      });
     }
     const auto v_off = static_cast<uint32_t>(out.vertices.size());
     const auto f_off = static_cast<uint32_t>(out.face_count());
@@ -103,10 +122,19 @@ Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
     const auto n_off = static_cast<uint32_t>(out.tree.nodes.size());
     const auto i_off = static_cast<uint32_t>(out.face_vertices.size());
     out.vertices.insert(out.vertices.end(), s.vertices.begin(), s.vertices.end());
-    for (uint32_t v : s.face_vertices) out.face_vertices.push_back(v + v_off);
-    for (size_t f = 1; f < s.face_start.size(); ++f) out.face_start.push_back(s.face_start[f] + i_off);
-    for (uint32_t l : s.face_leaf) out.face_leaf.push_back(l + l_off);
     out.face_sign.insert(out.face_sign.end(), s.face_sign.begin(), s.face_sign.end());
+    out.face_vertices.resize(i_off + s.face_vertices.size());
+    parallel_for(s.face_vertices.size(), kGrain, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) out.face_vertices[i_off + k] = s.face_vertices[k] + v_off;
+    });
+    out.face_start.resize(f_off + 1 + nf);
+    out.face_leaf.resize(f_off + nf);
+    parallel_for(nf, kGrain, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f) {
+        out.face_start[f_off + 1 + f] = s.face_start[f + 1] + i_off;
+        out.face_leaf[f_off + f] = s.face_leaf[f] + l_off;
+      }
+    });
     for (Leaf leaf : s.leaves) {
       leaf.first_face += f_off;
       leaf.first_vertex += v_off;

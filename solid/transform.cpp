@@ -8,6 +8,7 @@
 #include <string>
 
 #include "solid/errors.h"
+#include "solid/parallel.h"
 
 namespace cover {
 
@@ -26,14 +27,21 @@ Affine make_trs(Eigen::Vector3d scale, Eigen::Vector3d axis, double degrees,
 }
 
 void apply_transform(const Affine& m, PolygonMesh& mesh) {
-  for (Vec3& p : mesh.vertices) {
-    const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, 1.0);
-    p = {q.x(), q.y(), q.z()};
-  }
+  // Each vertex and each face on its own: chunks in parallel give the same doubles.
+  constexpr size_t kGrain = 1 << 15;
+  parallel_for(mesh.vertices.size(), kGrain, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      Vec3& p = mesh.vertices[v];
+      const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, 1.0);
+      p = {q.x(), q.y(), q.z()};
+    }
+  });
   if (m.topLeftCorner<3, 3>().determinant() < 0) {
-    for (size_t f = 0; f < mesh.face_count(); ++f)
-      std::reverse(mesh.face_vertices.begin() + mesh.face_start[f],
-                   mesh.face_vertices.begin() + mesh.face_start[f + 1]);
+    parallel_for(mesh.face_count(), kGrain, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; ++f)
+        std::reverse(mesh.face_vertices.begin() + mesh.face_start[f],
+                     mesh.face_vertices.begin() + mesh.face_start[f + 1]);
+    });
   }
 }
 

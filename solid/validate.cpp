@@ -244,14 +244,15 @@ MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options
   report.nonmanifold_edges = table.nonmanifold;
   report.closed = table.boundary == 0;
   report.oriented = table.oriented;
+  report.volume = signed_volume(mesh);
+  report.outward = report.closed && report.oriented && report.volume > 0;
+  if (!options.full_report) return report;
   report.components = count_components(mesh, he, table.mate);
   // Fans are only defined when no edge has more than two sides; otherwise not manifold anyway.
   const Fans fans = table.nonmanifold == 0 ? count_fans(mesh.vertices.size(), he, table) : Fans{};
   report.manifold = table.nonmanifold == 0 && fans.pinched == 0;
   for (size_t f = 0; f < mesh.face_count(); ++f)
     if (all_collinear(mesh.vertices, mesh.face(f))) ++report.degenerate_faces;
-  report.volume = signed_volume(mesh);
-  report.outward = report.closed && report.oriented && report.volume > 0;
   if (report.closed && report.manifold && report.oriented) {
     int64_t faces = 0;
     for (size_t f = 0; f < mesh.face_count(); ++f) faces += has_edge(mesh.face(f)) ? 1 : 0;

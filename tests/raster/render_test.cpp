@@ -3,10 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
 
+#include "covering/ray.h"
 #include "helpers.h"
 #include "raster/png.h"
 #include "solid/parallel.h"
@@ -190,6 +192,57 @@ TEST(Render, SameImageWithOneAndTwoThreadsAndPngRoundTrip) {
     EXPECT_EQ(d.values, std::vector<uint16_t>(one.depth.begin(), one.depth.end()));
     std::filesystem::remove_all(dir);
   }
+}
+
+// Issue 24: the frame's front-to-back path (first_visible over the BVH, prefetching, tiles) must
+// give every pixel exactly what the full cast() of its ray gives (all hits, CSG spans), the
+// independent path of covering/ray.h: same leaf id, same depth, caps where the section cuts.
+TEST(Render, EveryPixelIsTheVisiblePointOfTheFullCast) {
+  const Solid s = unite(
+      {subtract({box_solid({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "s")}),
+       intersect({make_leaf(make_cylinder({0, 0, -1}, {0, 0, 3}, 0.6, 20), "c"),
+                  box_solid({-1, -1, 0.5}, {1, 1, 2.5})}),
+       make_leaf(make_sphere({1, 1, 1}, 0.3, 12), "inner")});  // hidden inside the box
+  const Bvh bvh(s);
+  for (bool perspective : {false, true})
+    for (bool cut : {false, true}) {
+      CameraOptions co;
+      co.perspective = perspective;
+      co.width = 96;
+      co.height = 80;
+      const Camera cam = frame_camera(s.bbox(), co);
+      RenderOptions o;
+      if (cut) o.section = Plane{{1, -1, 1}, 1.2};  // faces the iso eye: caps on the box
+      const Image img = render(s, bvh, cam, o);
+      int surface = 0, caps = 0;
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+          const Ray ray = cam.ray(x, y);
+          double lo = 0, hi = INFINITY;  // render.cpp allowed(): the ray outside n·x > d
+          if (cut) {
+            const double sd = dot(o.section->normal, ray.dir);
+            const double v0 = dot(o.section->normal, ray.origin) - o.section->offset;
+            if (sd == 0 && v0 > 0) lo = 1, hi = 0;
+            if (sd > 0) hi = -v0 / sd;
+            if (sd < 0) lo = std::max(0.0, -v0 / sd);
+          }
+          const VisibleHit v = lo > hi ? VisibleHit{}
+                                       : first_visible(cast(bvh, s.tree, s.leaves.size(), ray),
+                                                       lo, hi);
+          const uint16_t want = !v.hit  ? Image::kBackgroundId
+                                : v.cap ? Image::kCapId
+                                        : static_cast<uint16_t>(v.enter.leaf + 1);
+          ASSERT_EQ(img.ids[at(img, x, y)], want) << x << "," << y;
+          if (!v.hit) continue;
+          surface += !v.cap;
+          caps += v.cap;
+          const double f = (v.t - cam.near) / (cam.far - cam.near);
+          ASSERT_EQ(img.depth[at(img, x, y)], std::lround(std::clamp(f, 0.0, 1.0) * 65534))
+              << x << "," << y;
+        }
+      EXPECT_GT(surface, cut ? 100 : 500);
+      if (cut) EXPECT_GT(caps, 20);
+    }
 }
 
 // Issue 17, group 8: long renders showed no progress bar; the callback drives it.

@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -165,6 +166,85 @@ TEST(MeshIoTest, RoundTripIsExactForOffObjPly) {
       EXPECT_TRUE(same_bits(back.vertices[v], mesh.vertices[v])) << "vertex " << v;
     EXPECT_EQ(back.face_start, mesh.face_start);
     EXPECT_EQ(back.face_vertices, mesh.face_vertices);
+  }
+  fs::remove_all(dir);
+}
+
+// Issue 24: an OFF body of 1 MiB or more is parsed in parallel chunks; the mesh must be the one
+// the line-by-line reading gives (comments, blank lines, CRLF, mixed face sizes across chunk
+// ends), and an error deep inside must name the same line as before (the serial re-read).
+TEST(MeshIoTest, LargeOffParsedInParallelGivesTheSameMeshAndErrors) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  constexpr uint32_t kV = 40000, kF = 40000;
+  std::ostringstream text;
+  text << "OFF\n# a large file\n" << kV << " " << kF << " 0\n";
+  PolygonMesh want;
+  uint64_t line = 3;
+  std::vector<uint64_t> line_of_vertex(kV), line_of_face(kF), vertex_offset(kV);
+  for (uint32_t v = 0; v < kV; ++v) {
+    if (v % 997 == 0) text << "\n# comment line\n", line += 2;
+    const Vec3 p{v * 0.001, -1.0 / (v + 1), v % 7 == 0 ? 1e-300 : 3.25};
+    want.vertices.push_back(p);
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g%s", p.x, p.y, p.z,
+                  v % 5 == 0 ? " 0.5 0.5 0.5\r\n" : "\n");
+    vertex_offset[v] = static_cast<uint64_t>(text.tellp());
+    text << buf;
+    line_of_vertex[v] = ++line;
+  }
+  for (uint32_t f = 0; f < kF; ++f) {
+    if (f % 1009 == 0) text << "  # indented comment\n", ++line;
+    const uint32_t n = 3 + f % 3;
+    std::vector<uint32_t> loop;
+    for (uint32_t k = 0; k < n; ++k) loop.push_back((f * 7 + k * 13) % kV);
+    want.add_face(loop);
+    text << n;
+    for (uint32_t i : loop) text << ' ' << i;
+    text << (f % 11 == 0 ? " 255 0 0 # colour\n" : "\n");
+    line_of_face[f] = ++line;
+  }
+  const std::string good = text.str();
+  ASSERT_GT(good.size(), size_t{1} << 20);
+  auto read_text = [&](const std::string& t) {
+    std::ofstream(dir / "big.off", std::ios::binary) << t;
+    return cover::read_mesh(dir / "big.off");
+  };
+  const PolygonMesh back = read_text(good);
+  ASSERT_EQ(back.vertices.size(), want.vertices.size());
+  for (size_t v = 0; v < want.vertices.size(); ++v)
+    ASSERT_TRUE(same_bits(back.vertices[v], want.vertices[v])) << "vertex " << v;
+  EXPECT_EQ(back.face_start, want.face_start);
+  EXPECT_EQ(back.face_vertices, want.face_vertices);
+  // Errors deep in the body: a bad coordinate, an index out of range, a missing face.
+  auto error_of = [&](const std::string& t) {
+    try {
+      read_text(t);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string file = (dir / "big.off").string();
+  {
+    std::string t = good;
+    const size_t start = vertex_offset[29999], y = t.find(' ', start) + 1;
+    t[y] = 'x';  // vertex 29999's y coordinate becomes a bad token
+    const std::string token = t.substr(y, t.find(' ', y) - y);
+    EXPECT_EQ(error_of(t), file + ":" + std::to_string(line_of_vertex[29999]) +
+                               ": expected a number for the y coordinate, found '" + token + "'");
+  }
+  {
+    std::string t = good;
+    t.insert(t.rfind("\n", t.size() - 2) + 1, "3 0 1 " + std::to_string(kV) + "\n");
+    EXPECT_EQ(error_of(t), file + ":" + std::to_string(line_of_face[kF - 1]) +
+                               ": vertex index " + std::to_string(kV) + " out of range [0, " +
+                               std::to_string(kV) + ")");
+  }
+  {
+    std::string t = good.substr(0, good.rfind("\n", good.size() - 2) + 1);  // last face gone
+    EXPECT_EQ(error_of(t), file + ":" + std::to_string(line_of_face[kF - 1] - 1) +
+                               ": unexpected end of file: expected " + std::to_string(kF) +
+                               " faces, found " + std::to_string(kF - 1));
   }
   fs::remove_all(dir);
 }
