@@ -111,6 +111,14 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
     e = f;
   }
   groups.push_back(entries.size());
+  // Per box, the cell of its lower corner: the intersection of two boxes has its lower corner
+  // in the cell whose coordinates are the larger of the two per axis (cell() is monotone).
+  std::vector<std::array<uint32_t, 3>> low(boxes.size());
+  parallel_for(boxes.size(), 4096, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b)
+      if (!boxes[b].empty())
+        for (int a = 0; a < 3; ++a) low[b][a] = static_cast<uint32_t>(grid.cell(boxes[b].min[a], a));
+  });
   std::atomic<bool> stop{false};
   parallel_for(groups.size() - 1, 256, [&](size_t g0, size_t g1) {
     std::vector<uint32_t> ids;
@@ -119,15 +127,16 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
       ids.clear();
       for (size_t e = groups[g]; e < entries.size() && (entries[e] >> bits) == cell; ++e)
         ids.push_back(static_cast<uint32_t>(entries[e] & mask));
+      const uint32_t ci = static_cast<uint32_t>(cell / (grid.n[1] * grid.n[2]));
+      const uint32_t cj = static_cast<uint32_t>(cell / grid.n[2] % grid.n[1]);
+      const uint32_t ck = static_cast<uint32_t>(cell % grid.n[2]);
       // The pair is this cell's when the lower corner of the intersection lies in it.
       auto report = [&](uint32_t a, uint32_t b) {
-        const Bbox& x = boxes[a];
-        const Bbox& y = boxes[b];
-        if (!meet(x, y)) return false;
-        const uint64_t corner = grid.index(grid.cell(std::max(x.min.x, y.min.x), 0),
-                                           grid.cell(std::max(x.min.y, y.min.y), 1),
-                                           grid.cell(std::max(x.min.z, y.min.z), 2));
-        if (corner != cell) return false;
+        const std::array<uint32_t, 3>& la = low[a];
+        const std::array<uint32_t, 3>& lb = low[b];
+        if (std::max(la[0], lb[0]) != ci || std::max(la[1], lb[1]) != cj ||
+            std::max(la[2], lb[2]) != ck || !meet(boxes[a], boxes[b]))
+          return false;
         if (pair(std::min(a, b), std::max(a, b))) {
           stop = true;
           return true;
