@@ -40,9 +40,15 @@ bool meet(const Bbox& a, const Bbox& b) {
          a.min.z <= b.max.z && b.min.z <= a.max.z;
 }
 
-}  // namespace
+constexpr size_t kGroupGrain = 256;  // cells per parallel chunk
 
-void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, uint32_t)>& pair) {
+/// The scan behind box_pairs() and box_pairs_between(): chunks(c) is told the number of
+/// parallel chunks first, then pair(chunk, a, b) gets the pairs (of different colours when
+/// `color` is given), a < b; it returns true to stop.
+void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color,
+          const std::function<void(size_t)>& chunks,
+          const std::function<bool(size_t, uint32_t, uint32_t)>& pair) {
+  auto differ = [&](uint32_t a, uint32_t b) { return color.empty() || color[a] != color[b]; };
   Bbox all;
   double mean = 0;
   size_t count = 0;
@@ -52,14 +58,18 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
       mean += std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
       ++count;
     }
-  if (count < 2) return;
+  if (count < 2) {
+    chunks(0);
+    return;
+  }
   mean /= static_cast<double>(count);
   const double extent =
       std::max({all.max.x - all.min.x, all.max.y - all.min.y, all.max.z - all.min.z});
   if (!(extent > 0)) {  // all boxes are one point: every pair meets
+    chunks(1);
     for (uint32_t a = 0; a < boxes.size(); ++a)
       for (uint32_t b = a + 1; b < boxes.size(); ++b)
-        if (!boxes[a].empty() && !boxes[b].empty() && pair(a, b)) return;
+        if (!boxes[a].empty() && !boxes[b].empty() && differ(a, b) && pair(0, a, b)) return;
     return;
   }
   const int bits = std::max(1, static_cast<int>(std::bit_width(boxes.size())));
@@ -111,6 +121,7 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
     e = f;
   }
   groups.push_back(entries.size());
+  chunks((groups.size() - 1 + kGroupGrain - 1) / kGroupGrain);
   // Per box, the cell of its lower corner: the intersection of two boxes has its lower corner
   // in the cell whose coordinates are the larger of the two per axis (cell() is monotone).
   std::vector<std::array<uint32_t, 3>> low(boxes.size());
@@ -120,13 +131,17 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
         for (int a = 0; a < 3; ++a) low[b][a] = static_cast<uint32_t>(grid.cell(boxes[b].min[a], a));
   });
   std::atomic<bool> stop{false};
-  parallel_for(groups.size() - 1, 256, [&](size_t g0, size_t g1) {
+  parallel_for(groups.size() - 1, kGroupGrain, [&](size_t g0, size_t g1) {
+    const size_t chunk = g0 / kGroupGrain;
     std::vector<uint32_t> ids;
     for (size_t g = g0; g < g1 && !stop.load(std::memory_order_relaxed); ++g) {
       const uint64_t cell = entries[groups[g]] >> bits;
       ids.clear();
       for (size_t e = groups[g]; e < entries.size() && (entries[e] >> bits) == cell; ++e)
         ids.push_back(static_cast<uint32_t>(entries[e] & mask));
+      if (!color.empty() &&
+          std::all_of(ids.begin(), ids.end(), [&](uint32_t x) { return color[x] == color[ids[0]]; }))
+        continue;  // one colour only
       const uint32_t ci = static_cast<uint32_t>(cell / (grid.n[1] * grid.n[2]));
       const uint32_t cj = static_cast<uint32_t>(cell / grid.n[2] % grid.n[1]);
       const uint32_t ck = static_cast<uint32_t>(cell % grid.n[2]);
@@ -135,9 +150,9 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
         const std::array<uint32_t, 3>& la = low[a];
         const std::array<uint32_t, 3>& lb = low[b];
         if (std::max(la[0], lb[0]) != ci || std::max(la[1], lb[1]) != cj ||
-            std::max(la[2], lb[2]) != ck || !meet(boxes[a], boxes[b]))
+            std::max(la[2], lb[2]) != ck || !differ(a, b) || !meet(boxes[a], boxes[b]))
           return false;
-        if (pair(std::min(a, b), std::max(a, b))) {
+        if (pair(chunk, std::min(a, b), std::max(a, b))) {
           stop = true;
           return true;
         }
@@ -156,6 +171,26 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
           if (report(ids[p], ids[q])) return;
     }
   });
+}
+
+}  // namespace
+
+void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, uint32_t)>& pair) {
+  scan(boxes, {}, [](size_t) {}, [&](size_t, uint32_t a, uint32_t b) { return pair(a, b); });
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,
+                                                             std::span<const uint32_t> color) {
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found;
+  scan(boxes, color, [&](size_t n) { found.resize(n); },
+       [&](size_t chunk, uint32_t a, uint32_t b) {
+         found[chunk].emplace_back(a, b);
+         return false;
+       });
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 
 }  // namespace cover

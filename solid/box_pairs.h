@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include "solid/types.h"
 
@@ -21,5 +23,11 @@ namespace cover {
 /// once. When `pair` returns true the search stops early (other threads finish their chunk).
 /// Empty boxes meet nothing. Precondition: finite coordinates, boxes.size() < 2^32.
 void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, uint32_t)>& pair);
+
+/// The pairs (a, b), a < b, of boxes of different colours (color[a] != color[b]) that meet,
+/// sorted; cells holding boxes of one colour only are skipped. Deterministic. Precondition: as
+/// box_pairs(), color.size() == boxes.size().
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,
+                                                             std::span<const uint32_t> color);
 
 }  // namespace cover
