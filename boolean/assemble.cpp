@@ -44,6 +44,22 @@ double nearest(const K::FT& x) {
   return (bits & 1) == 0 ? i.first : i.second;
 }
 
+/// Sorts (key, h) pairs given in increasing h, keys (a << 32) | b with a < n: a counting sort on
+/// a, then each (small) bucket sorted; the same order as std::sort, in linear time.
+void sort_by_key(std::vector<std::pair<uint64_t, uint32_t>>& items, size_t n) {
+  std::vector<uint32_t> start(n + 1, 0);
+  for (const auto& it : items) ++start[(it.first >> 32) + 1];
+  for (size_t a = 0; a < n; ++a) start[a + 1] += start[a];
+  std::vector<std::pair<uint64_t, uint32_t>> out(items.size());
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (const auto& it : items) out[fill[it.first >> 32]++] = it;
+  }
+  for (size_t a = 0; a < n; ++a)
+    if (start[a + 1] - start[a] > 1) std::sort(out.begin() + start[a], out.begin() + start[a + 1]);
+  items.swap(out);
+}
+
 /// Angular class of r around p → q relative to r0: 0 at θ = 0, 1 in (0, π), 2 at π, 3 in (π, 2π).
 int quadrant(const Point& p, const Point& q, const Point& r0, const Point& r) {
   const CGAL::Orientation s = CGAL::orientation(p, q, r0, r);
@@ -66,7 +82,7 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
   auto third = [&](uint32_t h) { return tris[h / 3][(h % 3 + 2) % 3]; };
   std::vector<std::pair<uint64_t, uint32_t>> hs(3 * m);
   for (uint32_t h = 0; h < 3 * m; ++h) hs[h] = {edge_key(from(h), to(h)), h};
-  std::sort(hs.begin(), hs.end());
+  sort_by_key(hs, arr.points.size());
 
   UnionFind corners(3 * m);
   std::vector<uint32_t> mate(3 * m, kNone);
@@ -151,7 +167,7 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
   std::vector<std::pair<uint64_t, uint32_t>> directed(3 * m);
   for (uint32_t h = 0; h < 3 * m; ++h)
     directed[h] = {(uint64_t{vertex[h]} << 32) | vertex[3 * (h / 3) + (h % 3 + 1) % 3], h};
-  std::sort(directed.begin(), directed.end());
+  sort_by_key(directed, mesh.vertices.size());
   std::vector<uint8_t> split(m, 0);
   std::vector<std::pair<std::array<uint32_t, 3>, uint32_t>> extra;  // (face, split-from face)
   for (size_t i = 0, j; i < directed.size(); i = j) {

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "boolean/detail/arrangement.h"
-#include "brep/halfedge.h"
 #include "covering/bounds.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
 #include "solid/rounding_repair.h"
 #include "solid/triangulate.h"
+#include "solid/union_find.h"
 #include "solid/validate.h"
 
 namespace cover {
@@ -87,10 +87,20 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
     const Vec3 n = cross(b - a, c - a);
     r.area += 0.5 * std::sqrt(dot(n, n));
   }
+  // The result is closed and 2-manifold with its vertices split per fan (assemble() throws
+  // otherwise), so E = 3F/2, components through edges are those through vertices, and
+  // genus = (2·components − χ)/2 with χ = V − E + F (as brep::validate reports it).
   if (r.mesh.face_count() > 0) {
-    const brep::BrepReport report = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(r.mesh));
-    r.components = report.components;
-    r.genus = report.genus;
+    UnionFind sets(r.mesh.vertices.size());
+    for (size_t f = 0; f < r.mesh.face_count(); ++f) {
+      auto t = r.mesh.face(f);
+      sets.unite(t[0], t[1]);
+      sets.unite(t[0], t[2]);
+    }
+    for (uint32_t v = 0; v < r.mesh.vertices.size(); ++v) r.components += sets.find(v) == v;
+    const int64_t chi = static_cast<int64_t>(r.mesh.vertices.size()) -
+                        static_cast<int64_t>(r.mesh.face_count()) / 2;
+    r.genus = (2 * r.components - chi) / 2;
   }
   r.seconds.assemble += since(t);
   return r;

@@ -1,13 +1,13 @@
 // Step 2 of evaluate() (boolean/evaluate.h): candidate pairs and exact pairwise triangle
 // intersections. The exactness scheme is described in boolean/detail/arrangement.h, the notation
 // in boolean/detail/arrangement_steps.h.
-#include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
 #include <algorithm>
 #include <compare>
 
 #include "boolean/detail/arrangement_steps.h"
+#include "solid/box_pairs.h"
 #include "solid/parallel.h"
 #include "solid/predicates.h"
 
@@ -166,81 +166,19 @@ Hit coplanar_hit(const Tri& a, const Tri& b, const std::vector<Point>& pts) {
 
 }  // namespace
 
-/// Tri pairs of different leaves whose closed double boxes meet, sorted. Per leaf l, its tris
-/// against those of the later leaves (bipartite), each side first reduced to the boxes meeting the
-/// other side's bounding box: a self-intersection over all tris spent most of its time on the
-/// many same-leaf neighbours (bunny00 − elephant: 0.33–0.48 s → 0.02 s). Leaf l's boxes are cut
-/// into slabs along x, each slab against the other boxes meeting it, in parallel (the sorted
-/// result does not depend on the slabs or threads); the other boxes are sorted by x so that each
-/// slab visits only those in its x range (10-leaf preview scene: 0.88 → 0.82 s of CPU; slabs
-/// along z cost 1.43 s here, unlike in self_intersects, whose scans are larger).
+/// Tri pairs of different leaves whose closed double boxes meet, sorted: one grid pass over all
+/// tris coloured by leaf (solid/box_pairs.h), cells of one leaf skipped. It replaced CGAL's
+/// box intersection of each leaf against the later ones in x-slabs, which took 20 % of the
+/// 10-leaf preview scene's evaluation (12 % now, of a smaller total: docs/benchmarks.md).
 std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri>& tris,
                                                            const std::vector<Vec3>& pos) {
-  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, uint32_t,
-                                                        CGAL::Box_intersection_d::ID_EXPLICIT>;
-  std::vector<Box> boxes;
-  boxes.reserve(tris.size());
-  for (uint32_t i = 0; i < tris.size(); ++i) {
-    CGAL::Bbox_3 b;
-    for (uint32_t v : tris[i].v) b += CGAL::Bbox_3(pos[v].x, pos[v].y, pos[v].z, pos[v].x, pos[v].y, pos[v].z);
-    boxes.emplace_back(b, i);
+  std::vector<Bbox> boxes(tris.size());
+  std::vector<uint32_t> leaf(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    for (uint32_t v : tris[i].v) boxes[i].add(pos[v]);
+    leaf[i] = tris[i].leaf;
   }
-  auto bounds = [](const std::vector<Box>& range, size_t begin, size_t end) {
-    CGAL::Bbox_3 b;
-    for (size_t i = begin; i < end; ++i) b += range[i].bbox();
-    return b;
-  };
-  constexpr size_t kSlab = 2048;  // boxes of leaf l per slab
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  // Tris are grouped by leaf, leaves in increasing order.
-  for (size_t begin = 0; begin < tris.size();) {
-    size_t end = begin;
-    while (end < tris.size() && tris[end].leaf == tris[begin].leaf) ++end;
-    if (end == tris.size()) break;
-    const CGAL::Bbox_3 mine = bounds(boxes, begin, end), rest = bounds(boxes, end, tris.size());
-    std::vector<Box> a, b;
-    for (size_t i = begin; i < end; ++i)
-      if (CGAL::do_overlap(boxes[i].bbox(), rest)) a.push_back(boxes[i]);
-    for (size_t i = end; i < tris.size(); ++i)
-      if (CGAL::do_overlap(boxes[i].bbox(), mine)) b.push_back(boxes[i]);
-    std::sort(a.begin(), a.end(), [](const Box& x, const Box& y) {
-      const double cx = x.min_coord(0) + x.max_coord(0), cy = y.min_coord(0) + y.max_coord(0);
-      return cx < cy || (cx == cy && x.info() < y.info());
-    });
-    // b by lower x bound: the boxes meeting a slab [x0, x1] in x lie in the range whose lower
-    // bound is in [x0 − w, x1] (w: b's largest x extent), found by binary search; the search
-    // starts at x0 − 2w so that the rounding of the subtraction cannot skip a box.
-    std::sort(b.begin(), b.end(), [](const Box& x, const Box& y) {
-      return x.min_coord(0) < y.min_coord(0) || (x.min_coord(0) == y.min_coord(0) && x.info() < y.info());
-    });
-    double widest = 0;
-    for (const Box& x : b) widest = std::max(widest, x.max_coord(0) - x.min_coord(0));
-    const size_t slabs = (a.size() + kSlab - 1) / kSlab;
-    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found(slabs);
-    parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
-      for (size_t s = s0; s < s1; ++s) {
-        const size_t lo = s * kSlab, hi = std::min(a.size(), lo + kSlab);
-        std::vector<Box> mine_s(a.begin() + lo, a.begin() + hi), other;
-        const CGAL::Bbox_3 slab = bounds(a, lo, hi);
-        auto first = std::partition_point(b.begin(), b.end(), [&](const Box& x) {
-          return x.min_coord(0) < slab.xmin() - 2 * widest;
-        });
-        for (auto x = first; x != b.end() && x->min_coord(0) <= slab.xmax(); ++x)
-          if (CGAL::do_overlap(x->bbox(), slab)) other.push_back(*x);
-        // Closed boxes with exact double bounds: touching triangles are candidates too.
-        CGAL::box_intersection_d(mine_s.begin(), mine_s.end(), other.begin(), other.end(),
-                                 [&](const Box& x, const Box& y) {
-                                   found[s].emplace_back(std::min(x.info(), y.info()),
-                                                         std::max(x.info(), y.info()));
-                                 });
-      }
-    });
-    for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
-    begin = end;
-  }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  return pairs;
+  return box_pairs_between(boxes, leaf);
 }
 
 std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector<Vec3>& pos,

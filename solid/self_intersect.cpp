@@ -13,7 +13,6 @@
 //   0 shared  CGAL::do_intersect (touching counts)
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <array>
@@ -21,7 +20,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "solid/parallel.h"
+#include "solid/box_pairs.h"
 #include "solid/predicates.h"
 #include "solid/triangulate.h"
 #include "solid/validate.h"
@@ -31,10 +30,6 @@ namespace {
 
 using K = CGAL::Epick;
 using Point3 = K::Point_3;
-
-using Box =
-    CGAL::Box_intersection_d::Box_with_info_d<double, 3, uint32_t,
-                                              CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
 
 Point3 to_point(const Vec3& v) { return {v.x, v.y, v.z}; }
 
@@ -94,8 +89,6 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Poin
   return CGAL::do_intersect(ta, tb);
 }
 
-struct FoundIntersection {};
-
 }  // namespace
 
 bool self_intersects(const PolygonMesh& mesh) {
@@ -112,61 +105,17 @@ bool self_intersects(const PolygonMesh& mesh) {
     for (const auto& t : tiles) triangles.push_back({t, static_cast<uint32_t>(f)});
   }
 
-  std::vector<Box> boxes;
-  boxes.reserve(triangles.size());
-  for (uint32_t t = 0; t < triangles.size(); ++t) {
-    const auto& v = triangles[t].v;
-    boxes.emplace_back(points[v[0]].bbox() + points[v[1]].bbox() + points[v[2]].bbox(), t);
-  }
-  std::vector<const Box*> box_ptrs;
-  box_ptrs.reserve(boxes.size());
-  for (const Box& b : boxes) box_ptrs.push_back(&b);
-
-  // In parallel: boxes sorted by their lower z bound and cut into slabs of kSlab; each slab is
-  // tested against itself and against the later boxes that start before the slab's upper z bound
-  // (every overlapping pair is tested exactly once, in the slab of its earlier box). Slabs are
-  // thin in z, not x: CGAL's box intersection scans along x at the bottom of its recursion, which
-  // degenerates to all pairs among boxes that all overlap in x. The answer
-  // does not depend on the slabs or threads; a found intersection stops the other slabs early.
-  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
-  constexpr size_t kSlab = 4096;
+  // Every pair of meeting triangle boxes (solid/box_pairs.h: a grid, in parallel); the answer
+  // does not depend on the order, and a found intersection stops the search.
+  std::vector<Bbox> boxes(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (uint32_t v : triangles[t].v) boxes[t].add(mesh.vertices[v]);
   std::atomic<bool> found{false};
-  auto test_pair = [&](const Box* x, const Box* y) {
-    const Triangle& a = triangles[x->info()];
-    const Triangle& b = triangles[y->info()];
-    if (a.face != b.face && triangles_meet(a, b, points, mesh.vertices)) {
-      found = true;
-      throw FoundIntersection{};
-    }
-  };
-  if (box_ptrs.size() <= 2 * kSlab) {
-    try {
-      CGAL::box_self_intersection_d(box_ptrs.begin(), box_ptrs.end(), test_pair, kCutoff);
-    } catch (const FoundIntersection&) {
-    }
-    return found;
-  }
-  std::sort(box_ptrs.begin(), box_ptrs.end(), [](const Box* x, const Box* y) {
-    return x->min_coord(2) < y->min_coord(2) || (x->min_coord(2) == y->min_coord(2) && x < y);
-  });
-  const size_t slabs = (box_ptrs.size() + kSlab - 1) / kSlab;
-  parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
-    std::vector<const Box*> mine, later;
-    for (size_t s = s0; s < s1 && !found; ++s) {
-      const size_t lo = s * kSlab, hi = std::min(box_ptrs.size(), lo + kSlab);
-      mine.assign(box_ptrs.begin() + lo, box_ptrs.begin() + hi);
-      CGAL::Bbox_3 slab;
-      for (const Box* b : mine) slab += b->bbox();
-      later.clear();
-      for (size_t i = hi; i < box_ptrs.size() && box_ptrs[i]->min_coord(2) <= slab.zmax(); ++i)
-        if (CGAL::do_overlap(box_ptrs[i]->bbox(), slab)) later.push_back(box_ptrs[i]);
-      try {
-        CGAL::box_self_intersection_d(mine.begin(), mine.end(), test_pair, kCutoff);
-        CGAL::box_intersection_d(mine.begin(), mine.end(), later.begin(), later.end(), test_pair,
-                                 kCutoff);
-      } catch (const FoundIntersection&) {
-      }
-    }
+  box_pairs(boxes, [&](uint32_t x, uint32_t y) {
+    const Triangle& a = triangles[x];
+    const Triangle& b = triangles[y];
+    if (a.face != b.face && triangles_meet(a, b, points, mesh.vertices)) found = true;
+    return found.load();
   });
   return found;
 }

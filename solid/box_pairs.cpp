@@ -1,0 +1,196 @@
+// box_pairs() (solid/box_pairs.h). Notation:
+//   h             the cell side; cell (i, j, k) holds [lo + i·h, lo + (i+1)·h) per axis (the last
+//                 cell of an axis also everything above), lo the lower corner of all boxes
+//   cell(v, a)    min(n_a − 1, floor((v − lo_a) · (1/h))): monotone in v, so a box [p, q] covers
+//                 exactly the cells cell(p, a) … cell(q, a) on each axis a
+//   entry         (cell index << bits) | box, sorted: the boxes of each cell are contiguous
+#include "solid/box_pairs.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <vector>
+
+#include "solid/parallel.h"
+
+namespace cover {
+namespace {
+
+struct Grid {
+  Vec3 lo;
+  double inv_h = 1;
+  std::array<uint64_t, 3> n{1, 1, 1};
+
+  uint64_t cell(double v, int a) const {
+    const double c = std::floor((v - lo[a]) * inv_h);
+    return c <= 0 ? 0 : std::min(n[a] - 1, static_cast<uint64_t>(c));
+  }
+  uint64_t index(uint64_t i, uint64_t j, uint64_t k) const { return (i * n[1] + j) * n[2] + k; }
+  /// Cells box b covers.
+  uint64_t covered(const Bbox& b) const {
+    uint64_t c = 1;
+    for (int a = 0; a < 3; ++a) c *= cell(b.max[a], a) - cell(b.min[a], a) + 1;
+    return c;
+  }
+};
+
+bool meet(const Bbox& a, const Bbox& b) {
+  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
+         a.min.z <= b.max.z && b.min.z <= a.max.z;
+}
+
+constexpr size_t kGroupGrain = 256;  // cells per parallel chunk
+
+/// The scan behind box_pairs() and box_pairs_between(): chunks(c) is told the number of
+/// parallel chunks first, then pair(chunk, a, b) gets the pairs (of different colours when
+/// `color` is given), a < b; it returns true to stop.
+void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color,
+          const std::function<void(size_t)>& chunks,
+          const std::function<bool(size_t, uint32_t, uint32_t)>& pair) {
+  auto differ = [&](uint32_t a, uint32_t b) { return color.empty() || color[a] != color[b]; };
+  Bbox all;
+  double mean = 0;
+  size_t count = 0;
+  for (const Bbox& b : boxes)
+    if (!b.empty()) {
+      all.add(b);
+      mean += std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
+      ++count;
+    }
+  if (count < 2) {
+    chunks(0);
+    return;
+  }
+  mean /= static_cast<double>(count);
+  const double extent =
+      std::max({all.max.x - all.min.x, all.max.y - all.min.y, all.max.z - all.min.z});
+  if (!(extent > 0)) {  // all boxes are one point: every pair meets
+    chunks(1);
+    for (uint32_t a = 0; a < boxes.size(); ++a)
+      for (uint32_t b = a + 1; b < boxes.size(); ++b)
+        if (!boxes[a].empty() && !boxes[b].empty() && differ(a, b) && pair(0, a, b)) return;
+    return;
+  }
+  const int bits = std::max(1, static_cast<int>(std::bit_width(boxes.size())));
+  // The cell side: the mean box size, at least 2^-20 of the extent, doubled while the boxes
+  // would cover more than 4 cells each on average or the cell indices would not fit the key.
+  double h = std::max(mean, extent * 0x1p-20);
+  Grid grid;
+  grid.lo = all.min;
+  for (;;) {
+    grid.inv_h = 1 / h;
+    for (int a = 0; a < 3; ++a)
+      grid.n[a] = static_cast<uint64_t>(std::floor((all.max[a] - all.min[a]) * grid.inv_h)) + 1;
+    const double cells = static_cast<double>(grid.n[0]) * static_cast<double>(grid.n[1]) *
+                         static_cast<double>(grid.n[2]);
+    if (cells < std::ldexp(1.0, 63 - bits)) {
+      uint64_t entries = 0;
+      for (const Bbox& b : boxes)
+        if (!b.empty()) entries += grid.covered(b);
+      if (entries <= 4 * count || h >= extent) break;
+    }
+    h *= 2;
+  }
+  // Entries, in box order then cell order; then sorted by cell.
+  std::vector<uint64_t> start(boxes.size() + 1, 0);
+  for (size_t b = 0; b < boxes.size(); ++b)
+    start[b + 1] = start[b] + (boxes[b].empty() ? 0 : grid.covered(boxes[b]));
+  std::vector<uint64_t> entries(start.back());
+  parallel_for(boxes.size(), 4096, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) {
+      if (boxes[b].empty()) continue;
+      uint64_t* out = entries.data() + start[b];
+      const Bbox& x = boxes[b];
+      const uint64_t i0 = grid.cell(x.min.x, 0), i1 = grid.cell(x.max.x, 0);
+      const uint64_t j0 = grid.cell(x.min.y, 1), j1 = grid.cell(x.max.y, 1);
+      const uint64_t k0 = grid.cell(x.min.z, 2), k1 = grid.cell(x.max.z, 2);
+      for (uint64_t i = i0; i <= i1; ++i)
+        for (uint64_t j = j0; j <= j1; ++j)
+          for (uint64_t k = k0; k <= k1; ++k) *out++ = (grid.index(i, j, k) << bits) | b;
+    }
+  });
+  start = {};
+  parallel_sort(entries);
+  const uint64_t mask = (uint64_t{1} << bits) - 1;
+  std::vector<size_t> groups;  // starts of the cells holding two boxes or more
+  for (size_t e = 0; e < entries.size();) {
+    size_t f = e + 1;
+    while (f < entries.size() && (entries[f] >> bits) == (entries[e] >> bits)) ++f;
+    if (f - e > 1) groups.push_back(e);
+    e = f;
+  }
+  groups.push_back(entries.size());
+  chunks((groups.size() - 1 + kGroupGrain - 1) / kGroupGrain);
+  // Per box, the cell of its lower corner: the intersection of two boxes has its lower corner
+  // in the cell whose coordinates are the larger of the two per axis (cell() is monotone).
+  std::vector<std::array<uint32_t, 3>> low(boxes.size());
+  parallel_for(boxes.size(), 4096, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b)
+      if (!boxes[b].empty())
+        for (int a = 0; a < 3; ++a) low[b][a] = static_cast<uint32_t>(grid.cell(boxes[b].min[a], a));
+  });
+  std::atomic<bool> stop{false};
+  parallel_for(groups.size() - 1, kGroupGrain, [&](size_t g0, size_t g1) {
+    const size_t chunk = g0 / kGroupGrain;
+    std::vector<uint32_t> ids;
+    for (size_t g = g0; g < g1 && !stop.load(std::memory_order_relaxed); ++g) {
+      const uint64_t cell = entries[groups[g]] >> bits;
+      ids.clear();
+      for (size_t e = groups[g]; e < entries.size() && (entries[e] >> bits) == cell; ++e)
+        ids.push_back(static_cast<uint32_t>(entries[e] & mask));
+      if (!color.empty() &&
+          std::all_of(ids.begin(), ids.end(), [&](uint32_t x) { return color[x] == color[ids[0]]; }))
+        continue;  // one colour only
+      const uint32_t ci = static_cast<uint32_t>(cell / (grid.n[1] * grid.n[2]));
+      const uint32_t cj = static_cast<uint32_t>(cell / grid.n[2] % grid.n[1]);
+      const uint32_t ck = static_cast<uint32_t>(cell % grid.n[2]);
+      // The pair is this cell's when the lower corner of the intersection lies in it.
+      auto report = [&](uint32_t a, uint32_t b) {
+        const std::array<uint32_t, 3>& la = low[a];
+        const std::array<uint32_t, 3>& lb = low[b];
+        if (std::max(la[0], lb[0]) != ci || std::max(la[1], lb[1]) != cj ||
+            std::max(la[2], lb[2]) != ck || !differ(a, b) || !meet(boxes[a], boxes[b]))
+          return false;
+        if (pair(chunk, std::min(a, b), std::max(a, b))) {
+          stop = true;
+          return true;
+        }
+        return false;
+      };
+      if (ids.size() <= 32) {
+        for (size_t p = 0; p < ids.size(); ++p)
+          for (size_t q = p + 1; q < ids.size(); ++q)
+            if (report(ids[p], ids[q])) return;
+        continue;
+      }
+      std::sort(ids.begin(), ids.end(),
+                [&](uint32_t a, uint32_t b) { return boxes[a].min.x < boxes[b].min.x; });
+      for (size_t p = 0; p < ids.size(); ++p)
+        for (size_t q = p + 1; q < ids.size() && boxes[ids[q]].min.x <= boxes[ids[p]].max.x; ++q)
+          if (report(ids[p], ids[q])) return;
+    }
+  });
+}
+
+}  // namespace
+
+void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, uint32_t)>& pair) {
+  scan(boxes, {}, [](size_t) {}, [&](size_t, uint32_t a, uint32_t b) { return pair(a, b); });
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,
+                                                             std::span<const uint32_t> color) {
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found;
+  scan(boxes, color, [&](size_t n) { found.resize(n); },
+       [&](size_t chunk, uint32_t a, uint32_t b) {
+         found[chunk].emplace_back(a, b);
+         return false;
+       });
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace cover

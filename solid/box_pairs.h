@@ -1,0 +1,33 @@
+#pragma once
+// Broad phase: every pair of closed axis-aligned boxes that meet, found with a uniform grid
+// (cells about the mean box size, coarsened until the boxes cover at most a few cells each).
+// Each box is entered in the cells its box covers; a pair meeting in several cells is reported
+// once, by the cell holding the lower corner of the two boxes' intersection (the floor of a
+// coordinate is monotone, so that cell lies in both boxes' cell ranges). Within a cell holding
+// many boxes, a sort on the lower x bound and a sweep replace the all-pairs loop. Meshes of
+// similar-sized triangles cover about one to four cells per triangle, so this costs a sort of a
+// few entries per box, against the recursive streaming of CGAL::box_intersection_d.
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "solid/types.h"
+
+namespace cover {
+
+/// Calls pair(a, b), a < b, once for every pair of boxes (indices into `boxes`) whose closed
+/// boxes meet (touching counts), in no particular order and possibly from several threads at
+/// once. When `pair` returns true the search stops early (other threads finish their chunk).
+/// Empty boxes meet nothing. Precondition: finite coordinates, boxes.size() < 2^32.
+void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, uint32_t)>& pair);
+
+/// The pairs (a, b), a < b, of boxes of different colours (color[a] != color[b]) that meet,
+/// sorted; cells holding boxes of one colour only are skipped. Deterministic. Precondition: as
+/// box_pairs(), color.size() == boxes.size().
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,
+                                                             std::span<const uint32_t> color);
+
+}  // namespace cover
