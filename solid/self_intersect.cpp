@@ -18,9 +18,11 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include "solid/box_pairs.h"
+#include "solid/parallel.h"
 #include "solid/predicates.h"
 #include "solid/triangulate.h"
 #include "solid/validate.h"
@@ -120,117 +122,14 @@ bool self_intersects(const PolygonMesh& mesh) {
   return found;
 }
 
-}  // namespace cover
-
-namespace cover {
-
-namespace {
-
-/// For every overlapping pair (x in `probe`, y in `base`) calls on_pair(slab, x, y), in parallel
-/// over slabs of kSlab probe boxes taken in order of their lower z bound; each slab meets the
-/// base boxes whose z range overlaps its own (found by binary search on the lower z bounds,
-/// widened by the tallest base box). `slab` indexes per-slab results. Returns the slab count.
-template <class OnPair>
-size_t bipartite_slabs(std::vector<const Box*> probe, std::vector<const Box*> base,
-                       const OnPair& on_pair) {
-  constexpr size_t kSlab = 1024;
-  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
-  auto by_zmin = [](const Box* x, const Box* y) {
-    return x->min_coord(2) < y->min_coord(2) || (x->min_coord(2) == y->min_coord(2) && x < y);
-  };
-  std::sort(probe.begin(), probe.end(), by_zmin);
-  std::sort(base.begin(), base.end(), by_zmin);
-  double tallest = 0;
-  for (const Box* b : base) tallest = std::max(tallest, b->max_coord(2) - b->min_coord(2));
-  const size_t slabs = (probe.size() + kSlab - 1) / kSlab;
-  parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
-    std::vector<const Box*> mine, others;
-    for (size_t s = s0; s < s1; ++s) {
-      const size_t lo = s * kSlab, hi = std::min(probe.size(), lo + kSlab);
-      mine.assign(probe.begin() + lo, probe.begin() + hi);
-      const double zlo = mine.front()->min_coord(2);
-      double zhi = zlo;
-      for (const Box* b : mine) zhi = std::max(zhi, b->max_coord(2));
-      auto first = std::lower_bound(base.begin(), base.end(), zlo - tallest,
-                                    [](const Box* b, double z) { return b->min_coord(2) < z; });
-      auto last = std::upper_bound(base.begin(), base.end(), zhi,
-                                   [](double z, const Box* b) { return z < b->min_coord(2); });
-      others.clear();
-      for (auto it = first; it != last; ++it)
-        if ((*it)->max_coord(2) >= zlo) others.push_back(*it);
-      CGAL::box_intersection_d(mine.begin(), mine.end(), others.begin(), others.end(),
-                               [&](const Box* x, const Box* y) { on_pair(s, x, y); }, kCutoff);
-    }
-  });
-  return slabs;
-}
-
-/// For every overlapping pair of `boxes` calls on_pair(slab, x, y) once, in parallel over slabs
-/// of kSlab boxes in order of their lower z bound (as self_intersects does). Returns the slab
-/// count.
-template <class OnPair>
-size_t self_slabs(std::vector<const Box*> boxes, const OnPair& on_pair) {
-  constexpr size_t kSlab = 4096;
-  constexpr std::ptrdiff_t kCutoff = 2000;  // as in CGAL's self_intersections
-  std::sort(boxes.begin(), boxes.end(), [](const Box* x, const Box* y) {
-    return x->min_coord(2) < y->min_coord(2) || (x->min_coord(2) == y->min_coord(2) && x < y);
-  });
-  const size_t slabs = (boxes.size() + kSlab - 1) / kSlab;
-  parallel_for(slabs, 1, [&](size_t s0, size_t s1) {
-    std::vector<const Box*> mine, later;
-    for (size_t s = s0; s < s1; ++s) {
-      const size_t lo = s * kSlab, hi = std::min(boxes.size(), lo + kSlab);
-      mine.assign(boxes.begin() + lo, boxes.begin() + hi);
-      CGAL::Bbox_3 slab;
-      for (const Box* b : mine) slab += b->bbox();
-      later.clear();
-      for (size_t i = hi; i < boxes.size() && boxes[i]->min_coord(2) <= slab.zmax(); ++i)
-        if (CGAL::do_overlap(boxes[i]->bbox(), slab)) later.push_back(boxes[i]);
-      auto call = [&](const Box* x, const Box* y) { on_pair(s, x, y); };
-      CGAL::box_self_intersection_d(mine.begin(), mine.end(), call, kCutoff);
-      CGAL::box_intersection_d(mine.begin(), mine.end(), later.begin(), later.end(), call, kCutoff);
-    }
-  });
-  return slabs;
-}
-
-}  // namespace
-
 std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     const PolygonMesh& mesh, std::span<const uint8_t> suspect) {
   const bool all = suspect.empty();
   const size_t faces = mesh.face_count();
-  // With suspects, only faces whose box meets a suspect face's box are tiled (face boxes first:
-  // most faces of a large mesh are far from the few suspects). Boxes stay in place and are
-  // handled by pointer (their ids are their addresses).
-  const size_t suspect_faces =
-      all ? faces : static_cast<size_t>(std::count(suspect.begin(), suspect.end(), uint8_t{1}));
-  if (suspect_faces == 0) return {};
-  std::vector<uint8_t> needed(faces, 4 * suspect_faces >= faces ? 1 : 0);
-  if (!needed.empty() && !needed[0]) {
-    std::vector<Box> face_boxes(faces);
-    parallel_for(faces, 4096, [&](size_t f0, size_t f1) {
-      for (size_t f = f0; f < f1; ++f) {
-        CGAL::Bbox_3 b;
-        for (uint32_t v : mesh.face(f)) b += to_point(mesh.vertices[v]).bbox();
-        face_boxes[f] = Box(b, static_cast<uint32_t>(f));
-      }
-    });
-    std::vector<const Box*> all_ptrs(faces), suspect_ptrs;
-    for (uint32_t f = 0; f < faces; ++f) {
-      all_ptrs[f] = &face_boxes[f];
-      if (suspect[f]) suspect_ptrs.push_back(&face_boxes[f]), needed[f] = 1;
-    }
-    if (suspect_ptrs.empty()) return {};
-    // Concurrent slabs may mark one face: relaxed atomic byte stores.
-    bipartite_slabs(std::move(suspect_ptrs), std::move(all_ptrs),
-                    [&](size_t, const Box*, const Box* y) {
-                      std::atomic_ref<uint8_t>(needed[y->info()]).store(1, std::memory_order_relaxed);
-                    });
-  }
+  if (!all && std::find(suspect.begin(), suspect.end(), uint8_t{1}) == suspect.end()) return {};
   std::vector<Point3> points(mesh.vertices.size());
   for (size_t v = 0; v < points.size(); ++v) points[v] = to_point(mesh.vertices[v]);
-  // Tiles of the needed faces, per chunk of faces, then in face order.
+  // Tiles per chunk of faces, in parallel, then in face order.
   constexpr size_t kGrain = 1024;
   const size_t chunks = (faces + kGrain - 1) / kGrain;
   std::vector<std::vector<Triangle>> chunk_tris(chunks);
@@ -239,7 +138,6 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     std::vector<std::array<uint32_t, 3>> tiles;
     const size_t c = f0 / kGrain;
     for (size_t f = f0; f < f1; ++f) {
-      if (!needed[f]) continue;
       tiles.clear();
       if (triangulate_face(mesh.vertices, mesh.face(f), tiles) != FaceTiling::kSimple) {
         if (all || suspect[f]) chunk_bad[c].push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
@@ -254,45 +152,21 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     pairs.insert(pairs.end(), chunk_bad[c].begin(), chunk_bad[c].end());
     triangles.insert(triangles.end(), chunk_tris[c].begin(), chunk_tris[c].end());
   }
-  std::vector<Box> boxes;
-  boxes.reserve(triangles.size());
-  for (uint32_t t = 0; t < triangles.size(); ++t) {
-    const auto& v = triangles[t].v;
-    boxes.emplace_back(points[v[0]].bbox() + points[v[1]].bbox() + points[v[2]].bbox(), t);
-  }
-  std::vector<const Box*> box_ptrs, suspects;
-  for (const Box& b : boxes) {
-    box_ptrs.push_back(&b);
-    if (!all && suspect[triangles[b.info()].face]) suspects.push_back(&b);
-  }
-  auto meet = [&](const Box* x, const Box* y) {
-    const Triangle& a = triangles[x->info()];
-    const Triangle& b = triangles[y->info()];
-    return a.face != b.face && triangles_meet(a, b, points, mesh.vertices);
-  };
-  auto key = [&](const Box* x, const Box* y) {
-    const uint32_t f = triangles[x->info()].face, g = triangles[y->info()].face;
-    return std::pair{std::min(f, g), std::max(f, g)};
-  };
-  if (all || 4 * suspects.size() >= box_ptrs.size()) {
-    // Mostly suspects: one self-intersection pass over the tiles (each pair once), skipping
-    // pairs without a suspect.
-    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found((box_ptrs.size() + 4095) / 4096);
-    self_slabs(std::move(box_ptrs), [&](size_t s, const Box* x, const Box* y) {
-      if (!all && !suspect[triangles[x->info()].face] && !suspect[triangles[y->info()].face])
-        return;
-      if (meet(x, y)) found[s].push_back(key(x, y));
-    });
-    for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
-  } else if (!suspects.empty()) {
-    // Suspects against every triangle: a pair of two suspects is met twice (deduplicated below).
-    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found((suspects.size() + 1023) / 1024);
-    bipartite_slabs(std::move(suspects), std::move(box_ptrs),
-                    [&](size_t s, const Box* x, const Box* y) {
-                      if (meet(x, y)) found[s].push_back(key(x, y));
-                    });
-    for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
-  }
+  // Every pair of meeting tile boxes (solid/box_pairs.h); pairs without a suspect face skipped.
+  std::vector<Bbox> boxes(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (uint32_t v : triangles[t].v) boxes[t].add(mesh.vertices[v]);
+  std::mutex found_mutex;  // contacts are rare: one lock per found pair
+  box_pairs(boxes, [&](uint32_t x, uint32_t y) {
+    const Triangle& a = triangles[x];
+    const Triangle& b = triangles[y];
+    if (a.face == b.face || (!all && !suspect[a.face] && !suspect[b.face])) return false;
+    if (triangles_meet(a, b, points, mesh.vertices)) {
+      const std::lock_guard<std::mutex> lock(found_mutex);
+      pairs.push_back({std::min(a.face, b.face), std::max(a.face, b.face)});
+    }
+    return false;
+  });
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;

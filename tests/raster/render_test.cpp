@@ -241,7 +241,9 @@ TEST(Render, EveryPixelIsTheVisiblePointOfTheFullCast) {
               << x << "," << y;
         }
       EXPECT_GT(surface, cut ? 100 : 500);
-      if (cut) EXPECT_GT(caps, 20);
+      if (cut) {
+        EXPECT_GT(caps, 20);
+      }
     }
 }
 
