@@ -41,14 +41,14 @@ int main(int argc, char** argv) {
   scenes.push_back({"sphere(256) ∩ box",
                     cover::sphere({0, 0, 0}, 1, 256) & cover::box({-0.9, -0.8, -0.7}, {0.9, 0.8, 0.7})});
   std::printf("| scene | evaluated faces | N | pieces | cap faces | glued faces | evaluate s | "
-              "evaluate --cells s | of which cut s | glue s |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "evaluate --cells s | of which cut s | glue s | repair s | collapsed | contacts left |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Scene& s : scenes) {
     for (int n : {2, 4, 8}) {
       const cover::Bbox box = cover::face_bbox(s.model.evaluate().mesh);
       const double ext = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
       const cover::VoxelBounds cube{box.min - cover::Vec3{0.01 * ext, 0.01 * ext, 0.01 * ext}, 1.02 * ext};
-      std::vector<double> plain, cells, cut, glue;
+      std::vector<double> plain, cells, cut, glue, repair;
       cover::CellsEvaluation last;
       size_t faces = 0;
       for (int r = 0; r < runs; ++r) {
@@ -60,11 +60,14 @@ int main(int argc, char** argv) {
         cells.push_back(seconds_since(t));
         cut.push_back(last.cells.cut_seconds);
         glue.push_back(last.cells.glue_seconds);
+        repair.push_back(last.cells.repair_seconds);
       }
-      std::printf("| %s | %zu | %d | %zu | %lld | %zu | %.3f | %.3f | %.3f | %.3f |\n",
+      std::printf("| %s | %zu | %d | %zu | %lld | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %lld | %lld |\n",
                   s.name.c_str(), faces, n, last.cells.pieces.size(),
                   static_cast<long long>(last.cells.cap_faces), last.cells.glued.face_count(),
-                  median(plain), median(cells), median(cut), median(glue));
+                  median(plain), median(cells), median(cut), median(glue), median(repair),
+                  static_cast<long long>(last.cells.collapsed_edges),
+                  static_cast<long long>(last.cells.rounding_contacts));
       std::fflush(stdout);
     }
   }

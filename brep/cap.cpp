@@ -449,7 +449,7 @@ class CapBuilder {
     const size_t n = idx.size();
     const uint32_t si = poly[idx[i]].slot, sj = poly[idx[j]].slot;
     const uint32_t vi = poly[idx[i]].vid, vj = poly[idx[j]].vid;
-    for (bool r : {false, true}) {
+    for (bool r : {true, false}) {  // the rounded (double) geometry first: cheaper
       for (auto [at, to] : {std::pair{i, sj}, std::pair{j, si}}) {
         const uint32_t a = poly[idx[at]].slot, a0 = poly[idx[(at + n - 1) % n]].slot,
                        a1 = poly[idx[(at + 1) % n]].slot;
@@ -462,7 +462,7 @@ class CapBuilder {
         const Node& p = poly[idx[e]];
         const Node& q = poly[idx[(e + 1) % n]];
         if (p.vid == vi || p.vid == vj || q.vid == vi || q.vid == vj) continue;
-        if (!r && boxes_apart(si, sj, p.slot, q.slot)) continue;
+        if (boxes_apart(si, sj, p.slot, q.slot)) continue;  // conservative for both geometries
         const int o1 = orient_in(r, si, sj, p.slot), o2 = orient_in(r, si, sj, q.slot);
         const int o3 = orient_in(r, p.slot, q.slot, si), o4 = orient_in(r, p.slot, q.slot, sj);
         if (o1 * o2 <= 0 && o3 * o4 <= 0) return false;
@@ -646,12 +646,21 @@ class CapBuilder {
     std::vector<std::vector<uint32_t>> parts(1);
     parts[0].resize(poly.size());
     std::iota(parts[0].begin(), parts[0].end(), 0u);
+    // Corners that disagree in the whole polygon (a part keeps each node's neighbours except at
+    // its diagonal's ends, which are re-tested there).
+    const size_t m = poly.size();
+    std::vector<uint8_t> disagree(m, 0);
+    for (size_t i = 0; i < m; ++i) {
+      const uint32_t sa = poly[(i + m - 1) % m].slot, sb = poly[i].slot, sc = poly[(i + 1) % m].slot;
+      disagree[i] = orient_in(false, sa, sb, sc) != orient_in(true, sa, sb, sc);
+    }
     while (!parts.empty()) {
       std::vector<uint32_t> idx = std::move(parts.back());
       parts.pop_back();
       const size_t n = idx.size();
       bool split = false;
       for (size_t i = 0; i < n && n > 3 && !split; ++i) {
+        if (!disagree[idx[i]]) continue;
         const uint32_t sa = poly[idx[(i + n - 1) % n]].slot, sb = poly[idx[i]].slot,
                        sc = poly[idx[(i + 1) % n]].slot;
         if (orient_in(false, sa, sb, sc) == orient_in(true, sa, sb, sc)) continue;
@@ -663,6 +672,13 @@ class CapBuilder {
           const auto& bj = iv(poly[idx[j]].slot);
           const double dx = bj[0] - bi[0], dy = bj[2] - bi[2];
           cands.push_back({dx * dx + dy * dy, j});
+        }
+        // The nearest few only: a corner that disagrees is nearly flat, so a near node sees it;
+        // each candidate costs O(n) exact tests.
+        constexpr size_t kCandidates = 16;
+        if (cands.size() > kCandidates) {
+          std::nth_element(cands.begin(), cands.begin() + kCandidates, cands.end());
+          cands.resize(kCandidates);
         }
         std::sort(cands.begin(), cands.end());
         for (const auto& [d2, j] : cands) {
