@@ -161,7 +161,28 @@ void repair_piece(CellPiece& piece, const CellGrid& grid) {
       if (x == cell_wall(grid, a, piece.cell[a]) || x == cell_wall(grid, a, piece.cell[a] + 1))
         rounded[v] = 1;
     }
-  RoundingRepair r = repair_rounding(piece.mesh, rounded);
+  // Cap faces on one wall are one valid triangulation of its rounded rings (no forced ear:
+  // every triangle counter-clockwise on the rounded points and empty of other nodes, brep/cap.cpp)
+  // merged into convex faces, so they are not tested against each other; a ring that is not
+  // simple as rounded shows as side faces meeting. With a forced ear everything is tested.
+  std::vector<uint32_t> group;
+  if (piece.forced_ears == 0) {
+    group.assign(piece.faces.size(), 0);
+    for (size_t f = 0; f < piece.faces.size(); ++f) {
+      if (piece.faces[f] == CellFace::kSurface) continue;
+      const auto loop = piece.mesh.face(f);
+      for (int a = 0; a < 3 && group[f] == 0; ++a)
+        for (int side = 0; side < 2; ++side) {
+          const double c = cell_wall(grid, a, piece.cell[a] + side);
+          if (std::all_of(loop.begin(), loop.end(),
+                          [&](uint32_t v) { return piece.mesh.vertices[v][a] == c; })) {
+            group[f] = static_cast<uint32_t>(1 + 2 * a + side);
+            break;
+          }
+        }
+    }
+  }
+  RoundingRepair r = repair_rounding(piece.mesh, rounded, group);
   piece.rounding_contacts = r.remaining_pairs;
   if (!r.changed()) return;
   piece.collapsed_edges = r.collapsed_edges;

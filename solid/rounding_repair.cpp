@@ -213,7 +213,8 @@ class Collapser {
 
 }  // namespace
 
-RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> rounded) {
+RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> rounded,
+                               std::span<const uint32_t> group) {
   RoundingRepair out;
   std::vector<uint8_t> suspect(mesh.face_count(), 0);
   bool any = false;
@@ -221,7 +222,7 @@ RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> round
     for (uint32_t v : mesh.face(f))
       if (v < rounded.size() && rounded[v]) suspect[f] = 1, any = true;
   if (!any) return out;
-  std::vector<std::pair<uint32_t, uint32_t>> pairs = intersecting_face_pairs(mesh, suspect);
+  std::vector<std::pair<uint32_t, uint32_t>> pairs = intersecting_face_pairs(mesh, suspect, group);
   if (pairs.empty()) return out;
   Collapser collapser(mesh, rounded);
   std::vector<uint32_t> origin(mesh.face_count());
@@ -234,7 +235,10 @@ RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> round
     if (made == 0) break;
     out.collapsed_edges += made;
     const PolygonMesh now = collapser.current(origin);
-    pairs = intersecting_face_pairs(now, collapser.suspects(origin));
+    std::vector<uint32_t> now_group;
+    if (!group.empty())
+      for (uint32_t f : origin) now_group.push_back(group[f]);
+    pairs = intersecting_face_pairs(now, collapser.suspects(origin), now_group);
   }
   out.remaining_pairs = static_cast<int64_t>(pairs.size());
   if (out.collapsed_edges > 0) collapser.finish(out);

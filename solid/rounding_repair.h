@@ -52,6 +52,9 @@ struct RoundingRepair {
 /// vertex are tested against the others; faces without one are taken to be valid among
 /// themselves). Collapsed vertices are removed from the vertex array (the others keep their
 /// order). Cheap when nothing meets: one box-intersection pass over the suspect faces.
-RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> rounded);
+/// `group` (optional, one id per face) is passed to intersecting_face_pairs: faces with one
+/// nonzero id are known not to overlap each other; a collapse keeps a face's id.
+RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> rounded,
+                               std::span<const uint32_t> group = {});
 
 }  // namespace cover

@@ -122,8 +122,76 @@ bool self_intersects(const PolygonMesh& mesh) {
   return found;
 }
 
+namespace {
+
+/// triangles_meet for two triangles whose six corners all have coordinate k equal (one axis
+/// plane, as the caps on cell walls): the same rules, decided by exact orient2d on the doubles in
+/// the plane (cheaper than the 3D coplanar tests). Tiles are never collinear.
+bool planar_triangles_meet(const Triangle& a, const Triangle& b, std::span<const Vec3> v, int k) {
+  const int u = (k + 1) % 3, w = (k + 2) % 3;
+  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d(v[x], v[y], v[z], k); };
+  auto between = [&](uint32_t p, uint32_t q, uint32_t c) {  // c on line pq: within the segment?
+    return std::min(v[p][u], v[q][u]) <= v[c][u] && v[c][u] <= std::max(v[p][u], v[q][u]) &&
+           std::min(v[p][w], v[q][w]) <= v[c][w] && v[c][w] <= std::max(v[p][w], v[q][w]);
+  };
+  auto segments_meet = [&](uint32_t p, uint32_t q, uint32_t c, uint32_t d) {  // closed
+    const int d1 = o(p, q, c), d2 = o(p, q, d), d3 = o(c, d, p), d4 = o(c, d, q);
+    if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+    return (d1 == 0 && between(p, q, c)) || (d2 == 0 && between(p, q, d)) ||
+           (d3 == 0 && between(c, d, p)) || (d4 == 0 && between(c, d, q));
+  };
+  auto inside = [&](uint32_t x, const Triangle& t) {  // closed
+    const int s = o(t.v[0], t.v[1], t.v[2]);
+    return s * o(t.v[0], t.v[1], x) >= 0 && s * o(t.v[1], t.v[2], x) >= 0 &&
+           s * o(t.v[2], t.v[0], x) >= 0;
+  };
+  auto segment_meets_triangle = [&](uint32_t p, uint32_t q, const Triangle& t) {
+    if (inside(p, t) || inside(q, t)) return true;
+    for (int i = 0; i < 3; ++i)
+      if (segments_meet(p, q, t.v[i], t.v[(i + 1) % 3])) return true;
+    return false;
+  };
+  int shared = 0, ia = 0, ib = 0;
+  std::array<bool, 3> a_shared{}, b_shared{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a.v[i] == b.v[j]) {
+        ++shared;
+        a_shared[i] = b_shared[j] = true;
+        ia = i;
+        ib = j;
+      }
+  if (shared == 3) return true;
+  if (shared == 2) {  // third corners strictly on one side of the shared edge
+    int ra = 0, rb = 0;
+    while (a_shared[ra]) ++ra;
+    while (b_shared[rb]) ++rb;
+    const uint32_t q0 = a.v[(ra + 1) % 3], q1 = a.v[(ra + 2) % 3];
+    return o(q0, q1, a.v[ra]) * o(q0, q1, b.v[rb]) > 0;
+  }
+  if (shared == 1)
+    return segment_meets_triangle(a.v[(ia + 1) % 3], a.v[(ia + 2) % 3], b) ||
+           segment_meets_triangle(b.v[(ib + 1) % 3], b.v[(ib + 2) % 3], a);
+  for (int i = 0; i < 3; ++i)
+    if (segment_meets_triangle(a.v[i], a.v[(i + 1) % 3], b)) return true;
+  return inside(b.v[0], a);
+}
+
+/// The axis k on which all corners of both triangles share one coordinate, or −1.
+int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3> v) {
+  for (int k = 0; k < 3; ++k) {
+    const double c = v[a.v[0]][k];
+    if (v[a.v[1]][k] == c && v[a.v[2]][k] == c && v[b.v[0]][k] == c && v[b.v[1]][k] == c &&
+        v[b.v[2]][k] == c)
+      return k;
+  }
+  return -1;
+}
+
+}  // namespace
+
 std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
-    const PolygonMesh& mesh, std::span<const uint8_t> suspect) {
+    const PolygonMesh& mesh, std::span<const uint8_t> suspect, std::span<const uint32_t> group) {
   const bool all = suspect.empty();
   const size_t faces = mesh.face_count();
   if (!all && std::find(suspect.begin(), suspect.end(), uint8_t{1}) == suspect.end()) return {};
@@ -161,7 +229,10 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     const Triangle& a = triangles[x];
     const Triangle& b = triangles[y];
     if (a.face == b.face || (!all && !suspect[a.face] && !suspect[b.face])) return false;
-    if (triangles_meet(a, b, points, mesh.vertices)) {
+    if (!group.empty() && group[a.face] != 0 && group[a.face] == group[b.face]) return false;
+    const int k = common_axis_plane(a, b, mesh.vertices);
+    if (k >= 0 ? planar_triangles_meet(a, b, mesh.vertices, k)
+               : triangles_meet(a, b, points, mesh.vertices)) {
       const std::lock_guard<std::mutex> lock(found_mutex);
       pairs.push_back({std::min(a.face, b.face), std::max(a.face, b.face)});
     }

@@ -71,7 +71,10 @@ bool self_intersects(const PolygonMesh& mesh);
 /// face) only pairs with at least one suspect face are tested: a caller that knows which faces
 /// may have moved (e.g. those with rounded vertices) skips the pairs of unchanged faces.
 /// Sequential; meant for the few faces near rounded points, or for tests.
+/// `group` (one id per face, optional): faces with the same nonzero id are known not to overlap
+/// one another (e.g. the faces of one valid cap triangulation) and are not tested as a pair.
 std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
-    const PolygonMesh& mesh, std::span<const uint8_t> suspect = {});
+    const PolygonMesh& mesh, std::span<const uint8_t> suspect = {},
+    std::span<const uint32_t> group = {});
 
 }  // namespace cover

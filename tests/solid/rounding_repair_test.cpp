@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "solid/measure.h"
+#include "solid/predicates.h"
 #include "solid/primitives.h"
 #include "solid/rounding_repair.h"
 #include "solid/validate.h"
@@ -111,6 +113,40 @@ TEST(RoundingRepair, NothingToRepairOrTooLongToCollapse) {
   r = repair_rounding(dent, flags);
   EXPECT_FALSE(r.changed());
   EXPECT_GT(r.remaining_pairs, 0);
+}
+
+TEST(IntersectingFacePairs, AxisPlanePathAgreesWithTheGeneralTest) {
+  // Two triangles in one axis plane over a 4×4 grid (shared corners, touching edges, collinear
+  // corners, containment): the 2D path of intersecting_face_pairs against self_intersects' 3D
+  // tests, in each of the three axis planes.
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(0, 3), pick(0, 5);
+  int meeting = 0, apart = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int trial = 0; trial < 1500; ++trial) {
+      PolygonMesh m;
+      for (int i = 0; i < 6; ++i) {
+        Vec3 p{static_cast<double>(coord(rng)), static_cast<double>(coord(rng)),
+               static_cast<double>(coord(rng))};
+        (k == 0 ? p.x : k == 1 ? p.y : p.z) = 0.5;
+        m.vertices.push_back(p);
+      }
+      // Triangle b reuses corners of a now and then (shared vertices by index).
+      std::array<uint32_t, 6> id{0, 1, 2, 3, 4, 5};
+      for (int i = 3; i < 6; ++i)
+        if (pick(rng) < 2) id[i] = static_cast<uint32_t>(pick(rng) % 3);
+      if (id[3] == id[4] || id[4] == id[5] || id[3] == id[5]) continue;
+      if (all_collinear(m.vertices, std::array<uint32_t, 3>{id[0], id[1], id[2]}) ||
+          all_collinear(m.vertices, std::array<uint32_t, 3>{id[3], id[4], id[5]}))
+        continue;
+      m.add_face({id[0], id[1], id[2]});
+      m.add_face({id[3], id[4], id[5]});
+      const bool expected = self_intersects(m);
+      EXPECT_EQ(!intersecting_face_pairs(m).empty(), expected) << k << " " << trial;
+      (expected ? meeting : apart) += 1;
+    }
+  EXPECT_GT(meeting, 500);
+  EXPECT_GT(apart, 500);
 }
 
 }  // namespace
