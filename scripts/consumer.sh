@@ -19,11 +19,12 @@ if grep -qE -- '-Wall|-Wextra|-ffp-contract|-fsanitize' <<<"$compile"; then
 fi
 # Its output against the CLI's exact answers for the same solids (cover volume --exact of the
 # box minus the sphere: 7.1096605839902578; cover evaluate of the default scene's lower half:
-# 3274 faces, volume 22.126458287552008).
+# 3206 faces, volume 22.12645828755202, after the rounding repair collapsed 34 slivers of the
+# turned torus lying across z = 0 within 4e-17).
 scene=$(pwd)/models/default.json
 out=$(cd "$work" && ./consumer "$scene")
 echo "$out"
-expected=$'volume 7.10966\ninside\noutside\nface\nvertex\n3274 faces, volume 22.1265'
+expected=$'volume 7.10966\ninside\noutside\nface\nvertex\n3206 faces, volume 22.1265'
 [ "$out" = "$expected" ] || { echo "consumer: unexpected output"; exit 1; }
 [ -s "$work/half.off" ] || { echo "consumer: half.off not written"; exit 1; }
 echo "consumer: OK"
