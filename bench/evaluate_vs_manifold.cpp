@@ -336,15 +336,15 @@ int main(int argc, char** argv) {
                 std::abs(cv - mv) / std::max(std::abs(cv), 1e-300));
   }
   std::printf("\nCover seconds per step (run with the median kernel time)\n%-42s %7s %7s %7s %7s "
-              "%7s %7s %7s %7s\n", "expression", "check", "triang", "pairs", "inters", "split",
-              "ident", "select", "assemb");
+              "%7s %7s %7s %7s %7s\n", "expression", "check", "triang", "pairs", "inters", "split",
+              "ident", "select", "assemb", "repair");
   for (size_t i : chosen) {
     std::vector<Timed> v = cov[i];
     std::sort(v.begin(), v.end(), [](const Timed& a, const Timed& b) { return a.kernel < b.kernel; });
     const cover::EvaluatePhases& s = v[v.size() / 2].phases;
-    std::printf("%-44s %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n", cases[i].name.c_str(),
-                s.check, s.triangulate, s.pairs, s.intersect, s.split, s.identify, s.select,
-                s.assemble);
+    std::printf("%-44s %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
+                cases[i].name.c_str(), s.check, s.triangulate, s.pairs, s.intersect, s.split,
+                s.identify, s.select, s.assemble, s.repair);
   }
   return 0;
 }

@@ -195,6 +195,78 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
   const bool all = suspect.empty();
   const size_t faces = mesh.face_count();
   if (!all && std::find(suspect.begin(), suspect.end(), uint8_t{1}) == suspect.end()) return {};
+  // Faces that can meet a suspect one: all when suspects are many, else those whose box meets a
+  // suspect face's box, found through a uniform grid over the suspects' boxes only (the few
+  // faces with rounded vertices of a large result, without a broad phase over all of it).
+  std::vector<uint8_t> needed(faces, 1);
+  if (!all) {
+    std::vector<Bbox> box(faces);
+    parallel_for(faces, 4096, [&](size_t f0, size_t f1) {
+      for (size_t f = f0; f < f1; ++f)
+        for (uint32_t v : mesh.face(f)) box[f].add(mesh.vertices[v]);
+    });
+    std::vector<uint32_t> sus;
+    Bbox span;
+    double size = 0;
+    for (uint32_t f = 0; f < faces; ++f)
+      if (suspect[f]) {
+        sus.push_back(f);
+        span.add(box[f]);
+        size += std::max({box[f].max.x - box[f].min.x, box[f].max.y - box[f].min.y,
+                          box[f].max.z - box[f].min.z});
+      }
+    if (4 * sus.size() < faces) {
+      // Cells of about twice the mean suspect box, at most about 8 per suspect in all.
+      const Vec3 ext = span.max - span.min;
+      double cell = std::max(2 * size / static_cast<double>(sus.size()),
+                             std::max({ext.x, ext.y, ext.z}) * 1e-9);
+      if (!(cell > 0)) cell = 1;  // all suspects at one point: one cell
+      auto dims = [&](double c) {
+        return std::array<int64_t, 3>{static_cast<int64_t>(ext.x / c) + 1,
+                                      static_cast<int64_t>(ext.y / c) + 1,
+                                      static_cast<int64_t>(ext.z / c) + 1};
+      };
+      auto n = dims(cell);
+      while (n[0] * n[1] * n[2] > static_cast<int64_t>(8 * sus.size() + 64)) n = dims(cell *= 2);
+      auto range = [&](const Bbox& b, int a) {
+        // Clamped as doubles first: a face much larger than the span would overflow the cast.
+        const double top = static_cast<double>(n[a] - 1);
+        const double lo = std::clamp((b.min[a] - span.min[a]) / cell, 0.0, top);
+        const double hi = std::clamp((b.max[a] - span.min[a]) / cell, 0.0, top);
+        return std::pair<int64_t, int64_t>{static_cast<int64_t>(lo), static_cast<int64_t>(hi)};
+      };
+      std::vector<std::vector<uint32_t>> grid(static_cast<size_t>(n[0] * n[1] * n[2]));
+      for (uint32_t f : sus) {
+        const auto [x0, x1] = range(box[f], 0);
+        const auto [y0, y1] = range(box[f], 1);
+        const auto [z0, z1] = range(box[f], 2);
+        for (int64_t z = z0; z <= z1; ++z)
+          for (int64_t y = y0; y <= y1; ++y)
+            for (int64_t x = x0; x <= x1; ++x) grid[static_cast<size_t>((z * n[1] + y) * n[0] + x)].push_back(f);
+      }
+      auto meet = [](const Bbox& a, const Bbox& b) {
+        return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y &&
+               b.min.y <= a.max.y && a.min.z <= b.max.z && b.min.z <= a.max.z;
+      };
+      parallel_for(faces, 4096, [&](size_t f0, size_t f1) {
+        for (size_t f = f0; f < f1; ++f) {
+          needed[f] = suspect[f];
+          if (needed[f] || !meet(box[f], span)) continue;
+          const auto [x0, x1] = range(box[f], 0);
+          const auto [y0, y1] = range(box[f], 1);
+          const auto [z0, z1] = range(box[f], 2);
+          for (int64_t z = z0; z <= z1 && !needed[f]; ++z)
+            for (int64_t y = y0; y <= y1 && !needed[f]; ++y)
+              for (int64_t x = x0; x <= x1 && !needed[f]; ++x)
+                for (uint32_t g : grid[static_cast<size_t>((z * n[1] + y) * n[0] + x)])
+                  if (meet(box[f], box[g])) {
+                    needed[f] = 1;
+                    break;
+                  }
+        }
+      });
+    }
+  }
   std::vector<Point3> points(mesh.vertices.size());
   for (size_t v = 0; v < points.size(); ++v) points[v] = to_point(mesh.vertices[v]);
   // Tiles per chunk of faces, in parallel, then in face order.
@@ -206,6 +278,7 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     std::vector<std::array<uint32_t, 3>> tiles;
     const size_t c = f0 / kGrain;
     for (size_t f = f0; f < f1; ++f) {
+      if (!needed[f]) continue;
       tiles.clear();
       if (triangulate_face(mesh.vertices, mesh.face(f), tiles) != FaceTiling::kSimple) {
         if (all || suspect[f]) chunk_bad[c].push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
