@@ -74,6 +74,26 @@ int quadrant(const Point& p, const Point& q, const Point& r0, const Point& r) {
 
 }  // namespace
 
+double exact_volume(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris) {
+  using ET = K::Exact_kernel::FT;  // GMP rationals
+  constexpr size_t kChunk = 4096;
+  std::vector<ET> partial((tris.size() + kChunk - 1) / kChunk);
+  parallel_for(tris.size(), kChunk, [&](size_t begin, size_t end) {
+    ET sum = 0;
+    for (size_t t = begin; t < end; ++t) {
+      const auto& a = CGAL::exact(arr.points[tris[t][0]]);
+      const auto& b = CGAL::exact(arr.points[tris[t][1]]);
+      const auto& c = CGAL::exact(arr.points[tris[t][2]]);
+      sum += a.x() * (b.y() * c.z() - b.z() * c.y()) + a.y() * (b.z() * c.x() - b.x() * c.z()) +
+             a.z() * (b.x() * c.y() - b.y() * c.x());
+    }
+    partial[begin / kChunk] = sum;
+  });
+  ET total = 0;
+  for (const ET& x : partial) total += x;
+  return nearest(K::FT(total / 6));
+}
+
 PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
                      std::vector<uint32_t>* labels, std::vector<uint8_t>* rounded_vertex) {
   const size_t m = tris.size();

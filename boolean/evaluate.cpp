@@ -64,6 +64,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches);
   r.seconds.select = since(t);
   t = Clock::now();
+  if (options.exact_volume) r.exact_volume = boolean_detail::exact_volume(arr, kept);
   std::vector<uint8_t> rounded;
   r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf, &rounded);
   r.seconds.assemble = since(t);

@@ -22,6 +22,7 @@
 //      vertex, and repaired by collapsing rounding-scale edges (solid/rounding_repair.h).
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "solid/polygon_mesh.h"
@@ -35,6 +36,8 @@ struct EvaluateOptions {
   /// undefined, possibly invalid, result).
   bool check_leaves = true;
   size_t grain = 64;         ///< items per parallel chunk (results never depend on it)
+  /// Also compute EvaluateResult::exact_volume (rationals over every kept triangle: slower).
+  bool exact_volume = false;
 };
 
 /// Wall-clock seconds per step of evaluate() (the numbers of the route above), for profiling.
@@ -55,6 +58,9 @@ struct EvaluateResult {
   std::vector<uint32_t> face_leaf;  ///< per face of `mesh`: the leaf (Solid::leaves index) whose
                                     ///< surface it lies on (the lowest, on coincident faces)
   double volume = 0;       ///< signed volume of `mesh` (doubles, after rounding)
+  /// With EvaluateOptions::exact_volume: the volume of the exact result (its exact points, before
+  /// rounding), summed in rationals and rounded to the nearest double once.
+  std::optional<double> exact_volume;
   double area = 0;         ///< surface area of `mesh`
   int64_t genus = 0;       ///< Σ over components of the genus (χ = 2 − 2g per closed component)
   int64_t components = 0;  ///< connected components of `mesh`

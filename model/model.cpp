@@ -207,9 +207,11 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
   }
   if (!evaluate_instead) return r;
   try {
-    const EvaluateResult e = cover::evaluate(solid());
+    EvaluateOptions exact;
+    exact.exact_volume = true;  // the exact result's volume, not the rounded mesh's float sum
+    const EvaluateResult e = cover::evaluate(solid(), exact);
     r = VolumeResult{};
-    r.volume = e.volume;
+    r.volume = *e.exact_volume;
     r.area = e.area;
     r.method = "brep";
   } catch (const InputError&) {

@@ -98,6 +98,10 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
                                                    size_t grain, std::vector<uint32_t>& leaves,
                                                    size_t& patches);
 
+/// The exact volume enclosed by the kept triangles `tris` (outward) on the exact points, as
+/// Σ det(a, b, c)/6 in rationals, rounded to the nearest double once.
+double exact_volume(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris);
+
 /// Step 6: pairs faces around edges with more than two faces by exact angular order, splits
 /// vertices per fan, rounds the exact points to the nearest doubles. Face f of the mesh is
 /// tris[f], except that faces split at a doubled edge append their second halves at the end;

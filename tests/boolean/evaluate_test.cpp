@@ -3,6 +3,7 @@
 // self-intersections (brep validate + CGAL does_self_intersect) whose volume matches CGAL's to
 // 1e-9 relative and Cover's own ray-integrated volume within its error bound — plus the
 // coplanar / touching cases (regularized results) and the `cover evaluate` CLI.
+#include <CGAL/Gmpq.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -259,6 +260,25 @@ TEST(Evaluate, CubesTouchingAtAPoint) {
   int corner = 0;
   for (const Vec3& p : r.mesh.vertices) corner += p == Vec3{1, 1, 1};
   EXPECT_EQ(corner, 2);
+}
+
+TEST(Evaluate, ExactVolumeIsTheRationalVolumeRounded) {
+  // [0,1]³ ∪ [t,1+t]³ with t the double nearest 0.1: 1 + side³ − (1 − t)³ exactly, in rationals.
+  const double t = 0.1;
+  const Solid s = unite({make_leaf(make_box({0, 0, 0}, {1, 1, 1}), "a"),
+                         make_leaf(make_box({t, t, t}, {1 + t, 1 + t, 1 + t}), "b")});
+  EvaluateOptions o;
+  o.exact_volume = true;
+  const EvaluateResult r = evaluate(s, o);
+  ASSERT_TRUE(r.exact_volume.has_value());
+  const CGAL::Gmpq side = CGAL::Gmpq(1 + t) - CGAL::Gmpq(t);  // (1 + t rounded) − t, exactly
+  const CGAL::Gmpq overlap = (CGAL::Gmpq(1) - CGAL::Gmpq(t)) * (CGAL::Gmpq(1) - CGAL::Gmpq(t)) *
+                             (CGAL::Gmpq(1) - CGAL::Gmpq(t));
+  const CGAL::Gmpq exact = CGAL::Gmpq(1) + side * side * side - overlap;
+  const std::pair<double, double> bracket = CGAL::to_interval(exact);
+  EXPECT_TRUE(*r.exact_volume == bracket.first || *r.exact_volume == bracket.second)
+      << *r.exact_volume << " vs [" << bracket.first << ", " << bracket.second << "]";
+  EXPECT_NEAR(r.volume, *r.exact_volume, 1e-14);
 }
 
 TEST(Evaluate, IdenticalBoxes) {
