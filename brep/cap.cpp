@@ -73,6 +73,29 @@ double nearest_double(const FT& x) {
   return lo;
 }
 
+/// Ear clipping (ear_clip.h) of the sub-polygon `idx` (node indices, in order) of a polygon
+/// whose geometry is `g`; the triangles come back as the polygon's node indices.
+template <class Geometry>
+std::vector<std::array<uint32_t, 3>> ear_clip_subset(const Geometry& g,
+                                                     const std::vector<uint32_t>& idx,
+                                                     int64_t& forced) {
+  struct Sub {
+    const Geometry& g;
+    const std::vector<uint32_t>& idx;
+    int orient(uint32_t i, uint32_t j, uint32_t k) const { return g.orient(idx[i], idx[j], idx[k]); }
+    uint32_t id(uint32_t i) const { return g.id(idx[i]); }
+    bool thin(uint32_t i, uint32_t j, uint32_t k) const { return g.thin(idx[i], idx[j], idx[k]); }
+    std::array<double, 4> bounds(uint32_t i) const { return g.bounds(idx[i]); }
+    bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
+      return g.box_may_contain(idx[p], idx[a], idx[c], idx[d]);
+    }
+  } sub{g, idx};
+  std::vector<std::array<uint32_t, 3>> tris;
+  for (const auto& t : ear_clip(static_cast<uint32_t>(idx.size()), sub, forced))
+    tris.push_back({idx[t[0]], idx[t[1]], idx[t[2]]});
+  return tris;
+}
+
 struct Node {
   uint32_t slot;  ///< exact point
   uint32_t vid;   ///< mesh vertex
@@ -587,19 +610,7 @@ class CapBuilder {
       int64_t alone = 0;
       std::vector<std::array<uint32_t, 3>> other;
       if (keep.size() >= 3) {
-        struct Sub {
-          const Rounded& r;
-          const std::vector<uint32_t>& idx;
-          int orient(uint32_t i, uint32_t j, uint32_t k) const { return r.orient(idx[i], idx[j], idx[k]); }
-          uint32_t id(uint32_t i) const { return r.id(idx[i]); }
-          bool thin(uint32_t i, uint32_t j, uint32_t k) const { return r.thin(idx[i], idx[j], idx[k]); }
-          std::array<double, 4> bounds(uint32_t i) const { return r.bounds(idx[i]); }
-          bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
-            return r.box_may_contain(idx[p], idx[a], idx[c], idx[d]);
-          }
-        } sub{rounded, keep};
-        for (const auto& t : ear_clip(static_cast<uint32_t>(keep.size()), sub, alone))
-          other.push_back({keep[t[0]], keep[t[1]], keep[t[2]]});
+        other = ear_clip_subset(rounded, keep, alone);
         // Dropped nodes, last first: each fills between its kept (or refilled) neighbours.
         for (uint32_t i = 0; i < n; ++i) {
           if (!dropped[i]) continue;
@@ -699,19 +710,7 @@ class CapBuilder {
         }
       }
       if (split) continue;
-      struct Sub {
-        const Geometry& g;
-        const std::vector<uint32_t>& idx;
-        int orient(uint32_t i, uint32_t j, uint32_t k) const { return g.orient(idx[i], idx[j], idx[k]); }
-        uint32_t id(uint32_t i) const { return g.id(idx[i]); }
-        bool thin(uint32_t i, uint32_t j, uint32_t k) const { return g.thin(idx[i], idx[j], idx[k]); }
-        std::array<double, 4> bounds(uint32_t i) const { return g.bounds(idx[i]); }
-        bool box_may_contain(uint32_t p, uint32_t a, uint32_t c, uint32_t d) const {
-          return g.box_may_contain(idx[p], idx[a], idx[c], idx[d]);
-        }
-      } sub{g, idx};
-      for (const auto& t : ear_clip(static_cast<uint32_t>(n), sub, forced))
-        tris.push_back({idx[t[0]], idx[t[1]], idx[t[2]]});
+      for (const auto& t : ear_clip_subset(g, idx, forced)) tris.push_back(t);
     }
     return tris;
   }

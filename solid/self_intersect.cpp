@@ -54,26 +54,37 @@ bool strictly_aside(const Triangle& a, const Triangle& b, std::span<const Vec3> 
   return true;
 }
 
+/// Corners two triangles share by vertex index: how many, the positions in a and in b of the
+/// last shared pair, and the position in each of its first unshared corner (3 if none).
+struct SharedCorners {
+  int count = 0, ia = 0, ib = 0, ra = 3, rb = 3;
+};
+SharedCorners shared_corners(const Triangle& a, const Triangle& b) {
+  SharedCorners c;
+  std::array<bool, 3> a_shared{}, b_shared{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a.v[i] == b.v[j]) {
+        ++c.count;
+        a_shared[i] = b_shared[j] = true;
+        c.ia = i;
+        c.ib = j;
+      }
+  for (int i = 2; i >= 0; --i) {
+    if (!a_shared[i]) c.ra = i;
+    if (!b_shared[i]) c.rb = i;
+  }
+  return c;
+}
+
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
 /// Before CGAL's tests, a filter of at most six exact orient3d: when the unshared corners of one
 /// triangle lie strictly on one side of the other's plane, they meet at most in the shared vertex.
 bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Point3>& p,
                     std::span<const Vec3> v) {
-  int shared = 0, ia = 0, ib = 0;
-  std::array<bool, 3> a_shared{}, b_shared{};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (a.v[i] == b.v[j]) {
-        ++shared;
-        a_shared[i] = b_shared[j] = true;
-        ia = i;
-        ib = j;
-      }
+  const auto [shared, ia, ib, ra, rb] = shared_corners(a, b);
   if (shared == 3) return true;
   if (shared == 2) {
-    int ra = 0, rb = 0;  // the unshared (third) vertices
-    while (a_shared[ra]) ++ra;
-    while (b_shared[rb]) ++rb;
     const Point3& q0 = p[a.v[(ra + 1) % 3]];
     const Point3& q1 = p[a.v[(ra + 2) % 3]];
     return CGAL::coplanar(q0, q1, p[a.v[ra]], p[b.v[rb]]) &&
@@ -151,21 +162,9 @@ bool planar_triangles_meet(const Triangle& a, const Triangle& b, std::span<const
       if (segments_meet(p, q, t.v[i], t.v[(i + 1) % 3])) return true;
     return false;
   };
-  int shared = 0, ia = 0, ib = 0;
-  std::array<bool, 3> a_shared{}, b_shared{};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (a.v[i] == b.v[j]) {
-        ++shared;
-        a_shared[i] = b_shared[j] = true;
-        ia = i;
-        ib = j;
-      }
+  const auto [shared, ia, ib, ra, rb] = shared_corners(a, b);
   if (shared == 3) return true;
   if (shared == 2) {  // third corners strictly on one side of the shared edge
-    int ra = 0, rb = 0;
-    while (a_shared[ra]) ++ra;
-    while (b_shared[rb]) ++rb;
     const uint32_t q0 = a.v[(ra + 1) % 3], q1 = a.v[(ra + 2) % 3];
     return o(q0, q1, a.v[ra]) * o(q0, q1, b.v[rb]) > 0;
   }
