@@ -41,8 +41,7 @@ struct RoundingRepair {
   int64_t dropped_faces = 0;
   int64_t rounds = 0;           ///< detection passes that found pairs
   int64_t remaining_pairs = 0;  ///< face pairs still meeting at the end (0: repaired)
-  /// Old face index of each face of the repaired mesh (identity when nothing changed; empty when
-  /// nothing changed, to save the copy).
+  /// Old face index of each face of the repaired mesh; empty when nothing changed (no copy).
   std::vector<uint32_t> face_origin;
   bool changed() const { return collapsed_edges > 0; }
 };
