@@ -386,6 +386,18 @@ TEST_F(Cli, VoxelizeZarrVdbAndNonCubicGrids) {
     EXPECT_EQ(lines(r.err).size(), 1u) << args << " " << r.err;
     EXPECT_NE(r.err.find(word), std::string::npos) << args << " " << r.err;
   }
+  // The OpenVDB plugin (raster/vdb_plugin.h) when COVER_PLUGIN_DIR names a file that is not
+  // one: one line naming the output and the plugin, exit 2, the existing .vdb intact.
+  std::filesystem::create_directories(dir_ / "plugins");
+  test::write_file(dir_ / "plugins" / "cover_vdb.so", "not a shared object");
+  const std::string vdb_before = test::read_file(dir_ / "g.vdb");
+  r = run_cover("voxelize " + q(scene) + " --dims 20,31,9 -o " + q(dir_ / "g.vdb"), "",
+                "COVER_PLUGIN_DIR=" + q(dir_ / "plugins") + " ");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("g.vdb"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("cover_vdb.so"), std::string::npos) << r.err;
+  EXPECT_TRUE(test::read_file(dir_ / "g.vdb") == vdb_before);
   EXPECT_EQ(test::read_file(dir_ / "file.zarr"), "keep");
   EXPECT_EQ(test::read_file(dir_ / "g.zarr" / ".zarray"), zarr_before);
   EXPECT_FALSE(std::filesystem::exists(dir_ / "a.npy"));
