@@ -1,9 +1,11 @@
 // Exact predicates (solid/predicates.h): sign conventions and exactness where doubles fail.
 #include "solid/predicates.h"
 
+#include <CGAL/Exact_rational.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace cover {
@@ -73,6 +75,63 @@ TEST(Predicates, AllCollinear) {
   EXPECT_TRUE(all_collinear(v, std::vector<uint32_t>{0, 1}));
   EXPECT_TRUE(all_collinear(v, std::vector<uint32_t>{0, 1, 2, 3}));
   EXPECT_FALSE(all_collinear(v, std::vector<uint32_t>{0, 2, 4}));
+}
+
+// The exact fallbacks (expansion arithmetic where the coordinate differences are exact, CGAL
+// otherwise) against determinants in exact rationals: points on random planes and lines with
+// small-integer, binary-fraction and decimal coordinates (exactly degenerate), the same nudged by
+// one ulp, mixed magnitudes (inexact differences) and values near the range limits.
+TEST(Predicates, ExactFallbacksAgreeWithRationals) {
+  using Q = CGAL::Exact_rational;
+  auto sign = [](const Q& q) { return static_cast<int>(CGAL::sign(q)); };
+  std::mt19937_64 rng(20261203);
+  std::uniform_int_distribution<int> small(-8, 8), kind(0, 5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  auto coordinate = [&](int k) {
+    switch (k) {
+      case 0: return static_cast<double>(small(rng));
+      case 1: return small(rng) / 64.0;
+      case 2: return std::round(unit(rng) * 1000) / 1000;  // decimals: differences inexact at times
+      case 3: return unit(rng) * 1e-200;
+      case 4: return unit(rng) * 1e200;
+      default: return unit(rng) * std::ldexp(1.0, small(rng) * 8);
+    }
+  };
+  auto nudge = [&](double v) { return small(rng) > 4 ? std::nextafter(v, small(rng) > 0 ? 1e308 : -1e308) : v; };
+  int zeros = 0, zeros2 = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int k = kind(rng);
+    // a, b, c random; d = a + s(b − a) + t(c − a) with small rational s, t: on the plane whenever
+    // the arithmetic is exact.
+    Vec3 p[4];
+    for (int i = 0; i < 3; ++i) p[i] = {coordinate(k), coordinate(k), coordinate(k)};
+    const double s = small(rng) / 4.0, t = small(rng) / 4.0;
+    double q[3];
+    for (int a = 0; a < 3; ++a) q[a] = nudge(p[0][a] + s * (p[1][a] - p[0][a]) + t * (p[2][a] - p[0][a]));
+    p[3] = {q[0], q[1], q[2]};
+    Q m[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int a = 0; a < 3; ++a) m[r][a] = Q(p[r + 1][a]) - Q(p[0][a]);
+    const Q det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                  m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                  m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    zeros += sign(det) == 0;
+    ASSERT_EQ(detail::orient3d_exact(p[0], p[1], p[2], p[3]), sign(det)) << trial;
+    ASSERT_EQ(orient3d(p[0], p[1], p[2], p[3]), sign(det)) << trial;
+    // 2D: c on the line through p0 and p1 (when exact), then nudged.
+    for (int a = 0; a < 3; ++a) q[a] = nudge(p[0][a] + s * (p[1][a] - p[0][a]));
+    const Vec3 c{q[0], q[1], q[2]};
+    for (int axis = 0; axis < 3; ++axis) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      const Q d2 = (Q(p[0][u]) - Q(c[u])) * (Q(p[1][w]) - Q(c[w])) -
+                   (Q(p[0][w]) - Q(c[w])) * (Q(p[1][u]) - Q(c[u]));
+      zeros2 += sign(d2) == 0;
+      ASSERT_EQ(detail::orient2d_exact(p[0], p[1], c, axis), sign(d2)) << trial;
+      ASSERT_EQ(orient2d(p[0], p[1], c, axis), sign(d2)) << trial;
+    }
+  }
+  EXPECT_GT(zeros, 2000);  // the degenerate cases are exercised
+  EXPECT_GT(zeros2, 6000);
 }
 
 }  // namespace
