@@ -6,7 +6,8 @@
 //   Cover first frame:  cover::load (parse, transform, leaf checks, CSG concatenation) + BVH +
 //                       render() — the exact CSG image of `cover render`.
 //   Embree first frame: the same mesh files parsed by Cover's reader (the fastest reader at hand;
-//                       no leaf checks) and transformed, fan triangles into float buffers,
+//                       no leaf checks; each distinct file once, as Cover's loader) and
+//                       transformed, fan triangles into float buffers,
 //                       rtcCommitScene, and a first-hit frame (rtcIntersect8 packets of 4×2
 //                       pixels) of the same triangles WITHOUT any CSG (the union of all leaves'
 //                       surfaces, not the CSG result).
@@ -123,14 +124,25 @@ struct EmbreeScene {
   }
 };
 
-/// Parses and transforms the leaves (in parallel, a leaf per task, as Cover's scene loader),
-/// copies their fan triangles into one float geometry per leaf, and commits the scene; returns
-/// the seconds of rtcCommitScene (the BVH build).
+/// Parses each distinct file once and transforms a copy per leaf (in parallel, as Cover's scene
+/// loader does), copies their fan triangles into one float geometry per leaf, and commits the
+/// scene; returns the seconds of rtcCommitScene (the BVH build).
 double embree_load(const std::vector<LeafFile>& leaves, EmbreeScene& e) {
+  std::vector<std::filesystem::path> files;
+  std::vector<size_t> file_of(leaves.size());
+  for (size_t i = 0; i < leaves.size(); ++i) {
+    const auto it = std::find(files.begin(), files.end(), leaves[i].file);
+    file_of[i] = static_cast<size_t>(it - files.begin());
+    if (it == files.end()) files.push_back(leaves[i].file);
+  }
+  std::vector<cover::PolygonMesh> read(files.size());
+  cover::parallel_for(files.size(), 1, [&](size_t b, size_t end) {
+    for (size_t i = b; i < end; ++i) read[i] = cover::read_mesh(files[i]);
+  });
   std::vector<cover::PolygonMesh> meshes(leaves.size());
   cover::parallel_for(leaves.size(), 1, [&](size_t b, size_t end) {
     for (size_t i = b; i < end; ++i) {
-      meshes[i] = cover::read_mesh(leaves[i].file);
+      meshes[i] = read[file_of[i]];
       cover::apply_transform(leaves[i].world, meshes[i]);
     }
   });

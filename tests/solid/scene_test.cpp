@@ -156,5 +156,49 @@ TEST(Scene, MeshLeavesRelativeToSceneFolderOpenAndInsideOut) {
   std::filesystem::remove_all(dir);
 }
 
+// A file placed by several leaves is read once (scene.cpp's FileRead): every leaf still gets
+// its own transformed copy, its own inside-out repair and its own messages, and a bad file fails
+// at the first leaf (in document order) that names it.
+TEST(Scene, InstancesOfOneFileAreIndependentLeaves) {
+  const auto dir = test::temp_dir("scene");
+  write_mesh(dir / "box.off", make_box({0, 0, 0}, {1, 1, 1}));
+  test::write_file(dir / "s.json", R"({"union": [
+      {"mesh": "box.off"},
+      {"mesh": "./box.off", "transform": {"scale": 2, "translate": [5,0,0]}},
+      {"mesh": "box.off", "transform": {"matrix": [-1,0,0,-3, 0,1,0,0, 0,0,1,0, 0,0,0,1]}}]})");
+  const LoadedInput in = load_input(dir / "s.json");
+  ASSERT_EQ(in.solid.leaves.size(), 3u);
+  EXPECT_DOUBLE_EQ(leaf_volume(in.solid, 0), 1.0);
+  EXPECT_DOUBLE_EQ(leaf_volume(in.solid, 1), 8.0);
+  EXPECT_DOUBLE_EQ(leaf_volume(in.solid, 2), 1.0);  // the mirror image, still outward
+  EXPECT_TRUE(in.warnings.empty());
+  EXPECT_EQ(leaf_mesh(in.solid, 0).vertices[0], (Vec3{0, 0, 0}));
+  EXPECT_EQ(leaf_mesh(in.solid, 1).vertices[0], (Vec3{5, 0, 0}));
+  // An open file placed twice: each leaf its own warning, naming its JSON path.
+  PolygonMesh open = make_box({0, 0, 0}, {1, 1, 1});
+  open.face_start.pop_back();
+  open.face_vertices.resize(open.face_start.back());
+  write_mesh(dir / "open.off", open);
+  test::write_file(dir / "o.json", R"({"union": [{"mesh": "open.off"},
+      {"mesh": "open.off", "transform": {"translate": [2,0,0]}}]})");
+  LoadOptions lenient;
+  lenient.require_closed = false;
+  const LoadedInput o = load_input(dir / "o.json", lenient);
+  ASSERT_EQ(o.warnings.size(), 2u);
+  EXPECT_NE(o.warnings[0].find("/union/0/mesh"), std::string::npos) << o.warnings[0];
+  EXPECT_NE(o.warnings[1].find("/union/1/mesh"), std::string::npos) << o.warnings[1];
+  test::write_file(dir / "bad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n");
+  test::write_file(dir / "b.json", R"({"union": [{"mesh": "box.off"}, {"mesh": "bad.off"},
+      {"mesh": "bad.off"}]})");
+  try {
+    load_input(dir / "b.json");
+    ADD_FAILURE() << "bad file accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/union/1/mesh"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.off"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cover
