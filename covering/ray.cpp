@@ -1,4 +1,5 @@
 #include "covering/detail/bvh_walk.h"
+#include "covering/detail/ray_detail.h"
 #include "covering/ray.h"
 
 #include <optional>
@@ -13,12 +14,8 @@
 #include "solid/predicates.h"
 
 namespace cover {
-namespace {
+namespace detail {
 
-/// The perturbation axes (u, w, k) for direction d: k is the axis of d's largest component.
-struct Axes {
-  int u, w, k;
-};
 Axes axes_for(const Vec3& d) {
   const double ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
   const int k = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
@@ -42,6 +39,16 @@ int perturbed_plane_side(const Bvh::Tri& t, const Vec3& o, Axes ax) {
   if (const int s = orient2d(t.a, t.b, t.c, ax.w)) return s;
   return orient2d(t.a, t.b, t.c, ax.k);
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::Axes;
+using detail::axes_for;
+using detail::crosses;
+using detail::hit_before;
+using detail::sweep_spans;
 
 /// The ray's parameter interval [t0, t1] (t0 >= 0) inside a node box; t0 > t1 when it misses.
 /// Slab test: node bounds are already widened (bvh.h), and the interval gets a relative slack,
@@ -140,14 +147,13 @@ struct Slab {
 /// above the triangle (Slab is monotone in the box), which makes front-to-back traversal exact.
 /// The interval depends on the triangle alone, so every traversal (single ray, batch, front to
 /// back) gives the same t.
-double hit_t(const Bvh& bvh, const Bvh::Tri& t, const Ray& r, const Slab& slab) {
+double hit_t(const Bvh::FacePlane* p, const Bvh::Tri& t, const Ray& r, const Slab& slab) {
   Bbox box;
   box.add(t.a);
   box.add(t.b);
   box.add(t.c);
   const Interval in = slab(box);
   double v;
-  const Bvh::FacePlane* p = bvh.face_plane(t.face);
   const double nd = p ? dot(p->normal, r.dir) : 0;
   if (nd != 0) {
     v = dot(p->normal, p->point - r.origin) / nd;
@@ -158,8 +164,14 @@ double hit_t(const Bvh& bvh, const Bvh::Tri& t, const Ray& r, const Slab& slab) 
   if (!(v >= in.t0)) return in.t0;
   return v > in.t1 ? in.t1 : v;
 }
+double hit_t(const Bvh& bvh, const Bvh::Tri& t, const Ray& r, const Slab& slab) {
+  return hit_t(bvh.face_plane(t.face), t, r, slab);
+}
 
-/// Whether the perturbed ray crosses triangle i ahead of its origin; `sign` gets the hit's sign.
+}  // namespace
+
+namespace detail {
+
 bool crosses(const Bvh::Tri& t, const Ray& ray, Axes ax, int& sign) {
   const int s1 = perturbed_side(ray.origin, ray.dir, t.a, t.b, ax);
   const int s2 = perturbed_side(ray.origin, ray.dir, t.b, t.c, ax);
@@ -172,14 +184,16 @@ bool crosses(const Bvh::Tri& t, const Ray& ray, Axes ax, int& sign) {
   return true;
 }
 
-/// Hit order: t, then leaf, then triangle index (ray.h).
 bool hit_before(const RayHit& a, const RayHit& b) {
-  return a.t < b.t || (a.t == b.t && (a.leaf < b.leaf || (a.leaf == b.leaf && a.tri < b.tri)));
+  if (a.t != b.t) return a.t < b.t;
+  if (a.leaf != b.leaf) return a.leaf < b.leaf;
+  if (a.face != b.face) return a.face < b.face;
+  return a.tri < b.tri;
 }
 
-}  // namespace
-
-namespace {
+double hit_t(const Bvh::FacePlane* plane, const Bvh::Tri& t, const Ray& r) {
+  return cover::hit_t(plane, t, r, Slab(r.origin, r.dir));
+}
 
 /// Sorts result.hits and sweeps them into the CSG inside spans: the winding at the origin is the
 /// sum of the signs; per-leaf counters and the expression evaluated on each interval (paper §6).
@@ -216,6 +230,10 @@ void sweep_spans(RayResult& out, const CsgTree& tree, size_t leaves) {
     out.spans.push_back(open);
   }
 }
+
+}  // namespace detail
+
+namespace {
 
 /// The hits of the rays of one batch (walk_batch: their node loads overlap), then their spans.
 /// Each ray gets the same hits (same t: the same leaf interval) as from cast() of that ray.

@@ -44,7 +44,7 @@ struct Span {
 };
 
 struct RayResult {
-  std::vector<RayHit> hits;  ///< sorted by t (ties: by leaf, then triangle index)
+  std::vector<RayHit> hits;  ///< sorted by t (ties: by leaf, then face, then triangle index)
   std::vector<Span> spans;   ///< disjoint, increasing, non-empty
 };
 

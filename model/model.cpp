@@ -431,6 +431,8 @@ Image Model::render(const Camera& camera, const RenderOptions& options) const {
   }
   RenderOptions o = options;
   if (o.gwn == nullptr) o.gwn = gwn();
+  // The object-order path needs no BVH: a first frame does not build one.
+  if (renders_in_object_order(solid(), camera, o)) return cover::render(solid(), nullptr, camera, o);
   return cover::render(solid(), bvh(), camera, o);
 }
 

@@ -1,6 +1,8 @@
 #include "raster/render.h"
 
 #include "covering/ray.h"
+#include "raster/object_order.h"
+#include "solid/errors.h"
 
 #include <algorithm>
 #include <atomic>
@@ -38,29 +40,15 @@ std::pair<double, double> allowed(const Ray& ray, const std::optional<Plane>& se
   return s > 0 ? std::pair{0.0, ts} : std::pair{std::max(0.0, ts), kInf};
 }
 
-/// `outside_in_result`: the expression's value with every leaf outside (once per frame).
-/// `open`: the open leaves' trees (gwn.h), or nullptr when every leaf is closed; then spans
-/// come from cast() and open_spans() (membership changes only at surface hits).
-Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
-              const std::optional<Plane>& section, bool outside_in_result,
-              const GwnForest* open) {
+/// What a pixel shows, from its visible hit (`tri`: the triangle of v.enter when v.hit && !v.cap).
+Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
+                 const std::optional<Plane>& section) {
   Sample out;
-  const auto [lo, hi] = allowed(ray, section);
-  if (lo > hi) return out;
-  VisibleHit v;
-  if (open == nullptr) {
-    v = first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi, outside_in_result);
-  } else {
-    RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
-    open_spans(r, solid, *open, ray);
-    v = first_visible(r, lo, hi);
-  }
   if (!v.hit) return out;
   out.hit = true;
   out.t = v.t;
   if (!v.cap) {
-    const Bvh::Tri t = bvh.triangle(v.enter.tri);
-    const Vec3 n = unit(cross(t.b - t.a, t.c - t.a));
+    const Vec3 n = unit(cross(tri->b - tri->a, tri->c - tri->a));
     // Entering a leaf shows its outward normal; leaving one (a subtrahend) the reverse.
     out.normal = v.enter.sign < 0 ? n : -1.0 * n;
     out.leaf = v.enter.leaf;
@@ -70,6 +58,27 @@ Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
     out.normal = dot(n, ray.dir) < 0 ? n : -1.0 * n;
   }
   return out;
+}
+
+/// `outside_in_result`: the expression's value with every leaf outside (once per frame).
+/// `open`: the open leaves' trees (gwn.h), or nullptr when every leaf is closed; then spans
+/// come from cast() and open_spans() (membership changes only at surface hits).
+Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
+              const std::optional<Plane>& section, bool outside_in_result,
+              const GwnForest* open) {
+  const auto [lo, hi] = allowed(ray, section);
+  if (lo > hi) return {};
+  VisibleHit v;
+  if (open == nullptr) {
+    v = first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi, outside_in_result);
+  } else {
+    RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
+    open_spans(r, solid, *open, ray);
+    v = first_visible(r, lo, hi);
+  }
+  if (!v.hit || v.cap) return to_sample(v, nullptr, ray, section);
+  const Bvh::Tri t = bvh.triangle(v.enter.tri);
+  return to_sample(v, &t, ray, section);
 }
 
 std::array<uint8_t, 3> hsv(double h, double s, double v) {
@@ -116,7 +125,22 @@ double render_bytes(int width, int height) {
   return static_cast<double>(width) * height * kPerPixel;
 }
 
+bool renders_in_object_order(const Solid& solid, const Camera& camera, const RenderOptions& o) {
+  const bool applies = !camera.perspective && !solid.has_open_leaf();
+  if (o.method == RenderMethod::kObjectOrder && !applies)
+    throw InputError("render: the object-order method needs an orthographic camera and closed "
+                     "leaves");
+  return o.method == RenderMethod::kObjectOrder || (o.method == RenderMethod::kAuto && applies);
+}
+
 Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const RenderOptions& o) {
+  return render(solid, &bvh, cam, o);
+}
+
+Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const RenderOptions& o) {
+  const bool object_order = renders_in_object_order(solid, cam, o);
+  if (!object_order && bvh == nullptr)
+    throw PreconditionError("render: a BVH is needed for this camera and solid");
   Image img;
   img.width = cam.width;
   img.height = cam.height;
@@ -128,49 +152,64 @@ Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const Render
   // A key light from the upper left of the camera plus a headlight and ambient.
   const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
   const int tile = std::max(1, o.tile);
-  std::optional<GwnForest> own;
-  const GwnForest* open = nullptr;
-  if (solid.has_open_leaf()) {
-    if (o.gwn == nullptr) own = build_gwn(solid);
-    open = o.gwn != nullptr ? o.gwn : &*own;
-  }
-  const bool outside_in_result = !solid.tree.nodes.empty() &&
-                                 solid.tree.evaluate(std::vector<uint8_t>(solid.leaves.size(), 0));
   const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
   const size_t tiles = static_cast<size_t>(tiles_x) * tiles_y;
+  auto shade = [&](size_t i, const Ray& ray, const Sample& s) {
+    std::array<uint8_t, 3> c = o.background;
+    if (s.hit) {
+      const std::array<uint8_t, 3> base = s.cap ? cap_colour() : leaf_colour(s.leaf);
+      const double head = std::max(0.0, -dot(s.normal, ray.dir));
+      const double lit = std::max(0.0, -dot(s.normal, key));
+      const double k = 0.28 + 0.47 * head + 0.25 * lit;
+      for (int ch = 0; ch < 3; ++ch)
+        c[ch] = static_cast<uint8_t>(std::lround(std::min(255.0, base[ch] * k)));
+      const double f = (s.t - cam.near) / (cam.far - cam.near);
+      img.depth[i] = static_cast<uint16_t>(std::lround(std::clamp(f, 0.0, 1.0) * 65534));
+      img.ids[i] = s.cap ? Image::kCapId
+                         : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
+      normals[i] = s.normal;
+    }
+    std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);
+  };
   // Progress as in voxelize.cpp: a shared count, reported by the calling thread (which takes part
   // in the loop) after each of its tiles, so the callback never runs concurrently.
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<size_t> tiles_done{0};
-  parallel_for(tiles, 1, [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t) {
-      const int x0 = static_cast<int>(t % tiles_x) * tile,
-                y0 = static_cast<int>(t / tiles_x) * tile;
-      for (int py = y0; py < std::min(cam.height, y0 + tile); ++py)
-        for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
-          const size_t i = static_cast<size_t>(py) * cam.width + px;
-          const Ray ray = cam.ray(px, py);
-          const Sample s = sample(solid, bvh, ray, o.section, outside_in_result, open);
-          std::array<uint8_t, 3> c = o.background;
-          if (s.hit) {
-            const std::array<uint8_t, 3> base = s.cap ? cap_colour() : leaf_colour(s.leaf);
-            const double head = std::max(0.0, -dot(s.normal, ray.dir));
-            const double lit = std::max(0.0, -dot(s.normal, key));
-            const double k = 0.28 + 0.47 * head + 0.25 * lit;
-            for (int ch = 0; ch < 3; ++ch)
-              c[ch] = static_cast<uint8_t>(std::lround(std::min(255.0, base[ch] * k)));
-            const double f = (s.t - cam.near) / (cam.far - cam.near);
-            img.depth[i] = static_cast<uint16_t>(std::lround(std::clamp(f, 0.0, 1.0) * 65534));
-            img.ids[i] = s.cap ? Image::kCapId
-                               : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
-            normals[i] = s.normal;
-          }
-          std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);
-        }
-    }
-    const size_t done = tiles_done.fetch_add(end - begin) + (end - begin);
+  auto tile_done = [&](size_t count) {
+    const size_t done = tiles_done.fetch_add(count) + count;
     if (o.progress && std::this_thread::get_id() == caller && done < tiles) o.progress(done, tiles);
-  });
+  };
+  if (object_order) {
+    object_order_visible(
+        solid, cam, [&](const Ray& ray) { return allowed(ray, o.section); }, tile,
+        [&](size_t i, const Ray& ray, const VisibleHit& v, const Bvh::Tri* t) {
+          shade(i, ray, to_sample(v, t, ray, o.section));
+        },
+        tile_done);
+  } else {
+    std::optional<GwnForest> own;
+    const GwnForest* open = nullptr;
+    if (solid.has_open_leaf()) {
+      if (o.gwn == nullptr) own = build_gwn(solid);
+      open = o.gwn != nullptr ? o.gwn : &*own;
+    }
+    const bool outside_in_result =
+        !solid.tree.nodes.empty() &&
+        solid.tree.evaluate(std::vector<uint8_t>(solid.leaves.size(), 0));
+    parallel_for(tiles, 1, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) {
+        const int x0 = static_cast<int>(t % tiles_x) * tile,
+                  y0 = static_cast<int>(t / tiles_x) * tile;
+        for (int py = y0; py < std::min(cam.height, y0 + tile); ++py)
+          for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
+            const Ray ray = cam.ray(px, py);
+            shade(static_cast<size_t>(py) * cam.width + px, ray,
+                  sample(solid, *bvh, ray, o.section, outside_in_result, open));
+          }
+      }
+      tile_done(end - begin);
+    });
+  }
   if (o.progress) o.progress(tiles, tiles);
   if (!o.outline) return img;
   // Outline: a pixel whose right or lower neighbour shows another leaf (or background) or a

@@ -18,7 +18,15 @@
 
 namespace cover {
 
+/// How pixel rays find their hits. Both give the same image (raster/object_order.h).
+enum class RenderMethod {
+  kAuto,         ///< object order for orthographic cameras of closed leaves, else rays
+  kRays,         ///< a BVH walk per pixel ray (covering/ray.h first_visible)
+  kObjectOrder,  ///< triangles projected onto the pixels (orthographic cameras, closed leaves)
+};
+
 struct RenderOptions {
+  RenderMethod method = RenderMethod::kAuto;
   /// Removes the half-space {x : normal·x > offset}; none by default. Precondition: normal ≠ 0.
   std::optional<Plane> section;
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
@@ -55,10 +63,18 @@ std::array<uint8_t, 3> cap_colour();
 /// writers' row copies (at most 3 bytes per pixel) come after the normals are freed.
 double render_bytes(int width, int height);
 
+/// Whether render() takes the object-order path for this solid, camera and options (then it
+/// needs no BVH). \throws InputError for kObjectOrder where it does not apply.
+bool renders_in_object_order(const Solid& solid, const Camera& camera, const RenderOptions& options);
+
 /// Renders `solid` (with its prebuilt BVH) through `camera`.
 /// \pre closed leaves; camera from frame_camera() with a size of 1..16384 per side; a section
 /// normal that is finite and non-zero (Model::render checks).
 Image render(const Solid& solid, const Bvh& bvh, const Camera& camera,
+             const RenderOptions& options = {});
+
+/// The same; `bvh` may be nullptr when renders_in_object_order() holds.
+Image render(const Solid& solid, const Bvh* bvh, const Camera& camera,
              const RenderOptions& options = {});
 
 }  // namespace cover
