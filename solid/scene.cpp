@@ -78,6 +78,11 @@ class SceneReader {
     PolygonMesh mesh;                   ///< as read; each leaf transforms a copy
     std::vector<std::string> warnings;  ///< the reader's own, repeated for every leaf
     std::exception_ptr error;           ///< InputError of the reader
+    /// validate_mesh of the mesh as read (full_report off): its edge counts and orientation hold
+    /// for every leaf placing it whose loops need no repair (a transform moves vertices only;
+    /// a mirror reverses every face, which keeps them), so the edge table is built once per
+    /// file; each leaf still computes its own volume.
+    MeshReport topology;
   };
 
   /// Reads every distinct file of the mesh leaves, in parallel (a file per task; a large OFF
@@ -87,6 +92,7 @@ class SceneReader {
       for (size_t r = begin; r < end; ++r) {
         try {
           reads_[r].mesh = read_mesh(reads_[r].file, options_.max_file_bytes, &reads_[r].warnings);
+          reads_[r].topology = validate_mesh(reads_[r].mesh, leaf_validation());
         } catch (const InputError&) {
           reads_[r].error = std::current_exception();
         }
@@ -167,7 +173,7 @@ class SceneReader {
     warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
     PolygonMesh m = r.mesh;
     apply_transform(task.world, m);
-    return leaf(std::move(m), task.file.string(), task.path, true, warnings);
+    return leaf(std::move(m), task.file.string(), task.path, true, warnings, &r.topology);
   }
 
   Solid assemble(const Plan& p, std::vector<Solid>& solids) const {
@@ -295,31 +301,49 @@ class SceneReader {
 
   /// Messages name the scene file and the leaf's JSON path, and a mesh leaf's file before them.
   Solid leaf(PolygonMesh m, std::string name, const std::string& path, bool from_file,
-             std::vector<std::string>& warnings) const {
+             std::vector<std::string>& warnings, const MeshReport* topology = nullptr) const {
     const std::string at = scene_.string() + ": " + path;
     const std::string where = from_file ? name + " (" + at + ")" : at;
-    return prepare_leaf(std::move(m), std::move(name), path, where, options_, warnings);
+    return prepare_leaf(std::move(m), std::move(name), path, where, options_, warnings, topology);
+  }
+
+  /// What loading validates: boundary, orientation and volume only.
+  static ValidateOptions leaf_validation() {
+    ValidateOptions vo;
+    vo.check_self_intersection = false;
+    vo.full_report = false;
+    return vo;
   }
 
  public:
   /// Makes one mesh a leaf (orient.h, CONTRACT.md "Semantics"): coordinates within
   /// ±kMaxCoordinate; repeated loops read once; a closed leaf re-oriented consistently; an
   /// inside-out leaf reversed. `where` names the leaf in messages.
+  /// `topology`: validate_mesh of the same index lists before any transform (FileRead), or
+  /// nullptr.
   static Solid prepare_leaf(PolygonMesh m, std::string name, const std::string& origin,
                             const std::string& where, const LoadOptions& options,
-                            std::vector<std::string>& warnings) {
+                            std::vector<std::string>& warnings,
+                            const MeshReport* topology = nullptr) {
     check_coordinate_range(m, where);
     if (options.repair) {
       size_t first = 0;
-      if (const size_t n = collapse_repeated_loops(m, &first))
+      if (const size_t n = collapse_repeated_loops(m, &first)) {
         warnings.push_back(where + ": " + std::to_string(n) + " face(s) (first: face " +
                            std::to_string(first) +
                            ", counting from 0) repeat one loop several times; read once");
+        topology = nullptr;  // the loops changed
+      }
     }
-    ValidateOptions vo;
-    vo.check_self_intersection = false;
-    vo.full_report = false;  // boundary, orientation and volume only
-    MeshReport r = validate_mesh(m, vo);
+    const ValidateOptions vo = leaf_validation();
+    MeshReport r;
+    if (topology != nullptr) {
+      r = *topology;
+      r.volume = signed_volume(m);
+      r.outward = r.closed && r.oriented && r.volume > 0;
+    } else {
+      r = validate_mesh(m, vo);
+    }
     if (options.repair && r.boundary_edges > 0) {  // only open leaves are repaired (repair.h)
       const int64_t before = r.boundary_edges;
       const size_t welded = weld_duplicate_vertices(m);
