@@ -363,8 +363,9 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const std::vector<Frame> frames = render_frames(o, co);
   const Model model = load_model(o.input, common.load_options());
   timing.lap(Timing::kLoad);
-  // Every frame through the one Model: one load and one BVH for all of them. Each frame's files
-  // join the batch as soon as it is drawn (frames one at a time); all are committed together.
+  // Every frame through the one Model: one load (and one BVH, where a frame walks one: perspective
+  // views, open leaves) for all of them. Each frame's files join the batch as soon as it is
+  // drawn (frames one at a time); all are committed together.
   Progress progress("render", common.quiet);
   OutputBatch outputs;
   json frames_json = json::array();
