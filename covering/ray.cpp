@@ -178,10 +178,14 @@ bool crosses(const Bvh::Tri& t, const Ray& ray, Axes ax, int& sign) {
   if (s1 != s2) return false;
   const int s3 = perturbed_side(ray.origin, ray.dir, t.c, t.a, ax);
   if (s3 != s1 || s1 == 0) return false;  // the perturbed line misses the triangle
-  // The line crosses with sign(n·d) = s1; the hit is ahead iff o' is behind the plane.
-  if (perturbed_plane_side(t, ray.origin, ax) != -s1) return false;
+  if (!ahead(t, ray, ax, s1)) return false;
   sign = s1;
   return true;
+}
+
+bool ahead(const Bvh::Tri& t, const Ray& ray, Axes ax, int sign) {
+  // The line crosses with sign(n·d) = sign; the hit is ahead iff o' is behind the plane.
+  return perturbed_plane_side(t, ray.origin, ax) == -sign;
 }
 
 bool hit_before(const RayHit& a, const RayHit& b) {

@@ -185,6 +185,10 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
                                std::abs(dot(cam.forward, cam.up))) + 1e-15;
   const double delta = (1e-9 + 2 * skew) * reach / ps;
   const double m = 1e-3 + delta;
+  // The orientation of the image frame, (right × up)·forward: −1 for frame_camera's cameras
+  // (camera.h); 0 (no shortcut below) for a frame too far from orthonormal to be sure.
+  const double hand = dot(cross(cam.right, cam.up), cam.forward);
+  const int handed = hand < -0.5 ? -1 : (hand > 0.5 ? 1 : 0);
   // The 2D prefilter of a candidate: its pixel centre c strictly outside an edge line of the
   // projected triangle by more than that edge function's error bound (δ on each of the three
   // points, plus the rounding of the formula) cannot have an exactly crossing ray; only
@@ -303,6 +307,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
           for (int px = std::max(r.x0, x0); px <= std::min(r.x1, x0 + tw - 1); ++px) {
             const uint32_t k = static_cast<uint32_t>((py - y0) * tw + (px - x0));
             if (win[k].first > win[k].second) continue;
+            int sign;
+            int inside = 0;  // edges the centre is certainly inside of
             if (orient != 0) {
               const double cx = px + 0.5 - 0.5 * w, cy = 0.5 * h - py - 0.5;
               bool out = false;
@@ -310,12 +316,22 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
                 const int f = e == 2 ? 0 : e + 1;
                 const double dx = qx[f] - qx[e], dy = qy[f] - qy[e];
                 const double ex = cx - qx[e], ey = cy - qy[e];
-                out = orient * (dx * ey - dy * ex) < -edge_tolerance(dx, dy, ex, ey);
+                const double v = orient * (dx * ey - dy * ex), tol = edge_tolerance(dx, dy, ex, ey);
+                out = v < -tol;
+                inside += v > tol;
               }
               if (out) continue;
             }
-            int sign;
-            if (!detail::crosses(tr, rays[k], ax, sign)) continue;
+            if (inside == 3 && handed != 0) {
+              // Certainly inside all three edges: the exact line crosses t's interior, so the
+              // perturbed side tests all give sign(E)·handed (E the projected edge functions:
+              // ((a − o) × (b − o))·forward = E·((right × up)·forward) for the projections);
+              // only "ahead" remains to decide exactly.
+              sign = static_cast<int>(orient) * handed;
+              if (!detail::ahead(tr, rays[k], ax, sign)) continue;
+            } else if (!detail::crosses(tr, rays[k], ax, sign)) {
+              continue;
+            }
             found.push_back({k, {detail::hit_t(plane, tr, rays[k]), g, tr.leaf, tr.face,
                                  static_cast<int8_t>(sign)}});
           }

@@ -21,6 +21,10 @@ Axes axes_for(const Vec3& d);
 /// Whether the perturbed ray crosses t ahead of its origin; `sign` gets the hit's sign (ray.h).
 bool crosses(const Bvh::Tri& t, const Ray& ray, Axes ax, int& sign);
 
+/// The last step of crosses() for a ray whose line is known to cross t's interior with the
+/// given sign (sign(n·d)): whether the crossing lies ahead of the (perturbed) origin.
+bool ahead(const Bvh::Tri& t, const Ray& ray, Axes ax, int sign);
+
 /// The hit parameter of a ray that crosses t: from the face's shared plane `plane` (nullptr for a
 /// triangular face: t's own plane), clamped into the slab interval of t's exact box. The same
 /// value as every traversal of covering/ray.cpp computes.
