@@ -216,8 +216,12 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
 
   // Tile lists: per chunk of triangles its count per tile, then every tile's list in triangle
   // order (chunks in order), so the lists do not depend on the threads.
-  constexpr size_t kChunk = 16384;
-  const size_t chunks = std::max<size_t>(1, (n + kChunk - 1) / kChunk);
+  // Chunks of at least 16384 triangles, fewer when the counts (chunks × tiles) would pass 2^21
+  // entries (a 16384² image has 262,144 tiles): memory stays bounded for any mesh and image.
+  const size_t chunk_size =
+      std::max<size_t>(16384, static_cast<size_t>(
+                                  std::ceil(static_cast<double>(n) * tiles / (size_t{1} << 21))));
+  const size_t chunks = std::max<size_t>(1, (n + chunk_size - 1) / chunk_size);
   std::vector<uint32_t> count(chunks * tiles, 0);
   auto for_tiles = [&](const Rect& r, auto&& f) {
     if (r.x0 > r.x1 || r.y0 > r.y1) return;
@@ -231,7 +235,7 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
   };
   parallel_for(chunks, 1, [&](size_t c0, size_t c1) {
     for (size_t c = c0; c < c1; ++c)
-      for (size_t g = c * kChunk; g < std::min(n, (c + 1) * kChunk); ++g) {
+      for (size_t g = c * chunk_size; g < std::min(n, (c + 1) * chunk_size); ++g) {
         Rect r = rect(tri.tris[g]);
         if (r.x0 > r.x1 || r.y0 > r.y1) r = {1, 0, 1, 0};
         rects[g] = {static_cast<uint16_t>(r.x0), static_cast<uint16_t>(r.x1),
@@ -254,7 +258,7 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
     for (size_t c = c0; c < c1; ++c) {
       std::vector<size_t> fill(tiles);
       for (size_t t = 0; t < tiles; ++t) fill[t] = offset[t * chunks + c];
-      for (size_t g = c * kChunk; g < std::min(n, (c + 1) * kChunk); ++g)
+      for (size_t g = c * chunk_size; g < std::min(n, (c + 1) * chunk_size); ++g)
         for_tiles(stored(g), [&](size_t t) { list[fill[t]++] = static_cast<uint32_t>(g); });
     }
   });
