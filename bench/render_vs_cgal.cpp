@@ -237,7 +237,7 @@ int main(int argc, char** argv) {
     camera_options.width = camera_options.height = 1024;
     const cover::Camera camera =
         cover::frame_camera(cover::result_bounds(solid).value_or(solid.bbox()), camera_options);
-    // The BVH only where the render walks one (not for this orthographic view of closed leaves:
+    // The BVH only where the render walks one (not for closed leaves:
     // the object-order path, raster/object_order.h).
     std::optional<cover::Bvh> bvh;
     if (!cover::renders_in_object_order(solid, camera, {})) bvh.emplace(solid);

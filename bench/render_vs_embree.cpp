@@ -352,8 +352,8 @@ int main(int argc, char** argv) {
       const double cpu0 = cpu_seconds();
       const cover::Model model = cover::load(input);
       c.load_s = since(t0);
-      // The BVH, when the render walks one (perspective, open leaves): built once per Model,
-      // timed apart. The object-order path (orthographic views of closed leaves) needs none.
+      // The BVH, when the render walks one (open leaves): built once per Model, timed apart.
+      // The object-order path (closed leaves) needs none.
       if (!cover::renders_in_object_order(model.solid(), cam, {})) model.bvh();
       c.bvh_s = since(t0) - c.load_s;
       const cover::Image first = model.render(cam);

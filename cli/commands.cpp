@@ -363,8 +363,8 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   const std::vector<Frame> frames = render_frames(o, co);
   const Model model = load_model(o.input, common.load_options());
   timing.lap(Timing::kLoad);
-  // Every frame through the one Model: one load (and one BVH, where a frame walks one: perspective
-  // views, open leaves) for all of them. Each frame's files join the batch as soon as it is
+  // Every frame through the one Model: one load (and one BVH, where a frame walks one: open
+  // leaves) for all of them. Each frame's files join the batch as soon as it is
   // drawn (frames one at a time); all are committed together.
   Progress progress("render", common.quiet);
   OutputBatch outputs;

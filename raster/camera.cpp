@@ -86,12 +86,4 @@ Camera frame_camera(const Bbox& box, const CameraOptions& o) {
   return c;
 }
 
-Ray Camera::ray(int px, int py) const {
-  const double sx = (px + 0.5) - 0.5 * width;   // pixels right of the centre
-  const double sy = 0.5 * height - (py + 0.5);  // pixels above the centre
-  if (!perspective) return {eye + (sx * pixel_size) * right + (sy * pixel_size) * up, forward};
-  const double scale = 2 * tan_half_fov / std::min(width, height);
-  return {eye, unit(forward + (sx * scale) * right + (sy * scale) * up)};
-}
-
 }  // namespace cover

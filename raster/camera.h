@@ -5,6 +5,8 @@
 // Ray directions are unit vectors, so a hit's t is a distance: from the eye (perspective) or from
 // the image plane placed outside the bounding sphere (orthographic).
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "covering/ray.h"
@@ -41,6 +43,16 @@ struct Camera {
   /// The ray through the centre of pixel (px, py).
   Ray ray(int px, int py) const;
 };
+
+// Inline: the object-order render (raster/object_order.cpp) computes every pixel's ray with it.
+inline Ray Camera::ray(int px, int py) const {
+  const double sx = (px + 0.5) - 0.5 * width;   // pixels right of the centre
+  const double sy = 0.5 * height - (py + 0.5);  // pixels above the centre
+  if (!perspective) return {eye + (sx * pixel_size) * right + (sy * pixel_size) * up, forward};
+  const double scale = 2 * tan_half_fov / std::min(width, height);
+  const Vec3 d = forward + (sx * scale) * right + (sy * scale) * up;
+  return {eye, (1.0 / std::sqrt(dot(d, d))) * d};  // unit(d), as frame_camera's unit()
+}
 
 /// A camera that frames the sphere around `box` (with a 5% margin) from the chosen view.
 Camera frame_camera(const Bbox& box, const CameraOptions& options);

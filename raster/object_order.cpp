@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -150,8 +151,9 @@ VisibleHit resolve(std::span<RayHit> hits, const std::vector<uint8_t>& table,
 
 }  // namespace
 
-void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow& window, int tile,
-                          const VisibleSink& sink, const std::function<void(size_t)>& tile_done) {
+void object_order_visible(const Solid& solid, const Camera& cam, const std::optional<Plane>& section,
+                          int tile, const VisibleSink& sink,
+                          const std::function<void(size_t)>& tile_done) {
   const int w = cam.width, h = cam.height;
   tile = std::max(1, tile);
   const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile;
@@ -167,13 +169,37 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
   // has its origin's projection in the triangle's, so the candidates (the projected box widened
   // by m = δ + 1e-3 pixel) hold every pixel whose ray crosses it: culling only, as the BVH's
   // widened boxes; the exact test decides.
+  //
+  // Perspective cameras: a point p is seen at (sx, sy) = (d·right, d·up) / (d·forward · scale),
+  // d = p − eye, scale = 2·tan(fov/2)/min(w, h) (the pixel rays' directions are
+  // forward + sx·scale·right + sy·scale·up, normalized). A triangle whose corners all lie ahead
+  // within about 89° of forward (d·forward ≥ |d|₁/100) projects to the triangle of its projected
+  // corners; rounding (of the projections, of the pixel rays' directions, and the frame's skew,
+  // magnified at most ~10⁴ times by the division at those angles) stays far below
+  // m = 1e-3 + (1e-9 + 10³·skew)/scale pixels. A corner behind the eye plane by that much on
+  // every corner: no candidates; any other triangle: every pixel is a candidate (the exact test
+  // decides). The 2D prefilter and the inside shortcut below are for orthographic cameras only.
+  const bool persp = cam.perspective;
   const double ps = cam.pixel_size;
+  const double scale = persp ? 2 * cam.tan_half_fov / std::min(w, h) : 0.0;
+  constexpr double kAhead = 0.01, kUnbounded = std::numeric_limits<double>::infinity();
   LargeVector<double> sx(solid.vertices.size()), sy(solid.vertices.size());
   parallel_for(solid.vertices.size(), 4096, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
       const Vec3 d = solid.vertices[v] - cam.eye;
-      sx[v] = dot(d, cam.right) / ps;
-      sy[v] = dot(d, cam.up) / ps;
+      if (!persp) {
+        sx[v] = dot(d, cam.right) / ps;
+        sy[v] = dot(d, cam.up) / ps;
+        continue;
+      }
+      const double z = dot(d, cam.forward), l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
+      if (z >= kAhead * l1 && z > 0) {
+        sx[v] = dot(d, cam.right) / (z * scale);
+        sy[v] = dot(d, cam.up) / (z * scale);
+      } else {  // NaN marks "behind the eye plane", ±∞ "beside or barely ahead: unbounded"
+        sx[v] = z < -kAhead * l1 ? std::numeric_limits<double>::quiet_NaN() : kUnbounded;
+        sy[v] = sx[v];
+      }
     }
   });
   double largest = 0;  // max |p|₁ over the vertices
@@ -184,11 +210,12 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
   const double skew = std::max(std::abs(dot(cam.forward, cam.right)),
                                std::abs(dot(cam.forward, cam.up))) + 1e-15;
   const double delta = (1e-9 + 2 * skew) * reach / ps;
-  const double m = 1e-3 + delta;
+  const double m = persp ? 1e-3 + (1e-9 + 1e3 * skew) / scale : 1e-3 + delta;
   // The orientation of the image frame, (right × up)·forward: −1 for frame_camera's cameras
-  // (camera.h); 0 (no shortcut below) for a frame too far from orthonormal to be sure.
+  // (camera.h); 0 (no shortcut below) for a frame too far from orthonormal to be sure, and for
+  // perspective cameras.
   const double hand = dot(cross(cam.right, cam.up), cam.forward);
-  const int handed = hand < -0.5 ? -1 : (hand > 0.5 ? 1 : 0);
+  const int handed = persp ? 0 : (hand < -0.5 ? -1 : (hand > 0.5 ? 1 : 0));
   // The 2D prefilter of a candidate: its pixel centre c strictly outside an edge line of the
   // projected triangle by more than that edge function's error bound (δ on each of the three
   // points, plus the rounding of the formula) cannot have an exactly crossing ray; only
@@ -199,6 +226,12 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
     return 4 * delta * l + 4 * delta * delta + 1e-14 * l * (std::abs(ex) + std::abs(ey) + 1);
   };
   auto rect = [&](const FanTri& t) {
+    if (persp) {
+      const bool behind[3] = {std::isnan(sx[t.v[0]]), std::isnan(sx[t.v[1]]), std::isnan(sx[t.v[2]])};
+      if (behind[0] && behind[1] && behind[2]) return Rect{1, 0, 1, 0};
+      for (uint32_t v : t.v)
+        if (!std::isfinite(sx[v])) return Rect{0, w - 1, 0, h - 1};
+    }
     double x0 = sx[t.v[0]], x1 = x0, y0 = sy[t.v[0]], y1 = y0;
     for (int i = 1; i < 3; ++i) {
       x0 = std::min(x0, sx[t.v[i]]), x1 = std::max(x1, sx[t.v[i]]);
@@ -265,7 +298,7 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
 
   // Per tile: the exact crossings of its candidates, bucketed by pixel, then each pixel's hits
   // sorted and swept into spans as cast() does (covering/detail/ray_detail.h).
-  const detail::Axes ax = detail::axes_for(cam.forward);
+  const detail::Axes ortho_axes = detail::axes_for(cam.forward);
   const size_t leaves = solid.leaves.size();
   // A ray without hits is outside every leaf all along: inside the result iff the expression
   // holds the all-outside point (then its one span [0, ∞) shows a cap at the window's start).
@@ -276,6 +309,7 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
                                                : std::vector<uint8_t>{};
   parallel_for(tiles, 1, [&](size_t t0, size_t t1) {
     std::vector<Ray> rays;
+    std::vector<detail::Axes> axes;  // per ray (perspective: each direction its own)
     std::vector<std::pair<double, double>> win;
     std::vector<std::pair<uint32_t, RayHit>> found;
     std::vector<uint32_t> first;
@@ -287,11 +321,13 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
       const int tw = std::min(w, x0 + tile) - x0, th = std::min(h, y0 + tile) - y0;
       rays.resize(static_cast<size_t>(tw) * th);
       win.resize(rays.size());
+      axes.resize(rays.size());
       for (int y = 0; y < th; ++y)
         for (int x = 0; x < tw; ++x) {
           const size_t k = static_cast<size_t>(y) * tw + x;
           rays[k] = cam.ray(x0 + x, y0 + y);
-          win[k] = window(rays[k]);
+          win[k] = section_window(rays[k], section);
+          axes[k] = persp ? detail::axes_for(rays[k].dir) : ortho_axes;
         }
       found.clear();
       for (size_t e = offset[t * chunks]; e < offset[(t + 1) * chunks]; ++e) {
@@ -304,7 +340,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
         const double qy[3] = {sy[ft.v[0]], sy[ft.v[1]], sy[ft.v[2]]};
         const double area = (qx[1] - qx[0]) * (qy[2] - qy[0]) - (qy[1] - qy[0]) * (qx[2] - qx[0]);
         const double orient =
-            std::abs(area) > edge_tolerance(qx[1] - qx[0], qy[1] - qy[0], qx[2] - qx[0], qy[2] - qy[0])
+            !persp && std::abs(area) > edge_tolerance(qx[1] - qx[0], qy[1] - qy[0], qx[2] - qx[0],
+                                                      qy[2] - qy[0])
                 ? (area > 0 ? 1.0 : -1.0)
                 : 0.0;  // 0: no prefilter
         for (int py = std::max(r.y0, y0); py <= std::min(r.y1, y0 + th - 1); ++py)
@@ -332,8 +369,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const RayWindow
               // ((a − o) × (b − o))·forward = E·((right × up)·forward) for the projections);
               // only "ahead" remains to decide exactly.
               sign = static_cast<int>(orient) * handed;
-              if (!detail::ahead(tr, rays[k], ax, sign)) continue;
-            } else if (!detail::crosses(tr, rays[k], ax, sign)) {
+              if (!detail::ahead(tr, rays[k], axes[k], sign)) continue;
+            } else if (!detail::crosses(tr, rays[k], axes[k], sign)) {
               continue;
             }
             found.push_back({k, {detail::hit_t(plane, tr, rays[k]), g, tr.leaf, tr.face,

@@ -29,16 +29,6 @@ Vec3 unit(Vec3 v) {
   return l > 0 ? (1.0 / l) * v : v;
 }
 
-/// The allowed parameter interval [lo, hi] of the ray outside the removed half-space n·x > d.
-std::pair<double, double> allowed(const Ray& ray, const std::optional<Plane>& section) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  if (!section) return {0.0, kInf};
-  const double s = dot(section->normal, ray.dir);
-  const double v0 = dot(section->normal, ray.origin) - section->offset;
-  if (s == 0) return v0 <= 0 ? std::pair{0.0, kInf} : std::pair{1.0, 0.0};
-  const double ts = -v0 / s;
-  return s > 0 ? std::pair{0.0, ts} : std::pair{std::max(0.0, ts), kInf};
-}
 
 /// What a pixel shows, from its visible hit (`tri`: the triangle of v.enter when v.hit && !v.cap).
 Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
@@ -66,7 +56,7 @@ Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
 Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
               const std::optional<Plane>& section, bool outside_in_result,
               const GwnForest* open) {
-  const auto [lo, hi] = allowed(ray, section);
+  const auto [lo, hi] = section_window(ray, section);
   if (lo > hi) return {};
   VisibleHit v;
   if (open == nullptr) {
@@ -126,10 +116,9 @@ double render_bytes(int width, int height) {
 }
 
 bool renders_in_object_order(const Solid& solid, const Camera& camera, const RenderOptions& o) {
-  const bool applies = !camera.perspective && !solid.has_open_leaf();
+  const bool applies = !solid.has_open_leaf();
   if (o.method == RenderMethod::kObjectOrder && !applies)
-    throw InputError("render: the object-order method needs an orthographic camera and closed "
-                     "leaves");
+    throw InputError("render: the object-order method needs closed leaves");
   return o.method == RenderMethod::kObjectOrder || (o.method == RenderMethod::kAuto && applies);
 }
 
@@ -181,7 +170,7 @@ Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const Render
   };
   if (object_order) {
     object_order_visible(
-        solid, cam, [&](const Ray& ray) { return allowed(ray, o.section); }, tile,
+        solid, cam, o.section, tile,
         [&](size_t i, const Ray& ray, const VisibleHit& v, const Bvh::Tri* t) {
           shade(i, ray, to_sample(v, t, ray, o.section));
         },

@@ -20,9 +20,9 @@ namespace cover {
 
 /// How pixel rays find their hits. Both give the same image (raster/object_order.h).
 enum class RenderMethod {
-  kAuto,         ///< object order for orthographic cameras of closed leaves, else rays
+  kAuto,         ///< object order for closed leaves, else rays
   kRays,         ///< a BVH walk per pixel ray (covering/ray.h first_visible)
-  kObjectOrder,  ///< triangles projected onto the pixels (orthographic cameras, closed leaves)
+  kObjectOrder,  ///< triangles projected onto the pixels (closed leaves)
 };
 
 struct RenderOptions {

@@ -15,6 +15,7 @@
 #include "solid/errors.h"
 #include "solid/mesh_io.h"
 #include "solid/primitives.h"
+#include "solid/scene.h"
 
 #include <tuple>
 
@@ -285,6 +286,7 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
           co.width = w;
           co.height = h;
           co.azimuth_degrees = az;
+          co.perspective = w == 97;  // the odd size in perspective
           const Camera cam = frame_camera(c.frame, co);
           RenderOptions rays, objects;
           rays.method = RenderMethod::kRays;
@@ -324,12 +326,40 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
     ASSERT_TRUE(a.ids == b.ids && a.depth == b.depth && a.rgb == b.rgb) << cut;
     EXPECT_NE(a.ids[at(a, 10, 35)], Image::kBackgroundId);  // on the big box's face x = lo.x
   }
-  // Where it does not apply it says so.
-  CameraOptions persp;
-  persp.perspective = true;
+  // A perspective eye inside the scene (triangles behind it, beside it and across its plane)
+  // and looking along an axis (rays along faces).
+  for (const Vec3& eye : {Vec3{1, 1, 1}, Vec3{0.5, -3, 0.25}}) {
+    CameraOptions co;
+    co.perspective = true;
+    co.width = 80;
+    co.height = 60;
+    Camera cam = frame_camera(csg.bbox(), co);
+    cam.eye = eye;
+    if (eye.y < 0) cam.forward = {0, 1, 0}, cam.right = {1, 0, 0}, cam.up = {0, 0, 1};
+    RenderOptions rays, objects;
+    rays.method = RenderMethod::kRays;
+    objects.method = RenderMethod::kObjectOrder;
+    const Bvh bvh(csg);
+    const Image a = render(csg, bvh, cam, rays);
+    const Image b = render(csg, nullptr, cam, objects);
+    ASSERT_TRUE(a.ids == b.ids && a.depth == b.depth && a.rgb == b.rgb) << eye.y;
+    EXPECT_GT(std::count_if(a.ids.begin(), a.ids.end(),
+                            [](uint16_t id) { return id != Image::kBackgroundId; }),
+              100);
+  }
+  // Where it does not apply it says so: an open leaf.
+  PolygonMesh open = make_box({0, 0, 0}, {1, 1, 1});
+  open.face_start.pop_back();
+  open.face_vertices.resize(open.face_start.back());
+  LoadOptions lenient;
+  lenient.require_closed = false;
+  std::vector<std::string> warnings;
+  const Solid open_solid = prepare_leaf(open, "open", "open", lenient, warnings);
+  ASSERT_TRUE(open_solid.has_open_leaf());
   RenderOptions objects;
   objects.method = RenderMethod::kObjectOrder;
-  EXPECT_THROW(render(csg, nullptr, frame_camera(csg.bbox(), persp), objects), InputError);
+  EXPECT_THROW(render(open_solid, nullptr, frame_camera(open_solid.bbox(), {}), objects),
+               InputError);
 }
 
 // Issue 17, group 8: long renders showed no progress bar; the callback drives it.
