@@ -174,9 +174,9 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
   // d = p − eye, scale = 2·tan(fov/2)/min(w, h) (the pixel rays' directions are
   // forward + sx·scale·right + sy·scale·up, normalized). A triangle whose corners all lie ahead
   // within about 89° of forward (d·forward ≥ |d|₁/100) projects to the triangle of its projected
-  // corners; rounding (of the projections, of the pixel rays' directions, and the frame's skew,
-  // magnified at most ~10⁴ times by the division at those angles) stays far below
-  // m = 1e-3 + (1e-9 + 10³·skew)/scale pixels. A corner behind the eye plane by that much on
+  // corners; rounding (of the projections and of the pixel rays' directions, magnified at most
+  // ~10⁴ times by the division at those angles: about 10⁻¹²/scale pixels) and the frame's skew
+  // (at most ~10⁴·skew/scale) stay far below m = 1e-3 + (1e-9 + 10⁵·skew)/scale pixels. A corner behind the eye plane by that much on
   // every corner: no candidates; any other triangle: every pixel is a candidate (the exact test
   // decides). The 2D prefilter and the inside shortcut below are for orthographic cameras only.
   const bool persp = cam.perspective;
@@ -210,7 +210,7 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
   const double skew = std::max(std::abs(dot(cam.forward, cam.right)),
                                std::abs(dot(cam.forward, cam.up))) + 1e-15;
   const double delta = (1e-9 + 2 * skew) * reach / ps;
-  const double m = persp ? 1e-3 + (1e-9 + 1e3 * skew) / scale : 1e-3 + delta;
+  const double m = persp ? 1e-3 + (1e-9 + 1e5 * skew) / scale : 1e-3 + delta;
   // The orientation of the image frame, (right × up)·forward: −1 for frame_camera's cameras
   // (camera.h); 0 (no shortcut below) for a frame too far from orthonormal to be sure, and for
   // perspective cameras.
