@@ -397,6 +397,74 @@ TEST(MeshIoTest, ObjReferencesAndIgnoredStatements) {
   fs::remove_all(dir);
 }
 
+// An OBJ of 1 MiB or more is read in parallel chunks (read_obj.cpp): vertices and faces
+// interleaved, relative and forward references across chunk borders, comments and ignored
+// statements give the same mesh; errors deep in the file name their line as before.
+TEST(MeshIoTest, LargeObjParsedInParallelGivesTheSameMeshAndErrors) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  std::ostringstream text;
+  text << "# big\nmtllib a.mtl\n";
+  PolygonMesh want;
+  uint64_t line = 2;
+  std::vector<uint64_t> line_of_vertex, offset_of_vertex;
+  constexpr uint32_t kV = 60000;
+  for (uint32_t v = 0; v < kV; ++v) {
+    const Vec3 p{v * 0.001, -1.0 / (v + 1), v % 7 == 0 ? 1e-300 : 3.25};
+    want.vertices.push_back(p);
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g%s", p.x, p.y, p.z,
+                  v % 5 == 0 ? " 1\r\n" : "\n");
+    offset_of_vertex.push_back(static_cast<uint64_t>(text.tellp()));
+    text << buf;
+    line_of_vertex.push_back(++line);
+    if (v % 3 == 2) {  // a face right after its vertices: relative and absolute references
+      want.add_face({v - 2, v - 1, v});
+      text << "f -3 " << v << "/1 " << v + 1 << "//2\n";
+      ++line;
+    }
+    if (v % 1000 == 999) text << "vt 0 0\ng part\n# note\n", line += 3;
+  }
+  text << "f 1 " << kV << " 2\n";  // refers forward from nowhere in particular: fine at the end
+  want.add_face({0, kV - 1, 1});
+  const std::string good = text.str();
+  ASSERT_GT(good.size(), size_t{1} << 20);
+  auto read_text_file = [&](const std::string& t) {
+    std::ofstream(dir / "big.obj", std::ios::binary) << t;
+    return cover::read_mesh(dir / "big.obj");
+  };
+  const PolygonMesh back = read_text_file(good);
+  ASSERT_EQ(back.vertices.size(), want.vertices.size());
+  for (size_t v = 0; v < want.vertices.size(); ++v)
+    ASSERT_TRUE(same_bits(back.vertices[v], want.vertices[v])) << "vertex " << v;
+  EXPECT_EQ(back.face_start, want.face_start);
+  EXPECT_EQ(back.face_vertices, want.face_vertices);
+  auto error_of = [&](const std::string& t) {
+    try {
+      read_text_file(t);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string file = (dir / "big.obj").string();
+  {  // a bad coordinate deep in the file
+    std::string t = good;
+    const size_t at = t.find(' ', offset_of_vertex[45000] + 2) + 1;
+    t[at] = 'x';
+    EXPECT_NE(error_of(t).find(file + ":" + std::to_string(line_of_vertex[45000]) + ":"),
+              std::string::npos)
+        << error_of(t);
+  }
+  {  // an index past the end
+    std::string t = good + "f 1 2 " + std::to_string(kV + 5) + "\n";
+    EXPECT_NE(error_of(t).find(":" + std::to_string(line + 2) + ": vertex index " +
+                               std::to_string(kV + 5) + " out of range"),
+              std::string::npos)
+        << error_of(t);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(MeshIoTest, PlyTypesListsAndSkippedElements) {
   const fs::path dir = test::temp_dir("mesh-io");
   const std::string header_tail =
