@@ -130,21 +130,11 @@ uint64_t count_vertices(std::string_view data) {
 /// own and the parts placed by prefix sums. Returns false on any error (the serial read then
 /// reports it with its line number), so messages do not depend on this path.
 bool read_obj_parallel(const std::string& file, std::string_view data, PolygonMesh& mesh) {
-  constexpr size_t kChunkBytes = size_t{1} << 18;
-  std::vector<size_t> cut{0};
-  while (cut.back() < data.size()) {
-    size_t next = std::min(data.size(), cut.back() + kChunkBytes);
-    if (next < data.size()) {
-      const size_t newline = data.find('\n', next);
-      next = newline == std::string_view::npos ? data.size() : newline + 1;
-    }
-    cut.push_back(next);
-  }
-  const size_t chunks = cut.size() - 1;
-  auto chunk = [&](size_t c) { return data.substr(cut[c], cut[c + 1] - cut[c]); };
+  const std::vector<std::string_view> pieces = line_chunks(data, size_t{1} << 18);
+  const size_t chunks = pieces.size();
   std::vector<uint64_t> defined(chunks + 1, 0);
   parallel_for(chunks, 1, [&](size_t begin, size_t end) {
-    for (size_t c = begin; c < end; ++c) defined[c + 1] = count_vertices(chunk(c));
+    for (size_t c = begin; c < end; ++c) defined[c + 1] = count_vertices(pieces[c]);
   });
   for (size_t c = 0; c < chunks; ++c) defined[c + 1] += defined[c];
   if (defined[chunks] >= kMaxIndexCount) return false;
@@ -153,7 +143,7 @@ bool read_obj_parallel(const std::string& file, std::string_view data, PolygonMe
   parallel_for(chunks, 1, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end && !failed; ++c) {
       try {
-        read_obj_lines(file, chunk(c), 0, defined[c], parts[c]);
+        read_obj_lines(file, pieces[c], 0, defined[c], parts[c]);
       } catch (const InputError&) {
         failed = true;
       }

@@ -75,21 +75,12 @@ uint64_t parse_count(std::string_view token, const std::string& file, uint64_t l
 /// again and reports its first error with its line number, so errors do not depend on this path.
 bool read_body_parallel(std::string_view body, uint64_t vertex_count, uint64_t face_count,
                         const std::string& file, PolygonMesh& mesh) {
-  constexpr size_t kChunkBytes = size_t{1} << 18;
-  std::vector<size_t> cut{0};
-  while (cut.back() < body.size()) {
-    size_t next = std::min(body.size(), cut.back() + kChunkBytes);
-    if (next < body.size()) {
-      const size_t newline = body.find('\n', next);
-      next = newline == std::string_view::npos ? body.size() : newline + 1;
-    }
-    cut.push_back(next);
-  }
-  const size_t chunks = cut.size() - 1;
+  const std::vector<std::string_view> pieces = line_chunks(body, size_t{1} << 18);
+  const size_t chunks = pieces.size();
   std::vector<std::vector<std::string_view>> content(chunks);
   parallel_for(chunks, 1, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; ++c) {
-      LineReader lines(body.substr(cut[c], cut[c + 1] - cut[c]));
+      LineReader lines(pieces[c]);
       std::string_view line;
       while (lines.next(line)) {  // as ContentLines::next
         line = strip_comment(line);

@@ -132,7 +132,7 @@ class SceneReader {
       if (file.extension() == ".json") fail(sub, "a mesh leaf must be a mesh file, not a scene");
       const std::string key = file.lexically_normal().string();
       auto [it, fresh] = read_index_.try_emplace(key, reads_.size());
-      if (fresh) reads_.push_back({file, {}, {}, nullptr});
+      if (fresh) reads_.emplace_back().file = file;
       tasks_.push_back({sub, std::move(file), {}, {}, world, it->second});
       return {CsgOp::kLeaf, tasks_.size() - 1, {}};
     }

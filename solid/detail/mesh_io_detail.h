@@ -21,6 +21,7 @@
 //     or ±0 and is accepted;
 //   * coordinates must be finite: inf and nan are refused as "non-finite x coordinate".
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -112,6 +113,23 @@ inline bool only_blanks(std::string_view line) {
   for (char c : line)
     if (!is_blank(c)) return false;
   return true;
+}
+
+/// Pieces of `data` of about `bytes` each, cut after a newline (whole lines), in order; what the
+/// parallel readers (read_off.cpp, read_obj.cpp) parse one per task.
+inline std::vector<std::string_view> line_chunks(std::string_view data, size_t bytes) {
+  std::vector<std::string_view> chunks;
+  size_t at = 0;
+  while (at < data.size()) {
+    size_t next = std::min(data.size(), at + bytes);
+    if (next < data.size()) {
+      const size_t newline = data.find('\n', next);
+      next = newline == std::string_view::npos ? data.size() : newline + 1;
+    }
+    chunks.push_back(data.substr(at, next - at));
+    at = next;
+  }
+  return chunks;
 }
 
 /// `data` without a leading UTF-8 byte order mark.

@@ -173,6 +173,25 @@ TEST(MeshIoTest, RoundTripIsExactForOffObjPly) {
 // Issue 24: an OFF body of 1 MiB or more is parsed in parallel chunks; the mesh must be the one
 // the line-by-line reading gives (comments, blank lines, CRLF, mixed face sizes across chunk
 // ends), and an error deep inside must name the same line as before (the serial re-read).
+/// The message of reading `bytes` as dir/name (read_text), or "no error".
+std::string read_error(const fs::path& dir, const std::string& name, const std::string& bytes) {
+  try {
+    read_text(dir, name, bytes);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+/// Same vertices (bit for bit) and faces.
+void expect_same_mesh(const PolygonMesh& back, const PolygonMesh& want) {
+  ASSERT_EQ(back.vertices.size(), want.vertices.size());
+  for (size_t v = 0; v < want.vertices.size(); ++v)
+    ASSERT_TRUE(same_bits(back.vertices[v], want.vertices[v])) << "vertex " << v;
+  EXPECT_EQ(back.face_start, want.face_start);
+  EXPECT_EQ(back.face_vertices, want.face_vertices);
+}
+
 TEST(MeshIoTest, LargeOffParsedInParallelGivesTheSameMeshAndErrors) {
   const fs::path dir = test::temp_dir("mesh-io");
   constexpr uint32_t kV = 40000, kF = 40000;
@@ -205,25 +224,9 @@ TEST(MeshIoTest, LargeOffParsedInParallelGivesTheSameMeshAndErrors) {
   }
   const std::string good = text.str();
   ASSERT_GT(good.size(), size_t{1} << 20);
-  auto read_text = [&](const std::string& t) {
-    std::ofstream(dir / "big.off", std::ios::binary) << t;
-    return cover::read_mesh(dir / "big.off");
-  };
-  const PolygonMesh back = read_text(good);
-  ASSERT_EQ(back.vertices.size(), want.vertices.size());
-  for (size_t v = 0; v < want.vertices.size(); ++v)
-    ASSERT_TRUE(same_bits(back.vertices[v], want.vertices[v])) << "vertex " << v;
-  EXPECT_EQ(back.face_start, want.face_start);
-  EXPECT_EQ(back.face_vertices, want.face_vertices);
+  expect_same_mesh(read_text(dir, "big.off", good), want);
   // Errors deep in the body: a bad coordinate, an index out of range, a missing face.
-  auto error_of = [&](const std::string& t) {
-    try {
-      read_text(t);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error_of = [&](const std::string& t) { return read_error(dir, "big.off", t); };
   const std::string file = (dir / "big.off").string();
   {
     std::string t = good;
@@ -428,24 +431,8 @@ TEST(MeshIoTest, LargeObjParsedInParallelGivesTheSameMeshAndErrors) {
   want.add_face({0, kV - 1, 1});
   const std::string good = text.str();
   ASSERT_GT(good.size(), size_t{1} << 20);
-  auto read_text_file = [&](const std::string& t) {
-    std::ofstream(dir / "big.obj", std::ios::binary) << t;
-    return cover::read_mesh(dir / "big.obj");
-  };
-  const PolygonMesh back = read_text_file(good);
-  ASSERT_EQ(back.vertices.size(), want.vertices.size());
-  for (size_t v = 0; v < want.vertices.size(); ++v)
-    ASSERT_TRUE(same_bits(back.vertices[v], want.vertices[v])) << "vertex " << v;
-  EXPECT_EQ(back.face_start, want.face_start);
-  EXPECT_EQ(back.face_vertices, want.face_vertices);
-  auto error_of = [&](const std::string& t) {
-    try {
-      read_text_file(t);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  expect_same_mesh(read_text(dir, "big.obj", good), want);
+  auto error_of = [&](const std::string& t) { return read_error(dir, "big.obj", t); };
   const std::string file = (dir / "big.obj").string();
   {  // a bad coordinate deep in the file
     std::string t = good;
