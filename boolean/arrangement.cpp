@@ -158,7 +158,8 @@ Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& se
   }
   // ----
   lap(seconds.pairs);
-  std::vector<Hit> hits = intersect_pairs(tris, pos, pairs, arr.points, grain);
+  arr.first_crossing = static_cast<uint32_t>(arr.points.size());
+  std::vector<Hit> hits = intersect_pairs(tris, pos, pairs, arr.points, arr.crossings, grain);
   // ---- self-intersecting leaves: contacts at shared vertices / edges are no hits; tris that
   // overlap a coplanar tri of their own leaf are marked solo.
   if (any_self) {
@@ -186,8 +187,8 @@ Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& se
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t p = 0; p < pairs.size(); ++p)
       if (!hits[p].empty()) {
-        by_tri[fill[pairs[p].first]++] = {&hits[p], true};
-        by_tri[fill[pairs[p].second]++] = {&hits[p], false};
+        by_tri[fill[pairs[p].first]++] = {&hits[p], true, pairs[p].second};
+        by_tri[fill[pairs[p].second]++] = {&hits[p], false, pairs[p].first};
       }
   }
   std::vector<uint32_t> touched;
@@ -200,7 +201,7 @@ Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& se
     for (size_t x = begin; x < end; ++x) {
       const uint32_t t = touched[x];
       h.assign(by_tri.begin() + start[t], by_tri.begin() + start[t + 1]);
-      locals[x] = split_tri(tris[t], h, arr.points, pos);
+      locals[x] = split_tri(tris[t], h, tris, self, arr.points, pos);
     }
   });
   lap(seconds.split);

@@ -19,7 +19,10 @@
 // faces halved), so that no two edges join the same vertices.
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
+#include <CGAL/Mpzf.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -31,11 +34,10 @@ namespace cover::boolean_detail {
 namespace {
 
 /// The exact value rounded to the nearest double (ties to the even neighbour).
-double nearest(const K::FT& x) {
-  const auto& e = CGAL::exact(x);
+template <class ET>
+double nearest_exact(const ET& e) {
   const std::pair<double, double> i = CGAL::to_interval(e);
   if (i.first == i.second) return i.first;
-  using ET = std::decay_t<decltype(e)>;
   const ET mid = (ET(i.first) + ET(i.second)) / 2;
   if (e < mid) return i.first;
   if (e > mid) return i.second;
@@ -43,6 +45,7 @@ double nearest(const K::FT& x) {
   std::memcpy(&bits, &i.first, sizeof bits);
   return (bits & 1) == 0 ? i.first : i.second;
 }
+double nearest(const K::FT& x) { return nearest_exact(CGAL::exact(x)); }
 
 /// Sorts (key, h) pairs given in increasing h, keys (a << 32) | b with a < n: a counting sort on
 /// a, then each (small) bucket sorted; the same order as std::sort, in linear time.
@@ -92,6 +95,84 @@ double exact_volume(const Arrangement& arr, const std::vector<std::array<uint32_
   ET total = 0;
   for (const ET& x : partial) total += x;
   return nearest(K::FT(total / 6));
+}
+
+/// The crossing of line a–b with the plane of (p, q, r) — input doubles, the line crossing the
+/// plane — rounded to the nearest doubles (ties to even) without rationals. With
+/// d_x = ((q − p) × (r − p)) · (x − p), the point is X = (b·d_a − a·d_b) / (d_a − d_b): numerators
+/// and denominator are sums of products of doubles, exact in CGAL::Mpzf (a binary float with an
+/// unbounded mantissa, no division, no allocation for short numbers). The nearest double of
+/// each coordinate lies among the doubles of the lazy point's interval `box` (which contains the
+/// exact value); starting from the quotient of the Mpzf approximations of N and D, it is found
+/// by exact comparisons with the midpoints between neighbours, sign(2·N − (x₀ + x₁)·D). Returns
+/// false (the caller takes the exact rational) when the box is not finite or the estimate is
+/// more than a few doubles off.
+///
+/// Why not the lazy exact value: that evaluates the point's construction DAG in GMP rationals,
+/// with a gcd per operation; rounding was then 10–20 % of an evaluation, the largest share of
+/// assembly (bench/evaluate_vs_manifold).
+bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r,
+                    const K::Approximate_kernel::Point_3& box, Vec3& out) {
+  using F = CGAL::Mpzf;
+  auto diff = [](const Vec3& x, const Vec3& y) {
+    return std::array<F, 3>{F(x.x) - F(y.x), F(x.y) - F(y.y), F(x.z) - F(y.z)};
+  };
+  const std::array<F, 3> u = diff(q, p), v = diff(r, p), ap = diff(a, p), bp = diff(b, p);
+  const std::array<F, 3> n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                           u[0] * v[1] - u[1] * v[0]};
+  const F da = n[0] * ap[0] + n[1] * ap[1] + n[2] * ap[2];
+  const F db = n[0] * bp[0] + n[1] * bp[1] + n[2] * bp[2];
+  const F d = da - db;
+  const int sd = d.sign();
+  if (sd == 0) return false;  // not a crossing (precondition): leave it to the exact path
+  double xyz[3];
+  for (int c = 0; c < 3; ++c) {
+    const double lo = box[c].inf(), hi = box[c].sup();
+    if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+    if (lo == hi) {
+      xyz[c] = lo;
+      continue;
+    }
+    const F twice_n = (F(b[c]) * da - F(a[c]) * db) * F(2.0);
+    // sign(X − (x0 + x1)/2) for neighbours x0 < x1
+    auto above_mid = [&](double x0, double x1) { return (twice_n - (F(x0) + F(x1)) * d).sign() * sd; };
+    auto even = [](double x0, double x1) {
+      uint64_t bits;
+      std::memcpy(&bits, &x0, sizeof bits);
+      return (bits & 1) == 0 ? x0 : x1;
+    };
+    // Start from the quotient of the two Mpzf approximations (a few ulps off), then step.
+    double x = twice_n.to_double() / (2 * d.to_double());
+    x = std::isfinite(x) ? std::clamp(x, lo, hi) : lo;
+    for (int step = 0;; ++step) {
+      if (step == 8) return false;  // far from the estimate: the exact path
+      if (x < hi) {
+        const double up = std::nextafter(x, hi);
+        const int s = above_mid(x, up);
+        if (s > 0) {
+          x = up;
+          continue;
+        }
+        if (s == 0) {
+          x = even(x, up);
+          break;
+        }
+      }
+      if (x > lo) {
+        const double down = std::nextafter(x, lo);
+        const int s = above_mid(down, x);
+        if (s < 0) {
+          x = down;
+          continue;
+        }
+        if (s == 0) x = even(down, x);
+      }
+      break;
+    }
+    xyz[c] = x;
+  }
+  out = {xyz[0], xyz[1], xyz[2]};
+  return true;
 }
 
 PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
@@ -161,8 +242,17 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
   std::vector<Vec3> rounded(constructed.size());
   parallel_for(constructed.size(), 64, [&](size_t begin, size_t end) {
     for (size_t x = begin; x < end; ++x) {
-      const Point& p = arr.points[constructed[x]];
-      rounded[x] = {nearest(p.x()), nearest(p.y()), nearest(p.z())};
+      const uint32_t id = constructed[x];
+      const Point& p = arr.points[id];
+      if (id >= arr.first_crossing && id - arr.first_crossing < arr.crossings.size()) {
+        const auto& [a, b, t] = arr.crossings[id - arr.first_crossing];
+        const auto& w = arr.tris[t].v;
+        const std::vector<Vec3>& o = arr.originals;
+        if (round_crossing(o[a], o[b], o[w[0]], o[w[1]], o[w[2]], CGAL::approx(p), rounded[x]))
+          continue;
+      }
+      const auto& e = CGAL::exact(p);
+      rounded[x] = {nearest_exact(e.x()), nearest_exact(e.y()), nearest_exact(e.z())};
     }
   });
   PolygonMesh mesh;

@@ -183,7 +183,8 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri
 
 std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector<Vec3>& pos,
                                  const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
-                                 std::vector<Point>& points, size_t grain) {
+                                 std::vector<Point>& points,
+                                 std::vector<std::array<uint32_t, 3>>& crossings, size_t grain) {
   // Phase A: exact configuration of every pair (doubles only).
   std::vector<PairCut> cuts(pairs.size());
   parallel_for(pairs.size(), grain * 4, [&](size_t begin, size_t end) {
@@ -205,6 +206,10 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   const size_t first_crossing = points.size();
   points.resize(first_crossing + keys.size());
+  crossings.resize(keys.size());
+  for (size_t x = 0; x < keys.size(); ++x)
+    crossings[x] = {static_cast<uint32_t>(keys[x].edge >> 32),
+                    static_cast<uint32_t>(keys[x].edge & 0xffffffffu), keys[x].tri};
   parallel_for(keys.size(), grain * 4, [&](size_t begin, size_t end) {
     for (size_t x = begin; x < end; ++x) {
       const uint32_t a = static_cast<uint32_t>(keys[x].edge >> 32),

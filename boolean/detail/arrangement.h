@@ -76,6 +76,11 @@ struct Arrangement {
   std::vector<Tri> tris;           ///< grouped by leaf, leaves in order
   std::vector<Piece> pieces;       ///< in tri order
   std::vector<uint64_t> cuts;      ///< sorted, unique edge keys of cut edges
+  /// Points [first_crossing, first_crossing + crossings.size()) are edge × plane crossings:
+  /// {a, b, tri}, the crossing of line a–b with the plane of tris[tri] (all input vertices), so
+  /// that assemble() rounds them from the input doubles (round_crossing, assemble.cpp).
+  uint32_t first_crossing = 0;
+  std::vector<std::array<uint32_t, 3>> crossings;
   std::vector<uint8_t> solo;       ///< per tri: overlaps a coplanar tri of its own leaf (its
                                    ///< pieces form patches of their own, select.cpp)
   size_t candidate_pairs = 0;      ///< tri pairs with meeting boxes (different leaves, and
@@ -101,6 +106,14 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
 /// The exact volume enclosed by the kept triangles `tris` (outward) on the exact points, as
 /// Σ det(a, b, c)/6 in rationals, rounded to the nearest double once.
 double exact_volume(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris);
+
+/// The crossing of line a–b with the plane of (p, q, r) (input doubles; the line crosses the
+/// plane), each coordinate rounded to the nearest double (ties to even) from the doubles, in
+/// exact CGAL::Mpzf arithmetic; `box` is an interval box of the exact point (its lazy
+/// approximation). False when it cannot decide cheaply (box not finite or wide): then the
+/// caller rounds the exact rational. Used by assemble().
+bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r,
+                    const K::Approximate_kernel::Point_3& box, Vec3& out);
 
 /// Step 6: pairs faces around edges with more than two faces by exact angular order, splits
 /// vertices per fan, rounds the exact points to the nearest doubles. Face f of the mesh is

@@ -46,10 +46,12 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri
 
 /// Step 2: the exact hit of every candidate pair (in pair order). `points` holds the input
 /// vertices (ids as in tris) and gets the edge–plane crossings the hits refer to appended, each
-/// constructed once. Deterministic for any thread count.
+/// constructed once; `crossings` gets {a, b, tri} for each of them, in the same order.
+/// Deterministic for any thread count.
 std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector<Vec3>& pos,
                                  const std::vector<std::pair<uint32_t, uint32_t>>& pairs,
-                                 std::vector<Point>& points, size_t grain);
+                                 std::vector<Point>& points,
+                                 std::vector<std::array<uint32_t, 3>>& crossings, size_t grain);
 
 /// Step 2 for self-intersecting leaves (self_pairs.cpp): tri pairs (t < u) of one leaf l with
 /// self[l] set whose closed double boxes meet, less those sharing an edge whose planes differ
@@ -74,14 +76,17 @@ struct Local {
 /// One hit as seen from its tri: the ends' ids and positions on this tri.
 struct TriHit {
   const Hit* hit;
-  bool first;  ///< this tri is the pair's t
+  bool first;      ///< this tri is the pair's t
+  uint32_t other;  ///< the pair's other tri
   uint32_t id(int e) const { return hit->ends[e].id; }
   uint8_t on(int e) const { return first ? hit->ends[e].on_t : hit->ends[e].on_u; }
 };
 
 /// Step 3: the pieces of one intersected tri (its hits in pair order) and the cut edges among
-/// them, in local ids.
-Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const std::vector<Point>& pts,
+/// them, in local ids. `tris` and `self` (as for build_arrangement) tell which leaf each hit's
+/// other tri belongs to and whether that leaf intersects itself.
+Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const std::vector<Tri>& tris,
+                const std::vector<uint8_t>& self, const std::vector<Point>& pts,
                 const std::vector<Vec3>& pos);
 
 }  // namespace cover::boolean_detail
