@@ -201,7 +201,7 @@ Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& se
     for (size_t x = begin; x < end; ++x) {
       const uint32_t t = touched[x];
       h.assign(by_tri.begin() + start[t], by_tri.begin() + start[t + 1]);
-      locals[x] = split_tri(tris[t], h, tris, self, arr.points, pos);
+      locals[x] = split_tri(tris[t], h, arr, self);
     }
   });
   lap(seconds.split);

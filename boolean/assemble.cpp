@@ -97,22 +97,8 @@ double exact_volume(const Arrangement& arr, const std::vector<std::array<uint32_
   return nearest(K::FT(total / 6));
 }
 
-/// The crossing of line a–b with the plane of (p, q, r) — input doubles, the line crossing the
-/// plane — rounded to the nearest doubles (ties to even) without rationals. With
-/// d_x = ((q − p) × (r − p)) · (x − p), the point is X = (b·d_a − a·d_b) / (d_a − d_b): numerators
-/// and denominator are sums of products of doubles, exact in CGAL::Mpzf (a binary float with an
-/// unbounded mantissa, no division, no allocation for short numbers). The nearest double of
-/// each coordinate lies among the doubles of the lazy point's interval `box` (which contains the
-/// exact value); starting from the quotient of the Mpzf approximations of N and D, it is found
-/// by exact comparisons with the midpoints between neighbours, sign(2·N − (x₀ + x₁)·D). Returns
-/// false (the caller takes the exact rational) when the box is not finite or the estimate is
-/// more than a few doubles off.
-///
-/// Why not the lazy exact value: that evaluates the point's construction DAG in GMP rationals,
-/// with a gcd per operation; rounding was then 10–20 % of an evaluation, the largest share of
-/// assembly (bench/evaluate_vs_manifold).
-bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r,
-                    const K::Approximate_kernel::Point_3& box, Vec3& out) {
+ExactCrossing exact_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q,
+                             const Vec3& r) {
   using F = CGAL::Mpzf;
   auto diff = [](const Vec3& x, const Vec3& y) {
     return std::array<F, 3>{F(x.x) - F(y.x), F(x.y) - F(y.y), F(x.z) - F(y.z)};
@@ -122,7 +108,20 @@ bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, 
                            u[0] * v[1] - u[1] * v[0]};
   const F da = n[0] * ap[0] + n[1] * ap[1] + n[2] * ap[2];
   const F db = n[0] * bp[0] + n[1] * bp[1] + n[2] * bp[2];
-  const F d = da - db;
+  return {{F(b.x) * da - F(a.x) * db, F(b.y) * da - F(a.y) * db, F(b.z) * da - F(a.z) * db},
+          da - db};
+}
+
+/// Each coordinate's nearest double lies among the doubles of the lazy point's interval `box`
+/// (which contains the exact value); starting from the quotient of the Mpzf approximations of
+/// x and w (a few ulps off), it is found by exact comparisons with the midpoints between
+/// neighbours, sign(2·x − (x₀ + x₁)·w). Rounding through the lazy exact value was 10–20 % of
+/// an evaluation, the largest share of assembly (bench/evaluate_vs_manifold).
+bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r,
+                    const K::Approximate_kernel::Point_3& box, Vec3& out) {
+  using F = CGAL::Mpzf;
+  const ExactCrossing e = exact_crossing(a, b, p, q, r);
+  const F& d = e.w;
   const int sd = d.sign();
   if (sd == 0) return false;  // not a crossing (precondition): leave it to the exact path
   double xyz[3];
@@ -133,7 +132,7 @@ bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, 
       xyz[c] = lo;
       continue;
     }
-    const F twice_n = (F(b[c]) * da - F(a[c]) * db) * F(2.0);
+    const F twice_n = e.x[c] * F(2.0);
     // sign(X − (x0 + x1)/2) for neighbours x0 < x1
     auto above_mid = [&](double x0, double x1) { return (twice_n - (F(x0) + F(x1)) * d).sign() * sd; };
     auto even = [](double x0, double x1) {

@@ -5,6 +5,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 
@@ -81,26 +82,42 @@ bool split_simple(const Tri& tri, const std::vector<TriHit>& hits, Local& local)
   return true;
 }
 
-/// Sign of the k component of (b − a) × (c − a) for exact points: orient2d (solid/predicates.h)
-/// in the projection that drops axis k. Interval arithmetic on the lazy approximations first;
-/// exact rationals only when the interval contains 0.
-int orient_k(const Point& a, const Point& b, const Point& c, int k) {
+/// Sign of the k component of (b − a) × (c − a) for exact points — orient2d (solid/predicates.h)
+/// in the projection that drops axis k — from interval arithmetic on the lazy approximations;
+/// kUncertain when the interval contains 0.
+constexpr int kUncertain = 2;
+int orient_k_interval(const Point& a, const Point& b, const Point& c, int k) {
   const int i = (k + 1) % 3, j = (k + 2) % 3;
-  {
-    CGAL::Protect_FPU_rounding<true> guard;
-    const auto& pa = CGAL::approx(a);
-    const auto& pb = CGAL::approx(b);
-    const auto& pc = CGAL::approx(c);
-    const auto d = (pb[i] - pa[i]) * (pc[j] - pa[j]) - (pb[j] - pa[j]) * (pc[i] - pa[i]);
-    if (d.inf() > 0) return 1;
-    if (d.sup() < 0) return -1;
-  }
+  CGAL::Protect_FPU_rounding<true> guard;
+  const auto& pa = CGAL::approx(a);
+  const auto& pb = CGAL::approx(b);
+  const auto& pc = CGAL::approx(c);
+  const auto d = (pb[i] - pa[i]) * (pc[j] - pa[j]) - (pb[j] - pa[j]) * (pc[i] - pa[i]);
+  if (d.inf() > 0) return 1;
+  if (d.sup() < 0) return -1;
+  return kUncertain;
+}
+
+/// The same sign in exact rationals (the lazy points' exact values).
+int orient_k_exact(const Point& a, const Point& b, const Point& c, int k) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
   const auto& ea = CGAL::exact(a);
   const auto& eb = CGAL::exact(b);
   const auto& ec = CGAL::exact(c);
   using ET = std::decay_t<decltype(ea[0])>;
   const ET d = (eb[i] - ea[i]) * (ec[j] - ea[j]) - (eb[j] - ea[j]) * (ec[i] - ea[i]);
   return CGAL::sign(d);
+}
+
+/// Projected homogeneous coordinates (X, Y, W) of a point, point = (X/W, Y/W) in the projection.
+using Homogeneous = std::array<CGAL::Mpzf, 3>;
+
+/// The same sign for points in exact homogeneous Mpzf coordinates:
+/// sign(det[[Xa, Ya, Wa], [Xb, Yb, Wb], [Xc, Yc, Wc]]) · sign(Wa·Wb·Wc).
+int orient_homogeneous(const Homogeneous& a, const Homogeneous& b, const Homogeneous& c) {
+  const CGAL::Mpzf d = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+                       a[2] * (b[0] * c[1] - b[1] * c[0]);
+  return d.sign() * a[2].sign() * b[2].sign() * c[2].sign();
 }
 
 /// The next common case without a triangulation: the tri is crossed by ONE polyline — its
@@ -128,9 +145,11 @@ int orient_k(const Point& a, const Point& b, const Point& c, int k) {
 /// crossing keyed by the edge, or the corner itself); a segment cannot pass through a corner of
 /// its own tri except at an end. So the segments meet only at shared ids, and a path by ids with
 /// every degree ≤ 2 is a simple curve, inside the open tri except at its ends.
-bool split_polyline(const Tri& tri, const std::vector<TriHit>& hits, const std::vector<Tri>& tris,
-                    const std::vector<uint8_t>& self, const std::vector<Point>& pts,
-                    const std::vector<Vec3>& pos, Local& local) {
+bool split_polyline(const Tri& tri, const std::vector<TriHit>& hits, const Arrangement& arr,
+                    const std::vector<uint8_t>& self, Local& local) {
+  const std::vector<Tri>& tris = arr.tris;
+  const std::vector<Point>& pts = arr.points;
+  const std::vector<Vec3>& pos = arr.originals;
   constexpr size_t kMaxSegments = 16;  // ear clipping is O(n³) orientations: small polygons only
   struct Seg {
     uint32_t a, b;
@@ -248,9 +267,32 @@ bool split_polyline(const Tri& tri, const std::vector<TriHit>& hits, const std::
       lines[at[m + 1]] |= uint64_t{1} << run;
     }
   }
+  // Exact fallback: input vertices and edge × plane crossings in homogeneous Mpzf coordinates
+  // (exact_crossing), computed once per point; other points through their lazy exact values.
+  std::vector<std::optional<Homogeneous>> exact(local.ids.size());
+  auto homogeneous = [&](uint32_t q) -> const std::optional<Homogeneous>& {
+    std::optional<Homogeneous>& h = exact[q];
+    if (h) return h;
+    const uint32_t id = local.ids[q];
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    if (id < pos.size()) {
+      h = Homogeneous{CGAL::Mpzf(pos[id][i]), CGAL::Mpzf(pos[id][j]), CGAL::Mpzf(1.0)};
+    } else if (id >= arr.first_crossing && id - arr.first_crossing < arr.crossings.size()) {
+      const auto& [ea, eb, et] = arr.crossings[id - arr.first_crossing];
+      const auto& w = tris[et].v;
+      ExactCrossing e = exact_crossing(pos[ea], pos[eb], pos[w[0]], pos[w[1]], pos[w[2]]);
+      h = Homogeneous{std::move(e.x[i]), std::move(e.x[j]), std::move(e.w)};
+    }
+    return h;
+  };
   auto orient = [&](uint32_t a, uint32_t b, uint32_t c) {
     if (lines[a] & lines[b] & lines[c]) return 0;
-    return orient_k(pts[local.ids[a]], pts[local.ids[b]], pts[local.ids[c]], k);
+    const Point &pa = pts[local.ids[a]], &pb = pts[local.ids[b]], &pc = pts[local.ids[c]];
+    const int s = orient_k_interval(pa, pb, pc, k);
+    if (s != kUncertain) return s;
+    const auto &ha = homogeneous(a), &hb = homogeneous(b), &hc = homogeneous(c);
+    if (ha && hb && hc) return orient_homogeneous(*ha, *hb, *hc);
+    return orient_k_exact(pa, pb, pc, k);
   };
 
   // ---- the two polygons: the boundary arc from one end forward (the tri's order) to the
@@ -369,13 +411,14 @@ bool split_polyline(const Tri& tri, const std::vector<TriHit>& hits, const std::
 
 }  // namespace
 
-Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const std::vector<Tri>& tris,
-                const std::vector<uint8_t>& self, const std::vector<Point>& pts,
-                const std::vector<Vec3>& pos) {
+Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const Arrangement& arr,
+                const std::vector<uint8_t>& self) {
+  const std::vector<Point>& pts = arr.points;
+  const std::vector<Vec3>& pos = arr.originals;
   Local local;
   if (split_simple(tri, hits, local)) return local;
   local = Local{};
-  if (split_polyline(tri, hits, tris, self, pts, pos, local)) return local;
+  if (split_polyline(tri, hits, arr, self, local)) return local;
   local = Local{};
   const Point& a = pts[tri.v[0]];
   const Point& b = pts[tri.v[1]];

@@ -39,6 +39,7 @@
 //     values before that.
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Mpzf.h>
 
 #include <algorithm>
 #include <array>
@@ -106,6 +107,19 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
 /// The exact volume enclosed by the kept triangles `tris` (outward) on the exact points, as
 /// Σ det(a, b, c)/6 in rationals, rounded to the nearest double once.
 double exact_volume(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris);
+
+/// The crossing of line a–b with the plane of (p, q, r) (input doubles) in exact homogeneous
+/// coordinates X = x / w: with d_v = ((q − p) × (r − p)) · (v − p), x = b·d_a − a·d_b and
+/// w = d_a − d_b (0 when the line does not cross the plane). Sums of products of doubles, exact
+/// in CGAL::Mpzf (a binary float with an unbounded mantissa: no division, no gcd, no
+/// allocation for short numbers), unlike the lazy point's exact value (GMP rationals over its
+/// construction DAG, a gcd per operation).
+struct ExactCrossing {
+  std::array<CGAL::Mpzf, 3> x;
+  CGAL::Mpzf w;
+};
+ExactCrossing exact_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q,
+                             const Vec3& r);
 
 /// The crossing of line a–b with the plane of (p, q, r) (input doubles; the line crosses the
 /// plane), each coordinate rounded to the nearest double (ties to even) from the doubles, in

@@ -83,10 +83,9 @@ struct TriHit {
 };
 
 /// Step 3: the pieces of one intersected tri (its hits in pair order) and the cut edges among
-/// them, in local ids. `tris` and `self` (as for build_arrangement) tell which leaf each hit's
-/// other tri belongs to and whether that leaf intersects itself.
-Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const std::vector<Tri>& tris,
-                const std::vector<uint8_t>& self, const std::vector<Point>& pts,
-                const std::vector<Vec3>& pos);
+/// them, in local ids. `arr` holds the points, tris and crossings built so far; `self` (as for
+/// build_arrangement) tells whether a hit's other leaf intersects itself.
+Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const Arrangement& arr,
+                const std::vector<uint8_t>& self);
 
 }  // namespace cover::boolean_detail
