@@ -36,13 +36,15 @@ std::vector<uint32_t> dedup_vertices(const Solid& solid, std::vector<Vec3>& orig
 }
 
 /// The tris of every leaf face (triangulate_face on the deduplicated points, in the leaf's
-/// orientation). Throws InputError when a face's boundary crosses itself (only reachable without
-/// EvaluateOptions::check_leaves).
+/// orientation), grouped by leaf in leaf order. `winding` gets one flag per leaf: set when one of
+/// its faces winds more than once (a star: self-intersecting by itself). Throws InputError,
+/// naming the leaf and the face, when a face's boundary crosses itself (no region to tile).
 std::vector<Tri> leaf_tris(const Solid& solid, const std::vector<uint32_t>& id,
-                           const std::vector<Vec3>& pos, size_t grain) {
+                           const std::vector<Vec3>& pos, size_t grain,
+                           std::vector<uint8_t>& winding) {
   const size_t faces = solid.face_count();
   std::vector<std::vector<std::array<uint32_t, 3>>> per_face(faces);
-  std::vector<uint8_t> crossing(faces, 0);
+  std::vector<FaceTiling> tiling(faces, FaceTiling::kSimple);
   parallel_for(faces, grain * 16, [&](size_t begin, size_t end) {
     std::vector<uint32_t> loop;
     for (size_t f = begin; f < end; ++f) {
@@ -50,17 +52,22 @@ std::vector<Tri> leaf_tris(const Solid& solid, const std::vector<uint32_t>& id,
       loop.assign(face.begin(), face.end());
       if (solid.face_sign[f] < 0) std::reverse(loop.begin(), loop.end());
       for (uint32_t& v : loop) v = id[v];
-      crossing[f] = triangulate_face(pos, loop, per_face[f]) == FaceTiling::kCrossing;
+      tiling[f] = triangulate_face(pos, loop, per_face[f]);
     }
   });
-  if (std::find(crossing.begin(), crossing.end(), 1) != crossing.end())
-    throw InputError("evaluate: a leaf face's boundary crosses itself (a self-intersecting leaf)");
+  winding.assign(solid.leaves.size(), 0);
   std::vector<Tri> tris;
-  // Faces are contiguous per leaf; keep leaf order so tris are grouped by leaf.
   for (uint32_t l = 0; l < solid.leaves.size(); ++l) {
     const Leaf& leaf = solid.leaves[l];
-    for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f)
-      for (const auto& t : per_face[f]) tris.push_back({t, solid.face_leaf[f]});
+    for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f) {
+      if (tiling[f] == FaceTiling::kCrossing)
+        throw InputError((leaf.origin.empty() ? leaf.name : leaf.origin + " (" + leaf.name + ")") +
+                         ": face " + std::to_string(f - leaf.first_face) +
+                         " has a boundary that crosses itself; evaluate needs faces that bound "
+                         "a region");
+      if (tiling[f] == FaceTiling::kWinding) winding[l] = 1;
+      for (const auto& t : per_face[f]) tris.push_back({t, l, static_cast<uint32_t>(f)});
+    }
   }
   return tris;
 }
@@ -127,8 +134,8 @@ std::vector<uint32_t> merge_equal(const std::vector<Point>& pts, const std::vect
 
 }  // namespace
 
-Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& self, size_t grain,
-                              EvaluatePhases& seconds) {
+Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grain,
+                              EvaluatePhases& seconds, std::vector<uint8_t>& self) {
   using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
   auto lap = [&t0](double& into) {
@@ -140,12 +147,22 @@ Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& se
   const std::vector<uint32_t> id = dedup_vertices(solid, arr.originals);
   arr.points.reserve(arr.originals.size());
   for (const Vec3& p : arr.originals) arr.points.emplace_back(p.x, p.y, p.z);
-  arr.tris = leaf_tris(solid, id, arr.originals, grain);
+  std::vector<uint8_t> winding;
+  arr.tris = leaf_tris(solid, id, arr.originals, grain, winding);
   const std::vector<Tri>& tris = arr.tris;
   const std::vector<Vec3>& pos = arr.originals;
   lap(seconds.triangulate);
 
-  auto pairs = candidate_pairs(tris, pos);
+  // Candidate pairs; with check_leaves the leaf self-intersection test rides the same grid pass.
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  if (check_leaves) {
+    self = winding;
+    pairs = candidate_pairs_and_self(tris, pos, self);
+    lap(seconds.check);
+  } else {
+    self.clear();
+    pairs = candidate_pairs(tris, pos);
+  }
   arr.candidate_pairs = pairs.size();
   // ---- self-intersecting leaves (self_pairs.cpp): their own pairs join, in pair order.
   const bool any_self = std::find(self.begin(), self.end(), 1) != self.end();

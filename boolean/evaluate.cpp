@@ -2,20 +2,15 @@
 // arrangement.cpp, select.cpp and assemble.cpp).
 #include "boolean/evaluate.h"
 
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <string>
 #include <vector>
 
 #include "boolean/detail/arrangement.h"
 #include "covering/bounds.h"
 #include "solid/errors.h"
-#include "solid/parallel.h"
 #include "solid/rounding_repair.h"
-#include "solid/triangulate.h"
 #include "solid/union_find.h"
-#include "solid/validate.h"
 
 namespace cover {
 
@@ -28,39 +23,16 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   if (!is_bounded(solid))
     throw NotComputable("evaluate: the result is unbounded (a complement at the root); a B-rep "
                         "needs a bounded solid");
-  auto t = Clock::now();
-  // Self-intersecting leaves (exact CGAL test, one leaf per task) get their own tri pairs
-  // intersected too; the others need only pairs of different leaves.
+  // Leaf self-intersection test (with check_leaves) inside build_arrangement: it shares the grid
+  // pass of the candidate pairs. Self-intersecting leaves get their own tri pairs intersected
+  // too; the others need only pairs of different leaves.
   std::vector<uint8_t> self;
-  if (options.check_leaves) {
-    self.assign(solid.leaves.size(), 0);
-    parallel_for(solid.leaves.size(), 1, [&](size_t begin, size_t end) {
-      for (size_t l = begin; l < end; ++l)
-        self[l] = self_intersects(leaf_mesh(solid, static_cast<uint32_t>(l)));
-    });
-    // A face whose boundary crosses itself bounds no region to tile: refused, naming the leaf.
-    std::vector<std::array<uint32_t, 3>> tiles;
-    for (uint32_t l = 0; l < solid.leaves.size(); ++l) {
-      if (!self[l]) continue;
-      const Leaf& leaf = solid.leaves[l];
-      for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f) {
-        tiles.clear();
-        if (triangulate_face({solid.vertices.data(), solid.vertices.size()}, solid.face(f), tiles) ==
-            FaceTiling::kCrossing)
-          throw InputError((leaf.origin.empty() ? leaf.name : leaf.origin + " (" + leaf.name + ")") +
-                           ": face " + std::to_string(f - leaf.first_face) +
-                           " has a boundary that crosses itself; evaluate needs faces that bound "
-                           "a region");
-      }
-    }
-  }
-  r.seconds.check = since(t);
   const size_t grain = options.grain == 0 ? 1 : options.grain;
   const boolean_detail::Arrangement arr =
-      boolean_detail::build_arrangement(solid, self, grain, r.seconds);
+      boolean_detail::build_arrangement(solid, options.check_leaves, grain, r.seconds, self);
   r.candidate_pairs = arr.candidate_pairs;
   r.intersecting_pairs = arr.intersecting_pairs;
-  t = Clock::now();
+  auto t = Clock::now();
   const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches);
   r.seconds.select = since(t);
   t = Clock::now();

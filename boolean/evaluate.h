@@ -31,9 +31,9 @@
 namespace cover {
 
 struct EvaluateOptions {
-  /// Find self-intersecting leaves (exact CGAL test per leaf) and resolve them in the
-  /// arrangement; false trusts that no leaf intersects itself (a leaf that does then gives an
-  /// undefined, possibly invalid, result).
+  /// Find self-intersecting leaves (exact CGAL tests of each leaf's triangle pairs, in the grid
+  /// pass of the candidate pairs) and resolve them in the arrangement; false trusts that no leaf
+  /// intersects itself (a leaf that does then gives an undefined, possibly invalid, result).
   bool check_leaves = true;
   size_t grain = 64;         ///< items per parallel chunk (results never depend on it)
   /// Also compute EvaluateResult::exact_volume (rationals over every kept triangle: slower).
@@ -42,9 +42,11 @@ struct EvaluateOptions {
 
 /// Wall-clock seconds per step of evaluate() (the numbers of the route above), for profiling.
 struct EvaluatePhases {
-  double check = 0;        ///< leaf self-intersection test (0 without check_leaves)
+  double check = 0;        ///< leaf self-intersection test with the candidate pairs of step 2
+                           ///< (one grid pass; 0 without check_leaves)
   double triangulate = 0;  ///< step 1
-  double pairs = 0;        ///< step 2: candidate pairs (box intersection)
+  double pairs = 0;        ///< step 2: candidate pairs (box intersection) without check_leaves;
+                           ///< with it, only the same-leaf pairs of self-intersecting leaves
   double intersect = 0;    ///< step 2: exact pairwise intersections
   double split = 0;        ///< step 3: per-tri re-triangulation
   double identify = 0;     ///< step 3: global point identity, pieces and cut edges

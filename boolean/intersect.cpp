@@ -4,12 +4,14 @@
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <atomic>
 #include <compare>
 
 #include "boolean/detail/arrangement_steps.h"
 #include "solid/box_pairs.h"
 #include "solid/parallel.h"
 #include "solid/predicates.h"
+#include "solid/validate.h"
 
 namespace cover::boolean_detail {
 namespace {
@@ -179,6 +181,29 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri
     leaf[i] = tris[i].leaf;
   }
   return box_pairs_between(boxes, leaf);
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::vector<Tri>& tris,
+                                                                    const std::vector<Vec3>& pos,
+                                                                    std::vector<uint8_t>& self) {
+  std::vector<Bbox> boxes(tris.size());
+  std::vector<uint32_t> leaf(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    for (uint32_t v : tris[i].v) boxes[i].add(pos[v]);
+    leaf[i] = tris[i].leaf;
+  }
+  // One flag per leaf, set from several threads; a leaf found self-intersecting skips the rest
+  // of its pairs.
+  std::vector<std::atomic<uint8_t>> found(self.size());
+  for (size_t l = 0; l < self.size(); ++l) found[l] = self[l];
+  auto pairs = box_pairs_between(boxes, leaf, [&](uint32_t t, uint32_t u) {
+    const Tri& a = tris[t];
+    const Tri& b = tris[u];
+    if (a.face == b.face || found[a.leaf].load(std::memory_order_relaxed)) return;
+    if (tiles_meet(a.v, b.v, pos)) found[a.leaf].store(1, std::memory_order_relaxed);
+  });
+  for (size_t l = 0; l < self.size(); ++l) self[l] = found[l].load();
+  return pairs;
 }
 
 std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector<Vec3>& pos,

@@ -181,10 +181,18 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
 
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,
                                                              std::span<const uint32_t> color) {
+  return box_pairs_between(boxes, color, nullptr);
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
+    std::span<const Bbox> boxes, std::span<const uint32_t> color,
+    const std::function<void(uint32_t, uint32_t)>& same) {
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found;
-  scan(boxes, color, [&](size_t n) { found.resize(n); },
+  // With `same`, the scan sees every pair (no colour filter) and sorts them here.
+  scan(boxes, same ? std::span<const uint32_t>{} : color, [&](size_t n) { found.resize(n); },
        [&](size_t chunk, uint32_t a, uint32_t b) {
-         found[chunk].emplace_back(a, b);
+         if (color[a] != color[b]) found[chunk].emplace_back(a, b);
+         else same(a, b);
          return false;
        });
   std::vector<std::pair<uint32_t, uint32_t>> pairs;

@@ -30,4 +30,12 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,
                                                              std::span<const uint32_t> color);
 
+/// box_pairs_between(), and in the same grid pass every meeting pair (a, b), a < b, of ONE
+/// colour passed to same(a, b) — possibly from several threads at once, in no particular order
+/// (e.g. each colour's self-intersection test next to the pairs between colours: one pass
+/// instead of one per colour plus one between them). Cells of one colour are not skipped.
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
+    std::span<const Bbox> boxes, std::span<const uint32_t> color,
+    const std::function<void(uint32_t, uint32_t)>& same);
+
 }  // namespace cover

@@ -80,7 +80,9 @@ SharedCorners shared_corners(const Triangle& a, const Triangle& b) {
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
 /// Before CGAL's tests, a filter of at most six exact orient3d: when the unshared corners of one
 /// triangle lie strictly on one side of the other's plane, they meet at most in the shared vertex.
-bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Point3>& p,
+/// `p[i]` is vertex i as a CGAL point (a vector of them, or PointsOf below).
+template <class Points>
+bool triangles_meet(const Triangle& a, const Triangle& b, const Points& p,
                     std::span<const Vec3> v) {
   const auto [shared, ia, ib, ra, rb] = shared_corners(a, b);
   if (shared == 3) return true;
@@ -102,7 +104,18 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const std::vector<Poin
   return CGAL::do_intersect(ta, tb);
 }
 
+/// Vertices as CGAL points on demand (an Epick point is its three doubles).
+struct PointsOf {
+  std::span<const Vec3> v;
+  Point3 operator[](uint32_t i) const { return to_point(v[i]); }
+};
+
 }  // namespace
+
+bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
+                std::span<const Vec3> v) {
+  return triangles_meet(Triangle{a, 0}, Triangle{b, 1}, PointsOf{v}, v);
+}
 
 bool self_intersects(const PolygonMesh& mesh) {
   std::vector<Point3> points;

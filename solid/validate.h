@@ -19,6 +19,7 @@
 //   degenerate face    all its vertices on one line (exact), including faces with fewer than three
 //                      distinct vertices
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -65,6 +66,11 @@ MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options
 /// the shared vertices (CGAL::Polygon_mesh_processing::self_intersections' rules); distinct indices
 /// at equal coordinates are a contact, hence an intersection.
 bool self_intersects(const PolygonMesh& mesh);
+
+/// Whether two triangles (vertex indices into v, of different faces, neither collinear) meet
+/// beyond their shared vertices, by self_intersects()' rules (exact).
+bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
+                std::span<const Vec3> v);
 
 /// The pairs (f, g), f ≤ g, of faces that meet by self_intersects()' rules, sorted; (f, f) for a
 /// face whose boundary crosses itself or winds more than once. With `suspect` (one flag per

@@ -64,6 +64,7 @@ inline uint64_t edge_key(uint32_t a, uint32_t b) {
 struct Tri {
   std::array<uint32_t, 3> v;  ///< point ids (originals), leaf orientation
   uint32_t leaf = 0;
+  uint32_t face = 0;          ///< the solid's face it tiles
 };
 
 struct Piece {
@@ -90,12 +91,16 @@ struct Arrangement {
 };
 
 /// Steps 1–3 of evaluate(): triangulation, exact pairwise intersections, per-tri constrained
-/// triangulations, global point identity. Deterministic for any thread count. Leaves l with
-/// self[l] set (self-intersecting) also have their own tri pairs intersected (self_pairs.cpp);
-/// `self` may be empty (no such leaf). `seconds` gets the triangulate, pairs, intersect, split
-/// and identify times.
-Arrangement build_arrangement(const Solid& solid, const std::vector<uint8_t>& self, size_t grain,
-                              EvaluatePhases& seconds);
+/// triangulations, global point identity. Deterministic for any thread count. With
+/// `check_leaves`, `self` gets one flag per leaf: set when the leaf intersects itself (a tile
+/// pair of different faces meeting by self_intersects()' rules, solid/validate.h, tested in the
+/// same grid pass as the candidate pairs, or a face that does not tile simply); such leaves also
+/// have their own tri pairs intersected (self_pairs.cpp). Without it `self` is left empty (no
+/// leaf intersects itself, by the caller's word). Throws InputError naming the leaf and face
+/// when a face's boundary crosses itself. `seconds` gets the check, triangulate, pairs,
+/// intersect, split and identify times.
+Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grain,
+                              EvaluatePhases& seconds, std::vector<uint8_t>& self);
 
 /// Steps 4–5: patches, exact classification, the regularized keep rule and de-duplication of
 /// coincident pieces. Returns the kept triangles (point ids), oriented outward; `leaves` gets

@@ -44,6 +44,14 @@ struct Hit {
 std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri>& tris,
                                                            const std::vector<Vec3>& pos);
 
+/// candidate_pairs(), and in the same grid pass the leaf self-intersection test: self[l] (one
+/// flag per leaf, already set for leaves known to intersect themselves) is set when two tris of
+/// leaf l from different faces meet by self_intersects()' rules (solid/validate.h: tiles_meet,
+/// exact). Shared vertices are decided by point id, i.e. by exact value.
+std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::vector<Tri>& tris,
+                                                                    const std::vector<Vec3>& pos,
+                                                                    std::vector<uint8_t>& self);
+
 /// Step 2: the exact hit of every candidate pair (in pair order). `points` holds the input
 /// vertices (ids as in tris) and gets the edge–plane crossings the hits refer to appended, each
 /// constructed once; `crossings` gets {a, b, tri} for each of them, in the same order.
