@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <unordered_map>
+#include <cstring>
 
 #include "boolean/detail/arrangement_steps.h"
 #include "solid/errors.h"
@@ -17,20 +17,38 @@ namespace {
 
 // ---- step 1: leaf faces → triangles ---------------------------------------------------------
 
-/// Point ids of the input vertices, deduplicated by exact value (±0 equal).
+/// Point ids of the input vertices, deduplicated by exact value (±0 equal), in order of first
+/// occurrence. A flat open-addressing table (linear probing, capacity ≥ 2n) rather than
+/// std::unordered_map: the map's node allocations and byte-wise double hashing made this serial
+/// loop 0.06 s of the preview scene's 300k vertices.
 std::vector<uint32_t> dedup_vertices(const Solid& solid, std::vector<Vec3>& originals) {
-  struct Hash {
-    size_t operator()(const Vec3& p) const {
-      auto h = [](double d) { return std::hash<double>{}(d == 0 ? 0.0 : d); };
-      return h(p.x) * 0x9e3779b97f4a7c15ull ^ (h(p.y) + 0x632be59bd9b4e019ull) * 31 ^ h(p.z);
-    }
+  const size_t n = solid.vertices.size();
+  size_t cap = 16;
+  while (cap < 2 * n) cap *= 2;
+  auto bits = [](double d) {
+    uint64_t b;
+    d = d == 0 ? 0.0 : d;  // −0 hashes as +0 (they compare equal)
+    std::memcpy(&b, &d, sizeof b);
+    return b;
   };
-  std::unordered_map<Vec3, uint32_t, Hash> index;
-  std::vector<uint32_t> id(solid.vertices.size());
-  for (size_t i = 0; i < solid.vertices.size(); ++i) {
-    auto [it, fresh] = index.try_emplace(solid.vertices[i], static_cast<uint32_t>(originals.size()));
-    if (fresh) originals.push_back(solid.vertices[i]);
-    id[i] = it->second;
+  auto hash = [&](const Vec3& p) {
+    uint64_t h = bits(p.x) * 0x9e3779b97f4a7c15ull;
+    h ^= bits(p.y) * 0xc2b2ae3d27d4eb4full + (h >> 29);
+    h ^= bits(p.z) * 0x165667b19e3779f9ull + (h >> 31);
+    return h ^ (h >> 32);
+  };
+  std::vector<uint32_t> slot(cap, kNone);
+  std::vector<uint32_t> id(n);
+  originals.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& v = solid.vertices[i];
+    size_t s = hash(v) & (cap - 1);
+    while (slot[s] != kNone && !(originals[slot[s]] == v)) s = (s + 1) & (cap - 1);
+    if (slot[s] == kNone) {
+      slot[s] = static_cast<uint32_t>(originals.size());
+      originals.push_back(v);
+    }
+    id[i] = slot[s];
   }
   return id;
 }
@@ -57,6 +75,9 @@ std::vector<Tri> leaf_tris(const Solid& solid, const std::vector<uint32_t>& id,
   });
   winding.assign(solid.leaves.size(), 0);
   std::vector<Tri> tris;
+  size_t total = 0;
+  for (const auto& t : per_face) total += t.size();
+  tris.reserve(total);
   for (uint32_t l = 0; l < solid.leaves.size(); ++l) {
     const Leaf& leaf = solid.leaves[l];
     for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f) {
