@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <atomic>
 #include <cstdint>
 #include <mutex>
@@ -77,6 +78,72 @@ SharedCorners shared_corners(const Triangle& a, const Triangle& b) {
   return c;
 }
 
+/// An axis the plane of triangle t is not parallel to: the dominant axis of its normal in
+/// doubles, confirmed by an exact orient2d (another axis if that is 0: t is never collinear).
+int projection_axis(const Triangle& t, std::span<const Vec3> v) {
+  const Vec3 n = cross(v[t.v[1]] - v[t.v[0]], v[t.v[2]] - v[t.v[0]]);
+  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+  const int first = m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+  for (int i = 0; i < 3; ++i) {
+    const int k = (first + i) % 3;
+    if (orient2d(v[t.v[0]], v[t.v[1]], v[t.v[2]], k) != 0) return k;
+  }
+  return first;  // unreachable for a non-collinear triangle
+}
+
+/// Whether every corner of b lies in the plane of a (exact orient3d).
+bool coplanar(const Triangle& a, const Triangle& b, std::span<const Vec3> v) {
+  for (uint32_t c : b.v)
+    if (c != a.v[0] && c != a.v[1] && c != a.v[2] &&
+        orient3d(v[a.v[0]], v[a.v[1]], v[a.v[2]], v[c]) != 0)
+      return false;
+  return true;
+}
+
+/// triangles_meet for two COPLANAR triangles, decided by exact orient2d on the doubles in the
+/// projection that drops axis k — any axis the plane is not parallel to (the projection is then
+/// an affine bijection of the plane, which keeps incidences, orientations up to one sign, and
+/// order along lines): the same rules, much cheaper than CGAL's 3D coplanar tests, whose filters
+/// fail on exactly coplanar input and fall back to exact arithmetic at every step. Tiles are
+/// never collinear.
+bool planar_triangles_meet(const Triangle& a, const Triangle& b, std::span<const Vec3> v, int k) {
+  const int u = (k + 1) % 3, w = (k + 2) % 3;
+  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d(v[x], v[y], v[z], k); };
+  auto between = [&](uint32_t p, uint32_t q, uint32_t c) {  // c on line pq: within the segment?
+    return std::min(v[p][u], v[q][u]) <= v[c][u] && v[c][u] <= std::max(v[p][u], v[q][u]) &&
+           std::min(v[p][w], v[q][w]) <= v[c][w] && v[c][w] <= std::max(v[p][w], v[q][w]);
+  };
+  auto segments_meet = [&](uint32_t p, uint32_t q, uint32_t c, uint32_t d) {  // closed
+    const int d1 = o(p, q, c), d2 = o(p, q, d), d3 = o(c, d, p), d4 = o(c, d, q);
+    if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+    return (d1 == 0 && between(p, q, c)) || (d2 == 0 && between(p, q, d)) ||
+           (d3 == 0 && between(c, d, p)) || (d4 == 0 && between(c, d, q));
+  };
+  auto inside = [&](uint32_t x, const Triangle& t) {  // closed
+    const int s = o(t.v[0], t.v[1], t.v[2]);
+    return s * o(t.v[0], t.v[1], x) >= 0 && s * o(t.v[1], t.v[2], x) >= 0 &&
+           s * o(t.v[2], t.v[0], x) >= 0;
+  };
+  auto segment_meets_triangle = [&](uint32_t p, uint32_t q, const Triangle& t) {
+    if (inside(p, t) || inside(q, t)) return true;
+    for (int i = 0; i < 3; ++i)
+      if (segments_meet(p, q, t.v[i], t.v[(i + 1) % 3])) return true;
+    return false;
+  };
+  const auto [shared, ia, ib, ra, rb] = shared_corners(a, b);
+  if (shared == 3) return true;
+  if (shared == 2) {  // third corners strictly on one side of the shared edge
+    const uint32_t q0 = a.v[(ra + 1) % 3], q1 = a.v[(ra + 2) % 3];
+    return o(q0, q1, a.v[ra]) * o(q0, q1, b.v[rb]) > 0;
+  }
+  if (shared == 1)
+    return segment_meets_triangle(a.v[(ia + 1) % 3], a.v[(ia + 2) % 3], b) ||
+           segment_meets_triangle(b.v[(ib + 1) % 3], b.v[(ib + 2) % 3], a);
+  for (int i = 0; i < 3; ++i)
+    if (segment_meets_triangle(a.v[i], a.v[(i + 1) % 3], b)) return true;
+  return inside(b.v[0], a);
+}
+
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
 /// Before CGAL's tests, a filter of at most six exact orient3d: when the unshared corners of one
 /// triangle lie strictly on one side of the other's plane, they meet at most in the shared vertex.
@@ -86,14 +153,15 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const Points& p,
                     std::span<const Vec3> v) {
   const auto [shared, ia, ib, ra, rb] = shared_corners(a, b);
   if (shared == 3) return true;
-  if (shared == 2) {
-    const Point3& q0 = p[a.v[(ra + 1) % 3]];
-    const Point3& q1 = p[a.v[(ra + 2) % 3]];
-    return CGAL::coplanar(q0, q1, p[a.v[ra]], p[b.v[rb]]) &&
-           CGAL::coplanar_orientation(q0, q1, p[a.v[ra]], p[b.v[rb]]) == CGAL::POSITIVE;
+  if (shared == 2) {  // coplanar, and both third corners on one side of the shared edge
+    if (orient3d(v[a.v[0]], v[a.v[1]], v[a.v[2]], v[b.v[rb]]) != 0) return false;
+    const int k = projection_axis(a, v);
+    const uint32_t q0 = a.v[(ra + 1) % 3], q1 = a.v[(ra + 2) % 3];
+    return orient2d(v[q0], v[q1], v[a.v[ra]], k) * orient2d(v[q0], v[q1], v[b.v[rb]], k) > 0;
   }
   const uint32_t skip = shared == 1 ? a.v[ia] : UINT32_MAX;
   if (strictly_aside(a, b, v, skip) || strictly_aside(b, a, v, skip)) return false;
+  if (coplanar(a, b, v)) return planar_triangles_meet(a, b, v, projection_axis(a, v));
   const K::Triangle_3 ta(p[a.v[0]], p[a.v[1]], p[a.v[2]]);
   const K::Triangle_3 tb(p[b.v[0]], p[b.v[1]], p[b.v[2]]);
   if (shared == 1) {
@@ -147,47 +215,6 @@ bool self_intersects(const PolygonMesh& mesh) {
 }
 
 namespace {
-
-/// triangles_meet for two triangles whose six corners all have coordinate k equal (one axis
-/// plane, as the caps on cell walls): the same rules, decided by exact orient2d on the doubles in
-/// the plane (cheaper than the 3D coplanar tests). Tiles are never collinear.
-bool planar_triangles_meet(const Triangle& a, const Triangle& b, std::span<const Vec3> v, int k) {
-  const int u = (k + 1) % 3, w = (k + 2) % 3;
-  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d(v[x], v[y], v[z], k); };
-  auto between = [&](uint32_t p, uint32_t q, uint32_t c) {  // c on line pq: within the segment?
-    return std::min(v[p][u], v[q][u]) <= v[c][u] && v[c][u] <= std::max(v[p][u], v[q][u]) &&
-           std::min(v[p][w], v[q][w]) <= v[c][w] && v[c][w] <= std::max(v[p][w], v[q][w]);
-  };
-  auto segments_meet = [&](uint32_t p, uint32_t q, uint32_t c, uint32_t d) {  // closed
-    const int d1 = o(p, q, c), d2 = o(p, q, d), d3 = o(c, d, p), d4 = o(c, d, q);
-    if (d1 * d2 < 0 && d3 * d4 < 0) return true;
-    return (d1 == 0 && between(p, q, c)) || (d2 == 0 && between(p, q, d)) ||
-           (d3 == 0 && between(c, d, p)) || (d4 == 0 && between(c, d, q));
-  };
-  auto inside = [&](uint32_t x, const Triangle& t) {  // closed
-    const int s = o(t.v[0], t.v[1], t.v[2]);
-    return s * o(t.v[0], t.v[1], x) >= 0 && s * o(t.v[1], t.v[2], x) >= 0 &&
-           s * o(t.v[2], t.v[0], x) >= 0;
-  };
-  auto segment_meets_triangle = [&](uint32_t p, uint32_t q, const Triangle& t) {
-    if (inside(p, t) || inside(q, t)) return true;
-    for (int i = 0; i < 3; ++i)
-      if (segments_meet(p, q, t.v[i], t.v[(i + 1) % 3])) return true;
-    return false;
-  };
-  const auto [shared, ia, ib, ra, rb] = shared_corners(a, b);
-  if (shared == 3) return true;
-  if (shared == 2) {  // third corners strictly on one side of the shared edge
-    const uint32_t q0 = a.v[(ra + 1) % 3], q1 = a.v[(ra + 2) % 3];
-    return o(q0, q1, a.v[ra]) * o(q0, q1, b.v[rb]) > 0;
-  }
-  if (shared == 1)
-    return segment_meets_triangle(a.v[(ia + 1) % 3], a.v[(ia + 2) % 3], b) ||
-           segment_meets_triangle(b.v[(ib + 1) % 3], b.v[(ib + 2) % 3], a);
-  for (int i = 0; i < 3; ++i)
-    if (segment_meets_triangle(a.v[i], a.v[(i + 1) % 3], b)) return true;
-  return inside(b.v[0], a);
-}
 
 /// The axis k on which all corners of both triangles share one coordinate, or −1.
 int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3> v) {

@@ -1,0 +1,90 @@
+// tiles_meet (solid/self_intersect.cpp): the exact contact test of two triangles of a mesh, with
+// its 2D path for coplanar pairs, against an independent reference — CGAL's exact 3D
+// intersection tests (Epeck) under CGAL::Polygon_mesh_processing::self_intersections' rules for
+// shared vertices — on exactly coplanar triangles of tilted lattice planes (shared corners,
+// collinear corners, touching edges, containment) and on pairs lifted off the plane.
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+#include <vector>
+
+#include "solid/validate.h"
+
+namespace cover {
+namespace {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+
+bool reference_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
+                    const std::vector<Vec3>& v) {
+  auto p = [&](uint32_t i) { return K::Point_3(v[i].x, v[i].y, v[i].z); };
+  int shared = 0, ia = 0, ib = 0;
+  std::array<bool, 3> as{}, bs{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a[i] == b[j]) ++shared, as[i] = bs[j] = true, ia = i, ib = j;
+  const K::Triangle_3 ta(p(a[0]), p(a[1]), p(a[2])), tb(p(b[0]), p(b[1]), p(b[2]));
+  if (shared == 3) return true;
+  if (shared == 2) {
+    int ra = 0, rb = 0;
+    for (int i = 0; i < 3; ++i) {
+      if (!as[i]) ra = i;
+      if (!bs[i]) rb = i;
+    }
+    const K::Point_3 q0 = p(a[(ra + 1) % 3]), q1 = p(a[(ra + 2) % 3]);
+    return CGAL::coplanar(q0, q1, p(a[ra]), p(b[rb])) &&
+           CGAL::coplanar_orientation(q0, q1, p(a[ra]), p(b[rb])) == CGAL::POSITIVE;
+  }
+  if (shared == 1)
+    return CGAL::do_intersect(ta, K::Segment_3(p(b[(ib + 1) % 3]), p(b[(ib + 2) % 3]))) ||
+           CGAL::do_intersect(tb, K::Segment_3(p(a[(ia + 1) % 3]), p(a[(ia + 2) % 3])));
+  return CGAL::do_intersect(ta, tb);
+}
+
+TEST(TilesMeet, CoplanarAndLiftedPairsAgreeWithCgalsExactTests) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coord(-2, 2), pick(0, 5), lift(0, 7);
+  int meeting = 0, apart = 0, coplanar_meeting = 0;
+  for (int plane = 0; plane < 3; ++plane)
+    for (int trial = 0; trial < 2000; ++trial) {
+      // Exactly representable lattice points of x + 2y + 3z = 1, 3x − y + 2z = 1 (z a half
+      // integer) and the axis plane z = 0.5.
+      std::vector<Vec3> v;
+      for (int i = 0; i < 6; ++i) {
+        const double s = coord(rng), t = coord(rng);
+        if (plane == 0) v.push_back({1 - 2 * s - 3 * t, s, t});
+        if (plane == 1) v.push_back({s, t, (1 - 3 * s + t) / 2});
+        if (plane == 2) v.push_back({s, t, 0.5});
+      }
+      std::array<uint32_t, 3> a{0, 1, 2}, b{3, 4, 5};
+      for (uint32_t& c : b)
+        if (pick(rng) < 2) c = static_cast<uint32_t>(pick(rng) % 3);  // a corner of a
+      if (b[0] == b[1] || b[1] == b[2] || b[0] == b[2]) continue;
+      // Now and then b's own corners leave the plane: the non-coplanar paths too.
+      if (lift(rng) == 0)
+        for (uint32_t& c : b)
+          if (c >= 3) v[c].z += 0.25 * (1 + lift(rng));
+      auto collinear = [&](const std::array<uint32_t, 3>& t) {
+        auto q = [&](uint32_t i) { return K::Point_3(v[i].x, v[i].y, v[i].z); };
+        return CGAL::collinear(q(t[0]), q(t[1]), q(t[2]));
+      };
+      if (collinear(a) || collinear(b)) continue;
+      const bool expected = reference_meet(a, b, v);
+      EXPECT_EQ(tiles_meet(a, b, v), expected) << plane << " " << trial;
+      EXPECT_EQ(tiles_meet(b, a, v), expected) << plane << " " << trial << " (swapped)";
+      (expected ? meeting : apart) += 1;
+      const K::Point_3 a0(v[a[0]].x, v[a[0]].y, v[a[0]].z), a1(v[a[1]].x, v[a[1]].y, v[a[1]].z),
+          a2(v[a[2]].x, v[a[2]].y, v[a[2]].z);
+      bool flat = true;
+      for (uint32_t c : b) flat = flat && CGAL::coplanar(a0, a1, a2, K::Point_3(v[c].x, v[c].y, v[c].z));
+      coplanar_meeting += flat && expected;
+    }
+  EXPECT_GT(meeting, 1000);
+  EXPECT_GT(apart, 1000);
+  EXPECT_GT(coplanar_meeting, 800);
+}
+
+}  // namespace
+}  // namespace cover
