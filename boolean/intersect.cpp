@@ -172,26 +172,33 @@ Hit coplanar_hit(const Tri& a, const Tri& b, const std::vector<Point>& pts) {
 /// tris coloured by leaf (solid/box_pairs.h), cells of one leaf skipped. It replaced CGAL's
 /// box intersection of each leaf against the later ones in x-slabs, which took 20 % of the
 /// 10-leaf preview scene's evaluation (12 % now, of a smaller total: docs/benchmarks.md).
-std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri>& tris,
-                                                           const std::vector<Vec3>& pos) {
-  std::vector<Bbox> boxes(tris.size());
-  std::vector<uint32_t> leaf(tris.size());
+namespace {
+/// Each tri's double box and its leaf (the colour for box_pairs_between).
+void boxes_and_leaves(const std::vector<Tri>& tris, const std::vector<Vec3>& pos,
+                      std::vector<Bbox>& boxes, std::vector<uint32_t>& leaf) {
+  boxes.assign(tris.size(), Bbox{});
+  leaf.resize(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) {
     for (uint32_t v : tris[i].v) boxes[i].add(pos[v]);
     leaf[i] = tris[i].leaf;
   }
+}
+}  // namespace
+
+std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri>& tris,
+                                                           const std::vector<Vec3>& pos) {
+  std::vector<Bbox> boxes;
+  std::vector<uint32_t> leaf;
+  boxes_and_leaves(tris, pos, boxes, leaf);
   return box_pairs_between(boxes, leaf);
 }
 
 std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::vector<Tri>& tris,
                                                                     const std::vector<Vec3>& pos,
                                                                     std::vector<uint8_t>& self) {
-  std::vector<Bbox> boxes(tris.size());
-  std::vector<uint32_t> leaf(tris.size());
-  for (size_t i = 0; i < tris.size(); ++i) {
-    for (uint32_t v : tris[i].v) boxes[i].add(pos[v]);
-    leaf[i] = tris[i].leaf;
-  }
+  std::vector<Bbox> boxes;
+  std::vector<uint32_t> leaf;
+  boxes_and_leaves(tris, pos, boxes, leaf);
   // One flag per leaf, set from several threads; a leaf found self-intersecting skips the rest
   // of its pairs.
   std::vector<std::atomic<uint8_t>> found(self.size());

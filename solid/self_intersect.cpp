@@ -144,6 +144,17 @@ bool planar_triangles_meet(const Triangle& a, const Triangle& b, std::span<const
   return inside(b.v[0], a);
 }
 
+/// The axis k on which all corners of both triangles share one coordinate, or −1.
+int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3> v) {
+  for (int k = 0; k < 3; ++k) {
+    const double c = v[a.v[0]][k];
+    if (v[a.v[1]][k] == c && v[a.v[2]][k] == c && v[b.v[0]][k] == c && v[b.v[1]][k] == c &&
+        v[b.v[2]][k] == c)
+      return k;
+  }
+  return -1;
+}
+
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
 /// Before CGAL's tests, a filter of at most six exact orient3d: when the unshared corners of one
 /// triangle lie strictly on one side of the other's plane, they meet at most in the shared vertex.
@@ -151,6 +162,8 @@ bool planar_triangles_meet(const Triangle& a, const Triangle& b, std::span<const
 template <class Points>
 bool triangles_meet(const Triangle& a, const Triangle& b, const Points& p,
                     std::span<const Vec3> v) {
+  // One axis plane (as the caps on cell walls): the planar test at once, without orient3d.
+  if (const int k = common_axis_plane(a, b, v); k >= 0) return planar_triangles_meet(a, b, v, k);
   const auto [shared, ia, ib, ra, rb] = shared_corners(a, b);
   if (shared == 3) return true;
   if (shared == 2) {  // coplanar, and both third corners on one side of the shared edge
@@ -213,21 +226,6 @@ bool self_intersects(const PolygonMesh& mesh) {
   });
   return found;
 }
-
-namespace {
-
-/// The axis k on which all corners of both triangles share one coordinate, or −1.
-int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3> v) {
-  for (int k = 0; k < 3; ++k) {
-    const double c = v[a.v[0]][k];
-    if (v[a.v[1]][k] == c && v[a.v[2]][k] == c && v[b.v[0]][k] == c && v[b.v[1]][k] == c &&
-        v[b.v[2]][k] == c)
-      return k;
-  }
-  return -1;
-}
-
-}  // namespace
 
 std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     const PolygonMesh& mesh, std::span<const uint8_t> suspect, std::span<const uint32_t> group) {
@@ -342,9 +340,7 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
     const Triangle& b = triangles[y];
     if (a.face == b.face || (!all && !suspect[a.face] && !suspect[b.face])) return false;
     if (!group.empty() && group[a.face] != 0 && group[a.face] == group[b.face]) return false;
-    const int k = common_axis_plane(a, b, mesh.vertices);
-    if (k >= 0 ? planar_triangles_meet(a, b, mesh.vertices, k)
-               : triangles_meet(a, b, points, mesh.vertices)) {
+    if (triangles_meet(a, b, points, mesh.vertices)) {
       const std::lock_guard<std::mutex> lock(found_mutex);
       pairs.push_back({std::min(a.face, b.face), std::max(a.face, b.face)});
     }
