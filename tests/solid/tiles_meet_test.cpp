@@ -86,5 +86,37 @@ TEST(TilesMeet, CoplanarAndLiftedPairsAgreeWithCgalsExactTests) {
   EXPECT_GT(coplanar_meeting, 800);
 }
 
+// Pairs with one or two shared corners in general position and near-degenerate ones (corners of
+// a small 3D lattice: collinear in some projection, coplanar, on each other's lines), the cases
+// the 2D filter of triangles with shared corners decides: the same answers as the reference.
+TEST(TilesMeet, PairsWithSharedCornersAgreeWithCgalsExactTests) {
+  std::mt19937 rng(12);
+  std::uniform_int_distribution<int> coord(-2, 2), shared(1, 2), corner(0, 2);
+  int meeting[3] = {0, 0, 0}, apart[3] = {0, 0, 0};
+  for (int trial = 0; trial < 40000; ++trial) {
+    std::vector<Vec3> v;
+    for (int i = 0; i < 6; ++i)
+      v.push_back({double(coord(rng)), double(coord(rng)), double(coord(rng))});
+    std::array<uint32_t, 3> a{0, 1, 2}, b{3, 4, 5};
+    const int count = shared(rng);
+    const int first = corner(rng);
+    for (int i = 0; i < count; ++i) b[(first + i) % 3] = static_cast<uint32_t>((first + 2 * i) % 3);
+    if (b[0] == b[1] || b[1] == b[2] || b[0] == b[2]) continue;
+    auto collinear = [&](const std::array<uint32_t, 3>& t) {
+      auto q = [&](uint32_t i) { return K::Point_3(v[i].x, v[i].y, v[i].z); };
+      return CGAL::collinear(q(t[0]), q(t[1]), q(t[2]));
+    };
+    if (collinear(a) || collinear(b)) continue;
+    const bool expected = reference_meet(a, b, v);
+    EXPECT_EQ(tiles_meet(a, b, v), expected) << trial;
+    EXPECT_EQ(tiles_meet(b, a, v), expected) << trial << " (swapped)";
+    (expected ? meeting : apart)[count] += 1;
+  }
+  for (int count = 1; count <= 2; ++count) {
+    EXPECT_GT(meeting[count], 300) << count;
+    EXPECT_GT(apart[count], 3000) << count;
+  }
+}
+
 }  // namespace
 }  // namespace cover
