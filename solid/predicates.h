@@ -7,7 +7,8 @@
 // when the value lies outside [−err·M, err·M]. The bound holds only while no intermediate can
 // underflow into denormals or overflow, i.e. for M in (kFilterMin, kFilterMax); otherwise, and
 // whenever the bound does not separate the value from 0, the exact fallback (predicates.cpp:
-// CGAL's Epick predicates or exact rationals) decides. The filters are inline because the hot
+// for the orientations an error-free re-evaluation, exact when every difference and product is,
+// then CGAL's Epick predicates; exact rationals for the others) decides. The filters are inline because the hot
 // loops (ray–triangle tests, octree cells) call them per edge.
 //
 // The error factors, with u = 2⁻⁵³ and γ_n = nu/(1 − nu) (Higham §3.1):
