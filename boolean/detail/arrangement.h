@@ -126,6 +126,12 @@ struct ExactCrossing {
 ExactCrossing exact_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q,
                              const Vec3& r);
 
+/// The exact crossing of line a–b with the plane of (p, q, r) (input doubles; the line crosses
+/// the plane) as one lazy-kernel node: interval approximation from the doubles, exact value on
+/// demand from exact_crossing (intersect.cpp). Equal to a + (b − a)·dₐ/(dₐ − d_b) built with the
+/// kernel's operators, without that expression's dozen nodes.
+Point crossing_point(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r);
+
 /// The crossing of line a–b with the plane of (p, q, r) (input doubles; the line crosses the
 /// plane), each coordinate rounded to the nearest double (ties to even) from the doubles, in
 /// exact CGAL::Mpzf arithmetic; `box` is an interval box of the exact point (its lazy

@@ -1,5 +1,7 @@
 // round_crossing (boolean/assemble.cpp): the nearest doubles of an edge × plane crossing from the
-// input doubles in Mpzf, against the exact rational crossing rounded by rational comparisons.
+// input doubles in Mpzf, against the exact rational crossing rounded by rational comparisons;
+// crossing_point (boolean/intersect.cpp), the one-node lazy crossing, against the same point
+// built with the lazy kernel's operators.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,7 +33,7 @@ double nearest_rational(const ET& x) {
   return d;
 }
 
-/// The lazy crossing as intersect.cpp builds it, and the exact one in rationals.
+/// The crossing through the lazy kernel's operators (the reference for crossing_point).
 Point lazy_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r) {
   const Point pa(a.x, a.y, a.z), pb(b.x, b.y, b.z), pp(p.x, p.y, p.z), pq(q.x, q.y, q.z),
       pr(r.x, r.y, r.z);
@@ -67,6 +69,38 @@ TEST(RoundCrossing, RandomCrossingsRoundAsTheExactRationals) {
     expect_rounds(a, b, p, q, r, decided);
   }
   EXPECT_GT(decided, 2900);  // the Mpzf path, not the fallback, decides nearly all of them
+}
+
+TEST(CrossingPoint, EqualsTheKernelExpressionAndItsIntervalsHoldIt) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> scale(-30, 30), lattice(-3, 3), kind(0, 2);
+  int tried = 0;
+  while (tried < 3000) {
+    const double s = std::ldexp(1.0, scale(rng));
+    const int k = kind(rng);  // 0: random doubles; 1: small lattice (exact ties, double results)
+    auto pick = [&] {         // 2: a short segment along the normal (a steep crossing)
+      if (k == 1) return Vec3{double(lattice(rng)), double(lattice(rng)), double(lattice(rng))};
+      return Vec3{unit(rng) * s, unit(rng) * s, unit(rng) * s};
+    };
+    const Vec3 p = pick(), q = pick(), r = pick(), a = pick();
+    Vec3 b = pick();
+    if (k == 2) b = a + 1e-9 * cross(q - p, r - p);  // a short segment along the normal
+    const Point pa(a.x, a.y, a.z), pb(b.x, b.y, b.z), pp(p.x, p.y, p.z), pq(q.x, q.y, q.z),
+        pr(r.x, r.y, r.z);
+    const int sa = CGAL::orientation(pp, pq, pr, pa), sb = CGAL::orientation(pp, pq, pr, pb);
+    if (sa * sb >= 0) continue;  // the segment must cross the plane
+    ++tried;
+    const Point x = crossing_point(a, b, p, q, r);
+    const auto box = CGAL::approx(x);  // before any exact evaluation
+    const Point reference = lazy_crossing(a, b, p, q, r);
+    const auto& e = CGAL::exact(reference);
+    for (int c = 0; c < 3; ++c)  // (doubles printed: a failing rational can be huge)
+      EXPECT_TRUE(ET(box[c].inf()) <= e[c] && e[c] <= ET(box[c].sup()))
+          << tried << " kind " << k << " axis " << c << ": [" << box[c].inf() << ", "
+          << box[c].sup() << "] vs " << CGAL::to_double(e[c]);
+    EXPECT_TRUE(CGAL::exact(x) == e) << tried;
+  }
 }
 
 TEST(RoundCrossing, TiesGoToTheEvenNeighbour) {
