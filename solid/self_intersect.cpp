@@ -156,7 +156,7 @@ int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3
 }
 
 /// A filter for triangles that share one or two corners, exact orient2d only: whether, in the
-/// projection along the dominant axis of a's normal (doubles; any axis is sound), some line
+/// projection along axis k (any axis is sound), some line
 /// through their shared part has one triangle strictly on one side (but for that part) and the
 /// other strictly on the other side, the first one not flat in the projection. Then they meet
 /// only in the shared part: the projections meet only in the shared part's projection, and a
@@ -164,10 +164,7 @@ int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3
 /// self-check tests about seven such pairs per triangle: 225k on cheese ∪ fandisk) mostly pass
 /// it, coplanar ones included, which otherwise took up to four exact orient3d that are zero.
 bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorners& c,
-                         std::span<const Vec3> v) {
-  const Vec3 n = cross(v[a.v[1]] - v[a.v[0]], v[a.v[2]] - v[a.v[0]]);
-  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-  const int k = m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+                         std::span<const Vec3> v, int k) {
   auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d(v[x], v[y], v[z], k); };
   if (c.count == 2) {  // the shared edge's line: the third corners strictly on opposite sides
     const uint32_t q0 = a.v[(c.ra + 1) % 3], q1 = a.v[(c.ra + 2) % 3];
@@ -185,6 +182,42 @@ bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorne
   };
   return separates(a1, a2, b1, b2) || separates(a2, a1, b1, b2) || separates(b1, b2, a1, a2) ||
          separates(b2, b1, a1, a2);
+}
+
+/// Whether the projections along axis k of two triangles without shared corners are apart: an
+/// edge line of one has its third corner strictly on one side and the other triangle strictly
+/// on the other (two disjoint convex polygons have such an edge). Disjoint projections, disjoint
+/// triangles.
+bool disjoint_in_projection(const Triangle& a, const Triangle& b, std::span<const Vec3> v, int k) {
+  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d(v[x], v[y], v[z], k); };
+  auto separates = [&](const Triangle& t, const Triangle& u) {
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t p = t.v[i], q = t.v[(i + 1) % 3];
+      const int side = o(p, q, t.v[(i + 2) % 3]);
+      if (side != 0 && o(p, q, u.v[0]) == -side && o(p, q, u.v[1]) == -side &&
+          o(p, q, u.v[2]) == -side)
+        return true;
+    }
+    return false;
+  };
+  return separates(a, b) || separates(b, a);
+}
+
+/// The dominant axis of t's normal (doubles): the projection along it flattens t least.
+int dominant_axis(const Triangle& t, std::span<const Vec3> v) {
+  const Vec3 n = cross(v[t.v[1]] - v[t.v[0]], v[t.v[2]] - v[t.v[0]]);
+  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+  return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+}
+
+/// apart_in_projection along the dominant axis of a's normal, then of b's (pairs across a
+/// sharp edge or corner, where one of them is flat in the other's projection).
+bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorners& c,
+                         std::span<const Vec3> v) {
+  const int ka = dominant_axis(a, v);
+  if (apart_in_projection(a, b, c, v, ka)) return true;
+  const int kb = dominant_axis(b, v);
+  return kb != ka && apart_in_projection(a, b, c, v, kb);
 }
 
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
@@ -208,6 +241,11 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const Points& p,
     return orient2d(v[q0], v[q1], v[a.v[ra]], k) * orient2d(v[q0], v[q1], v[b.v[rb]], k) > 0;
   }
   const uint32_t skip = shared == 1 ? a.v[ia] : UINT32_MAX;
+  if (shared == 0) {  // the projections along the dominant axes of both normals
+    const int ka = dominant_axis(a, v), kb = dominant_axis(b, v);
+    if (disjoint_in_projection(a, b, v, ka) || (kb != ka && disjoint_in_projection(a, b, v, kb)))
+      return false;
+  }
   if (strictly_aside(a, b, v, skip) || strictly_aside(b, a, v, skip)) return false;
   if (coplanar(a, b, v)) return planar_triangles_meet(a, b, v, projection_axis(a, v));
   const K::Triangle_3 ta(p[a.v[0]], p[a.v[1]], p[a.v[2]]);

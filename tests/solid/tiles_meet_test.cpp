@@ -86,14 +86,14 @@ TEST(TilesMeet, CoplanarAndLiftedPairsAgreeWithCgalsExactTests) {
   EXPECT_GT(coplanar_meeting, 800);
 }
 
-// Pairs with one or two shared corners in general position and near-degenerate ones (corners of
-// a small 3D lattice: collinear in some projection, coplanar, on each other's lines), the cases
-// the 2D filter of triangles with shared corners decides: the same answers as the reference.
-TEST(TilesMeet, PairsWithSharedCornersAgreeWithCgalsExactTests) {
+// Pairs with no, one or two shared corners in general position and near-degenerate ones
+// (corners of a small 3D lattice: collinear in some projection, coplanar, on each other's
+// lines), the cases the 2D projection filters decide: the same answers as the reference.
+TEST(TilesMeet, PairsInSpaceAgreeWithCgalsExactTests) {
   std::mt19937 rng(12);
-  std::uniform_int_distribution<int> coord(-2, 2), shared(1, 2), corner(0, 2);
+  std::uniform_int_distribution<int> coord(-2, 2), shared(0, 2), corner(0, 2);
   int meeting[3] = {0, 0, 0}, apart[3] = {0, 0, 0};
-  for (int trial = 0; trial < 40000; ++trial) {
+  for (int trial = 0; trial < 60000; ++trial) {
     std::vector<Vec3> v;
     for (int i = 0; i < 6; ++i)
       v.push_back({double(coord(rng)), double(coord(rng)), double(coord(rng))});
@@ -112,7 +112,7 @@ TEST(TilesMeet, PairsWithSharedCornersAgreeWithCgalsExactTests) {
     EXPECT_EQ(tiles_meet(b, a, v), expected) << trial << " (swapped)";
     (expected ? meeting : apart)[count] += 1;
   }
-  for (int count = 1; count <= 2; ++count) {
+  for (int count = 0; count <= 2; ++count) {
     EXPECT_GT(meeting[count], 300) << count;
     EXPECT_GT(apart[count], 3000) << count;
   }
