@@ -95,6 +95,15 @@ inline int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
   return detail::orient2d_exact(a, b, c, axis);
 }
 
+/// orient2d's filter alone: the exact sign where the filter decides it, else 0 (zero or
+/// undecided). For filters that only need to prove strict signs: a 0 makes them give up.
+inline int orient2d_strict(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
+  const int u = axis == 2 ? 0 : axis + 1, w = axis == 0 ? 2 : (axis == 1 ? 0 : 1);
+  const double left = (a[u] - c[u]) * (b[w] - c[w]);
+  const double right = (a[w] - c[w]) * (b[u] - c[u]);
+  return detail::filter_sign(left - right, std::abs(left) + std::abs(right), detail::kOrient2dErr);
+}
+
 /// Sign of ((a − o) × (b − o)) · d.
 inline int triple_sign(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d) {
   const double ax = a.x - o.x, ay = a.y - o.y, az = a.z - o.z;

@@ -155,7 +155,8 @@ int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3
   return -1;
 }
 
-/// A filter for triangles that share one or two corners, exact orient2d only: whether, in the
+/// A filter for triangles that share one or two corners, orient2d signs the floating-point
+/// filter decides (exact; undecided counts as 0 and fails the test): whether, in the
 /// projection along axis k (any axis is sound), some line
 /// through their shared part has one triangle strictly on one side (but for that part) and the
 /// other strictly on the other side, the first one not flat in the projection. Then they meet
@@ -165,7 +166,8 @@ int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3
 /// it, coplanar ones included, which otherwise took up to four exact orient3d that are zero.
 bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorners& c,
                          std::span<const Vec3> v, int k) {
-  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d(v[x], v[y], v[z], k); };
+  // Strict signs only (orient2d_strict: 0 when the filter cannot decide): a 0 fails the test.
+  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d_strict(v[x], v[y], v[z], k); };
   if (c.count == 2) {  // the shared edge's line: the third corners strictly on opposite sides
     const uint32_t q0 = a.v[(c.ra + 1) % 3], q1 = a.v[(c.ra + 2) % 3];
     return o(q0, q1, a.v[c.ra]) * o(q0, q1, b.v[c.rb]) < 0;
@@ -189,7 +191,8 @@ bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorne
 /// on the other (two disjoint convex polygons have such an edge). Disjoint projections, disjoint
 /// triangles.
 bool disjoint_in_projection(const Triangle& a, const Triangle& b, std::span<const Vec3> v, int k) {
-  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d(v[x], v[y], v[z], k); };
+  // Strict signs only (orient2d_strict: 0 when the filter cannot decide): a 0 fails the test.
+  auto o = [&](uint32_t x, uint32_t y, uint32_t z) { return orient2d_strict(v[x], v[y], v[z], k); };
   auto separates = [&](const Triangle& t, const Triangle& u) {
     for (int i = 0; i < 3; ++i) {
       const uint32_t p = t.v[i], q = t.v[(i + 1) % 3];
