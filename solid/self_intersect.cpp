@@ -155,15 +155,15 @@ int common_axis_plane(const Triangle& a, const Triangle& b, std::span<const Vec3
   return -1;
 }
 
-/// A filter for triangles that share one or two corners, orient2d signs the floating-point
-/// filter decides (exact; undecided counts as 0 and fails the test): whether, in the
-/// projection along axis k (any axis is sound), some line
-/// through their shared part has one triangle strictly on one side (but for that part) and the
-/// other strictly on the other side, the first one not flat in the projection. Then they meet
-/// only in the shared part: the projections meet only in the shared part's projection, and a
-/// flat-free projection of a triangle is one to one. Adjacent triangles of a mesh (a mesh's
-/// self-check tests about seven such pairs per triangle: 225k on cheese ∪ fandisk) mostly pass
-/// it, coplanar ones included, which otherwise took up to four exact orient3d that are zero.
+/// A filter for triangles that share one or two corners: whether, in the projection along
+/// axis k (any axis is sound), some line through their shared part has one triangle strictly on
+/// one side (but for that part) and the other strictly on the other side, the first one not
+/// flat in the projection. Then they meet only in the shared part: the projections meet only in
+/// the shared part's projection, and a projection that does not flatten a triangle is one to
+/// one on it. Signs are those orient2d's floating-point filter decides (exact); an undecided
+/// one counts as 0 and fails the filter. Adjacent triangles of a mesh (a mesh's self-check
+/// tests about seven such pairs per triangle: 225k on cheese ∪ fandisk) mostly pass it,
+/// coplanar ones included, which otherwise took up to four exact orient3d that are zero.
 bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorners& c,
                          std::span<const Vec3> v, int k) {
   // Strict signs only (orient2d_strict: 0 when the filter cannot decide): a 0 fails the test.
@@ -224,7 +224,8 @@ bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorne
 }
 
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
-/// Triangles with shared corners first go through apart_in_projection (orient2d only). Before
+/// Projection filters first (orient2d only): apart_in_projection for triangles with shared
+/// corners, disjoint_in_projection for the others. Before
 /// CGAL's tests, a filter of at most six exact orient3d: when the unshared corners of one
 /// triangle lie strictly on one side of the other's plane, they meet at most in the shared vertex.
 /// `p[i]` is vertex i as a CGAL point (a vector of them, or PointsOf below).
