@@ -97,8 +97,8 @@ struct CrossKey {
 /// doubles, its exact value on demand from the homogeneous Mpzf coordinates (exact_crossing).
 /// The same point through the lazy kernel's operators was a DAG of about a dozen nodes, each
 /// allocated, evaluated in rationals when a predicate needed the exact value, and freed node by
-/// node: freeing the arrangement alone took 7–9 ms of armadillo ∩ knot1's and cheese ∪ fandisk's
-/// 0.08–0.09 s evaluations.
+/// node: freeing the arrangement alone took 7–13 ms of armadillo ∩ knot1's and cheese ∪
+/// fandisk's 0.08–0.09 s evaluations (1 ms now).
 class CrossingRep final : public CGAL::Lazy_rep<K::Approximate_kernel::Point_3,
                                                 K::Exact_kernel::Point_3, K::E2A> {
   using Base = CGAL::Lazy_rep<K::Approximate_kernel::Point_3, K::Exact_kernel::Point_3, K::E2A>;
@@ -135,7 +135,6 @@ K::Approximate_kernel::Point_3 approximate_crossing(const std::array<Vec3, 5>& i
   const I t = da / (da - db);
   return {I(a.x) + ab[0] * t, I(a.y) + ab[1] * t, I(a.z) + ab[2] * t};
 }
-
 
 /// Transversal hit from the two plane cuts; `id` maps a Sym of t (other = u) or of u to its id.
 template <class Id>
