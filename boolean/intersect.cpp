@@ -287,7 +287,8 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
       const uint32_t a = static_cast<uint32_t>(keys[x].edge >> 32),
                      b = static_cast<uint32_t>(keys[x].edge & 0xffffffffu);
       const Tri& w = tris[keys[x].tri];
-      points[first_crossing + x] = crossing_point(pos[a], pos[b], pos[w.v[0]], pos[w.v[1]], pos[w.v[2]]);
+      points[first_crossing + x] =
+          crossing_point(pos[a], pos[b], pos[w.v[0]], pos[w.v[1]], pos[w.v[2]]);
     }
   });
   // Phase B: the hits.

@@ -8,8 +8,8 @@
 // underflow into denormals or overflow, i.e. for M in (kFilterMin, kFilterMax); otherwise, and
 // whenever the bound does not separate the value from 0, the exact fallback (predicates.cpp:
 // for the orientations an error-free re-evaluation, exact when every difference and product is,
-// then CGAL's Epick predicates; exact rationals for the others) decides. The filters are inline because the hot
-// loops (ray–triangle tests, octree cells) call them per edge.
+// then CGAL's Epick predicates; exact rationals for the others) decides. The filters are inline
+// because the hot loops (ray–triangle tests, octree cells) call them per edge.
 //
 // The error factors, with u = 2⁻⁵³ and γ_n = nu/(1 − nu) (Higham §3.1):
 //   orient2d, orient3d   Shewchuk's stage-A bounds ("Adaptive Precision Floating-Point
@@ -82,19 +82,6 @@ inline int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) 
   return detail::orient3d_exact(a, b, c, d);
 }
 
-/// Sign of the 2D orientation of (a, b, c) projected on the coordinate plane that drops `axis`
-/// (axis 0: (y, z); 1: (z, x); 2: (x, y)) — i.e. the sign of the `axis` component of
-/// (b−a)×(c−a).
-inline int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
-  const int u = axis == 2 ? 0 : axis + 1, w = axis == 0 ? 2 : (axis == 1 ? 0 : 1);
-  const double left = (a[u] - c[u]) * (b[w] - c[w]);
-  const double right = (a[w] - c[w]) * (b[u] - c[u]);
-  const double det = left - right;
-  const double sum = std::abs(left) + std::abs(right);
-  if (const int s = detail::filter_sign(det, sum, detail::kOrient2dErr)) return s;
-  return detail::orient2d_exact(a, b, c, axis);
-}
-
 /// orient2d's filter alone: the exact sign where the filter decides it, else 0 (zero or
 /// undecided). For filters that only need to prove strict signs: a 0 makes them give up.
 inline int orient2d_strict(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
@@ -102,6 +89,14 @@ inline int orient2d_strict(const Vec3& a, const Vec3& b, const Vec3& c, int axis
   const double left = (a[u] - c[u]) * (b[w] - c[w]);
   const double right = (a[w] - c[w]) * (b[u] - c[u]);
   return detail::filter_sign(left - right, std::abs(left) + std::abs(right), detail::kOrient2dErr);
+}
+
+/// Sign of the 2D orientation of (a, b, c) projected on the coordinate plane that drops `axis`
+/// (axis 0: (y, z); 1: (z, x); 2: (x, y)) — i.e. the sign of the `axis` component of
+/// (b−a)×(c−a).
+inline int orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
+  if (const int s = orient2d_strict(a, b, c, axis)) return s;
+  return detail::orient2d_exact(a, b, c, axis);
 }
 
 /// Sign of ((a − o) × (b − o)) · d.

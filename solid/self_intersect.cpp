@@ -78,12 +78,17 @@ SharedCorners shared_corners(const Triangle& a, const Triangle& b) {
   return c;
 }
 
-/// An axis the plane of triangle t is not parallel to: the dominant axis of its normal in
-/// doubles, confirmed by an exact orient2d (another axis if that is 0: t is never collinear).
-int projection_axis(const Triangle& t, std::span<const Vec3> v) {
+/// The dominant axis of t's normal (doubles): the projection along it flattens t least.
+int dominant_axis(const Triangle& t, std::span<const Vec3> v) {
   const Vec3 n = cross(v[t.v[1]] - v[t.v[0]], v[t.v[2]] - v[t.v[0]]);
   const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-  const int first = m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+  return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+}
+
+/// An axis the plane of triangle t is not parallel to: its dominant axis, confirmed by an exact
+/// orient2d (another axis if that is 0: t is never collinear).
+int projection_axis(const Triangle& t, std::span<const Vec3> v) {
+  const int first = dominant_axis(t, v);
   for (int i = 0; i < 3; ++i) {
     const int k = (first + i) % 3;
     if (orient2d(v[t.v[0]], v[t.v[1]], v[t.v[2]], k) != 0) return k;
@@ -206,13 +211,6 @@ bool disjoint_in_projection(const Triangle& a, const Triangle& b, std::span<cons
   return separates(a, b) || separates(b, a);
 }
 
-/// The dominant axis of t's normal (doubles): the projection along it flattens t least.
-int dominant_axis(const Triangle& t, std::span<const Vec3> v) {
-  const Vec3 n = cross(v[t.v[1]] - v[t.v[0]], v[t.v[2]] - v[t.v[0]]);
-  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-  return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
-}
-
 /// apart_in_projection along the dominant axis of a's normal, then of b's (pairs across a
 /// sharp edge or corner, where one of them is flat in the other's projection).
 bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorners& c,
@@ -225,9 +223,9 @@ bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorne
 
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
 /// Projection filters first (orient2d only): apart_in_projection for triangles with shared
-/// corners, disjoint_in_projection for the others. Before
-/// CGAL's tests, a filter of at most six exact orient3d: when the unshared corners of one
-/// triangle lie strictly on one side of the other's plane, they meet at most in the shared vertex.
+/// corners, disjoint_in_projection for the others. Before CGAL's tests, a filter of at most six
+/// exact orient3d: when the unshared corners of one triangle lie strictly on one side of the
+/// other's plane, they meet at most in the shared vertex.
 /// `p[i]` is vertex i as a CGAL point (a vector of them, or PointsOf below).
 template <class Points>
 bool triangles_meet(const Triangle& a, const Triangle& b, const Points& p,
