@@ -47,23 +47,41 @@ double nearest_exact(const ET& e) {
 }
 double nearest(const K::FT& x) { return nearest_exact(CGAL::exact(x)); }
 
-/// Sorts (key, h) pairs given in increasing h, keys (a << 32) | b with a, b < n: two stable
-/// counting passes (by b, then by a), so equal keys keep their h order — the same order as
-/// std::sort, in linear time. (A counting sort on a followed by std::sort of each bucket spent
-/// half of its time in the bucket sorts: the half-edges of 80k triangles make 40k small
-/// buckets.)
-void sort_by_key(std::vector<std::pair<uint64_t, uint32_t>>& items, size_t n) {
-  std::vector<std::pair<uint64_t, uint32_t>> out(items.size());
-  std::vector<uint32_t> start(n + 1);
-  auto pass = [&](auto digit) {
-    std::fill(start.begin(), start.end(), 0);
-    for (const auto& it : items) ++start[digit(it.first) + 1];
-    for (size_t a = 0; a < n; ++a) start[a + 1] += start[a];
-    for (const auto& it : items) out[start[digit(it.first)]++] = it;
-    items.swap(out);
-  };
-  pass([](uint64_t key) { return key & 0xffffffffu; });
-  pass([](uint64_t key) { return key >> 32; });
+/// The half-edges h < 3·m grouped by undirected edge, in increasing (p, q) with p < q, each
+/// group in increasing h (the order of a stable sort by edge_key): one counting pass by p
+/// (stable, so each bucket is in increasing h), then each bucket sorted by q, stably. A vertex
+/// is the smaller end of about three edges, six half-edges: those buckets take an insertion
+/// sort; a large one (a pole of many fans) std::stable_sort. (Two counting passes over
+/// (key, h) pairs, one by q and one by p, wrote and read 16-byte items twice over arrays of
+/// 3·m, fresh pages mostly; this pass moves 4-byte ids once: bunny00 − elephant's assembly,
+/// 240k half-edges, first in its process, 0.048–0.050 → 0.021–0.022 s.)
+template <class From, class To>
+void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t>& order,
+                      std::vector<uint32_t>& start) {
+  const uint32_t count = static_cast<uint32_t>(3 * m);
+  start.assign(n + 1, 0);
+  for (uint32_t h = 0; h < count; ++h) ++start[std::min(from(h), to(h)) + 1];
+  for (size_t a = 0; a < n; ++a) start[a + 1] += start[a];
+  order.resize(count);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t h = 0; h < count; ++h) order[fill[std::min(from(h), to(h))]++] = h;
+  }
+  auto q_of = [&](uint32_t h) { return std::max(from(h), to(h)); };
+  for (size_t a = 0; a < n; ++a) {
+    uint32_t* first = order.data() + start[a];
+    uint32_t* last = order.data() + start[a + 1];
+    if (last - first > 32) {
+      std::stable_sort(first, last, [&](uint32_t x, uint32_t y) { return q_of(x) < q_of(y); });
+      continue;
+    }
+    for (uint32_t* i = first + 1; i < last; ++i) {
+      const uint32_t h = *i, q = q_of(h);
+      uint32_t* j = i;
+      for (; j > first && q_of(*(j - 1)) > q; --j) *j = *(j - 1);
+      *j = h;
+    }
+  }
 }
 
 /// Angular class of r around p → q relative to r0: 0 at θ = 0, 1 in (0, π), 2 at π, 3 in (π, 2π).
@@ -183,9 +201,8 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
   auto from = [&](uint32_t h) { return tris[h / 3][h % 3]; };
   auto to = [&](uint32_t h) { return tris[h / 3][(h % 3 + 1) % 3]; };
   auto third = [&](uint32_t h) { return tris[h / 3][(h % 3 + 2) % 3]; };
-  std::vector<std::pair<uint64_t, uint32_t>> hs(3 * m);
-  for (uint32_t h = 0; h < 3 * m; ++h) hs[h] = {edge_key(from(h), to(h)), h};
-  sort_by_key(hs, arr.points.size());
+  std::vector<uint32_t> hs, bucket;
+  group_half_edges(m, arr.points.size(), from, to, hs, bucket);
 
   UnionFind corners(3 * m);
   std::vector<uint32_t> mate(3 * m, kNone);
@@ -196,12 +213,14 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
     mate[g] = h;
   };
   std::vector<uint32_t> group;
+  std::vector<uint32_t> crowded;  // the half-edges of groups of more than two
   for (size_t i = 0; i < hs.size();) {
+    const uint64_t key = edge_key(from(hs[i]), to(hs[i]));
     size_t j = i;
     group.clear();
-    while (j < hs.size() && hs[j].first == hs[i].first) group.push_back(hs[j++].second);
+    while (j < hs.size() && edge_key(from(hs[j]), to(hs[j])) == key) group.push_back(hs[j++]);
     i = j;
-    const uint32_t p = static_cast<uint32_t>(hs[i - 1].first >> 32);
+    const uint32_t p = static_cast<uint32_t>(key >> 32);
     auto forward = [&](uint32_t h) { return from(h) == p; };
     if (group.size() % 2 != 0)
       throw InternalError("evaluate: an edge of the result has an odd number of faces");
@@ -211,8 +230,9 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
       pair_up(group[0], group[1]);
       continue;
     }
+    crowded.insert(crowded.end(), group.begin(), group.end());
     const Point& pp = arr.points[p];
-    const Point& qq = arr.points[static_cast<uint32_t>(hs[i - 1].first & 0xffffffffu)];
+    const Point& qq = arr.points[static_cast<uint32_t>(key & 0xffffffffu)];
     const Point& r0 = arr.points[third(group[0])];
     std::vector<std::pair<int, uint32_t>> order;
     for (uint32_t h : group) order.emplace_back(quadrant(pp, qq, r0, arr.points[third(h)]), h);
@@ -274,12 +294,16 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
     vertex[c] = vertex[root];
   }
   // Second copies of an output edge (same two vertices, same direction): split at the midpoint.
+  // Both copies join the same two points, so they are in one group of the pairing above, and a
+  // group of two is one copy each way: only the crowded groups' half-edges can be copies.
   std::vector<std::array<uint32_t, 3>> faces(m);
   for (uint32_t f = 0; f < m; ++f) faces[f] = {vertex[3 * f], vertex[3 * f + 1], vertex[3 * f + 2]};
-  std::vector<std::pair<uint64_t, uint32_t>> directed(3 * m);
-  for (uint32_t h = 0; h < 3 * m; ++h)
-    directed[h] = {(uint64_t{vertex[h]} << 32) | vertex[3 * (h / 3) + (h % 3 + 1) % 3], h};
-  sort_by_key(directed, mesh.vertices.size());
+  std::vector<std::pair<uint64_t, uint32_t>> directed(crowded.size());
+  for (size_t x = 0; x < crowded.size(); ++x) {
+    const uint32_t h = crowded[x];
+    directed[x] = {(uint64_t{vertex[h]} << 32) | vertex[3 * (h / 3) + (h % 3 + 1) % 3], h};
+  }
+  std::sort(directed.begin(), directed.end());
   std::vector<uint8_t> split(m, 0);
   std::vector<std::pair<std::array<uint32_t, 3>, uint32_t>> extra;  // (face, split-from face)
   for (size_t i = 0, j; i < directed.size(); i = j) {
