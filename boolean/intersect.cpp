@@ -234,6 +234,14 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
   std::vector<Bbox> boxes;
   std::vector<uint32_t> leaf;
   boxes_and_leaves(tris, pos, boxes, leaf);
+  // Each tri's normal axis once, for tiles_meet's projection filters (a tri is in about seven
+  // of the check's pairs: computed per pair, it took 2 % of cheese ∪ fandisk's evaluation).
+  std::vector<uint8_t> axis(tris.size());
+  parallel_for(tris.size(), 4096, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      axis[i] = static_cast<uint8_t>(
+          normal_axis(pos[tris[i].v[0]], pos[tris[i].v[1]], pos[tris[i].v[2]]));
+  });
   // One flag per leaf, set from several threads; a leaf found self-intersecting skips the rest
   // of its pairs.
   std::vector<std::atomic<uint8_t>> found(self.size());
@@ -242,7 +250,8 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
     const Tri& a = tris[t];
     const Tri& b = tris[u];
     if (a.face == b.face || found[a.leaf].load(std::memory_order_relaxed)) return;
-    if (tiles_meet(a.v, b.v, pos)) found[a.leaf].store(1, std::memory_order_relaxed);
+    if (tiles_meet(a.v, b.v, pos, axis[t], axis[u]))
+      found[a.leaf].store(1, std::memory_order_relaxed);
   });
   for (size_t l = 0; l < self.size(); ++l) self[l] = found[l].load();
   return pairs;

@@ -39,7 +39,12 @@ Point3 to_point(const Vec3& v) { return {v.x, v.y, v.z}; }
 struct Triangle {
   std::array<uint32_t, 3> v;
   uint32_t face;
+  int axis;  ///< normal_axis of its corners: the projection filters' first choice
 };
+
+Triangle make_triangle(const std::array<uint32_t, 3>& t, uint32_t face, std::span<const Vec3> v) {
+  return {t, face, normal_axis(v[t[0]], v[t[1]], v[t[2]])};
+}
 
 /// Whether the corners of `b` not in `skip` lie strictly on one side of the plane of `a`
 /// (exact orient3d on the doubles): then b meets a's plane at most in the skipped corners.
@@ -78,17 +83,10 @@ SharedCorners shared_corners(const Triangle& a, const Triangle& b) {
   return c;
 }
 
-/// The dominant axis of t's normal (doubles): the projection along it flattens t least.
-int dominant_axis(const Triangle& t, std::span<const Vec3> v) {
-  const Vec3 n = cross(v[t.v[1]] - v[t.v[0]], v[t.v[2]] - v[t.v[0]]);
-  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-  return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
-}
-
-/// An axis the plane of triangle t is not parallel to: its dominant axis, confirmed by an exact
+/// An axis the plane of triangle t is not parallel to: its normal_axis, confirmed by an exact
 /// orient2d (another axis if that is 0: t is never collinear).
 int projection_axis(const Triangle& t, std::span<const Vec3> v) {
-  const int first = dominant_axis(t, v);
+  const int first = t.axis;
   for (int i = 0; i < 3; ++i) {
     const int k = (first + i) % 3;
     if (orient2d(v[t.v[0]], v[t.v[1]], v[t.v[2]], k) != 0) return k;
@@ -215,10 +213,8 @@ bool disjoint_in_projection(const Triangle& a, const Triangle& b, std::span<cons
 /// sharp edge or corner, where one of them is flat in the other's projection).
 bool apart_in_projection(const Triangle& a, const Triangle& b, const SharedCorners& c,
                          std::span<const Vec3> v) {
-  const int ka = dominant_axis(a, v);
-  if (apart_in_projection(a, b, c, v, ka)) return true;
-  const int kb = dominant_axis(b, v);
-  return kb != ka && apart_in_projection(a, b, c, v, kb);
+  if (apart_in_projection(a, b, c, v, a.axis)) return true;
+  return b.axis != a.axis && apart_in_projection(a, b, c, v, b.axis);
 }
 
 /// Whether two triangles of different faces meet anywhere beyond their shared vertices.
@@ -244,7 +240,7 @@ bool triangles_meet(const Triangle& a, const Triangle& b, const Points& p,
   }
   const uint32_t skip = shared == 1 ? a.v[ia] : UINT32_MAX;
   if (shared == 0) {  // the projections along the dominant axes of both normals
-    const int ka = dominant_axis(a, v), kb = dominant_axis(b, v);
+    const int ka = a.axis, kb = b.axis;
     if (disjoint_in_projection(a, b, v, ka) || (kb != ka && disjoint_in_projection(a, b, v, kb)))
       return false;
   }
@@ -270,7 +266,19 @@ struct PointsOf {
 
 bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
                 std::span<const Vec3> v) {
-  return triangles_meet(Triangle{a, 0}, Triangle{b, 1}, PointsOf{v}, v);
+  return tiles_meet(a, b, v, normal_axis(v[a[0]], v[a[1]], v[a[2]]),
+                    normal_axis(v[b[0]], v[b[1]], v[b[2]]));
+}
+
+bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
+                std::span<const Vec3> v, int axis_a, int axis_b) {
+  return triangles_meet(Triangle{a, 0, axis_a}, Triangle{b, 1, axis_b}, PointsOf{v}, v);
+}
+
+int normal_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = cross(b - a, c - a);
+  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+  return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
 }
 
 bool self_intersects(const PolygonMesh& mesh) {
@@ -284,7 +292,8 @@ bool self_intersects(const PolygonMesh& mesh) {
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     tiles.clear();
     if (triangulate_face(mesh.vertices, mesh.face(f), tiles) != FaceTiling::kSimple) return true;
-    for (const auto& t : tiles) triangles.push_back({t, static_cast<uint32_t>(f)});
+    for (const auto& t : tiles)
+      triangles.push_back(make_triangle(t, static_cast<uint32_t>(f), mesh.vertices));
   }
 
   // Every pair of meeting triangle boxes (solid/box_pairs.h: a grid, in parallel); the answer
@@ -396,7 +405,8 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
         if (all || suspect[f]) chunk_bad[c].push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
         continue;
       }
-      for (const auto& t : tiles) chunk_tris[c].push_back({t, static_cast<uint32_t>(f)});
+      for (const auto& t : tiles)
+        chunk_tris[c].push_back(make_triangle(t, static_cast<uint32_t>(f), mesh.vertices));
     }
   });
   std::vector<std::pair<uint32_t, uint32_t>> pairs;

@@ -72,6 +72,16 @@ bool self_intersects(const PolygonMesh& mesh);
 bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
                 std::span<const Vec3> v);
 
+/// The same with each triangle's normal_axis given: callers testing many pairs compute it once
+/// per triangle. The answer does not depend on the axes (they only choose the projections the
+/// filters try first; every projection is sound).
+bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
+                std::span<const Vec3> v, int axis_a, int axis_b);
+
+/// The axis (0, 1, 2) of the largest component of the normal (b − a) × (c − a), in doubles: the
+/// projection along it flattens the triangle least.
+int normal_axis(const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// The pairs (f, g), f ≤ g, of faces that meet by self_intersects()' rules, sorted; (f, f) for a
 /// face whose boundary crosses itself or winds more than once. With `suspect` (one flag per
 /// face) only pairs with at least one suspect face are tested: a caller that knows which faces
