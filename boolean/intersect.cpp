@@ -242,6 +242,10 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
       axis[i] = static_cast<uint8_t>(
           normal_axis(pos[tris[i].v[0]], pos[tris[i].v[1]], pos[tris[i].v[2]]));
   });
+  // Vertices whose fan within their leaf is a flat star: tris sharing one never meet.
+  std::vector<std::array<uint32_t, 3>> corners(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) corners[i] = tris[i].v;
+  const std::vector<uint8_t> star = star_vertices(corners, leaf, pos);
   // One flag per leaf, set from several threads; a leaf found self-intersecting skips the rest
   // of its pairs.
   std::vector<std::atomic<uint8_t>> found(self.size());
@@ -250,6 +254,8 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
     const Tri& a = tris[t];
     const Tri& b = tris[u];
     if (a.face == b.face || found[a.leaf].load(std::memory_order_relaxed)) return;
+    for (uint32_t c : a.v)
+      if (star[c] && (c == b.v[0] || c == b.v[1] || c == b.v[2])) return;
     if (tiles_meet(a.v, b.v, pos, axis[t], axis[u]))
       found[a.leaf].store(1, std::memory_order_relaxed);
   });

@@ -262,6 +262,21 @@ struct PointsOf {
   Point3 operator[](uint32_t i) const { return to_point(v[i]); }
 };
 
+/// Whether a and b share a vertex whose fan is a flat star (star_vertices): then they meet
+/// only at shared vertices or along a shared edge.
+bool share_star(const Triangle& a, const Triangle& b, std::span<const uint8_t> star) {
+  for (uint32_t c : a.v)
+    if (star[c] && (c == b.v[0] || c == b.v[1] || c == b.v[2])) return true;
+  return false;
+}
+
+/// star_vertices of the triangles' fans.
+std::vector<uint8_t> stars_of(const std::vector<Triangle>& triangles, std::span<const Vec3> v) {
+  std::vector<std::array<uint32_t, 3>> corners(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) corners[t] = triangles[t].v;
+  return star_vertices(corners, {}, v);
+}
+
 }  // namespace
 
 bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>& b,
@@ -279,6 +294,124 @@ int normal_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 n = cross(b - a, c - a);
   const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
   return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+}
+
+std::vector<uint8_t> star_vertices(std::span<const std::array<uint32_t, 3>> tris,
+                                   std::span<const uint32_t> group, std::span<const Vec3> v) {
+  // The triangles of each vertex (compressed rows, triangle order).
+  std::vector<uint32_t> start(v.size() + 1, 0);
+  for (const auto& t : tris)
+    for (uint32_t c : t) ++start[c + 1];
+  for (size_t x = 0; x < v.size(); ++x) start[x + 1] += start[x];
+  std::vector<uint32_t> around(start.back());
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t t = 0; t < tris.size(); ++t)
+      for (uint32_t c : tris[t]) around[fill[c]++] = t;
+  }
+  constexpr size_t kMaxFan = 64;  // larger fans (poles) are left to the pair tests
+  std::vector<uint8_t> star(v.size(), 0);
+  parallel_for(v.size(), 1024, [&](size_t begin, size_t end) {
+    std::array<uint32_t, kMaxFan> x, y, next;  // per fan triangle: the corners after s; cycle
+    std::array<int, kMaxFan> side;
+    std::array<std::pair<uint32_t, uint32_t>, kMaxFan> by_x;  // (x, triangle), sorted by x
+    for (size_t s = begin; s < end; ++s) {
+      const size_t d = start[s + 1] - start[s];
+      if (d < 3 || d > kMaxFan) continue;
+      const uint32_t* fan = around.data() + start[s];
+      bool ok = true;
+      Vec3 normal{0, 0, 0};
+      for (size_t i = 0; i < d && ok; ++i) {
+        const auto& t = tris[fan[i]];
+        const int at = t[0] == s ? 0 : (t[1] == s ? 1 : 2);
+        x[i] = t[(at + 1) % 3];
+        y[i] = t[(at + 2) % 3];
+        ok = group.empty() || group[fan[i]] == group[fan[0]];
+        normal = normal + cross(v[x[i]] - v[s], v[y[i]] - v[s]);
+      }
+      // One cycle: each triangle's y is exactly one triangle's x, and following the links from
+      // the first triangle visits all d. (Large fans, as the fans of flat CAD faces, look the
+      // x up in a sorted copy.)
+      if (d <= 8) {
+        for (size_t i = 0; i < d && ok; ++i) {
+          size_t found = 0;
+          for (size_t j = 0; j < d; ++j)
+            if (x[j] == y[i]) next[i] = static_cast<uint32_t>(j), ++found;
+          ok = found == 1;
+        }
+      } else if (ok) {
+        for (size_t j = 0; j < d; ++j) by_x[j] = {x[j], static_cast<uint32_t>(j)};
+        std::sort(by_x.begin(), by_x.begin() + d);
+        for (size_t j = 1; j < d && ok; ++j) ok = by_x[j].first != by_x[j - 1].first;
+        for (size_t i = 0; i < d && ok; ++i) {
+          const auto it = std::lower_bound(by_x.begin(), by_x.begin() + d,
+                                           std::pair<uint32_t, uint32_t>{y[i], 0});
+          ok = it != by_x.begin() + d && it->first == y[i];
+          if (ok) next[i] = it->second;
+        }
+      }
+      if (!ok) continue;
+      // Back at the first triangle after exactly d links, not before: all d in one cycle.
+      size_t at = 0, length = 0;
+      do {
+        at = next[at];
+        ++length;
+      } while (at != 0 && length < d);
+      if (at != 0 || length != d) continue;
+      // In a projection (along an axis, or along the fan's normal when every axis flattens
+      // some triangle, as at the corners and sharp edges of CAD models): every triangle turns
+      // the same way (sigma) around s, strictly, so each spans an angle in (0, π) from ray x[i]
+      // to ray y[i] = x[next[i]], and the rays sweep monotonically from r = s → x[0] back to
+      // r, winding w ≥ 1 times. The sweep passes r's direction strictly inside some triangle
+      // w − 1 times: w = 1 when no triangle contains r strictly (r strictly after x[i] and
+      // strictly before y[i]). A ray collinear with r must point the other way (a vertex on a
+      // straight edge, inside a planar grid), so that it bounds no triangle containing r;
+      // `opposite` decides that for rays the projection makes collinear with r.
+      const Vec3& p = v[s];
+      const Vec3& r = v[x[0]];
+      auto way = [&](const Vec3& e, int a) { return (e[a] > p[a]) - (e[a] < p[a]); };
+      // turn(a, b): the sign of s → a → b in the projection (0 may mean undecided); exact(q):
+      // that of s → r → q, exact.
+      auto certify = [&](auto turn, auto exact, auto opposite) {
+        const int sigma = turn(r, v[y[0]]);
+        if (sigma == 0) return false;
+        for (size_t i = 1; i < d; ++i)
+          if (turn(v[x[i]], v[y[i]]) != sigma) return false;
+        side[0] = 0;
+        for (size_t j = 1; j < d; ++j) {
+          side[j] = exact(v[x[j]]);
+          if (side[j] == 0 && !opposite(v[x[j]])) return false;
+        }
+        for (size_t i = 1; i < d; ++i)
+          if (next[i] != 0 && side[i] == -sigma && side[next[i]] == sigma) return false;
+        return true;
+      };
+      const double m[3] = {std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)};
+      const int k = m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+      const int u = (k + 1) % 3, w = (k + 2) % 3;
+      // Along axis k (orient2d's filter alone for the turns: an undecided one fails).
+      ok = certify([&](const Vec3& a, const Vec3& b) { return orient2d_strict(p, a, b, k); },
+                   [&](const Vec3& q) { return orient2d(p, r, q, k); },
+                   [&](const Vec3& q) { return way(q, u) != way(r, u) || way(q, w) != way(r, w); });
+      // Along the fan's normal, slightly tilted off the symmetric directions of CAD models (at
+      // a cube's corner, along (1, 1, 1), opposite edges of the corner would look collinear;
+      // any direction is sound): exact triple products. Rays collinear in it are taken only
+      // when they are collinear in space, pointing apart.
+      const double tilt = 0x1p-7 * (m[0] + m[1] + m[2]);
+      const Vec3 dir{normal.x + tilt, normal.y + tilt / 3, normal.z + tilt / 7};
+      if (!ok)
+        ok = certify([&](const Vec3& a, const Vec3& b) { return triple_sign(p, a, b, dir); },
+                     [&](const Vec3& q) { return triple_sign(p, r, q, dir); },
+                     [&](const Vec3& q) {
+                       for (int a = 0; a < 3; ++a)
+                         if (orient2d(p, r, q, a) != 0) return false;
+                       return way(q, 0) != way(r, 0) || way(q, 1) != way(r, 1) ||
+                              way(q, 2) != way(r, 2);
+                     });
+      star[s] = ok;
+    }
+  });
+  return star;
 }
 
 bool self_intersects(const PolygonMesh& mesh) {
@@ -301,11 +434,13 @@ bool self_intersects(const PolygonMesh& mesh) {
   std::vector<Bbox> boxes(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
     for (uint32_t v : triangles[t].v) boxes[t].add(mesh.vertices[v]);
+  const std::vector<uint8_t> star = stars_of(triangles, mesh.vertices);
   std::atomic<bool> found{false};
   box_pairs(boxes, [&](uint32_t x, uint32_t y) {
     const Triangle& a = triangles[x];
     const Triangle& b = triangles[y];
-    if (a.face != b.face && triangles_meet(a, b, points, mesh.vertices)) found = true;
+    if (a.face != b.face && !share_star(a, b, star) && triangles_meet(a, b, points, mesh.vertices))
+      found = true;
     return found.load();
   });
   return found;
@@ -419,12 +554,14 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
   std::vector<Bbox> boxes(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
     for (uint32_t v : triangles[t].v) boxes[t].add(mesh.vertices[v]);
+  const std::vector<uint8_t> star = stars_of(triangles, mesh.vertices);
   std::mutex found_mutex;  // contacts are rare: one lock per found pair
   box_pairs(boxes, [&](uint32_t x, uint32_t y) {
     const Triangle& a = triangles[x];
     const Triangle& b = triangles[y];
     if (a.face == b.face || (!all && !suspect[a.face] && !suspect[b.face])) return false;
     if (!group.empty() && group[a.face] != 0 && group[a.face] == group[b.face]) return false;
+    if (share_star(a, b, star)) return false;
     if (triangles_meet(a, b, points, mesh.vertices)) {
       const std::lock_guard<std::mutex> lock(found_mutex);
       pairs.push_back({std::min(a.face, b.face), std::max(a.face, b.face)});

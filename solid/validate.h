@@ -82,6 +82,19 @@ bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>&
 /// projection along it flattens the triangle least.
 int normal_axis(const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Vertices whose fan is a flat star: flag s is set when the triangles with corner s (by index,
+/// all of one `group`, e.g. one leaf) form one cycle around s, each sharing the edge after s
+/// with the next, and in the projection along some axis every one of them turns the same way
+/// around s (strict orient2d) and the cycle winds around s exactly once. Their projections
+/// then tile a neighbourhood of s without overlap, so any two of them meet only at s or along
+/// a shared edge: by self_intersects()' rules, pairs that share a flagged vertex never meet.
+/// (A check of a mesh's pairs spends most of its time on such neighbours; a fan costs about
+/// two strict orient2d per triangle, its pairs about six each.) Sound, not complete: a fan it
+/// cannot certify is left unflagged. Triangles are never collinear; `group` may be empty (one
+/// group). Parallel over vertices.
+std::vector<uint8_t> star_vertices(std::span<const std::array<uint32_t, 3>> tris,
+                                   std::span<const uint32_t> group, std::span<const Vec3> v);
+
 /// The pairs (f, g), f ≤ g, of faces that meet by self_intersects()' rules, sorted; (f, f) for a
 /// face whose boundary crosses itself or winds more than once. With `suspect` (one flag per
 /// face) only pairs with at least one suspect face are tested: a caller that knows which faces

@@ -6,7 +6,9 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -116,6 +118,72 @@ TEST(TilesMeet, PairsInSpaceAgreeWithCgalsExactTests) {
     EXPECT_GT(meeting[count], 300) << count;
     EXPECT_GT(apart[count], 3000) << count;
   }
+}
+
+// star_vertices: a flagged vertex's fan has no two triangles that meet beyond their shared
+// corners (by the reference), over random fans around the origin: corners of a small 3D
+// lattice (collinear rays, flat and sharp fans), flat fans that wind twice, and cycles whose
+// order is shuffled. The flag must also be given where it is due (convex flat fans, cube
+// corners, vertices on a straight sharp edge), or the test could pass with no flags at all.
+TEST(StarVertices, FlaggedFansHaveNoMeetingPairs) {
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> coord(-2, 2), kind(0, 3), size(3, 9);
+  int flagged = 0, refused_meeting = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int d = size(rng), k = kind(rng);
+    std::vector<Vec3> v{{0, 0, 0}};
+    for (int i = 0; i < d; ++i) {
+      if (k == 0) {  // lattice corners in space
+        v.push_back({double(coord(rng)), double(coord(rng)), double(coord(rng))});
+      } else {  // a flat fan in z = 0 (k = 1 once around, k = 2 twice), k = 3 lifted
+        const double turns = k == 2 ? 2 : 1;
+        const double angle = 2 * M_PI * turns * (i + 0.5 * (coord(rng) + 2) / 5) / d;
+        v.push_back({std::round(4 * std::cos(angle)), std::round(4 * std::sin(angle)),
+                     k == 3 ? double(coord(rng)) : 0});
+      }
+    }
+    std::vector<uint32_t> order(d);
+    for (int i = 0; i < d; ++i) order[i] = static_cast<uint32_t>(i + 1);
+    if (trial % 7 == 0) std::shuffle(order.begin(), order.end(), rng);
+    std::vector<std::array<uint32_t, 3>> tris;
+    bool degenerate = false;
+    for (int i = 0; i < d; ++i) {
+      const std::array<uint32_t, 3> t{0, order[i], order[(i + 1) % d]};
+      const K::Point_3 p0(0, 0, 0), p1(v[t[1]].x, v[t[1]].y, v[t[1]].z),
+          p2(v[t[2]].x, v[t[2]].y, v[t[2]].z);
+      degenerate = degenerate || t[1] == t[2] || CGAL::collinear(p0, p1, p2);
+      tris.push_back(t);
+    }
+    if (degenerate) continue;
+    bool meet = false;
+    for (size_t i = 0; i < tris.size(); ++i)
+      for (size_t j = i + 1; j < tris.size(); ++j) meet = meet || reference_meet(tris[i], tris[j], v);
+    const bool star = star_vertices(tris, {}, v)[0] != 0;
+    EXPECT_FALSE(star && meet) << trial;
+    flagged += star;
+    refused_meeting += !star && meet;
+  }
+  EXPECT_GT(flagged, 2000);
+  EXPECT_GT(refused_meeting, 2000);
+  // Fans the flag is due to: a convex flat fan, a cube corner, a vertex on a cube's edge.
+  auto fan = [](std::vector<Vec3> v, std::vector<std::array<uint32_t, 3>> tris) {
+    return star_vertices(tris, {}, v)[0] != 0;
+  };
+  EXPECT_TRUE(fan({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 1, 0}, {-1, -1, 0}, {0, -1, 0}},
+                  {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 1}}));
+  // Corner (0,0,0) of the unit cube, outward: faces x = 0, y = 0, z = 0 as two triangles each.
+  EXPECT_TRUE(fan({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}},
+                  {{0, 2, 4}, {0, 4, 1}, {0, 1, 6}, {0, 6, 3}, {0, 3, 5}, {0, 5, 2}}));
+  // Midpoint of the cube edge x = 0, y = 0 (faces x = 0 and y = 0 meet there at a right angle).
+  EXPECT_TRUE(fan({{0, 0, 1}, {0, 0, 0}, {0, 0, 2}, {1, 0, 0}, {1, 0, 2}, {0, 1, 0}, {0, 1, 2}},
+                  {{0, 1, 3}, {0, 3, 4}, {0, 4, 2}, {0, 2, 6}, {0, 6, 5}, {0, 5, 1}}));
+  // A flat hexagonal fan that winds twice: refused.
+  std::vector<Vec3> twice{{0, 0, 0}};
+  std::vector<std::array<uint32_t, 3>> twice_tris;
+  for (int i = 0; i < 6; ++i)
+    twice.push_back({std::round(4 * std::cos(4 * M_PI * i / 6)), std::round(4 * std::sin(4 * M_PI * i / 6)), 0});
+  for (uint32_t i = 0; i < 6; ++i) twice_tris.push_back({0, i + 1, (i + 1) % 6 + 1});
+  EXPECT_FALSE(fan(twice, twice_tris));
 }
 
 }  // namespace
