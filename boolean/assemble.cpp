@@ -255,12 +255,18 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
 
   // Rounding needs each constructed point's exact value (rationals): the dominant cost of this
   // step, so it runs in parallel over the distinct constructed points used.
-  std::vector<uint32_t> constructed;
+  // slot[id − originals]: the index in `constructed` (increasing id) of each one used.
+  const size_t first = arr.originals.size();
+  std::vector<uint32_t> slot(arr.points.size() - first, kNone);
   for (const auto& t : tris)
     for (uint32_t id : t)
-      if (id >= arr.originals.size()) constructed.push_back(id);
-  std::sort(constructed.begin(), constructed.end());
-  constructed.erase(std::unique(constructed.begin(), constructed.end()), constructed.end());
+      if (id >= first) slot[id - first] = 0;
+  std::vector<uint32_t> constructed;
+  for (size_t x = 0; x < slot.size(); ++x)
+    if (slot[x] == 0) {
+      slot[x] = static_cast<uint32_t>(constructed.size());
+      constructed.push_back(static_cast<uint32_t>(first + x));
+    }
   std::vector<Vec3> rounded(constructed.size());
   parallel_for(constructed.size(), 64, [&](size_t begin, size_t end) {
     for (size_t x = begin; x < end; ++x) {
@@ -284,11 +290,7 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
     if (vertex[root] == kNone) {
       const uint32_t id = tris[c / 3][c % 3];
       vertex[root] = static_cast<uint32_t>(mesh.vertices.size());
-      mesh.vertices.push_back(
-          id < arr.originals.size()
-              ? arr.originals[id]
-              : rounded[std::lower_bound(constructed.begin(), constructed.end(), id) -
-                        constructed.begin()]);
+      mesh.vertices.push_back(id < first ? arr.originals[id] : rounded[slot[id - first]]);
       if (rounded_vertex) rounded_vertex->push_back(id >= arr.originals.size());
     }
     vertex[c] = vertex[root];

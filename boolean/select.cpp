@@ -338,13 +338,18 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
       }
   }
   UnionFind uf(n);
+  // Edges come in increasing key (lo, then the larger id), as arr.cuts is sorted: one walk
+  // through the cuts instead of a search per edge.
+  size_t next_cut = 0;
   for (uint32_t lo = 0; lo + 1 < start.size(); ++lo) {
     const auto first = bucket.begin() + start[lo], last = bucket.begin() + start[lo + 1];
     std::sort(first, last);
     for (auto i = first; i != last;) {
       auto j = i;
       while (j != last && j->first == i->first) ++j;
-      if (!std::binary_search(arr.cuts.begin(), arr.cuts.end(), edge_key(lo, i->first)))
+      const uint64_t key = edge_key(lo, i->first);
+      while (next_cut < arr.cuts.size() && arr.cuts[next_cut] < key) ++next_cut;
+      if (next_cut == arr.cuts.size() || arr.cuts[next_cut] != key)
         for (auto x = i; x != j; ++x)
           for (auto y = x + 1; y != j; ++y) {
             const uint32_t px = x->second, py = y->second;
