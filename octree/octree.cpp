@@ -258,6 +258,13 @@ class Builder {
     // Progress: crossed cells grow about 4× per level, so level d weighs 4^d.
     const double weight_total = (std::ldexp(1.0, 2 * depth_ + 2) - 1) / 3;
     double weight_done = 0;
+    // The node array at its expected size at once (within a few percent; it grows past that if
+    // need be), on huge pages: with 4 KiB pages each level's resize faulted in the new nodes
+    // one page at a time and copied the old ones (bunny00 at depth 10, 9.5M nodes of 40 bytes:
+    // 3.5 → 2.3 s).
+    tree.nodes.reserve(static_cast<size_t>(
+        std::min(1.05 * expected_nodes(covering_area(solid_), bounds_.size, depth_),
+                 static_cast<double>(UINT32_MAX))));
     for (int d = 0; d <= depth_; ++d) {
       const size_t n = d == 0 ? 1 : 8 * parents_.size();
       if (n == 0) break;

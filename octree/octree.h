@@ -15,6 +15,7 @@
 
 #include "covering/bvh.h"
 #include "covering/gwn.h"
+#include "solid/large_vector.h"
 #include "solid/memory_limit.h"
 #include "solid/solid.h"
 #include "solid/voxel_bounds.h"
@@ -55,7 +56,7 @@ struct Octree {
   };
   VoxelBounds bounds;
   int depth = 0;
-  std::vector<Node> nodes;
+  LargeVector<Node> nodes;  ///< on huge pages (solid/large_vector.h)
 
   /// Side of the cells at depth d: bounds.size / 2^d.
   double cell_size(int d) const;
