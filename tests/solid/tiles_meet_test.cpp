@@ -157,7 +157,8 @@ TEST(StarVertices, FlaggedFansHaveNoMeetingPairs) {
     if (degenerate) continue;
     bool meet = false;
     for (size_t i = 0; i < tris.size(); ++i)
-      for (size_t j = i + 1; j < tris.size(); ++j) meet = meet || reference_meet(tris[i], tris[j], v);
+      for (size_t j = i + 1; j < tris.size(); ++j)
+        meet = meet || reference_meet(tris[i], tris[j], v);
     const bool star = star_vertices(tris, {}, v)[0] != 0;
     EXPECT_FALSE(star && meet) << trial;
     flagged += star;
@@ -181,7 +182,8 @@ TEST(StarVertices, FlaggedFansHaveNoMeetingPairs) {
   std::vector<Vec3> twice{{0, 0, 0}};
   std::vector<std::array<uint32_t, 3>> twice_tris;
   for (int i = 0; i < 6; ++i)
-    twice.push_back({std::round(4 * std::cos(4 * M_PI * i / 6)), std::round(4 * std::sin(4 * M_PI * i / 6)), 0});
+    twice.push_back({std::round(4 * std::cos(4 * M_PI * i / 6)),
+                     std::round(4 * std::sin(4 * M_PI * i / 6)), 0});
   for (uint32_t i = 0; i < 6; ++i) twice_tris.push_back({0, i + 1, (i + 1) % 6 + 1});
   EXPECT_FALSE(fan(twice, twice_tris));
 }
