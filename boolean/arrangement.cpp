@@ -254,10 +254,14 @@ Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grai
         arr.points.push_back(std::move(local.points[next++]));
       }
   }
-  std::vector<uint32_t> used;
-  for (const Local& local : locals) used.insert(used.end(), local.ids.begin(), local.ids.end());
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::vector<uint32_t> used;  // the ids the pieces use, increasing (a flag per point, no sort)
+  {
+    std::vector<uint8_t> flag(arr.points.size(), 0);
+    for (const Local& local : locals)
+      for (uint32_t q : local.ids) flag[q] = 1;
+    for (uint32_t q = 0; q < flag.size(); ++q)
+      if (flag[q]) used.push_back(q);
+  }
   Bbox box;
   for (const Vec3& p : pos) box.add(p);
   const std::vector<uint32_t> rep = merge_equal(arr.points, used, box);
