@@ -321,48 +321,33 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
                                                    size_t grain, std::vector<uint32_t>& leaves_of,
                                                    size_t& patches) {
   const size_t n = arr.pieces.size();
-  // Patches: union pieces of one leaf across non-cut edges. Edges are bucketed by their smaller
-  // point id (counting sort), each bucket's few entries sorted by the larger id: linear, where
-  // sorting all 3n (edge, piece) pairs cost most of this step on large scenes.
-  std::vector<uint32_t> start(arr.points.size() + 1, 0);
-  for (const Piece& piece : arr.pieces)
-    for (int e = 0; e < 3; ++e) ++start[std::min(piece.v[e], piece.v[(e + 1) % 3]) + 1];
-  for (size_t x = 1; x < start.size(); ++x) start[x] += start[x - 1];
-  std::vector<std::pair<uint32_t, uint32_t>> bucket(3 * n);  // (larger id, piece)
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (uint32_t p = 0; p < n; ++p)
-      for (int e = 0; e < 3; ++e) {
-        const uint32_t u = arr.pieces[p].v[e], w = arr.pieces[p].v[(e + 1) % 3];
-        bucket[fill[std::min(u, w)]++] = {std::max(u, w), p};
-      }
-  }
+  // Patches: union pieces of one leaf across non-cut edges (their half-edges grouped by edge,
+  // group_half_edges: linear, where sorting all 3n (edge, piece) pairs cost most of this step
+  // on large scenes).
+  auto from = [&](uint32_t h) { return arr.pieces[h / 3].v[h % 3]; };
+  auto to = [&](uint32_t h) { return arr.pieces[h / 3].v[(h % 3 + 1) % 3]; };
+  std::vector<uint32_t> hs, scratch;
+  group_half_edges(n, arr.points.size(), from, to, hs, scratch);
   UnionFind uf(n);
-  // Edges come in increasing key (lo, then the larger id), as arr.cuts is sorted: one walk
-  // through the cuts instead of a search per edge.
+  // Edges come in increasing key, as arr.cuts is sorted: one walk through the cuts instead of
+  // a search per edge.
   size_t next_cut = 0;
-  for (uint32_t lo = 0; lo + 1 < start.size(); ++lo) {
-    const auto first = bucket.begin() + start[lo], last = bucket.begin() + start[lo + 1];
-    std::sort(first, last);
-    for (auto i = first; i != last;) {
-      auto j = i;
-      while (j != last && j->first == i->first) ++j;
-      const uint64_t key = edge_key(lo, i->first);
-      while (next_cut < arr.cuts.size() && arr.cuts[next_cut] < key) ++next_cut;
-      if (next_cut == arr.cuts.size() || arr.cuts[next_cut] != key)
-        for (auto x = i; x != j; ++x)
-          for (auto y = x + 1; y != j; ++y) {
-            const uint32_t px = x->second, py = y->second;
-            const uint32_t tx = arr.pieces[px].tri, ty = arr.pieces[py].tri;
-            const uint32_t leaf = arr.tris[tx].leaf;
-            if (arr.tris[ty].leaf != leaf) continue;
-            if (tx != ty && !arr.solo.empty() && (arr.solo[tx] || arr.solo[ty])) continue;
-            size_t same = 0;  // pieces of this leaf at the edge: two on one sheet, more across sheets
-            for (auto z = i; z != j; ++z) same += arr.tris[arr.pieces[z->second].tri].leaf == leaf;
-            if (same == 2) uf.unite(px, py);
-          }
-      i = j;
-    }
+  for (size_t i = 0, j; i < hs.size(); i = j) {
+    const uint64_t key = edge_key(from(hs[i]), to(hs[i]));
+    for (j = i + 1; j < hs.size() && edge_key(from(hs[j]), to(hs[j])) == key;) ++j;
+    while (next_cut < arr.cuts.size() && arr.cuts[next_cut] < key) ++next_cut;
+    if (next_cut < arr.cuts.size() && arr.cuts[next_cut] == key) continue;
+    for (size_t x = i; x != j; ++x)
+      for (size_t y = x + 1; y != j; ++y) {
+        const uint32_t px = hs[x] / 3, py = hs[y] / 3;
+        const uint32_t tx = arr.pieces[px].tri, ty = arr.pieces[py].tri;
+        const uint32_t leaf = arr.tris[tx].leaf;
+        if (arr.tris[ty].leaf != leaf) continue;
+        if (tx != ty && !arr.solo.empty() && (arr.solo[tx] || arr.solo[ty])) continue;
+        size_t same = 0;  // pieces of this leaf at the edge: two on one sheet, more across sheets
+        for (size_t z = i; z != j; ++z) same += arr.tris[arr.pieces[hs[z] / 3].tri].leaf == leaf;
+        if (same == 2) uf.unite(px, py);
+      }
   }
   std::vector<uint32_t> roots;
   std::vector<uint32_t> patch_of(n);

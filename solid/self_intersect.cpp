@@ -262,6 +262,12 @@ struct PointsOf {
   Point3 operator[](uint32_t i) const { return to_point(v[i]); }
 };
 
+/// The axis of n's largest component in magnitude (the first on ties).
+int largest_axis(const Vec3& n) {
+  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+  return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+}
+
 /// Whether a and b share a vertex whose fan is a flat star (star_vertices): then they meet
 /// only at shared vertices or along a shared edge.
 bool share_star(const Triangle& a, const Triangle& b, std::span<const uint8_t> star) {
@@ -291,9 +297,7 @@ bool tiles_meet(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>&
 }
 
 int normal_axis(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = cross(b - a, c - a);
-  const double m[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-  return m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+  return largest_axis(cross(b - a, c - a));
 }
 
 std::vector<uint8_t> star_vertices(std::span<const std::array<uint32_t, 3>> tris,
@@ -386,8 +390,7 @@ std::vector<uint8_t> star_vertices(std::span<const std::array<uint32_t, 3>> tris
           if (next[i] != 0 && side[i] == -sigma && side[next[i]] == sigma) return false;
         return true;
       };
-      const double m[3] = {std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)};
-      const int k = m[0] >= m[1] && m[0] >= m[2] ? 0 : (m[1] >= m[2] ? 1 : 2);
+      const int k = largest_axis(normal);
       const int u = (k + 1) % 3, w = (k + 2) % 3;
       // Along axis k (orient2d's filter alone for the turns: an undecided one fails).
       ok = certify([&](const Vec3& a, const Vec3& b) { return orient2d_strict(p, a, b, k); },
@@ -397,7 +400,7 @@ std::vector<uint8_t> star_vertices(std::span<const std::array<uint32_t, 3>> tris
       // a cube's corner, along (1, 1, 1), opposite edges of the corner would look collinear;
       // any direction is sound): exact triple products. Rays collinear in it are taken only
       // when they are collinear in space, pointing apart.
-      const double tilt = 0x1p-7 * (m[0] + m[1] + m[2]);
+      const double tilt = 0x1p-7 * (std::abs(normal.x) + std::abs(normal.y) + std::abs(normal.z));
       const Vec3 dir{normal.x + tilt, normal.y + tilt / 3, normal.z + tilt / 7};
       if (!ok)
         ok = certify([&](const Vec3& a, const Vec3& b) { return triple_sign(p, a, b, dir); },

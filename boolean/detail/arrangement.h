@@ -61,6 +61,45 @@ inline uint64_t edge_key(uint32_t a, uint32_t b) {
   return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
 }
 
+/// The half-edges h < 3·m of m triangles (h = 3·t + e: edge e of triangle t, from(h) → to(h),
+/// point ids < n) grouped by undirected edge, in increasing (p, q) with p < q, each group in
+/// increasing h (the order of a stable sort by edge_key), into `order`; `start` is scratch.
+/// Used by select_pieces (patches) and assemble (pairing): one counting pass by p
+/// (stable, so each bucket is in increasing h), then each bucket sorted by q, stably. A vertex
+/// is the smaller end of about three edges, six half-edges: those buckets take an insertion
+/// sort; a large one (a pole of many fans) std::stable_sort. (Two counting passes over
+/// (key, h) pairs, one by q and one by p, wrote and read 16-byte items twice over arrays of
+/// 3·m, fresh pages mostly; this pass moves 4-byte ids once: bunny00 − elephant's assembly,
+/// 240k half-edges, first in its process, 0.048–0.050 → 0.021–0.022 s.)
+template <class From, class To>
+void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t>& order,
+                      std::vector<uint32_t>& start) {
+  const uint32_t count = static_cast<uint32_t>(3 * m);
+  start.assign(n + 1, 0);
+  for (uint32_t h = 0; h < count; ++h) ++start[std::min(from(h), to(h)) + 1];
+  for (size_t a = 0; a < n; ++a) start[a + 1] += start[a];
+  order.resize(count);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (uint32_t h = 0; h < count; ++h) order[fill[std::min(from(h), to(h))]++] = h;
+  }
+  auto q_of = [&](uint32_t h) { return std::max(from(h), to(h)); };
+  for (size_t a = 0; a < n; ++a) {
+    uint32_t* first = order.data() + start[a];
+    uint32_t* last = order.data() + start[a + 1];
+    if (last - first > 32) {
+      std::stable_sort(first, last, [&](uint32_t x, uint32_t y) { return q_of(x) < q_of(y); });
+      continue;
+    }
+    for (uint32_t* i = first + 1; i < last; ++i) {
+      const uint32_t h = *i, q = q_of(h);
+      uint32_t* j = i;
+      for (; j > first && q_of(*(j - 1)) > q; --j) *j = *(j - 1);
+      *j = h;
+    }
+  }
+}
+
 struct Tri {
   std::array<uint32_t, 3> v;  ///< point ids (originals), leaf orientation
   uint32_t leaf = 0;
