@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <span>
 
 #include "boolean/detail/arrangement_steps.h"
 #include "solid/errors.h"
@@ -61,22 +62,34 @@ std::vector<Tri> leaf_tris(const Solid& solid, const std::vector<uint32_t>& id,
                            const std::vector<Vec3>& pos, size_t grain,
                            std::vector<uint8_t>& winding) {
   const size_t faces = solid.face_count();
-  std::vector<std::vector<std::array<uint32_t, 3>>> per_face(faces);
+  // Each chunk of faces triangulates into one buffer (face f's tris from first[f] of its chunk's
+  // to the next face's, or the buffer's end), not one vector per face: the 30k small vectors of
+  // cheese ∪ fandisk were most of this step (1.5 → 0.7 ms).
+  const size_t chunk = grain * 16;
+  std::vector<std::vector<std::array<uint32_t, 3>>> chunk_tris((faces + chunk - 1) / chunk);
+  std::vector<uint32_t> first(faces, 0);
   std::vector<FaceTiling> tiling(faces, FaceTiling::kSimple);
-  parallel_for(faces, grain * 16, [&](size_t begin, size_t end) {
+  parallel_for(faces, chunk, [&](size_t begin, size_t end) {
+    std::vector<std::array<uint32_t, 3>>& out = chunk_tris[begin / chunk];
     std::vector<uint32_t> loop;
     for (size_t f = begin; f < end; ++f) {
       auto face = solid.face(f);
       loop.assign(face.begin(), face.end());
       if (solid.face_sign[f] < 0) std::reverse(loop.begin(), loop.end());
       for (uint32_t& v : loop) v = id[v];
-      tiling[f] = triangulate_face(pos, loop, per_face[f]);
+      first[f] = static_cast<uint32_t>(out.size());
+      tiling[f] = triangulate_face(pos, loop, out);
     }
   });
+  auto face_tris = [&](size_t f) {
+    const auto& out = chunk_tris[f / chunk];
+    const size_t end = (f + 1) % chunk == 0 || f + 1 == faces ? out.size() : first[f + 1];
+    return std::span<const std::array<uint32_t, 3>>(out.data() + first[f], end - first[f]);
+  };
   winding.assign(solid.leaves.size(), 0);
   std::vector<Tri> tris;
   size_t total = 0;
-  for (const auto& t : per_face) total += t.size();
+  for (const auto& t : chunk_tris) total += t.size();
   tris.reserve(total);
   for (uint32_t l = 0; l < solid.leaves.size(); ++l) {
     const Leaf& leaf = solid.leaves[l];
@@ -87,7 +100,7 @@ std::vector<Tri> leaf_tris(const Solid& solid, const std::vector<uint32_t>& id,
                          " has a boundary that crosses itself; evaluate needs faces that bound "
                          "a region");
       if (tiling[f] == FaceTiling::kWinding) winding[l] = 1;
-      for (const auto& t : per_face[f]) tris.push_back({t, l, static_cast<uint32_t>(f)});
+      for (const auto& t : face_tris(f)) tris.push_back({t, l, static_cast<uint32_t>(f)});
     }
   }
   return tris;

@@ -94,9 +94,16 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
     const double cells = static_cast<double>(grid.n[0]) * static_cast<double>(grid.n[1]) *
                          static_cast<double>(grid.n[2]);
     if (cells < std::ldexp(1.0, 63 - bits)) {
+      constexpr size_t kCountGrain = 8192;
+      std::vector<uint64_t> part((boxes.size() + kCountGrain - 1) / kCountGrain, 0);
+      parallel_for(boxes.size(), kCountGrain, [&](size_t begin, size_t end) {
+        uint64_t sum = 0;
+        for (size_t b = begin; b < end; ++b)
+          if (!boxes[b].empty()) sum += grid.covered(boxes[b]);
+        part[begin / kCountGrain] = sum;
+      });
       uint64_t entries = 0;
-      for (const Bbox& b : boxes)
-        if (!b.empty()) entries += grid.covered(b);
+      for (uint64_t x : part) entries += x;
       if (entries <= 4 * count || h >= extent) break;
     }
     h *= 2;

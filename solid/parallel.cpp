@@ -1,6 +1,7 @@
 #include "solid/parallel.h"
 
 #include <tbb/blocked_range.h>
+#include <boost/sort/spreadsort/integer_sort.hpp>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
@@ -30,7 +31,15 @@ void parallel_invoke(const std::function<void()>& f, const std::function<void()>
   tbb::parallel_invoke(f, g);
 }
 
-void parallel_sort(std::vector<uint64_t>& keys) { tbb::parallel_sort(keys.begin(), keys.end()); }
+void parallel_sort(std::vector<uint64_t>& keys) {
+  // Up to 2^20 keys Boost's radix sort on one thread beats TBB's comparison sort on two (77k
+  // grid keys of bench/evaluate_vs_manifold's cheese ∪ fandisk: 1.8–2.1 ms against 2.5–2.7 ms,
+  // std::sort 4.3 ms); beyond, TBB's scales with the cores.
+  if (keys.size() <= (size_t{1} << 20))
+    boost::sort::spreadsort::integer_sort(keys.begin(), keys.end());
+  else
+    tbb::parallel_sort(keys.begin(), keys.end());
+}
 
 int max_threads() {
   const size_t allowed =

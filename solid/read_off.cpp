@@ -6,7 +6,7 @@
 //   F lines  n i0 .. i(n-1) [numbers]   0-based indices, n >= 3; a trailing colour is ignored
 // Before reserving memory the counts are checked against the bytes left in the file: a vertex
 // line takes at least 6 bytes ("0 0 0\n") and a face line at least 7 ("3 0 1 2").
-// A body of 1 MiB or more is parsed in parallel (read_body_parallel), the same mesh as serially.
+// A body of 256 KiB or more is parsed in parallel (read_body_parallel), the same mesh as serially.
 
 #include <algorithm>
 #include <atomic>
@@ -23,7 +23,7 @@ namespace {
 constexpr uint64_t kMinVertexBytes = 6;
 constexpr uint64_t kMinFaceBytes = 7;
 /// Bodies (vertex and face lines) of at least this many bytes are read in parallel.
-constexpr uint64_t kParallelBytes = uint64_t{1} << 20;
+constexpr uint64_t kParallelBytes = uint64_t{1} << 18;
 
 /// Line source that skips blank lines and strips comments.
 class ContentLines {
@@ -75,7 +75,7 @@ uint64_t parse_count(std::string_view token, const std::string& file, uint64_t l
 /// again and reports its first error with its line number, so errors do not depend on this path.
 bool read_body_parallel(std::string_view body, uint64_t vertex_count, uint64_t face_count,
                         const std::string& file, PolygonMesh& mesh) {
-  const std::vector<std::string_view> pieces = line_chunks(body, size_t{1} << 18);
+  const std::vector<std::string_view> pieces = line_chunks(body, size_t{1} << 16);
   const size_t chunks = pieces.size();
   std::vector<std::vector<std::string_view>> content(chunks);
   parallel_for(chunks, 1, [&](size_t begin, size_t end) {
@@ -93,7 +93,7 @@ bool read_body_parallel(std::string_view body, uint64_t vertex_count, uint64_t f
   content = {};
   if (all.size() != vertex_count + face_count) return false;
   std::atomic<bool> failed{false};
-  constexpr size_t kGrain = size_t{1} << 14;
+  constexpr size_t kGrain = size_t{1} << 12;
   mesh.vertices.resize(vertex_count);
   parallel_for(vertex_count, kGrain, [&](size_t begin, size_t end) {
     try {

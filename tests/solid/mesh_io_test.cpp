@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -22,6 +23,7 @@
 
 namespace {
 
+using cover::FaceLabels;
 using cover::InputError;
 using cover::PolygonMesh;
 using cover::Vec3;
@@ -170,7 +172,7 @@ TEST(MeshIoTest, RoundTripIsExactForOffObjPly) {
   fs::remove_all(dir);
 }
 
-// Issue 24: an OFF body of 1 MiB or more is parsed in parallel chunks; the mesh must be the one
+// Issue 24: an OFF body of 256 KiB or more is parsed in parallel chunks; the mesh must be the one
 // the line-by-line reading gives (comments, blank lines, CRLF, mixed face sizes across chunk
 // ends), and an error deep inside must name the same line as before (the serial re-read).
 /// The message of reading `bytes` as dir/name (read_text), or "no error".
@@ -274,6 +276,51 @@ TEST(MeshIoTest, StlRoundTripFanTriangulatesAndWelds) {
   }
   EXPECT_EQ(back.face_count(), t);
   EXPECT_EQ(back.vertices.size(), 12u);  // the unreferenced vertex is not written
+  fs::remove_all(dir);
+}
+
+// The writers format vertex and face lines in parallel chunks, a block of chunks at a time
+// (write_mesh.cpp): the file must be the text written line by line, here assembled serially with
+// the same number format (std::to_chars, shortest round trip), across several blocks, with mixed
+// face sizes and OBJ groups that change inside chunks and at chunk ends.
+TEST(MeshIoTest, ParallelFormattingWritesTheSerialText) {
+  const fs::path dir = test::temp_dir("mesh-io");
+  constexpr uint32_t kV = 300000, kF = 290000;  // more than two blocks of 64 × 2048 lines
+  PolygonMesh mesh;
+  for (uint32_t v = 0; v < kV; ++v)
+    mesh.vertices.push_back({v * 0.001, -1.0 / (v + 1), v % 7 == 0 ? 1e-300 : v * 3.25});
+  FaceLabels labels;
+  labels.ply_property = "leaf";
+  labels.obj_groups = {"a", "b_1", "c"};
+  for (uint32_t f = 0; f < kF; ++f) {
+    std::vector<uint32_t> loop;
+    for (uint32_t k = 0; k < 3 + f % 3; ++k) loop.push_back((f * 7 + k * 13) % kV);
+    mesh.add_face(loop);
+    labels.labels.push_back(f % 2048 == 0 || f % 1000 < 3 ? (f / 7) % 3 : 1);
+  }
+  auto number = [](std::string& s, auto x) {
+    char digits[32];
+    s.append(digits, std::to_chars(digits, digits + sizeof digits, x).ptr);
+  };
+  std::string off = "OFF\n" + std::to_string(kV) + " " + std::to_string(kF) + " 0\n";
+  std::string obj = "# written by Cover\n";
+  for (const Vec3& p : mesh.vertices) {
+    obj += "v ";
+    for (std::string* s : {&off, &obj})
+      number(*s, p.x), *s += ' ', number(*s, p.y), *s += ' ', number(*s, p.z), *s += '\n';
+  }
+  for (uint32_t f = 0; f < kF; ++f) {
+    number(off, mesh.face(f).size());
+    if (f == 0 || labels.labels[f] != labels.labels[f - 1])
+      obj += "g " + labels.obj_groups[labels.labels[f]] + "\n";
+    obj += 'f';
+    for (uint32_t v : mesh.face(f)) off += ' ', number(off, v), obj += ' ', number(obj, v + 1);
+    off += '\n', obj += '\n';
+  }
+  cover::write_mesh(dir / "m.off", mesh);
+  cover::write_mesh(dir / "m.obj", mesh, labels);
+  EXPECT_TRUE(test::read_file(dir / "m.off") == off);
+  EXPECT_TRUE(test::read_file(dir / "m.obj") == obj);
   fs::remove_all(dir);
 }
 
