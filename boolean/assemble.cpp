@@ -159,13 +159,15 @@ bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, 
 }
 
 PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
-                     std::vector<uint32_t>* labels, std::vector<uint8_t>* rounded_vertex) {
+                     std::vector<uint32_t>* labels, std::vector<uint8_t>* rounded_vertex,
+                     const std::vector<uint32_t>* grouped) {
   const size_t m = tris.size();
   auto from = [&](uint32_t h) { return tris[h / 3][h % 3]; };
   auto to = [&](uint32_t h) { return tris[h / 3][(h % 3 + 1) % 3]; };
   auto third = [&](uint32_t h) { return tris[h / 3][(h % 3 + 2) % 3]; };
-  std::vector<uint32_t> hs, bucket;
-  group_half_edges(m, arr.points.size(), from, to, hs, bucket);
+  std::vector<uint32_t> own, bucket;  // (without `grouped`: 1.3 of cheese ∪ fandisk's 4.5 ms)
+  if (grouped == nullptr) group_half_edges(m, arr.points.size(), from, to, own, bucket);
+  const std::vector<uint32_t>& hs = grouped != nullptr ? *grouped : own;
 
   UnionFind corners(3 * m);
   std::vector<uint32_t> mate(3 * m, kNone);

@@ -33,12 +33,14 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   r.candidate_pairs = arr.candidate_pairs;
   r.intersecting_pairs = arr.intersecting_pairs;
   auto t = Clock::now();
-  const auto kept = boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches);
+  std::vector<uint32_t> grouped;
+  const auto kept =
+      boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches, grouped);
   r.seconds.select = since(t);
   t = Clock::now();
   if (options.exact_volume) r.exact_volume = boolean_detail::exact_volume(arr, kept);
   std::vector<uint8_t> rounded;
-  r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf, &rounded);
+  r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf, &rounded, &grouped);
   r.seconds.assemble = since(t);
   // Contacts made by rounding the constructed points independently (solid/rounding_repair.h).
   t = Clock::now();

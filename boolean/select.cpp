@@ -319,7 +319,7 @@ std::vector<Sides> batch_windings(const Arrangement& arr, const std::vector<uint
 
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
                                                    size_t grain, std::vector<uint32_t>& leaves_of,
-                                                   size_t& patches) {
+                                                   size_t& patches, std::vector<uint32_t>& grouped) {
   const size_t n = arr.pieces.size();
   // Patches: union pieces of one leaf across non-cut edges (their half-edges grouped by edge,
   // group_half_edges: linear, where sorting all 3n (edge, piece) pairs cost most of this step
@@ -385,12 +385,24 @@ std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arr
   for (size_t r = 0; r < roots.size(); ++r) patch_of[roots[r]] = static_cast<uint32_t>(r);
   std::vector<std::array<uint32_t, 3>> kept;
   leaves_of.clear();
+  std::vector<uint32_t> kept_as(n, kNone);  // per piece: 2·(its kept index) + reversed, or kNone
   for (uint32_t p = 0; p < n; ++p) {
     const uint8_t d = decision[patch_of[uf.find(p)]];
     if (d == 0) continue;
     const auto& v = arr.pieces[p].v;
+    kept_as[p] = 2 * static_cast<uint32_t>(kept.size()) + (d == 2);
     leaves_of.push_back(arr.tris[arr.pieces[p].tri].leaf);
     kept.push_back(d == 1 ? v : std::array<uint32_t, 3>{v[0], v[2], v[1]});
+  }
+  // The kept half-edges in the pieces' grouping order. Kept indices increase with the pieces', a
+  // piece has one half-edge per edge, and a reversed piece (v0, v2, v1) has its edge e at
+  // 2 − e: the order group_half_edges gives over the kept triangles (stable within an edge).
+  grouped.clear();
+  grouped.reserve(3 * kept.size());
+  for (uint32_t h : hs) {
+    const uint32_t k = kept_as[h / 3];
+    if (k == kNone) continue;
+    grouped.push_back(3 * (k >> 1) + (k & 1 ? 2 - h % 3 : h % 3));
   }
   return kept;
 }

@@ -143,10 +143,13 @@ Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grai
 
 /// Steps 4–5: patches, exact classification, the regularized keep rule and de-duplication of
 /// coincident pieces. Returns the kept triangles (point ids), oriented outward; `leaves` gets
-/// the leaf of each (the leaf of its tri), `patches` the number of classified patches.
+/// the leaf of each (the leaf of its tri), `patches` the number of classified patches, and
+/// `grouped` the kept triangles' half-edges h = 3·f + e (edge e of kept triangle f) in
+/// group_half_edges' order: the pieces' grouping, which this step makes, filtered to the kept
+/// ones (what group_half_edges over the kept triangles gives, without grouping them again).
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
                                                    size_t grain, std::vector<uint32_t>& leaves,
-                                                   size_t& patches);
+                                                   size_t& patches, std::vector<uint32_t>& grouped);
 
 /// The exact volume enclosed by the kept triangles `tris` (outward) on the exact points, as
 /// Σ det(a, b, c)/6 in rationals, rounded to the nearest double once.
@@ -184,9 +187,11 @@ bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, 
 /// tris[f], except that faces split at a doubled edge append their second halves at the end;
 /// `labels` (one per tri, when given) gets their labels appended likewise. `rounded_vertex`
 /// (when given) gets one flag per output vertex: set where its coordinates were rounded (a
-/// constructed point or a midpoint), not an input vertex's own doubles.
+/// constructed point or a midpoint), not an input vertex's own doubles. `grouped` (when given):
+/// the half-edges of `tris` in group_half_edges' order (select_pieces makes it).
 PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32_t, 3>>& tris,
                      std::vector<uint32_t>* labels = nullptr,
-                     std::vector<uint8_t>* rounded_vertex = nullptr);
+                     std::vector<uint8_t>* rounded_vertex = nullptr,
+                     const std::vector<uint32_t>* grouped = nullptr);
 
 }  // namespace cover::boolean_detail
