@@ -302,20 +302,26 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
   std::merge(all.begin(), mid, mid, all.end(), keys.begin());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   const size_t first_crossing = points.size();
-  points.resize(first_crossing + keys.size());
   crossings.resize(keys.size());
   for (size_t x = 0; x < keys.size(); ++x)
     crossings[x] = {static_cast<uint32_t>(keys[x].edge >> 32),
                     static_cast<uint32_t>(keys[x].edge & 0xffffffffu), keys[x].tri};
+  // The nodes are made in parallel and handed to their points in one serial pass: assigning them
+  // in parallel released default points, which all share one node, from both threads at once
+  // (its count's cache line went back and forth: the step took longer on two threads than on
+  // one).
+  std::vector<CrossingRep*> made(keys.size());
   parallel_for(keys.size(), grain * 4, [&](size_t begin, size_t end) {
     for (size_t x = begin; x < end; ++x) {
       const uint32_t a = static_cast<uint32_t>(keys[x].edge >> 32),
                      b = static_cast<uint32_t>(keys[x].edge & 0xffffffffu);
       const Tri& w = tris[keys[x].tri];
-      points[first_crossing + x] =
-          crossing_point(pos[a], pos[b], pos[w.v[0]], pos[w.v[1]], pos[w.v[2]]);
+      const std::array<Vec3, 5> in{pos[a], pos[b], pos[w.v[0]], pos[w.v[1]], pos[w.v[2]]};
+      made[x] = new CrossingRep(approximate_crossing(in), in);
     }
   });
+  points.reserve(first_crossing + keys.size());
+  for (CrossingRep* rep : made) points.emplace_back(K::Kernel_base::Point_3(rep));
   // Phase B: the hits.
   std::vector<Hit> hits(pairs.size());
   parallel_for(pairs.size(), grain, [&](size_t begin, size_t end) {
