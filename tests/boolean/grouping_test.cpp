@@ -3,9 +3,12 @@
 // triangles again. The order decides the pairing around crowded edges and the output's vertex
 // numbering, so it must be exactly the order group_half_edges gives over the kept triangles:
 // checked here over unions, differences and intersections with reversed pieces (differences),
-// coincident faces (shared box faces) and crowded edges (boxes touching along an edge).
+// coincident faces (shared box faces) and crowded edges (boxes touching along an edge); and
+// group_half_edges against a plain stable sort by edge key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
 #include <vector>
 
 #include "boolean/detail/arrangement.h"
@@ -24,10 +27,17 @@ void expect_grouping_of_kept(const Solid& solid) {
   size_t patches = 0;
   const auto kept = select_pieces(solid, arr, 64, leaves, patches, grouped);
   ASSERT_FALSE(kept.empty());
-  group_half_edges(
-      kept.size(), arr.points.size(), [&](uint32_t h) { return kept[h / 3][h % 3]; },
-      [&](uint32_t h) { return kept[h / 3][(h % 3 + 1) % 3]; }, want, scratch);
+  auto from = [&](uint32_t h) { return kept[h / 3][h % 3]; };
+  auto to = [&](uint32_t h) { return kept[h / 3][(h % 3 + 1) % 3]; };
+  group_half_edges(kept.size(), arr.points.size(), from, to, want, scratch);
   EXPECT_EQ(grouped, want);
+  // group_half_edges itself (parallel counting by parts): a stable sort by edge key.
+  std::vector<uint32_t> sorted(3 * kept.size());
+  std::iota(sorted.begin(), sorted.end(), 0u);
+  std::stable_sort(sorted.begin(), sorted.end(), [&](uint32_t x, uint32_t y) {
+    return edge_key(from(x), to(x)) < edge_key(from(y), to(y));
+  });
+  EXPECT_EQ(want, sorted);
 }
 
 Solid box(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
