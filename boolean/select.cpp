@@ -319,7 +319,8 @@ std::vector<Sides> batch_windings(const Arrangement& arr, const std::vector<uint
 
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
                                                    size_t grain, std::vector<uint32_t>& leaves_of,
-                                                   size_t& patches, std::vector<uint32_t>& grouped) {
+                                                   size_t& patches,
+                                                   std::vector<uint32_t>& grouped) {
   const size_t n = arr.pieces.size();
   // Patches: union pieces of one leaf across non-cut edges (their half-edges grouped by edge,
   // group_half_edges: linear, where sorting all 3n (edge, piece) pairs cost most of this step

@@ -86,7 +86,9 @@ void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t
   parallel_for(kParts, 1, [&](size_t k0, size_t k1) {
     for (size_t k = k0; k < k1; ++k) {
       uint32_t* c = at.data() + k * (n + 1);
-      for (uint32_t h = static_cast<uint32_t>(k * part); h < std::min<uint64_t>(count, (k + 1) * uint64_t{part}); ++h)
+      const uint32_t end =
+          static_cast<uint32_t>(std::min<uint64_t>(count, (k + 1) * uint64_t{part}));
+      for (uint32_t h = static_cast<uint32_t>(k * part); h < end; ++h)
         ++c[std::min(from(h), to(h))];
     }
   });
@@ -105,7 +107,9 @@ void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t
   parallel_for(kParts, 1, [&](size_t k0, size_t k1) {
     for (size_t k = k0; k < k1; ++k) {
       uint32_t* fill = at.data() + k * (n + 1);
-      for (uint32_t h = static_cast<uint32_t>(k * part); h < std::min<uint64_t>(count, (k + 1) * uint64_t{part}); ++h)
+      const uint32_t end =
+          static_cast<uint32_t>(std::min<uint64_t>(count, (k + 1) * uint64_t{part}));
+      for (uint32_t h = static_cast<uint32_t>(k * part); h < end; ++h)
         order[fill[std::min(from(h), to(h))]++] = h;
     }
   });
@@ -177,7 +181,8 @@ Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grai
 /// ones (what group_half_edges over the kept triangles gives, without grouping them again).
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
                                                    size_t grain, std::vector<uint32_t>& leaves,
-                                                   size_t& patches, std::vector<uint32_t>& grouped);
+                                                   size_t& patches,
+                                                   std::vector<uint32_t>& grouped);
 
 /// The exact volume enclosed by the kept triangles `tris` (outward) on the exact points, as
 /// Σ det(a, b, c)/6 in rationals, rounded to the nearest double once.
