@@ -494,14 +494,24 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
         const double hi = std::clamp((b.max[a] - span.min[a]) / cell, 0.0, top);
         return std::pair<int64_t, int64_t>{static_cast<int64_t>(lo), static_cast<int64_t>(hi)};
       };
-      std::vector<std::vector<uint32_t>> grid(static_cast<size_t>(n[0] * n[1] * n[2]));
-      for (uint32_t f : sus) {
+      // The suspects of each cell (compressed rows: a count pass, then a fill pass; one vector
+      // per cell cost a third of this filter on cheese ∪ fandisk's 6.5k suspects).
+      const size_t cells = static_cast<size_t>(n[0] * n[1] * n[2]);
+      std::vector<uint32_t> first(cells + 1, 0), in_cell;
+      auto each_cell = [&](uint32_t f, auto&& visit) {
         const auto [x0, x1] = range(box[f], 0);
         const auto [y0, y1] = range(box[f], 1);
         const auto [z0, z1] = range(box[f], 2);
         for (int64_t z = z0; z <= z1; ++z)
           for (int64_t y = y0; y <= y1; ++y)
-            for (int64_t x = x0; x <= x1; ++x) grid[static_cast<size_t>((z * n[1] + y) * n[0] + x)].push_back(f);
+            for (int64_t x = x0; x <= x1; ++x) visit(static_cast<size_t>((z * n[1] + y) * n[0] + x));
+      };
+      for (uint32_t f : sus) each_cell(f, [&](size_t c) { ++first[c + 1]; });
+      for (size_t c = 0; c < cells; ++c) first[c + 1] += first[c];
+      in_cell.resize(first[cells]);
+      {
+        std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+        for (uint32_t f : sus) each_cell(f, [&](size_t c) { in_cell[fill[c]++] = f; });
       }
       auto meet = [](const Bbox& a, const Bbox& b) {
         return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y &&
@@ -517,8 +527,9 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
           for (int64_t z = z0; z <= z1 && !needed[f]; ++z)
             for (int64_t y = y0; y <= y1 && !needed[f]; ++y)
               for (int64_t x = x0; x <= x1 && !needed[f]; ++x)
-                for (uint32_t g : grid[static_cast<size_t>((z * n[1] + y) * n[0] + x)])
-                  if (meet(box[f], box[g])) {
+                for (size_t c = static_cast<size_t>((z * n[1] + y) * n[0] + x), i = first[c];
+                     i < first[c + 1]; ++i)
+                  if (meet(box[f], box[in_cell[i]])) {
                     needed[f] = 1;
                     break;
                   }
