@@ -179,8 +179,22 @@ Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grai
   };
   Arrangement arr;
   const std::vector<uint32_t> id = dedup_vertices(solid, arr.originals);
-  arr.points.reserve(arr.originals.size());
-  for (const Vec3& p : arr.originals) arr.points.emplace_back(p.x, p.y, p.z);
+  // The input vertices as lazy points, made per chunk in parallel and moved into place (each
+  // is an allocation: 0.7 ms serially for cheese ∪ fandisk's 15k).
+  {
+    constexpr size_t kChunk = 4096;
+    const size_t n = arr.originals.size();
+    std::vector<std::vector<Point>> made((n + kChunk - 1) / kChunk);
+    parallel_for(n, kChunk, [&](size_t begin, size_t end) {
+      std::vector<Point>& out = made[begin / kChunk];
+      out.reserve(end - begin);
+      for (size_t i = begin; i < end; ++i)
+        out.emplace_back(arr.originals[i].x, arr.originals[i].y, arr.originals[i].z);
+    });
+    arr.points.reserve(n);
+    for (std::vector<Point>& chunk : made)
+      for (Point& p : chunk) arr.points.push_back(std::move(p));
+  }
   std::vector<uint8_t> winding;
   arr.tris = leaf_tris(solid, id, arr.originals, grain, winding);
   const std::vector<Tri>& tris = arr.tris;
