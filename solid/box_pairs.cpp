@@ -10,6 +10,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "solid/parallel.h"
@@ -43,20 +44,39 @@ bool meet(const Bbox& a, const Bbox& b) {
 constexpr size_t kGroupGrain = 256;  // cells per parallel chunk
 
 /// A box of one grid cell: its bounds, its index, and per axis (bit a) whether its lower corner
-/// lies in this cell's layer of the axis.
+/// lies in this cell's layer of the axis; with corners (box_pairs_between's filter), its colour
+/// and corners.
 struct Member {
   Bbox box;
   uint32_t id;
   uint8_t lower;
 };
+struct CornerMember : Member {
+  uint32_t colour;
+  BoxCorners corners;
+};
+
+/// True when a and b have one colour and share a corner id marked in a (marks belong to ids).
+bool same_marked(const CornerMember& a, const CornerMember& b) {
+  if (a.colour != b.colour || a.corners.marked == 0) return false;
+  for (int i = 0; i < 3; ++i) {
+    const uint32_t c = a.corners.id[i];
+    if ((a.corners.marked >> i & 1) &&
+        (c == b.corners.id[0] || c == b.corners.id[1] || c == b.corners.id[2]))
+      return true;
+  }
+  return false;
+}
 
 /// The scan behind box_pairs() and box_pairs_between(): chunks(c) is told the number of
 /// parallel chunks first, then pair(chunk, a, b) gets the pairs (of different colours when
-/// `color` is given), a < b; it returns true to stop.
+/// `color` is given), a < b; it returns true to stop. With `corners` (and `colours`), pairs of
+/// one colour sharing a marked corner are dropped (M = CornerMember).
 /// A template on `pair`: it runs once per reported pair.
-template <class Chunks, class Pair>
+template <class M = Member, class Chunks, class Pair>
 void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&& chunks,
-          Pair&& pair) {
+          Pair&& pair, std::span<const uint32_t> colours = {},
+          std::span<const BoxCorners> corners = {}) {
   auto differ = [&](uint32_t a, uint32_t b) { return color.empty() || color[a] != color[b]; };
   Bbox all;
   double mean = 0;
@@ -76,9 +96,16 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
       std::max({all.max.x - all.min.x, all.max.y - all.min.y, all.max.z - all.min.z});
   if (!(extent > 0)) {  // all boxes are one point: every pair meets
     chunks(1);
+    auto dropped = [&](uint32_t a, uint32_t b) {
+      if constexpr (std::is_same_v<M, CornerMember>)
+        return same_marked({{}, colours[a], corners[a]}, {{}, colours[b], corners[b]});
+      return false;
+    };
     for (uint32_t a = 0; a < boxes.size(); ++a)
       for (uint32_t b = a + 1; b < boxes.size(); ++b)
-        if (!boxes[a].empty() && !boxes[b].empty() && differ(a, b) && pair(0, a, b)) return;
+        if (!boxes[a].empty() && !boxes[b].empty() && differ(a, b) && !dropped(a, b) &&
+            pair(0, a, b))
+          return;
     return;
   }
   const int bits = std::max(1, static_cast<int>(std::bit_width(boxes.size())));
@@ -152,7 +179,7 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
     // The cell's boxes copied side by side, so that the quadratic pair loop reads one small
     // array instead of scattered boxes (the loop was 8 % of an evaluation's profile, most of it
     // waiting on those loads).
-    std::vector<Member> cell_boxes;
+    std::vector<M> cell_boxes;
     for (size_t g = g0; g < g1 && !stop.load(std::memory_order_relaxed); ++g) {
       const uint64_t cell = entries[groups[g]] >> bits;
       const uint32_t at[3] = {static_cast<uint32_t>(cell / (grid.n[1] * grid.n[2])),
@@ -164,14 +191,19 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
         const uint32_t id = static_cast<uint32_t>(entries[e] & mask);
         uint8_t lower = 0;
         for (int a = 0; a < 3; ++a) lower |= static_cast<uint8_t>((low[id][a] == at[a]) << a);
-        cell_boxes.push_back({boxes[id], id, lower});
+        if constexpr (std::is_same_v<M, CornerMember>)
+          cell_boxes.push_back({{boxes[id], id, lower}, colours[id], corners[id]});
+        else
+          cell_boxes.push_back({boxes[id], id, lower});
         one_colour = one_colour && color[id] == color[cell_boxes[0].id];
       }
       if (one_colour) continue;
       // The pair is this cell's when the lower corner of the intersection lies in it: both
       // boxes reach the cell, so per axis the larger lower cell is this one iff either is.
-      auto report = [&](const Member& a, const Member& b) {
+      auto report = [&](const M& a, const M& b) {
         if ((a.lower | b.lower) != 7 || !meet(a.box, b.box) || !differ(a.id, b.id)) return false;
+        if constexpr (std::is_same_v<M, CornerMember>)
+          if (same_marked(a, b)) return false;
         if (pair(chunk, std::min(a.id, b.id), std::max(a.id, b.id))) {
           stop = true;
           return true;
@@ -186,7 +218,7 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
         continue;
       }
       std::sort(cell_boxes.begin(), cell_boxes.end(),
-                [](const Member& a, const Member& b) { return a.box.min.x < b.box.min.x; });
+                [](const M& a, const M& b) { return a.box.min.x < b.box.min.x; });
       for (size_t p = 0; p < n; ++p)
         for (size_t q = p + 1; q < n && cell_boxes[q].box.min.x <= cell_boxes[p].box.max.x; ++q)
           if (report(cell_boxes[p], cell_boxes[q])) return;
@@ -203,6 +235,24 @@ void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, u
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,
                                                              std::span<const uint32_t> color) {
   return box_pairs_between(boxes, color, nullptr);
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
+    std::span<const Bbox> boxes, std::span<const uint32_t> color,
+    std::span<const BoxCorners> corners, const std::function<void(uint32_t, uint32_t)>& same) {
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found;
+  scan<CornerMember>(
+      boxes, {}, [&](size_t n) { found.resize(n); },
+      [&](size_t chunk, uint32_t a, uint32_t b) {
+        if (color[a] != color[b]) found[chunk].emplace_back(a, b);
+        else same(a, b);
+        return false;
+      },
+      color, corners);
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(

@@ -8,6 +8,7 @@
 // similar-sized triangles cover about one to four cells per triangle, so this costs a sort of a
 // few entries per box, against the recursive streaming of CGAL::box_intersection_d.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -37,5 +38,21 @@ std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbo
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
     std::span<const Bbox> boxes, std::span<const uint32_t> color,
     const std::function<void(uint32_t, uint32_t)>& same);
+
+/// A box's corners for the filter below: three ids (a triangle's vertices) and which of them are
+/// marked (bit i: id[i]). A mark belongs to the id: every box holding a marked id marks it.
+struct BoxCorners {
+  std::array<uint32_t, 3> id;
+  uint8_t marked = 0;
+};
+
+/// The same, except that same(a, b) is not called for pairs of one colour sharing a marked
+/// corner id: those are dropped inside the scan, without a call or a look elsewhere (the
+/// meeting pairs of a mesh are mostly neighbours sharing a vertex; a self-intersection test
+/// whose marked vertices prove their fans' pairs apart, solid/validate.h star_vertices, then
+/// sees only the rest). corners.size() == boxes.size().
+std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
+    std::span<const Bbox> boxes, std::span<const uint32_t> color,
+    std::span<const BoxCorners> corners, const std::function<void(uint32_t, uint32_t)>& same);
 
 }  // namespace cover

@@ -568,19 +568,25 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
   std::vector<Bbox> boxes(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t)
     for (uint32_t v : triangles[t].v) boxes[t].add(mesh.vertices[v]);
+  // Pairs sharing a flat-star vertex are dropped by the scan itself (one colour for all).
   const std::vector<uint8_t> star = stars_of(triangles, mesh.vertices);
+  std::vector<BoxCorners> marked(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    marked[t].id = triangles[t].v;
+    for (int c = 0; c < 3; ++c)
+      marked[t].marked |= static_cast<uint8_t>(star[triangles[t].v[c]] << c);
+  }
+  const std::vector<uint32_t> one_colour(triangles.size(), 0);
   std::mutex found_mutex;  // contacts are rare: one lock per found pair
-  box_pairs(boxes, [&](uint32_t x, uint32_t y) {
+  box_pairs_between(boxes, one_colour, marked, [&](uint32_t x, uint32_t y) {
     const Triangle& a = triangles[x];
     const Triangle& b = triangles[y];
-    if (a.face == b.face || (!all && !suspect[a.face] && !suspect[b.face])) return false;
-    if (!group.empty() && group[a.face] != 0 && group[a.face] == group[b.face]) return false;
-    if (share_star(a, b, star)) return false;
+    if (a.face == b.face || (!all && !suspect[a.face] && !suspect[b.face])) return;
+    if (!group.empty() && group[a.face] != 0 && group[a.face] == group[b.face]) return;
     if (triangles_meet(a, b, points, mesh.vertices)) {
       const std::lock_guard<std::mutex> lock(found_mutex);
       pairs.push_back({std::min(a.face, b.face), std::max(a.face, b.face)});
     }
-    return false;
   });
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

@@ -73,6 +73,51 @@ TEST(BoxPairs, BetweenColoursAndEarlyStop) {
   EXPECT_LT(calls.load(), 100);  // stopped: at most a chunk per thread after the first
 }
 
+// box_pairs_between with corners: same() gets exactly the meeting pairs of one colour that share
+// no marked corner id (ids from a small pool, so that many pairs share some), the pairs between
+// colours are all returned, in the general scan and when every box is one point.
+TEST(BoxPairs, OneColourPairsSharingAMarkedCornerAreDropped) {
+  for (unsigned seed : {11u, 12u}) {
+    for (bool point : {false, true}) {
+      std::vector<Bbox> boxes = random_boxes(point ? 300 : 3000, seed);
+      if (point)
+        for (Bbox& b : boxes)
+          if (!b.empty()) b = Bbox{}, b.add(Vec3{1, 2, 3});
+      std::mt19937 rng(seed);
+      std::uniform_int_distribution<uint32_t> id(0, 40);
+      std::vector<uint8_t> mark(41);
+      for (uint8_t& m : mark) m = rng() % 2;
+      std::vector<uint32_t> color(boxes.size());
+      std::vector<BoxCorners> corners(boxes.size());
+      for (size_t i = 0; i < boxes.size(); ++i) {
+        color[i] = static_cast<uint32_t>(i * 7 % 3);
+        for (int c = 0; c < 3; ++c) {
+          corners[i].id[c] = id(rng);
+          corners[i].marked |= static_cast<uint8_t>(mark[corners[i].id[c]] << c);
+        }
+      }
+      std::mutex m;
+      std::vector<std::pair<uint32_t, uint32_t>> same;
+      const auto between = box_pairs_between(boxes, color, corners, [&](uint32_t a, uint32_t b) {
+        std::lock_guard<std::mutex> lock(m);
+        same.emplace_back(a, b);
+      });
+      EXPECT_EQ(between, brute(boxes, &color));
+      std::vector<std::pair<uint32_t, uint32_t>> want;
+      for (const auto& [a, b] : brute(boxes, nullptr)) {
+        if (color[a] != color[b]) continue;
+        bool shared = false;
+        for (uint32_t x : corners[a].id)
+          for (uint32_t y : corners[b].id) shared = shared || (x == y && mark[x]);
+        if (!shared) want.emplace_back(a, b);
+      }
+      std::sort(same.begin(), same.end());
+      EXPECT_GT(want.size(), 10u);
+      EXPECT_EQ(same, want) << "seed " << seed << (point ? ", one point" : "");
+    }
+  }
+}
+
 TEST(BoxPairs, AllBoxesOnePointAndTooFew) {
   std::vector<Bbox> boxes(4);
   for (int i = 0; i < 3; ++i) boxes[i].add(Vec3{1, 2, 3});  // boxes[3] empty
