@@ -8,6 +8,8 @@
 #include <cstring>
 #include <span>
 
+#include <boost/sort/spreadsort/integer_sort.hpp>
+
 #include "boolean/detail/arrangement_steps.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
@@ -144,7 +146,13 @@ std::vector<uint32_t> merge_equal(const std::vector<Point>& pts, const std::vect
           cells.emplace_back(key == ~uint64_t{0} ? 0 : key, id);
         }
   }
-  std::sort(cells.begin(), cells.end());
+  // Boost's radix sort on the cell key (the pair order for ties): about twice std::sort here.
+  boost::sort::spreadsort::integer_sort(
+      cells.begin(), cells.end(),
+      [](const std::pair<uint64_t, uint32_t>& x, unsigned offset) { return x.first >> offset; },
+      [](const std::pair<uint64_t, uint32_t>& x, const std::pair<uint64_t, uint32_t>& y) {
+        return x < y;
+      });
   std::vector<uint32_t> group;
   for (size_t i = 0; i < cells.size();) {
     size_t j = i;
@@ -305,7 +313,7 @@ Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grai
       arr.pieces.push_back({tris[t].v, t});
     }
   }
-  std::sort(arr.cuts.begin(), arr.cuts.end());
+  parallel_sort(arr.cuts);
   arr.cuts.erase(std::unique(arr.cuts.begin(), arr.cuts.end()), arr.cuts.end());
   lap(seconds.identify);
   return arr;
