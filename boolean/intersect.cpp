@@ -319,6 +319,7 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
   // (its count's cache line went back and forth: the step took longer on two threads than on
   // one).
   std::vector<CrossingRep*> made(keys.size());
+  points.reserve(first_crossing + keys.size());  // before the nodes: the hand-over cannot throw
   parallel_for(keys.size(), grain * 4, [&](size_t begin, size_t end) {
     for (size_t x = begin; x < end; ++x) {
       const uint32_t a = static_cast<uint32_t>(keys[x].edge >> 32),
@@ -328,7 +329,6 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
       made[x] = new CrossingRep(approximate_crossing(in), in);
     }
   });
-  points.reserve(first_crossing + keys.size());
   for (CrossingRep* rep : made) points.emplace_back(K::Kernel_base::Point_3(rep));
   // Phase B: the hits.
   std::vector<Hit> hits(pairs.size());

@@ -1,7 +1,7 @@
 #include "solid/parallel.h"
 
-#include <tbb/blocked_range.h>
 #include <boost/sort/spreadsort/integer_sort.hpp>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>

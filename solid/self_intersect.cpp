@@ -504,7 +504,8 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
         const auto [z0, z1] = range(box[f], 2);
         for (int64_t z = z0; z <= z1; ++z)
           for (int64_t y = y0; y <= y1; ++y)
-            for (int64_t x = x0; x <= x1; ++x) visit(static_cast<size_t>((z * n[1] + y) * n[0] + x));
+            for (int64_t x = x0; x <= x1; ++x)
+              visit(static_cast<size_t>((z * n[1] + y) * n[0] + x));
       };
       for (uint32_t f : sus) each_cell(f, [&](size_t c) { ++first[c + 1]; });
       for (size_t c = 0; c < cells; ++c) first[c + 1] += first[c];
