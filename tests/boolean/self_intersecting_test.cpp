@@ -1,12 +1,13 @@
 // evaluate() on self-intersecting leaves (boolean/evaluate.h): each leaf is its nonzero-winding
 // set, as in classify(). Every result must be a closed, outward 2-manifold without
-// self-intersections (brep validate + the exact self_intersects of solid/validate.h) that agrees with classify() of
-// the non-evaluated scene on 20,000 random points (0 disagreements off the boundary); the
-// procedural leaves also have known volumes. Scenes: libcgal-demo meshes that intersect
-// themselves (cow, elk, bones) with boxes, spheres and each other; two overlapping boxes in
-// one leaf, nested and repeated shells (winding 2), a reversed shell (winding 0 inside), shells
-// touching along a face, a figure-eight prism (winding +1 and −1 lobes, overlapping fan caps),
-// and a prism through a reversed box whose result touches itself along single edges.
+// self-intersections (brep validate + the exact self_intersects of solid/validate.h) that agrees
+// with classify() of the non-evaluated scene on 20,000 random points (0 disagreements off the
+// boundary); the procedural leaves also have known volumes. Scenes: libcgal-demo meshes that
+// intersect themselves (cow, camel, bull, bones, man, elk) with boxes, spheres and each other; two
+// overlapping boxes in one leaf, nested and repeated shells (winding 2), a reversed shell (winding
+// 0 inside), shells touching along a face, a figure-eight prism (winding +1 and −1 lobes,
+// overlapping fan caps), and a prism through a reversed box whose result touches itself along
+// single edges.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -208,6 +209,17 @@ TEST(EvaluateSelfIntersecting, LibcgalMeshes) {
   const Solid bones = leaf(model("bones", {0, 0, 0}, 1, 10), "bones");
   check(intersect({bones, make_leaf(make_box({-0.5, -0.6, -0.6}, {0.5, 0.6, 0.6}), "b")}),
         "bones ∩ box");
+}
+
+TEST(EvaluateSelfIntersecting, CamelBullMan) {
+  const Solid camel = leaf(model("camel", {0, 0, 0}, 1, 0), "camel");
+  const Solid bull = leaf(model("bull", {0.1, 0.05, 0}, 0.9, 20), "bull");
+  const Solid man = leaf(model("man", {-0.05, 0, 0.05}, 1, 40), "man");
+  const Solid box = make_leaf(make_box({-0.4, -0.5, -0.3}, {0.5, 0.4, 0.25}), "box");
+  check(unite({camel, box}), "camel ∪ box");
+  check(subtract({bull, camel}), "bull − camel");
+  check(intersect({man, box}), "man ∩ box");
+  check(unite({man, bull}), "man ∪ bull");
 }
 
 }  // namespace
