@@ -247,15 +247,8 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
   // fandisk's 14 ms).
   std::vector<std::array<uint32_t, 3>> corners(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) corners[i] = tris[i].v;
-  const std::vector<uint8_t> star = star_vertices(corners, leaf, pos);
-  std::vector<BoxCorners> marked(tris.size());
-  parallel_for(tris.size(), 8192, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      marked[i].id = corners[i];
-      for (int c = 0; c < 3; ++c)
-        marked[i].marked |= static_cast<uint8_t>(star[corners[i][c]] << c);
-    }
-  });
+  const std::vector<BoxCorners> marked =
+      marked_corners(corners, star_vertices(corners, leaf, pos));
   // One flag per leaf, set from several threads; a leaf found self-intersecting skips the rest
   // of its pairs.
   std::vector<std::atomic<uint8_t>> found(self.size());

@@ -226,6 +226,27 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
   });
 }
 
+/// The pairs between colours, sorted, and same(a, b) for those of one colour when given: with
+/// `same` the scan sees every pair (no colour filter) and they are told apart here.
+template <class M>
+std::vector<std::pair<uint32_t, uint32_t>> between(
+    std::span<const Bbox> boxes, std::span<const uint32_t> color,
+    const std::function<void(uint32_t, uint32_t)>& same, std::span<const BoxCorners> corners) {
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found;
+  scan<M>(
+      boxes, same ? std::span<const uint32_t>{} : color, [&](size_t n) { found.resize(n); },
+      [&](size_t chunk, uint32_t a, uint32_t b) {
+        if (color[a] != color[b]) found[chunk].emplace_back(a, b);
+        else same(a, b);
+        return false;
+      },
+      color, corners);
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 }  // namespace
 
 void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, uint32_t)>& pair) {
@@ -240,36 +261,25 @@ std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbo
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
     std::span<const Bbox> boxes, std::span<const uint32_t> color,
     std::span<const BoxCorners> corners, const std::function<void(uint32_t, uint32_t)>& same) {
-  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found;
-  scan<CornerMember>(
-      boxes, {}, [&](size_t n) { found.resize(n); },
-      [&](size_t chunk, uint32_t a, uint32_t b) {
-        if (color[a] != color[b]) found[chunk].emplace_back(a, b);
-        else same(a, b);
-        return false;
-      },
-      color, corners);
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  return between<CornerMember>(boxes, color, same, corners);
 }
 
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
     std::span<const Bbox> boxes, std::span<const uint32_t> color,
     const std::function<void(uint32_t, uint32_t)>& same) {
-  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> found;
-  // With `same`, the scan sees every pair (no colour filter) and sorts them here.
-  scan(boxes, same ? std::span<const uint32_t>{} : color, [&](size_t n) { found.resize(n); },
-       [&](size_t chunk, uint32_t a, uint32_t b) {
-         if (color[a] != color[b]) found[chunk].emplace_back(a, b);
-         else same(a, b);
-         return false;
-       });
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  return between<Member>(boxes, color, same, {});
+}
+
+std::vector<BoxCorners> marked_corners(std::span<const std::array<uint32_t, 3>> tris,
+                                       std::span<const uint8_t> flag) {
+  std::vector<BoxCorners> out(tris.size());
+  parallel_for(tris.size(), 8192, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      out[t].id = tris[t];
+      for (int c = 0; c < 3; ++c) out[t].marked |= static_cast<uint8_t>(flag[tris[t][c]] << c);
+    }
+  });
+  return out;
 }
 
 }  // namespace cover

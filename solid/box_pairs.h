@@ -55,4 +55,8 @@ std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(
     std::span<const Bbox> boxes, std::span<const uint32_t> color,
     std::span<const BoxCorners> corners, const std::function<void(uint32_t, uint32_t)>& same);
 
+/// Triangles' corners as BoxCorners, each corner id marked where flag[id] is set.
+std::vector<BoxCorners> marked_corners(std::span<const std::array<uint32_t, 3>> tris,
+                                       std::span<const uint8_t> flag);
+
 }  // namespace cover

@@ -276,11 +276,16 @@ bool share_star(const Triangle& a, const Triangle& b, std::span<const uint8_t> s
   return false;
 }
 
-/// star_vertices of the triangles' fans.
-std::vector<uint8_t> stars_of(const std::vector<Triangle>& triangles, std::span<const Vec3> v) {
+/// The triangles' corner ids.
+std::vector<std::array<uint32_t, 3>> corners_of(const std::vector<Triangle>& triangles) {
   std::vector<std::array<uint32_t, 3>> corners(triangles.size());
   for (size_t t = 0; t < triangles.size(); ++t) corners[t] = triangles[t].v;
-  return star_vertices(corners, {}, v);
+  return corners;
+}
+
+/// star_vertices of the triangles' fans.
+std::vector<uint8_t> stars_of(const std::vector<Triangle>& triangles, std::span<const Vec3> v) {
+  return star_vertices(corners_of(triangles), {}, v);
 }
 
 }  // namespace
@@ -570,13 +575,9 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
   for (size_t t = 0; t < triangles.size(); ++t)
     for (uint32_t v : triangles[t].v) boxes[t].add(mesh.vertices[v]);
   // Pairs sharing a flat-star vertex are dropped by the scan itself (one colour for all).
-  const std::vector<uint8_t> star = stars_of(triangles, mesh.vertices);
-  std::vector<BoxCorners> marked(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    marked[t].id = triangles[t].v;
-    for (int c = 0; c < 3; ++c)
-      marked[t].marked |= static_cast<uint8_t>(star[triangles[t].v[c]] << c);
-  }
+  const std::vector<std::array<uint32_t, 3>> corners = corners_of(triangles);
+  const std::vector<BoxCorners> marked =
+      marked_corners(corners, star_vertices(corners, {}, mesh.vertices));
   const std::vector<uint32_t> one_colour(triangles.size(), 0);
   std::mutex found_mutex;  // contacts are rare: one lock per found pair
   box_pairs_between(boxes, one_colour, marked, [&](uint32_t x, uint32_t y) {

@@ -83,15 +83,18 @@ void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t
   const uint32_t part = (count + kParts - 1) / kParts;
   // at[k·(n + 1) + a]: part k's first slot in bucket a (its count, before the prefix sums).
   std::vector<uint32_t> at(kParts * (n + 1), 0);
-  parallel_for(kParts, 1, [&](size_t k0, size_t k1) {
-    for (size_t k = k0; k < k1; ++k) {
-      uint32_t* c = at.data() + k * (n + 1);
-      const uint32_t end =
-          static_cast<uint32_t>(std::min<uint64_t>(count, (k + 1) * uint64_t{part}));
-      for (uint32_t h = static_cast<uint32_t>(k * part); h < end; ++h)
-        ++c[std::min(from(h), to(h))];
-    }
-  });
+  // visit(slots of part k, h) for every half-edge h of each part k, the parts in parallel.
+  auto each_part = [&](auto&& visit) {
+    parallel_for(kParts, 1, [&](size_t k0, size_t k1) {
+      for (size_t k = k0; k < k1; ++k) {
+        const uint32_t end =
+            static_cast<uint32_t>(std::min<uint64_t>(count, (k + 1) * uint64_t{part}));
+        for (uint32_t h = static_cast<uint32_t>(k * part); h < end; ++h)
+          visit(at.data() + k * (n + 1), h);
+      }
+    });
+  };
+  each_part([&](uint32_t* c, uint32_t h) { ++c[std::min(from(h), to(h))]; });
   start.assign(n + 1, 0);
   uint32_t sum = 0;
   for (size_t a = 0; a < n; ++a) {
@@ -104,15 +107,7 @@ void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t
   }
   start[n] = sum;
   order.resize(count);
-  parallel_for(kParts, 1, [&](size_t k0, size_t k1) {
-    for (size_t k = k0; k < k1; ++k) {
-      uint32_t* fill = at.data() + k * (n + 1);
-      const uint32_t end =
-          static_cast<uint32_t>(std::min<uint64_t>(count, (k + 1) * uint64_t{part}));
-      for (uint32_t h = static_cast<uint32_t>(k * part); h < end; ++h)
-        order[fill[std::min(from(h), to(h))]++] = h;
-    }
-  });
+  each_part([&](uint32_t* fill, uint32_t h) { order[fill[std::min(from(h), to(h))]++] = h; });
   auto q_of = [&](uint32_t h) { return std::max(from(h), to(h)); };
   parallel_for(n, 4096, [&](size_t a0, size_t a1) {
     for (size_t a = a0; a < a1; ++a) {
