@@ -84,6 +84,13 @@ bool OctantOverlap::skip(int e, int axis) {
   int lo = 1, hi = -1;  // the signs' range, kUnknown counting as both
   if (in_filter_range(mag)) {
     const double bound = kPlaneSideErr * mag;
+    // The common case first: the whole lattice strictly on the third vertex's side. The 9
+    // computed values gu[iu] + gw[iw] are monotone in iu and in iw (the planes ascend, rounding
+    // is monotone), so their least (greatest) is the sum of the least (greatest) terms: one
+    // sum decides "all 9 above the bound" exactly as the 9 would.
+    const int third = third_sign(e, axis);
+    if (third > 0 && std::min(gu[0], gu[2]) + std::min(gw[0], gw[2]) > bound) return true;
+    if (third < 0 && std::max(gu[0], gu[2]) + std::max(gw[0], gw[2]) < -bound) return true;
     for (int iw = 0; iw < 3; ++iw)
       for (int iu = 0; iu < 3; ++iu) {
         const double g = gu[iu] + gw[iw];
@@ -106,8 +113,12 @@ bool OctantOverlap::skip(int e, int axis) {
 
 int OctantOverlap::third_sign(int e, int axis) {
   int8_t& third = third_cache_[e * 3 + axis];
-  if (third == kUnknown)
+  if (third == kUnknown) {
+    // orient2d(v_e, v_e+1, v_e+2) is the projected triangle's orientation, the same for the
+    // three edges (a cyclic permutation): one exact predicate per axis.
     third = static_cast<int8_t>(orient2d(v_[e], v_[(e + 1) % 3], v_[(e + 2) % 3], axis));
+    for (int f = 0; f < 3; ++f) third_cache_[f * 3 + axis] = third;
+  }
   return third;
 }
 

@@ -61,6 +61,7 @@ constexpr size_t kExactKey = 40;    // side vectors up to this length are exact 
 constexpr size_t kSiblingMax = 16;  // last level: parent lists up to this length group a whole
                                     // sibling set's points at once
 constexpr size_t kGrain = 512;  // cells per parallel chunk (a multiple of 8: whole sibling sets)
+constexpr size_t kTableLeaves = 10;  // expressions of up to this many leaves are tabulated
 constexpr size_t kBlock = size_t{1} << 18;  // cells per classification batch (multiple of kGrain)
 // Memory per node of a build: the node array (sizeof(Node) = 40 bytes), its old copy while it
 // grows by a level, the per-cell triangle lists and the block buffers. Measured: bunny00 at
@@ -84,11 +85,38 @@ struct Lists {
 };
 
 /// A classification request: cell `cell` (index in its block) gets `weight` times the class of
-/// representative point `rep`.
+/// representative point `rep` (Requests::points), or of side class rep & ~kDerived
+/// (Requests::derived) when that bit is set.
 struct Entry {
+  static constexpr uint32_t kDerived = uint32_t{1} << 31;
   uint32_t cell = 0;
   uint32_t rep = 0;
   uint32_t weight = 0;
+};
+
+/// A side class of a sibling set whose class follows from its set's reference point: the
+/// reference's leaf windings (Requests::refs, classified by leaf_windings) plus the signed
+/// crossings deltas[delta_begin .. + delta_count) of the segment from the reference to `point`.
+struct Derived {
+  Vec3 point;  ///< the class's representative (classified directly should the reference fail)
+  uint32_t ref = 0;
+  uint32_t delta_begin = 0;
+  uint32_t delta_count = 0;
+};
+
+/// A crossing of a reference's segment: leaf `leaf`'s winding changes by `delta`.
+struct Delta {
+  uint32_t leaf = 0;
+  int32_t delta = 0;
+};
+
+/// The classification requests of one chunk of cells.
+struct Requests {
+  std::vector<Vec3> points;  ///< classified one by one (classify)
+  std::vector<Entry> entries;
+  std::vector<Vec3> refs;  ///< classified by their leaves' windings (leaf_windings)
+  std::vector<Derived> derived;
+  std::vector<Delta> deltas;
 };
 
 /// The samples³ sub-points of a cell (the centres of a regular sub-grid): their coordinates per
@@ -247,6 +275,16 @@ class Builder {
         progress_(options.progress),
         open_(solid.has_open_leaf()) {
     if (open_ && options.gwn == nullptr) own_gwn_ = build_gwn(solid);
+    // Up to kTableLeaves leaves, the expression's value for every set of inside leaves.
+    const size_t leaves = solid.leaves.size();
+    if (leaves <= kTableLeaves) {
+      table_.resize(size_t{1} << leaves);
+      std::vector<uint8_t> in(leaves);
+      for (size_t m = 0; m < table_.size(); ++m) {
+        for (size_t l = 0; l < leaves; ++l) in[l] = (m >> l) & 1;
+        table_[m] = solid.tree.evaluate(in);
+      }
+    }
     gwn_ = options.gwn != nullptr ? options.gwn : (own_gwn_ ? &*own_gwn_ : nullptr);
   }
 
@@ -320,6 +358,23 @@ class Builder {
     return {2 * p[0] + (c & 1), 2 * p[1] + ((c >> 1) & 1), 2 * p[2] + ((c >> 2) & 1)};
   }
 
+  /// The octant (offset (o&1, (o>>1)&1, (o>>2)&1)) of the lattice `planes` whose open box
+  /// contains the triangle's box, or −1.
+  static int inside_octant(const Bvh::Tri& tri, const double (&planes)[3][3]) {
+    int o = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = std::min({tri.a[a], tri.b[a], tri.c[a]});
+      const double hi = std::max({tri.a[a], tri.b[a], tri.c[a]});
+      if (lo > planes[a][0] && hi < planes[a][1]) continue;
+      if (lo > planes[a][1] && hi < planes[a][2]) {
+        o |= 1 << a;
+        continue;
+      }
+      return -1;
+    }
+    return o;
+  }
+
   /// (A) The triangles that meet the interior of each cell of [b0, b0 + m) at level d, one list
   /// per cell; at the last level, for a sibling set whose parent's list is short (at most
   /// kSiblingMax), only the first such triangle (whether a cell is crossed is all that is used).
@@ -333,7 +388,7 @@ class Builder {
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
         const size_t parent = (b0 + g0) / 8;
-        if (d > 0 && parent_lists_[parent].size() <= kInheritMax) {
+        if (d > 0) {
           // The parent's triangles against its 8 octants at once.
           double planes[3][3];
           for (int a = 0; a < 3; ++a)
@@ -346,6 +401,16 @@ class Builder {
           uint8_t open = 0xFF;  // the octants still tested (witness: those without one yet)
           for (uint32_t t : parent_lists_[parent]) {
             const Bvh::Tri tri = bvh_.triangle(t);
+            // A triangle whose box lies inside one octant's open box crosses that octant and
+            // no other (no exact test): most triangles, above the last levels.
+            if (const int o = inside_octant(tri, planes); o >= 0) {
+              if (open >> o & 1) {
+                octant[o].push_back(t);
+                if (witness) open &= static_cast<uint8_t>(~(1u << o));
+              }
+              if (open == 0) break;
+              continue;
+            }
             detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
             const uint8_t crossed = overlap.crossed_octants(open);
             for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
@@ -364,9 +429,14 @@ class Builder {
           candidates.clear();
           bvh_candidates(bvh_, b, candidates);
           const size_t before = out.size();
+          const double planes[3][3] = {{b.min.x, b.max.x, b.max.x},
+                                       {b.min.y, b.max.y, b.max.y},
+                                       {b.min.z, b.max.z, b.max.z}};
           for (uint32_t t : candidates) {
             const Bvh::Tri tri = bvh_.triangle(t);
-            if (detail::triangle_crosses_box(tri.a, tri.b, tri.c, b)) out.push_back(t);
+            if (inside_octant(tri, planes) == 0 ||
+                detail::triangle_crosses_box(tri.a, tri.b, tri.c, b))
+              out.push_back(t);
           }
           count[i] = static_cast<uint32_t>(out.size() - before);
         }
@@ -413,7 +483,9 @@ class Builder {
   /// intersection of sides), each class's weight in a cell is a popcount, and its
   /// representative its first point; the points on some plane are classified one by one.
   void sibling_masks(int d, size_t b0, size_t g0, const Lists& lists, Scratch& s,
-                     std::vector<Vec3>& points, std::vector<Entry>& entries) const {
+                     Requests& out) const {
+    std::vector<Vec3>& points = out.points;
+    std::vector<Entry>& entries = out.entries;
     using Set = std::array<uint64_t, 9>;
     const size_t parent = (b0 + g0) / 8;
     const std::span<const uint32_t> tris = parent_lists_[parent];
@@ -498,11 +570,13 @@ class Builder {
     const auto point = [&](int w, int bit) {
       return w < 8 ? s.cell_grid[w].point(static_cast<size_t>(bit)) : centres[bit];
     };
-    const auto add = [&](const Set& set) {
+    // A class's representative: its first point, (word, bit).
+    const auto first = [](const Set& set) {
       int w = 0;
       while (set[w] == 0) ++w;
-      const uint32_t rep = static_cast<uint32_t>(points.size());
-      points.push_back(point(w, std::countr_zero(set[w])));
+      return std::pair<int, int>{w, std::countr_zero(set[w])};
+    };
+    const auto add_entries = [&](const Set& set, uint32_t rep) {
       for (int c = 0; c < 8; ++c)
         if (set[c] != 0)
           entries.push_back({static_cast<uint32_t>(g0 + c), rep,
@@ -510,8 +584,60 @@ class Builder {
       for (uint64_t m = set[8]; m != 0; m &= m - 1)
         entries.push_back({static_cast<uint32_t>(g0 + std::countr_zero(m)), rep, 1});
     };
-    for (const Set& set : s.sets)
-      if (std::any_of(set.begin(), set.end(), [](uint64_t x) { return x != 0; })) add(set);
+    const auto add = [&](const Set& set) {
+      const auto [w, bit] = first(set);
+      add_entries(set, static_cast<uint32_t>(points.size()));
+      points.push_back(point(w, bit));
+    };
+    // The side classes. With closed leaves, the first class's representative r is the set's
+    // reference, classified by its leaves' windings; another class's representative q differs
+    // from r by the signed crossings of the segment rq with the triangles of T_P: both points
+    // lie in the parent's interior on no plane of T_P, so the segment meets only T_P's
+    // triangles, and a triangle whose plane separates r and q is crossed where the three
+    // orient3d(r, q, edge) agree strictly (crossing from its outer side, the side its normal
+    // points to, adds 1 to its leaf's winding). A segment through a triangle's edge or vertex
+    // (some orient3d zero, none disagreeing) leaves q to classify().
+    int ref_w = -1, ref_bit = 0;
+    Vec3 r;
+    uint32_t ref = 0;
+    for (const Set& set : s.sets) {
+      if (!std::any_of(set.begin(), set.end(), [](uint64_t x) { return x != 0; })) continue;
+      if (open_) {
+        add(set);
+        continue;
+      }
+      const auto [w, bit] = first(set);
+      const Vec3 q = point(w, bit);
+      const uint32_t delta_begin = static_cast<uint32_t>(out.deltas.size());
+      if (ref_w < 0) {
+        ref_w = w;
+        ref_bit = bit;
+        r = q;
+        ref = static_cast<uint32_t>(out.refs.size());
+        out.refs.push_back(r);
+      } else {
+        bool through_edge = false;
+        for (size_t j = 0; j < k && !through_edge; ++j) {
+          const bool r_pos = s.pos[j][ref_w] >> ref_bit & 1, q_pos = s.pos[j][w] >> bit & 1;
+          if (r_pos == q_pos) continue;
+          const Bvh::Tri tri = bvh_.triangle(tris[j]);
+          const int o0 = orient3d(r, q, tri.a, tri.b), o1 = orient3d(r, q, tri.b, tri.c),
+                    o2 = orient3d(r, q, tri.c, tri.a);
+          const bool some_neg = o0 < 0 || o1 < 0 || o2 < 0, some_pos = o0 > 0 || o1 > 0 || o2 > 0;
+          if (some_neg && some_pos) continue;  // the segment passes the triangle by
+          if (o0 == 0 || o1 == 0 || o2 == 0) through_edge = true;
+          else out.deltas.push_back({tri.leaf, r_pos ? 1 : -1});
+        }
+        if (through_edge) {
+          out.deltas.resize(delta_begin);
+          add(set);
+          continue;
+        }
+      }
+      add_entries(set, static_cast<uint32_t>(out.derived.size()) | Entry::kDerived);
+      out.derived.push_back(
+          {q, ref, delta_begin, static_cast<uint32_t>(out.deltas.size()) - delta_begin});
+    }
     // Points on some plane (they may be on a surface): one by one.
     for (int w = 0; w < 9; ++w)
       for (uint64_t m = on[w]; m != 0; m &= m - 1) {
@@ -519,6 +645,34 @@ class Builder {
         one[w] = m & (~m + 1);
         add(one);
       }
+  }
+
+  /// Twice the class (halves()) of a derived side class: its reference's windings plus its
+  /// deltas, the expression evaluated on them; classified directly should the reference lie on
+  /// a surface (it cannot: it is on no plane of T_P, in the parent's interior). `refs_begin`:
+  /// the chunk's first reference in `windings`.
+  uint32_t derived_class(const Derived& x, const LeafWindings& windings, size_t refs_begin,
+                         const std::vector<Delta>& deltas, std::vector<int>& winding) const {
+    const size_t leaves = windings.leaves;
+    const size_t at = (refs_begin + x.ref) * leaves;
+    bool on_surface = false;
+    winding.assign(windings.winding.begin() + at, windings.winding.begin() + at + leaves);
+    for (size_t l = 0; l < leaves; ++l) on_surface |= windings.on_surface[at + l] != 0;
+    if (on_surface) {
+      ClassifyOptions options;
+      options.gwn = gwn_;
+      return halves(classify(solid_, bvh_, std::span<const Vec3>(&x.point, 1), options)[0]);
+    }
+    for (uint32_t i = x.delta_begin; i < x.delta_begin + x.delta_count; ++i)
+      winding[deltas[i].leaf] += deltas[i].delta;
+    if (!table_.empty()) {
+      uint32_t mask = 0;
+      for (size_t l = 0; l < leaves; ++l) mask |= uint32_t{winding[l] != 0} << l;
+      return table_[mask] ? 2 : 0;
+    }
+    std::vector<uint8_t> inside(leaves);
+    for (size_t l = 0; l < leaves; ++l) inside[l] = winding[l] != 0;
+    return solid_.tree.evaluate(inside) ? 2 : 0;
   }
 
   /// (B) at the last level, for the sibling set g0 .. g0 + 7 (cells of the block) whose parent's
@@ -603,11 +757,10 @@ class Builder {
   /// sibling set's uncrossed cells (one per cell when the parent's centre is on a surface), one
   /// sub-point per side class of a partial cell.
   void representatives(int d, size_t b0, size_t m, const Lists& lists,
-                       std::vector<std::vector<Vec3>>& chunk_points,
-                       std::vector<std::vector<Entry>>& chunk_entries) const {
+                       std::vector<Requests>& requests) const {
     parallel_for(m, kGrain, [&](size_t begin, size_t end) {
-      std::vector<Vec3>& points = chunk_points[begin / kGrain];
-      std::vector<Entry>& entries = chunk_entries[begin / kGrain];
+      std::vector<Vec3>& points = requests[begin / kGrain].points;
+      std::vector<Entry>& entries = requests[begin / kGrain].entries;
       Scratch s;
       SubGrid subs;
       std::vector<uint32_t> candidates;
@@ -615,7 +768,7 @@ class Builder {
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
         if (d == depth_ && d > 0 && parent_lists_[(b0 + g0) / 8].size() <= kSiblingMax) {
           if (samples_ * samples_ * samples_ <= 64)
-            sibling_masks(d, b0, g0, lists, s, points, entries);
+            sibling_masks(d, b0, g0, lists, s, requests[begin / kGrain]);
           else
             sibling_representatives(d, b0, g0, lists, s, subs, points, entries);
           continue;
@@ -664,28 +817,44 @@ class Builder {
         next.push_back(coord(d, b0 + i));
         next_lists.append(lists[i]);
       }
-    std::vector<std::vector<Vec3>> chunk_points(chunks);
-    std::vector<std::vector<Entry>> chunk_entries(chunks);
-    representatives(d, b0, m, lists, chunk_points, chunk_entries);
-    // (C) Classify the representatives of the whole block at once.
-    std::vector<size_t> offset(chunks + 1, 0);
-    for (size_t c = 0; c < chunks; ++c) offset[c + 1] = offset[c] + chunk_points[c].size();
-    std::vector<Vec3> points;
+    std::vector<Requests> requests(chunks);
+    representatives(d, b0, m, lists, requests);
+    // (C) Classify the representatives of the whole block at once: the points one by one, the
+    // references by their leaves' windings.
+    std::vector<size_t> offset(chunks + 1, 0), ref_offset(chunks + 1, 0);
+    for (size_t c = 0; c < chunks; ++c) {
+      offset[c + 1] = offset[c] + requests[c].points.size();
+      ref_offset[c + 1] = ref_offset[c] + requests[c].refs.size();
+    }
+    std::vector<Vec3> points, refs;
     points.reserve(offset[chunks]);
-    for (auto& c : chunk_points) {
-      points.insert(points.end(), c.begin(), c.end());
-      std::vector<Vec3>().swap(c);
+    refs.reserve(ref_offset[chunks]);
+    for (Requests& r : requests) {
+      points.insert(points.end(), r.points.begin(), r.points.end());
+      refs.insert(refs.end(), r.refs.begin(), r.refs.end());
+      std::vector<Vec3>().swap(r.points);
+      std::vector<Vec3>().swap(r.refs);
     }
     ClassifyOptions options;
     options.grid_min_points = std::numeric_limits<size_t>::max();  // near-surface points only
     options.gwn = gwn_;
     const std::vector<PointClass> classes = classify(solid_, bvh_, points, options);
+    const LeafWindings windings = leaf_windings(solid_, bvh_, refs, options);
     // (D) States and occupancies (a cell's entries all lie in its own chunk).
     std::vector<uint32_t> sum(m, 0);
     parallel_for(chunks, 1, [&](size_t begin, size_t end) {
-      for (size_t c = begin; c < end; ++c)
-        for (const Entry& e : chunk_entries[c])
-          sum[e.cell] += e.weight * halves(classes[offset[c] + e.rep]);
+      std::vector<uint32_t> derived_halves;
+      std::vector<int> winding;
+      for (size_t c = begin; c < end; ++c) {
+        derived_halves.clear();
+        for (const Derived& x : requests[c].derived)
+          derived_halves.push_back(derived_class(x, windings, ref_offset[c], requests[c].deltas,
+                                                 winding));
+        for (const Entry& e : requests[c].entries)
+          sum[e.cell] += e.weight * (e.rep & Entry::kDerived
+                                         ? derived_halves[e.rep & ~Entry::kDerived]
+                                         : halves(classes[offset[c] + e.rep]));
+      }
     });
     const double total = 2.0 * samples_ * samples_ * samples_;
     parallel_for(m, kGrain, [&](size_t begin, size_t end) {
@@ -714,6 +883,7 @@ class Builder {
   std::function<void(double)> progress_;
   bool open_ = false;                  ///< some leaf is open: no shared centres
   std::optional<GwnForest> own_gwn_;   ///< built here when options.gwn is null
+  std::vector<uint8_t> table_;  ///< membership per set of inside leaves (≤ kTableLeaves leaves)
   const GwnForest* gwn_ = nullptr;
   std::vector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank

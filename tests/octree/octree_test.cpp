@@ -361,6 +361,54 @@ TEST(Octree, BoxSphereElephantAndDifferenceAreExactAndConservative) {
   expect_occupancy_by_points(hollow, th, 4, 30);
 }
 
+/// Two meshes concatenated into one PolygonMesh (one leaf: windings up to 2 where they overlap).
+PolygonMesh concatenate(const PolygonMesh& a, const PolygonMesh& b) {
+  PolygonMesh m = a;
+  const uint32_t base = static_cast<uint32_t>(m.vertices.size());
+  for (const Vec3& v : b.vertices) m.vertices.push_back(v);
+  for (size_t f = 0; f < b.face_count(); ++f) {
+    for (uint32_t v : b.face(f)) m.face_vertices.push_back(base + v);
+    m.face_start.push_back(static_cast<uint32_t>(m.face_vertices.size()));
+  }
+  return m;
+}
+
+TEST(Octree, EveryPartialOccupancyMatchesItsPoints) {
+  // The last level classifies one reference per sibling set and derives the other side classes
+  // from the segment's signed crossings (octree.cpp, sibling_masks): every partial cell checked,
+  // where the winding's sign matters (one leaf of two overlapping spheres: inside the overlap the
+  // winding is 2, entering it from one sphere adds 1) and where segments pass through edges and
+  // points lie on planes (box faces at multiples of h/8, where the sub-points sit at the odd
+  // multiples; in union, difference, intersection and complement).
+  const Solid spheres = make_leaf(concatenate(make_sphere({0, 0, 0}, 0.6, 12),
+                                              make_sphere({0.35, 0.1, 0.05}, 0.5, 10)),
+                                  "spheres");
+  const Octree ts = build(spheres, cube({-0.8, -0.8, -0.8}, 1.8), 3);
+  check_leaves(spheres, ts);
+  expect_occupancy_by_points(spheres, ts, 4, SIZE_MAX);
+
+  std::mt19937_64 rng(2026);
+  const double h = 1.0 / 8;  // cells of depth 3 over the unit cube
+  std::uniform_int_distribution<int> step(1, 63);
+  const auto snapped_box = [&] {
+    Vec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      int i = step(rng), j = step(rng);
+      if (i == j) ++j;
+      (a == 0 ? lo.x : a == 1 ? lo.y : lo.z) = std::min(i, j) * h / 8;
+      (a == 0 ? hi.x : a == 1 ? hi.y : hi.z) = std::max(i, j) * h / 8;
+    }
+    return box_solid(lo, hi);
+  };
+  for (int round = 0; round < 4; ++round) {
+    const Solid s = subtract({unite({snapped_box(), snapped_box(), snapped_box()}),
+                              intersect({snapped_box(), complement(snapped_box())})});
+    const Octree t = build(s, cube({0, 0, 0}, 1), 3);
+    check_leaves(s, t);
+    expect_occupancy_by_points(s, t, 4, SIZE_MAX);
+  }
+}
+
 TEST(Octree, MoreThan64SubPointsPerCellGroupWithoutMasks) {
   // 5³ sub-points do not fit one 64-bit mask per cell: the last level groups them by side
   // vectors instead (octree.cpp, sibling_representatives); the same exact occupancies.
