@@ -163,10 +163,11 @@ bool OctantOverlap::separated(int o, bool open) {
   return false;
 }
 
-uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
-  // Octant o has bit (o >> k) & 1 = half h along axis k: the octants of a half along k, and of
-  // a quadrant (hu, hw) of the plane dropping `axis`.
-  constexpr uint8_t kHalf[3][2] = {{0x55, 0xAA}, {0x33, 0xCC}, {0x0F, 0xF0}};
+// Octant o has bit (o >> k) & 1 = half h along axis k: the octants of a half along k, and of a
+// quadrant (hu, hw) of the plane dropping an axis.
+constexpr uint8_t kHalf[3][2] = {{0x55, 0xAA}, {0x33, 0xCC}, {0x0F, 0xF0}};
+
+uint8_t OctantOverlap::quick_octants(uint8_t wanted, uint8_t& undecided) {
   uint8_t alive = wanted;
   // Box normals (exact comparisons), per half: the same test as separated(o, true).
   for (int k = 0; k < 3 && alive != 0; ++k)
@@ -186,6 +187,43 @@ uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
     }
     if (!(lo < 0 && hi > 0)) alive &= static_cast<uint8_t>(~(1u << o));
   }
+  // The line along the normal's dominant axis n through the centre (cu, cw) of the octant's
+  // face meets the triangle's relative interior (strictly inside its projection: three
+  // filtered orient2d agreeing with the projected orientation) at a height strictly between
+  // the octant's faces across n (the plane's signs at the two ends strictly opposite): that
+  // point lies in the open octant, which is crossed.
+  uint8_t proven = 0;
+  const Vec3& nrm = plane_.normal();
+  const int n = std::abs(nrm.x) >= std::max(std::abs(nrm.y), std::abs(nrm.z))
+                    ? 0
+                    : (std::abs(nrm.y) >= std::abs(nrm.z) ? 1 : 2);
+  const int u = (n + 1) % 3, w = (n + 2) % 3;
+  const int orientation = alive != 0 ? orient2d_strict(v_[0], v_[1], v_[2], n) : 0;
+  for (uint8_t m = orientation != 0 ? alive : 0; m != 0; m &= static_cast<uint8_t>(m - 1)) {
+    const int o = std::countr_zero(m);
+    const int bu = (o >> u) & 1, bw = (o >> w) & 1, bn = (o >> n) & 1;
+    double q[3];
+    q[u] = 0.5 * (planes_[u][bu] + planes_[u][bu + 1]);
+    q[w] = 0.5 * (planes_[w][bw] + planes_[w][bw + 1]);
+    if (!(planes_[u][bu] < q[u] && q[u] < planes_[u][bu + 1] && planes_[w][bw] < q[w] &&
+          q[w] < planes_[w][bw + 1]))
+      continue;
+    q[n] = planes_[n][bn];
+    const Vec3 p{q[0], q[1], q[2]};
+    if (orient2d_strict(v_[0], v_[1], p, n) != orientation ||
+        orient2d_strict(v_[1], v_[2], p, n) != orientation ||
+        orient2d_strict(v_[2], v_[0], p, n) != orientation)
+      continue;
+    const int below = plane_.sign(p);
+    q[n] = planes_[n][bn + 1];
+    if (below * plane_.sign({q[0], q[1], q[2]}) < 0) proven |= static_cast<uint8_t>(1u << o);
+  }
+  undecided = alive & static_cast<uint8_t>(~proven);
+  return proven;
+}
+
+uint8_t OctantOverlap::edge_octants(uint8_t undecided) {
+  uint8_t alive = undecided;
   // e_axis × edge, per quadrant of the plane dropping `axis` that holds a live octant.
   for (int e = 0; e < 3 && alive != 0; ++e)
     for (int axis = 0; axis < 3 && alive != 0; ++axis) {
@@ -201,6 +239,12 @@ uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
         }
     }
   return alive;
+}
+
+uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
+  uint8_t undecided = 0;
+  const uint8_t proven = quick_octants(wanted, undecided);
+  return proven | edge_octants(undecided);
 }
 
 PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box)

@@ -385,6 +385,8 @@ class Builder {
       std::vector<uint32_t>& out = chunk_tris[begin / kGrain];
       std::vector<uint32_t> candidates;
       std::array<std::vector<uint32_t>, 8> octant;
+      std::vector<detail::OctantOverlap> overlaps;           // witness mode: per tested triangle,
+      std::vector<std::pair<uint32_t, uint8_t>> pending;  // and its octants left undecided
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
         const size_t parent = (b0 + g0) / 8;
@@ -411,13 +413,34 @@ class Builder {
               if (open == 0) break;
               continue;
             }
+            if (witness) {
+              // Witnesses in two passes: the quick tests of every triangle first, then the
+              // edge axes only for octants no triangle has proven crossed (an octant that one
+              // triangle's plane cuts but that triangle misses is mostly crossed by its
+              // neighbour).
+              detail::OctantOverlap& overlap = overlaps.emplace_back(tri.a, tri.b, tri.c, planes);
+              uint8_t undecided = 0;
+              const uint8_t crossed = overlap.quick_octants(open, undecided);
+              for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
+                octant[std::countr_zero(m)].push_back(t);
+              open &= static_cast<uint8_t>(~crossed);
+              pending.push_back({t, undecided});
+              if (open == 0) break;
+              continue;
+            }
             detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
             const uint8_t crossed = overlap.crossed_octants(open);
             for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
               octant[std::countr_zero(m)].push_back(t);
-            if (witness) open &= static_cast<uint8_t>(~crossed);
-            if (open == 0) break;
           }
+          for (size_t q = 0; q < pending.size() && open != 0; ++q) {
+            const uint8_t crossed = overlaps[q].edge_octants(pending[q].second & open);
+            for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
+              octant[std::countr_zero(m)].push_back(pending[q].first);
+            open &= static_cast<uint8_t>(~crossed);
+          }
+          overlaps.clear();
+          pending.clear();
           for (int c = 0; c < 8; ++c) {
             out.insert(out.end(), octant[c].begin(), octant[c].end());
             count[g0 + c] = static_cast<uint32_t>(octant[c].size());
@@ -810,13 +833,17 @@ class Builder {
     const size_t chunks = (m + kGrain - 1) / kGrain;
     const Lists lists = meeting(d, b0, m);
     // Crossed cells above the maximum depth are split: their children come next, in rank order.
-    if (d < depth_)
+    if (d < depth_) {
+      // The crossed cells' lists are all of `lists` (the others are empty), in cell order.
+      next_lists.tris.insert(next_lists.tris.end(), lists.tris.begin(), lists.tris.end());
+      const uint64_t base = next_lists.start.back();
       for (size_t i = 0; i < m; ++i) {
         if (lists[i].empty()) continue;
         nodes[b0 + i].first_child = static_cast<uint32_t>(next_start + 8 * next.size());
         next.push_back(coord(d, b0 + i));
-        next_lists.append(lists[i]);
+        next_lists.start.push_back(base + lists.start[i + 1]);
       }
+    }
     std::vector<Requests> requests(chunks);
     representatives(d, b0, m, lists, requests);
     // (C) Classify the representatives of the whole block at once: the points one by one, the

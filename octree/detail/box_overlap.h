@@ -48,6 +48,9 @@ class PlaneSide {
   /// Precondition: every point later passed to sign() lies in `box`.
   PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box);
 
+  /// (b − a) × (c − a) in floating point.
+  const Vec3& normal() const { return normal_; }
+
   int sign(const Vec3& p) const {
     const double f =
         normal_.x * (p.x - a_.x) + normal_.y * (p.y - a_.y) + normal_.z * (p.z - a_.z);
@@ -92,6 +95,13 @@ class OctantOverlap {
   /// plane dropping it (edge axes) instead of per octant. Precondition: the octants have
   /// positive size on every axis.
   uint8_t crossed_octants(uint8_t wanted);
+  /// crossed_octants in two stages. quick_octants: the octants among `wanted` proven crossed
+  /// without the edge axes (returned), and in `undecided` those left to edge_octants; the box
+  /// normals and the plane have separated the rest. edge_octants: those of `undecided` that no
+  /// edge axis separates, i.e. crossed. A caller that needs only some of them (one witness
+  /// per octant) can skip edge_octants for octants another triangle has proven.
+  uint8_t quick_octants(uint8_t wanted, uint8_t& undecided);
+  uint8_t edge_octants(uint8_t undecided);
   /// The exact plane sign at lattice point (ix, iy, iz), each 0..2.
   int plane_sign(int ix, int iy, int iz) const { return plane_cache_[(iz * 3 + iy) * 3 + ix]; }
 
