@@ -63,10 +63,10 @@ constexpr size_t kSiblingMax = 16;  // last level: parent lists up to this lengt
 constexpr size_t kGrain = 512;  // cells per parallel chunk (a multiple of 8: whole sibling sets)
 constexpr size_t kTableLeaves = 10;  // expressions of up to this many leaves are tabulated
 constexpr size_t kBlock = size_t{1} << 18;  // cells per classification batch (multiple of kGrain)
-// Memory per node of a build: the node array (sizeof(Node) = 40 bytes), its old copy while it
-// grows by a level, the per-cell triangle lists and the block buffers. Measured: bunny00 at
-// depth 10 peaks at 541 MB for 9.5 M nodes (57 bytes per node).
-constexpr double kBytesPerNode = 64;
+// Memory per node of a build: the node array (sizeof(Node) = 16 bytes), the per-cell triangle
+// lists, the next level's parents and the block buffers. Measured: bunny00 at depth 10 peaks at
+// about 230 MB for 9.5 M nodes (24 bytes per node).
+constexpr double kBytesPerNode = 32;
 
 using Coord = std::array<uint32_t, 3>;
 
@@ -311,8 +311,16 @@ class Builder {
       check_memory(kBytesPerNode * static_cast<double>(level_start + n), max_bytes_,
                    octree_subject(depth_));
       tree.nodes.resize(level_start + n);
+      // At most every cell is crossed: reserved (address space; pages are touched as used)
+      // so that growing never copies. Fresh pages are dear on this kind of machine (a copy of
+      // bunny00's level-9 parents cost more than building them).
       std::vector<Coord> next;
       Lists next_lists;
+      if (d < depth_) {
+        next.reserve(n);
+        next_lists.start.reserve(n + 1);
+        next_lists.tris.reserve(2 * parent_lists_.tris.size());
+      }
       for (size_t b0 = 0; b0 < n; b0 += kBlock) {
         const size_t b1 = std::min(n, b0 + kBlock);
         block(d, b0, b1, tree.nodes.data() + level_start, level_start + n, next, next_lists);
@@ -832,14 +840,16 @@ class Builder {
     const size_t m = b1 - b0;
     const size_t chunks = (m + kGrain - 1) / kGrain;
     const Lists lists = meeting(d, b0, m);
-    // Crossed cells above the maximum depth are split: their children come next, in rank order.
+    std::vector<uint32_t> rank;  // d < D: per crossed cell, its rank among the level's
+    // The crossed cells above the maximum depth are the next level's parents, in rank order.
     if (d < depth_) {
       // The crossed cells' lists are all of `lists` (the others are empty), in cell order.
       next_lists.tris.insert(next_lists.tris.end(), lists.tris.begin(), lists.tris.end());
       const uint64_t base = next_lists.start.back();
+      rank.resize(m);
       for (size_t i = 0; i < m; ++i) {
         if (lists[i].empty()) continue;
-        nodes[b0 + i].first_child = static_cast<uint32_t>(next_start + 8 * next.size());
+        rank[i] = static_cast<uint32_t>(next.size());
         next.push_back(coord(d, b0 + i));
         next_lists.start.push_back(base + lists.start[i + 1]);
       }
@@ -888,13 +898,18 @@ class Builder {
       for (size_t i = begin; i < end; ++i) {
         Octree::Node& node = nodes[b0 + i];
         node.depth = static_cast<uint8_t>(d);
-        node.min = box(coord(d, b0 + i), d).min;
+        const Coord c = coord(d, b0 + i);
+        node.cell = {static_cast<uint16_t>(c[0]), static_cast<uint16_t>(c[1]),
+                     static_cast<uint16_t>(c[2])};
         if (lists[i].empty()) {  // the centre of an uncrossed cell is on no surface: 0 or 2
           node.state = sum[i] == 2 ? CellState::kFull : CellState::kEmpty;
           node.occupancy = sum[i] == 2 ? 1.0f : 0.0f;
         } else {
           node.state = CellState::kPartial;
           if (d == depth_) node.occupancy = static_cast<float>(sum[i] / total);
+          // Crossed cells above the maximum depth are split: their children come next, in
+          // rank order.
+          if (d < depth_) node.first_child = static_cast<uint32_t>(next_start + 8 * rank[i]);
         }
       }
     });
@@ -935,6 +950,26 @@ void check_octree_request(const Solid& solid, const VoxelBounds& bounds, const O
 }  // namespace
 
 double Octree::cell_size(int d) const { return std::ldexp(bounds.size, -d); }
+
+double Octree::plane(int axis, uint64_t m) const {
+  return bounds.min[axis] + static_cast<double>(m) * cell_size(depth);
+}
+
+Vec3 Octree::min(const Node& node) const {
+  const int shift = depth - node.depth;
+  return {plane(0, uint64_t{node.cell[0]} << shift), plane(1, uint64_t{node.cell[1]} << shift),
+          plane(2, uint64_t{node.cell[2]} << shift)};
+}
+
+Bbox Octree::box(const Node& node) const {
+  const int shift = depth - node.depth;
+  Bbox b;
+  b.min = min(node);
+  b.max = {plane(0, (uint64_t{node.cell[0]} + 1) << shift),
+           plane(1, (uint64_t{node.cell[1]} + 1) << shift),
+           plane(2, (uint64_t{node.cell[2]} + 1) << shift)};
+  return b;
+}
 
 std::array<uint64_t, 3> Octree::leaf_counts() const {
   std::array<uint64_t, 3> counts{0, 0, 0};

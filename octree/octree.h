@@ -52,7 +52,10 @@ struct Octree {
     /// regular sub-grid) inside, points on the surface counting ½; inner nodes: the mean of their
     /// children.
     float occupancy = 0;
-    Vec3 min;  ///< lower corner; the cell is [min, next grid plane] ≈ [min, min + size/2^depth]³
+    /// Integer corner (i, j, k) at its depth: the cell spans grid planes i·2^(D−depth) ..
+    /// (i+1)·2^(D−depth) along x, and so on (Octree::min / box give the doubles). 16 bytes a
+    /// node: the array of a depth-10 tree is written once, and fresh pages are dear.
+    std::array<uint16_t, 3> cell{0, 0, 0};
   };
   VoxelBounds bounds;
   int depth = 0;
@@ -60,6 +63,11 @@ struct Octree {
 
   /// Side of the cells at depth d: bounds.size / 2^d.
   double cell_size(int d) const;
+  /// Grid plane m (0 ≤ m ≤ 2^depth) of `axis`: bounds.min[axis] + m·cell_size(depth).
+  double plane(int axis, uint64_t m) const;
+  /// The node's lower corner (grid planes) and its closed box [min, next grid planes].
+  Vec3 min(const Node& node) const;
+  Bbox box(const Node& node) const;
   /// Leaf cells by state: {empty, full, partial}.
   std::array<uint64_t, 3> leaf_counts() const;
 };

@@ -238,15 +238,12 @@ void write_json(std::ostream& out, const Octree& tree, double threshold) {
   char line[128];
   for (const Octree::Node& node : tree.nodes) {
     if (node.first_child != 0) continue;
-    const double s = tree.cell_size(node.depth);
-    int64_t ijk[3];
-    for (int a = 0; a < 3; ++a) ijk[a] = std::llround((node.min[a] - m[a]) / s);
+    const auto& ijk = node.cell;
     char* p = line;
     *p++ = first ? '\n' : ',';
     if (!first) *p++ = '\n';
-    p += std::snprintf(p, 48, "[%d,%lld,%lld,%lld,%d,", node.depth, static_cast<long long>(ijk[0]),
-                       static_cast<long long>(ijk[1]), static_cast<long long>(ijk[2]),
-                       static_cast<int>(node.state));
+    p += std::snprintf(p, 48, "[%d,%d,%d,%d,%d,", node.depth, int{ijk[0]}, int{ijk[1]},
+                       int{ijk[2]}, static_cast<int>(node.state));
     p = std::to_chars(p, line + sizeof line - 1, node.occupancy).ptr;
     *p++ = ']';
     out.write(line, p - line);

@@ -53,14 +53,15 @@ Octree build(const Solid& s, const VoxelBounds& b, int depth, int samples = 4) {
   return build_octree(s, b, o);
 }
 
-/// The exact closed box of a node: its faces are grid planes bounds.min + m·h (octree.h).
+/// The exact closed box of a node: its faces are grid planes bounds.min + m·h (octree.h), m the
+/// integer corner scaled to the finest level (computed here, independently of Octree::box).
 Bbox cell_box(const Octree& t, const Octree::Node& n) {
   const double h = t.cell_size(t.depth);
   const long long span = 1LL << (t.depth - n.depth);
   Bbox b;
   double lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
-    const long long m = std::llround((n.min[a] - t.bounds.min[a]) / h);
+    const long long m = static_cast<long long>(n.cell[a]) * span;
     lo[a] = t.bounds.min[a] + static_cast<double>(m) * h;
     hi[a] = t.bounds.min[a] + static_cast<double>(m + span) * h;
   }
@@ -480,7 +481,7 @@ TEST(Octree, SameNodesForOneAndTwoThreads) {
   for (size_t i = 0; i < one.nodes.size(); ++i) {
     const Octree::Node &p = one.nodes[i], &q = two.nodes[i];
     ASSERT_TRUE(p.first_child == q.first_child && p.depth == q.depth && p.state == q.state &&
-                p.occupancy == q.occupancy && p.min == q.min)
+                p.occupancy == q.occupancy && p.cell == q.cell)
         << "node " << i;
   }
 }
@@ -671,9 +672,10 @@ TEST_F(OctreeFiles, HtgLoadsInVtkWithTheSameLeaves) {
       const auto& c = cells[k];
       ASSERT_EQ(c[0].get<int>(), node.depth) << "leaf " << k;
       const double h = tree->cell_size(node.depth);
+      const Vec3 min = tree->min(node);
       for (int a = 0; a < 3; ++a) {
-        EXPECT_NEAR(c[1 + 2 * a].get<double>(), node.min[a], tol) << "leaf " << k;
-        EXPECT_NEAR(c[2 + 2 * a].get<double>(), node.min[a] + h, tol) << "leaf " << k;
+        EXPECT_NEAR(c[1 + 2 * a].get<double>(), min[a], tol) << "leaf " << k;
+        EXPECT_NEAR(c[2 + 2 * a].get<double>(), min[a] + h, tol) << "leaf " << k;
       }
       EXPECT_EQ(c[7].get<int>(), static_cast<int>(node.state)) << "leaf " << k;
       EXPECT_EQ(c[8].get<float>(), node.occupancy) << "leaf " << k;
@@ -693,7 +695,7 @@ TEST_F(OctreeFiles, BtReadsBackWithLiboctomap) {
     for (const Octree::Node& node : tree_.nodes) {
       if (node.first_child != 0) continue;
       const double half = 0.5 * tree_.cell_size(node.depth);
-      const Vec3 p = node.min + Vec3{half, half, half} - centre;  // OctoMap's frame
+      const Vec3 p = tree_.min(node) + Vec3{half, half, half} - centre;  // OctoMap's frame
       const octomap::OcTreeNode* leaf = read.search(p.x, p.y, p.z);
       ASSERT_NE(leaf, nullptr);
       const bool occupied = node.state == CellState::kFull ||
@@ -726,7 +728,7 @@ TEST_F(OctreeFiles, JsonListsEveryLeaf) {
     // The corner (i, j, k) at the cell's depth gives back its exact lower corner.
     const double s = tree_.cell_size(node.depth);
     for (int a = 0; a < 3; ++a)
-      EXPECT_EQ(tree_.bounds.min[a] + c[1 + a].get<int64_t>() * s, node.min[a]) << k;
+      EXPECT_EQ(tree_.bounds.min[a] + c[1 + a].get<int64_t>() * s, tree_.min(node)[a]) << k;
     EXPECT_EQ(c[4].get<int>(), static_cast<int>(node.state));
     EXPECT_EQ(c[5].get<float>(), node.occupancy);
   }
