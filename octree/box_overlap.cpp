@@ -187,11 +187,13 @@ uint8_t OctantOverlap::quick_octants(uint8_t wanted, uint8_t& undecided) {
     }
     if (!(lo < 0 && hi > 0)) alive &= static_cast<uint8_t>(~(1u << o));
   }
-  // The line along the normal's dominant axis n through the centre (cu, cw) of the octant's
-  // face meets the triangle's relative interior (strictly inside its projection: three
+  // A line along the normal's dominant axis n through a point (cu, cw) strictly inside the
+  // octant's face meets the triangle's relative interior (strictly inside its projection: three
   // filtered orient2d agreeing with the projected orientation) at a height strictly between
   // the octant's faces across n (the plane's signs at the two ends strictly opposite): that
-  // point lies in the open octant, which is crossed.
+  // point lies in the open octant, which is crossed. Five lines are tried (bunny00 at depth 10:
+  // the later ones prove about 4% more of the last level's test time away than the centre's
+  // alone); a triangle that crosses the octant but none of them goes on to the edge axes.
   uint8_t proven = 0;
   const Vec3& nrm = plane_.normal();
   const int n = std::abs(nrm.x) >= std::max(std::abs(nrm.y), std::abs(nrm.z))
@@ -199,24 +201,31 @@ uint8_t OctantOverlap::quick_octants(uint8_t wanted, uint8_t& undecided) {
                     : (std::abs(nrm.y) >= std::abs(nrm.z) ? 1 : 2);
   const int u = (n + 1) % 3, w = (n + 2) % 3;
   const int orientation = alive != 0 ? orient2d_strict(v_[0], v_[1], v_[2], n) : 0;
+  // Through the face's centre, then through the centres of its four quarters.
+  constexpr double kAt[5][2] = {{0.5, 0.5}, {0.25, 0.25}, {0.75, 0.75}, {0.75, 0.25}, {0.25, 0.75}};
   for (uint8_t m = orientation != 0 ? alive : 0; m != 0; m &= static_cast<uint8_t>(m - 1)) {
     const int o = std::countr_zero(m);
     const int bu = (o >> u) & 1, bw = (o >> w) & 1, bn = (o >> n) & 1;
-    double q[3];
-    q[u] = 0.5 * (planes_[u][bu] + planes_[u][bu + 1]);
-    q[w] = 0.5 * (planes_[w][bw] + planes_[w][bw + 1]);
-    if (!(planes_[u][bu] < q[u] && q[u] < planes_[u][bu + 1] && planes_[w][bw] < q[w] &&
-          q[w] < planes_[w][bw + 1]))
-      continue;
-    q[n] = planes_[n][bn];
-    const Vec3 p{q[0], q[1], q[2]};
-    if (orient2d_strict(v_[0], v_[1], p, n) != orientation ||
-        orient2d_strict(v_[1], v_[2], p, n) != orientation ||
-        orient2d_strict(v_[2], v_[0], p, n) != orientation)
-      continue;
-    const int below = plane_.sign(p);
-    q[n] = planes_[n][bn + 1];
-    if (below * plane_.sign({q[0], q[1], q[2]}) < 0) proven |= static_cast<uint8_t>(1u << o);
+    const double ulo = planes_[u][bu], uhi = planes_[u][bu + 1];
+    const double wlo = planes_[w][bw], whi = planes_[w][bw + 1];
+    for (int t = 0; t < 5; ++t) {
+      double q[3];
+      q[u] = ulo + kAt[t][0] * (uhi - ulo);
+      q[w] = wlo + kAt[t][1] * (whi - wlo);
+      if (!(ulo < q[u] && q[u] < uhi && wlo < q[w] && q[w] < whi)) continue;
+      q[n] = planes_[n][bn];
+      const Vec3 p{q[0], q[1], q[2]};
+      if (orient2d_strict(v_[0], v_[1], p, n) != orientation ||
+          orient2d_strict(v_[1], v_[2], p, n) != orientation ||
+          orient2d_strict(v_[2], v_[0], p, n) != orientation)
+        continue;
+      const int below = plane_.sign(p);
+      q[n] = planes_[n][bn + 1];
+      if (below * plane_.sign({q[0], q[1], q[2]}) < 0) {
+        proven |= static_cast<uint8_t>(1u << o);
+        break;
+      }
+    }
   }
   undecided = alive & static_cast<uint8_t>(~proven);
   return proven;
