@@ -192,8 +192,8 @@ uint8_t OctantOverlap::quick_octants(uint8_t wanted, uint8_t& undecided) {
   // filtered orient2d agreeing with the projected orientation) at a height strictly between
   // the octant's faces across n (the plane's signs at the two ends strictly opposite): that
   // point lies in the open octant, which is crossed. Five lines are tried (bunny00 at depth 10:
-  // the later ones prove about 4% more of the last level's test time away than the centre's
-  // alone); a triangle that crosses the octant but none of them goes on to the edge axes.
+  // about 4% off the last level's octant tests against the centre's line alone); a triangle
+  // that crosses the octant but none of these lines goes on to the edge axes.
   uint8_t proven = 0;
   const Vec3& nrm = plane_.normal();
   const int n = std::abs(nrm.x) >= std::max(std::abs(nrm.y), std::abs(nrm.z))

@@ -31,9 +31,10 @@
 //   rank     index of a crossed cell among the crossed cells of its level (in node order); its
 //            children are the cells 8·rank .. 8·rank + 7 of the next level, in Morton order.
 // One level at a time, in blocks of cells:
-//   (A) T_C for every cell, testing the parent's list (or the BVH's candidates for the cell's box
-//       when that list is long) with the exact triangle / open-box test (at the last level below
-//       a short parent list, one triangle of T_C: only T_C ≠ ∅ is used there);
+//   (A) T_C for every cell, testing the parent's list (the root: the BVH's candidates) with the
+//       exact triangle / open-box test; a triangle whose box lies inside one child's open box
+//       crosses that child alone, untested (most triangles above the last levels). At the last
+//       level below a short parent list only T_C ≠ ∅ is used: one witness triangle per cell;
 //   (B) the points to classify. Uncrossed siblings: each interior is connected and meets no
 //       surface; the parent's centre p is a corner of each, so when no surface passes through p,
 //       a small ball around p joins them all into one connected set no surface meets, where
@@ -45,8 +46,11 @@
 //       be on a surface). When the parent's list T_P is short, the same grouping runs over a
 //       whole sibling set at once, with the planes of T_P (every surface in the parent lies in
 //       them): the sub-points of its partial cells and the centres of its uncrossed cells share
-//       one classification per side class of the parent;
-//   (C) one classify() call per block; (D) states, occupancies and child links.
+//       one side class per region of the parent. With closed leaves only one class per set is
+//       classified (a reference, by its leaves' windings); the others add the signed crossings
+//       of the segment from the reference with T_P's triangles (sibling_masks);
+//   (C) one classify() and one leaf_windings() call per block; (D) states, occupancies and
+//       child links.
 // Node order, ranks and results depend only on the input: every parallel step writes per cell or
 // per fixed chunk, and chunks are concatenated in order.
 
@@ -55,7 +59,7 @@ namespace {
 
 constexpr int kMaxDepth = 16;       // OctoMap's depth, and 2^16 cells per axis
 constexpr int kMaxSamples = 32;     // 32³ sub-points per partial cell
-constexpr size_t kInheritMax = 64;  // parent lists up to this length are the children's candidates
+constexpr size_t kInheritMax = 64;  // centre_on_surface: longer parent lists go through the BVH
 constexpr size_t kGroupMax = 64;    // planes up to which points are grouped by sides
 constexpr size_t kExactKey = 40;    // side vectors up to this length are exact base-3 keys
 constexpr size_t kSiblingMax = 16;  // last level: parent lists up to this length group a whole
