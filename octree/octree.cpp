@@ -82,10 +82,6 @@ struct Lists {
   std::span<const uint32_t> operator[](size_t i) const {
     return {tris.data() + start[i], static_cast<size_t>(start[i + 1] - start[i])};
   }
-  void append(std::span<const uint32_t> list) {
-    tris.insert(tris.end(), list.begin(), list.end());
-    start.push_back(tris.size());
-  }
 };
 
 /// A classification request: cell `cell` (index in its block) gets `weight` times the class of

@@ -387,6 +387,10 @@ TEST(Octree, EveryPartialOccupancyMatchesItsPoints) {
   const Octree ts = build(spheres, cube({-0.8, -0.8, -0.8}, 1.8), 3);
   check_leaves(spheres, ts);
   expect_occupancy_by_points(spheres, ts, 4, SIZE_MAX);
+  for (const Octree::Node& n : ts.nodes) {  // the nodes' integer corners give their exact boxes
+    const Bbox a = ts.box(n), b = cell_box(ts, n);
+    ASSERT_TRUE(a.min == b.min && a.max == b.max && ts.min(n) == b.min);
+  }
 
   std::mt19937_64 rng(2026);
   const double h = 1.0 / 8;  // cells of depth 3 over the unit cube
