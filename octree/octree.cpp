@@ -275,16 +275,7 @@ class Builder {
         progress_(options.progress),
         open_(solid.has_open_leaf()) {
     if (open_ && options.gwn == nullptr) own_gwn_ = build_gwn(solid);
-    // Up to kTableLeaves leaves, the expression's value for every set of inside leaves.
-    const size_t leaves = solid.leaves.size();
-    if (leaves <= kTableLeaves) {
-      table_.resize(size_t{1} << leaves);
-      std::vector<uint8_t> in(leaves);
-      for (size_t m = 0; m < table_.size(); ++m) {
-        for (size_t l = 0; l < leaves; ++l) in[l] = (m >> l) & 1;
-        table_[m] = solid.tree.evaluate(in);
-      }
-    }
+    if (solid.leaves.size() <= kTableLeaves) table_ = solid.tree.truth_table(solid.leaves.size());
     gwn_ = options.gwn != nullptr ? options.gwn : (own_gwn_ ? &*own_gwn_ : nullptr);
   }
 

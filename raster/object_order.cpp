@@ -96,14 +96,6 @@ struct SmallRect {
 /// kTableLeaves leaves: one lookup per interval instead of a walk of the tree (which took 9% of
 /// a frame's samples).
 constexpr size_t kTableLeaves = 16;
-std::vector<uint8_t> truth_table(const CsgTree& tree, size_t leaves) {
-  std::vector<uint8_t> table(size_t{1} << leaves), inside(leaves);
-  for (size_t mask = 0; mask < table.size(); ++mask) {
-    for (size_t l = 0; l < leaves; ++l) inside[l] = (mask >> l) & 1;
-    table[mask] = tree.evaluate(inside);
-  }
-  return table;
-}
 
 /// first_visible(r, lo, hi) of r = the hits swept as detail::sweep_spans() does (windings from
 /// the sum of signs, the expression evaluated after the last hit at each t), stopping at the first
@@ -305,7 +297,7 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
   const bool outside_in_result = !solid.tree.nodes.empty() &&
                                  solid.tree.evaluate(std::vector<uint8_t>(leaves, 0));
   const bool use_table = !solid.tree.nodes.empty() && leaves <= kTableLeaves;
-  const std::vector<uint8_t> table = use_table ? truth_table(solid.tree, leaves)
+  const std::vector<uint8_t> table = use_table ? solid.tree.truth_table(leaves)
                                                : std::vector<uint8_t>{};
   parallel_for(tiles, 1, [&](size_t t0, size_t t1) {
     std::vector<Ray> rays;

@@ -488,15 +488,8 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
   // ~1.5 ms CPU at 512³ for a single mesh).
   constexpr size_t kTableLeaves = 10;
   const bool use_table = leaves <= kTableLeaves;
-  std::vector<uint8_t> table;
-  if (use_table) {
-    table.resize(size_t{1} << leaves);
-    std::vector<uint8_t> in(leaves);
-    for (size_t m = 0; m < table.size(); ++m) {
-      for (size_t l = 0; l < leaves; ++l) in[l] = (m >> l) & 1;
-      table[m] = solid.tree.evaluate(in);
-    }
-  }
+  const std::vector<uint8_t> table = use_table ? solid.tree.truth_table(leaves)
+                                               : std::vector<uint8_t>{};
   auto sweep_band = [&](size_t band) {
     // Per-thread scratch, reused across bands and calls (no allocation per band).
     thread_local std::vector<Crossing> found;

@@ -7,6 +7,15 @@
 
 namespace cover {
 
+std::vector<uint8_t> CsgTree::truth_table(size_t leaves) const {
+  std::vector<uint8_t> table(size_t{1} << leaves), inside(leaves);
+  for (size_t mask = 0; mask < table.size(); ++mask) {
+    for (size_t l = 0; l < leaves; ++l) inside[l] = (mask >> l) & 1;
+    table[mask] = evaluate(inside);
+  }
+  return table;
+}
+
 bool CsgTree::evaluate(uint32_t node, std::span<const uint8_t> inside) const {
   const CsgNode& n = nodes[node];
   switch (n.op) {

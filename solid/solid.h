@@ -42,6 +42,9 @@ struct CsgTree {
   /// Evaluates membership given each leaf's membership (inside[leaf]).
   bool evaluate(std::span<const uint8_t> inside) const { return evaluate(root, inside); }
   bool evaluate(uint32_t node, std::span<const uint8_t> inside) const;
+  /// evaluate() for every set of inside leaves among `leaves` (bit l of the index: leaf l
+  /// inside), 2^leaves entries: a sweep looks a winding mask up instead of walking the tree.
+  std::vector<uint8_t> truth_table(size_t leaves) const;
 };
 
 /// Per-leaf bookkeeping. `name` is the mesh path or primitive kind, `origin` the scene JSON
