@@ -167,6 +167,137 @@ bool OctantOverlap::separated(int o, bool open) {
 // quadrant (hu, hw) of the plane dropping an axis.
 constexpr uint8_t kHalf[3][2] = {{0x55, 0xAA}, {0x33, 0xCC}, {0x0F, 0xF0}};
 
+namespace {
+
+/// Bit i of m set where bit i, i+1, i+3 or i+4 of m is (a 3 × 3 lattice, index 3·row + column):
+/// for each quadrant's low corner, whether any of its 4 corners is set.
+constexpr uint32_t spread9(uint32_t m) {
+  m |= m >> 1;
+  return m | m >> 3;
+}
+
+/// The same over a 3 × 3 × 3 lattice (index 9·z + 3·y + x): for each octant's low corner,
+/// whether any of its 8 corners is set.
+constexpr uint32_t spread27(uint32_t m) {
+  m |= m >> 1;
+  m |= m >> 3;
+  return m | m >> 9;
+}
+
+/// Octant o's low corner in the 3 × 3 × 3 lattice.
+constexpr int kOctantCorner[8] = {0, 1, 3, 4, 9, 10, 12, 13};
+
+}  // namespace
+
+uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
+                        const double (&planes)[3][3], uint8_t wanted) {
+  const Vec3 v[3] = {a, b, c};
+  uint8_t alive = wanted;
+  // Box normals (exact comparisons), per half: lo ≥ the half's high face or hi ≤ its low face.
+  for (int k = 0; k < 3; ++k) {
+    const double lo = std::min({a[k], b[k], c[k]}), hi = std::max({a[k], b[k], c[k]});
+    if (lo >= planes[k][1] || hi <= planes[k][0]) alive &= static_cast<uint8_t>(~kHalf[k][0]);
+    if (lo >= planes[k][2] || hi <= planes[k][1]) alive &= static_cast<uint8_t>(~kHalf[k][1]);
+  }
+  if (alive == 0) return 0;
+  // The triangle's normal: the plane's signs at the 27 lattice points, as PlaneSide over the
+  // lattice's box (the same sums as grid_signs), as bit masks; an octant survives when it has a
+  // corner strictly on each side.
+  {
+    const Vec3 u = b - a, w = c - a;
+    const Vec3 n = cross(u, w);
+    const double perm[3] = {std::abs(u.y * w.z) + std::abs(u.z * w.y),
+                            std::abs(u.z * w.x) + std::abs(u.x * w.z),
+                            std::abs(u.x * w.y) + std::abs(u.y * w.x)};
+    double sum = 0;
+    for (int i = 0; i < 3; ++i)
+      sum += perm[i] * std::max(std::abs(planes[i][0] - a[i]), std::abs(planes[i][2] - a[i]));
+    const double bound = in_filter_range(sum) ? kPlaneBoxErr * sum
+                                              : std::numeric_limits<double>::infinity();
+    double fx[3], fy[3], fz[3];
+    for (int i = 0; i < 3; ++i) {
+      fx[i] = n.x * (planes[0][i] - a.x);
+      fy[i] = n.y * (planes[1][i] - a.y);
+      fz[i] = n.z * (planes[2][i] - a.z);
+    }
+    uint32_t pos = 0, neg = 0;
+    for (int z = 0; z < 3; ++z)
+      for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) {
+          const double f = fx[x] + fy[y] + fz[z];
+          const int i = (z * 3 + y) * 3 + x;
+          pos |= uint32_t{f > bound} << i;
+          neg |= uint32_t{f < -bound} << i;
+        }
+    for (uint32_t m = ~(pos | neg) & 0x7FFFFFF; m != 0; m &= m - 1) {
+      const int i = std::countr_zero(m);
+      const int s = orient3d(a, b, c, {planes[0][i % 3], planes[1][i / 3 % 3], planes[2][i / 9]});
+      pos |= uint32_t{s > 0} << i;
+      neg |= uint32_t{s < 0} << i;
+    }
+    const uint32_t both = spread27(pos) & spread27(neg);
+    for (int o = 0; o < 8; ++o)
+      if (!(both >> kOctantCorner[o] & 1)) alive &= static_cast<uint8_t>(~(1u << o));
+  }
+  // e_axis × edge: in the plane that drops `axis`, per quadrant, the quadrant's rectangle weakly
+  // on one side of the edge's line and the triangle on the line or the other side.
+  int third[3] = {2, 2, 2};  // per axis: the projected orientation, when first needed
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 &p = v[e], &q = v[(e + 1) % 3];
+    for (int axis = 0; axis < 3; ++axis) {
+      if (alive == 0) return 0;
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      if (p[u] == q[u] && p[w] == q[w]) continue;  // the zero axis separates nothing
+      // orient2d(p, q, x) = cu·(x_u − p_u) + cw·(x_w − p_w), its coefficients' signs exact.
+      const double cu = p[w] - q[w], cw = q[u] - p[u];
+      double gu[3], gw[3];
+      for (int i = 0; i < 3; ++i) {
+        gu[i] = cu * (planes[u][i] - p[u]);
+        gw[i] = cw * (planes[w][i] - p[w]);
+      }
+      if (third[axis] == 2) third[axis] = orient2d(v[0], v[1], v[2], axis);
+      const int t = third[axis];
+      const double mag = std::max(std::abs(gu[0]), std::abs(gu[2])) +
+                         std::max(std::abs(gw[0]), std::abs(gw[2]));
+      uint32_t pos = 0, neg = 0;
+      if (in_filter_range(mag)) {
+        const double bound = kPlaneSideErr * mag;
+        // The common case: the whole lattice strictly on the third vertex's side (the sums are
+        // monotone in iu and iw: one sum decides it exactly as the 9 would).
+        if (t > 0 && std::min(gu[0], gu[2]) + std::min(gw[0], gw[2]) > bound) continue;
+        if (t < 0 && std::max(gu[0], gu[2]) + std::max(gw[0], gw[2]) < -bound) continue;
+        for (int iw = 0; iw < 3; ++iw)
+          for (int iu = 0; iu < 3; ++iu) {
+            const double g = gu[iu] + gw[iw];
+            pos |= uint32_t{g > bound} << (iw * 3 + iu);
+            neg |= uint32_t{g < -bound} << (iw * 3 + iu);
+          }
+      }
+      for (uint32_t m = ~(pos | neg) & 0x1FF; m != 0; m &= m - 1) {
+        const int i = std::countr_zero(m);
+        double x[3] = {planes[0][0], planes[1][0], planes[2][0]};  // the dropped one: irrelevant
+        x[u] = planes[u][i % 3];
+        x[w] = planes[w][i / 3];
+        const int s = orient2d(p, q, Vec3{x[0], x[1], x[2]}, axis);
+        pos |= uint32_t{s > 0} << i;
+        neg |= uint32_t{s < 0} << i;
+      }
+      const uint32_t any_pos = spread9(pos), any_neg = spread9(neg);
+      for (int hw = 0; hw < 2; ++hw)
+        for (int hu = 0; hu < 2; ++hu) {
+          const int at = hw * 3 + hu;
+          const bool hp = any_pos >> at & 1, hn = any_neg >> at & 1;
+          // The rectangle's side: 0 when it has corners strictly on both sides, else +1 when
+          // one is strictly positive, else −1 (all ≤ 0); separated when that side is not 0 and
+          // not the third vertex's.
+          const bool separated = t > 0 ? !hp : (t < 0 ? hp && !hn : !(hp && hn));
+          if (separated) alive &= static_cast<uint8_t>(~(kHalf[u][hu] & kHalf[w][hw]));
+        }
+    }
+  }
+  return alive;
+}
+
 uint8_t OctantOverlap::quick_octants(uint8_t wanted, uint8_t& undecided) {
   uint8_t alive = wanted;
   // Box normals (exact comparisons), per half: the same test as separated(o, true).
@@ -251,9 +382,7 @@ uint8_t OctantOverlap::edge_octants(uint8_t undecided) {
 }
 
 uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
-  uint8_t undecided = 0;
-  const uint8_t proven = quick_octants(wanted, undecided);
-  return proven | edge_octants(undecided);
+  return detail::crossed_octants(v_[0], v_[1], v_[2], planes_, wanted);
 }
 
 PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box)

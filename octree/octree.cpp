@@ -384,8 +384,6 @@ class Builder {
       std::vector<uint32_t>& out = chunk_tris[begin / kGrain];
       std::vector<uint32_t> candidates;
       std::array<std::vector<uint32_t>, 8> octant;
-      std::vector<detail::OctantOverlap> overlaps;           // witness mode: per tested triangle,
-      std::vector<std::pair<uint32_t, uint8_t>> pending;  // and its octants left undecided
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings) {
         const size_t parent = (b0 + g0) / 8;
@@ -412,34 +410,14 @@ class Builder {
               if (open == 0) break;
               continue;
             }
-            if (witness) {
-              // Witnesses in two passes: the quick tests of every triangle first, then the
-              // edge axes only for octants no triangle has proven crossed (an octant that one
-              // triangle's plane cuts but that triangle misses is mostly crossed by its
-              // neighbour).
-              detail::OctantOverlap& overlap = overlaps.emplace_back(tri.a, tri.b, tri.c, planes);
-              uint8_t undecided = 0;
-              const uint8_t crossed = overlap.quick_octants(open, undecided);
-              for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
-                octant[std::countr_zero(m)].push_back(t);
-              open &= static_cast<uint8_t>(~crossed);
-              pending.push_back({t, undecided});
-              if (open == 0) break;
-              continue;
-            }
-            detail::OctantOverlap overlap(tri.a, tri.b, tri.c, planes);
-            const uint8_t crossed = overlap.crossed_octants(open);
+            const uint8_t crossed = detail::crossed_octants(tri.a, tri.b, tri.c, planes, open);
             for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
               octant[std::countr_zero(m)].push_back(t);
+            if (witness) {
+              open &= static_cast<uint8_t>(~crossed);
+              if (open == 0) break;
+            }
           }
-          for (size_t q = 0; q < pending.size() && open != 0; ++q) {
-            const uint8_t crossed = overlaps[q].edge_octants(pending[q].second & open);
-            for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
-              octant[std::countr_zero(m)].push_back(pending[q].first);
-            open &= static_cast<uint8_t>(~crossed);
-          }
-          overlaps.clear();
-          pending.clear();
           for (int c = 0; c < 8; ++c) {
             out.insert(out.end(), octant[c].begin(), octant[c].end());
             count[g0 + c] = static_cast<uint32_t>(octant[c].size());

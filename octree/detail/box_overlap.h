@@ -77,6 +77,14 @@ class PlaneSide {
   double bound_;  ///< |computed n·(p − a) − exact value| ≤ bound_ for every p in the box
 };
 
+/// The octants among `wanted` (bit o = octant o, offset (o&1, (o>>1)&1, (o>>2)&1) in the lattice
+/// planes[0] × planes[1] × planes[2]) whose interior the closed triangle abc meets (exact): the
+/// 13 axes per half (box normals), per octant (the plane's signs at the 27 lattice points) and
+/// per quadrant of the plane dropping an axis (edge axes), on bit masks. Preconditions:
+/// planes[a][0] < planes[a][1] < planes[a][2]; abc not collinear.
+uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c, const double (&planes)[3][3],
+                        uint8_t wanted);
+
 /// triangle_meets_box for the 8 octants of one box, sharing the work: the octants' corners are
 /// the 27 points of the lattice planes[0] × planes[1] × planes[2] (per axis: low face, split
 /// plane, high face), and every sign at a lattice point is computed once, when first needed.
