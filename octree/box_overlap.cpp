@@ -7,6 +7,10 @@
 #include <iterator>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "solid/predicates.h"
 
 namespace cover::detail {
@@ -176,21 +180,22 @@ constexpr uint32_t spread9(uint32_t m) {
   return m | m >> 3;
 }
 
-/// The same over a 3 × 3 × 3 lattice (index 9·z + 3·y + x): for each octant's low corner,
-/// whether any of its 8 corners is set.
-constexpr uint32_t spread27(uint32_t m) {
-  m |= m >> 1;
-  m |= m >> 3;
-  return m | m >> 9;
-}
-
-/// Octant o's low corner in the 3 × 3 × 3 lattice.
-constexpr int kOctantCorner[8] = {0, 1, 3, 4, 9, 10, 12, 13};
-
 }  // namespace
 
 uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
                         const double (&planes)[3][3], uint8_t wanted) {
+  if (wanted == 0) return 0;
+  Bbox box;
+  box.min = {planes[0][0], planes[1][0], planes[2][0]};
+  box.max = {planes[0][2], planes[1][2], planes[2][2]};
+  uint32_t pos = 0, neg = 0;
+  PlaneSide(a, b, c, box).lattice_masks(planes, pos, neg);
+  return crossed_octants(a, b, c, planes, pos, neg, wanted);
+}
+
+uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
+                        const double (&planes)[3][3], uint32_t pos, uint32_t neg,
+                        uint8_t wanted) {
   const Vec3 v[3] = {a, b, c};
   uint8_t alive = wanted;
   // Box normals (exact comparisons), per half: lo ≥ the half's high face or hi ≤ its low face.
@@ -199,46 +204,10 @@ uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
     if (lo >= planes[k][1] || hi <= planes[k][0]) alive &= static_cast<uint8_t>(~kHalf[k][0]);
     if (lo >= planes[k][2] || hi <= planes[k][1]) alive &= static_cast<uint8_t>(~kHalf[k][1]);
   }
-  if (alive == 0) return 0;
-  // The triangle's normal: the plane's signs at the 27 lattice points, as PlaneSide over the
-  // lattice's box (the same sums as grid_signs), as bit masks; an octant survives when it has a
-  // corner strictly on each side.
-  {
-    const Vec3 u = b - a, w = c - a;
-    const Vec3 n = cross(u, w);
-    const double perm[3] = {std::abs(u.y * w.z) + std::abs(u.z * w.y),
-                            std::abs(u.z * w.x) + std::abs(u.x * w.z),
-                            std::abs(u.x * w.y) + std::abs(u.y * w.x)};
-    double sum = 0;
-    for (int i = 0; i < 3; ++i)
-      sum += perm[i] * std::max(std::abs(planes[i][0] - a[i]), std::abs(planes[i][2] - a[i]));
-    const double bound = in_filter_range(sum) ? kPlaneBoxErr * sum
-                                              : std::numeric_limits<double>::infinity();
-    double fx[3], fy[3], fz[3];
-    for (int i = 0; i < 3; ++i) {
-      fx[i] = n.x * (planes[0][i] - a.x);
-      fy[i] = n.y * (planes[1][i] - a.y);
-      fz[i] = n.z * (planes[2][i] - a.z);
-    }
-    uint32_t pos = 0, neg = 0;
-    for (int z = 0; z < 3; ++z)
-      for (int y = 0; y < 3; ++y)
-        for (int x = 0; x < 3; ++x) {
-          const double f = fx[x] + fy[y] + fz[z];
-          const int i = (z * 3 + y) * 3 + x;
-          pos |= uint32_t{f > bound} << i;
-          neg |= uint32_t{f < -bound} << i;
-        }
-    for (uint32_t m = ~(pos | neg) & 0x7FFFFFF; m != 0; m &= m - 1) {
-      const int i = std::countr_zero(m);
-      const int s = orient3d(a, b, c, {planes[0][i % 3], planes[1][i / 3 % 3], planes[2][i / 9]});
-      pos |= uint32_t{s > 0} << i;
-      neg |= uint32_t{s < 0} << i;
-    }
-    const uint32_t both = spread27(pos) & spread27(neg);
-    for (int o = 0; o < 8; ++o)
-      if (!(both >> kOctantCorner[o] & 1)) alive &= static_cast<uint8_t>(~(1u << o));
-  }
+  // The triangle's normal: an octant survives when it has a corner strictly on each side.
+  const uint32_t both = spread27(pos) & spread27(neg);
+  for (int o = 0; o < 8; ++o)
+    if (!(both >> kOctantCorner[o] & 1)) alive &= static_cast<uint8_t>(~(1u << o));
   // e_axis × edge: in the plane that drops `axis`, per quadrant, the quadrant's rectangle weakly
   // on one side of the edge's line and the triangle on the line or the other side.
   int third[3] = {2, 2, 2};  // per axis: the projected orientation, when first needed
@@ -298,89 +267,6 @@ uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
   return alive;
 }
 
-uint8_t OctantOverlap::quick_octants(uint8_t wanted, uint8_t& undecided) {
-  uint8_t alive = wanted;
-  // Box normals (exact comparisons), per half: the same test as separated(o, true).
-  for (int k = 0; k < 3 && alive != 0; ++k)
-    for (int h = 0; h < 2; ++h) {
-      const double lo = planes_[k][h], hi = planes_[k][h + 1];
-      if (lo_[k] >= hi || hi_[k] <= lo) alive &= static_cast<uint8_t>(~kHalf[k][h]);
-    }
-  // The triangle's normal: the 8 corners of the octant on one side of its plane (or on it).
-  for (uint8_t m = alive; m != 0; m &= static_cast<uint8_t>(m - 1)) {
-    const int o = std::countr_zero(m);
-    const int bx = o & 1, by = (o >> 1) & 1, bz = (o >> 2) & 1;
-    int lo = 1, hi = -1;
-    for (int c = 0; c < 8; ++c) {
-      const int s = plane_sign(bx + (c & 1), by + ((c >> 1) & 1), bz + (c >> 2));
-      lo = std::min(lo, s);
-      hi = std::max(hi, s);
-    }
-    if (!(lo < 0 && hi > 0)) alive &= static_cast<uint8_t>(~(1u << o));
-  }
-  // A line along the normal's dominant axis n through a point (cu, cw) strictly inside the
-  // octant's face meets the triangle's relative interior (strictly inside its projection: three
-  // filtered orient2d agreeing with the projected orientation) at a height strictly between
-  // the octant's faces across n (the plane's signs at the two ends strictly opposite): that
-  // point lies in the open octant, which is crossed. Five lines are tried (bunny00 at depth 10:
-  // about 4% off the last level's octant tests against the centre's line alone); a triangle
-  // that crosses the octant but none of these lines goes on to the edge axes.
-  uint8_t proven = 0;
-  const Vec3& nrm = plane_.normal();
-  const int n = std::abs(nrm.x) >= std::max(std::abs(nrm.y), std::abs(nrm.z))
-                    ? 0
-                    : (std::abs(nrm.y) >= std::abs(nrm.z) ? 1 : 2);
-  const int u = (n + 1) % 3, w = (n + 2) % 3;
-  const int orientation = alive != 0 ? orient2d_strict(v_[0], v_[1], v_[2], n) : 0;
-  // Through the face's centre, then through the centres of its four quarters.
-  constexpr double kAt[5][2] = {{0.5, 0.5}, {0.25, 0.25}, {0.75, 0.75}, {0.75, 0.25}, {0.25, 0.75}};
-  for (uint8_t m = orientation != 0 ? alive : 0; m != 0; m &= static_cast<uint8_t>(m - 1)) {
-    const int o = std::countr_zero(m);
-    const int bu = (o >> u) & 1, bw = (o >> w) & 1, bn = (o >> n) & 1;
-    const double ulo = planes_[u][bu], uhi = planes_[u][bu + 1];
-    const double wlo = planes_[w][bw], whi = planes_[w][bw + 1];
-    for (int t = 0; t < 5; ++t) {
-      double q[3];
-      q[u] = ulo + kAt[t][0] * (uhi - ulo);
-      q[w] = wlo + kAt[t][1] * (whi - wlo);
-      if (!(ulo < q[u] && q[u] < uhi && wlo < q[w] && q[w] < whi)) continue;
-      q[n] = planes_[n][bn];
-      const Vec3 p{q[0], q[1], q[2]};
-      if (orient2d_strict(v_[0], v_[1], p, n) != orientation ||
-          orient2d_strict(v_[1], v_[2], p, n) != orientation ||
-          orient2d_strict(v_[2], v_[0], p, n) != orientation)
-        continue;
-      const int below = plane_.sign(p);
-      q[n] = planes_[n][bn + 1];
-      if (below * plane_.sign({q[0], q[1], q[2]}) < 0) {
-        proven |= static_cast<uint8_t>(1u << o);
-        break;
-      }
-    }
-  }
-  undecided = alive & static_cast<uint8_t>(~proven);
-  return proven;
-}
-
-uint8_t OctantOverlap::edge_octants(uint8_t undecided) {
-  uint8_t alive = undecided;
-  // e_axis × edge, per quadrant of the plane dropping `axis` that holds a live octant.
-  for (int e = 0; e < 3 && alive != 0; ++e)
-    for (int axis = 0; axis < 3 && alive != 0; ++axis) {
-      if (skip(e, axis)) continue;
-      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-      for (int hu = 0; hu < 2; ++hu)
-        for (int hw = 0; hw < 2; ++hw) {
-          const uint8_t quadrant = kHalf[u][hu] & kHalf[w][hw];
-          if ((alive & quadrant) == 0) continue;
-          const int side = common_side(
-              4, true, [&](int c) { return edge_sign(e, axis, hu + (c & 1), hw + (c >> 1)); });
-          if (side != 0 && third_sign(e, axis) != side) alive &= static_cast<uint8_t>(~quadrant);
-        }
-    }
-  return alive;
-}
-
 uint8_t OctantOverlap::crossed_octants(uint8_t wanted) {
   return detail::crossed_octants(v_[0], v_[1], v_[2], planes_, wanted);
 }
@@ -437,6 +323,31 @@ void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs,
     }
 }
 
+void PlaneSide::lattice_masks(const double (&planes)[3][3], uint32_t& pos,
+                              uint32_t& neg) const {
+  double fx[3], fy[3], fz[3];
+  for (int i = 0; i < 3; ++i) {
+    fx[i] = normal_.x * (planes[0][i] - a_.x);
+    fy[i] = normal_.y * (planes[1][i] - a_.y);
+    fz[i] = normal_.z * (planes[2][i] - a_.z);
+  }
+  pos = neg = 0;
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 3; ++x) {
+        const double f = fx[x] + fy[y] + fz[z];  // sign()'s sum, in its order
+        const int i = (z * 3 + y) * 3 + x;
+        pos |= uint32_t{f > bound_} << i;
+        neg |= uint32_t{f < -bound_} << i;
+      }
+  for (uint32_t m = ~(pos | neg) & 0x7FFFFFF; m != 0; m &= m - 1) {
+    const int i = std::countr_zero(m);
+    const int s = exact_sign({planes[0][i % 3], planes[1][i / 3 % 3], planes[2][i / 9]});
+    pos |= uint32_t{s > 0} << i;
+    neg |= uint32_t{s < 0} << i;
+  }
+}
+
 void PlaneSide::grid_masks(const double* xs, const double* ys, const double* zs, int n,
                            uint64_t& pos, uint64_t& neg) const {
   if (n != 4) {
@@ -458,6 +369,23 @@ void PlaneSide::grid_masks(const double* xs, const double* ys, const double* zs,
   }
   const double b = bound_;
   pos = neg = 0;
+#if defined(__SSE2__)
+  // Two points per instruction (SSE2 is part of x86-64): the same sums and comparisons, the
+  // signs gathered by movemask. bunny00 at depth 10: this function 14% → 5% of the build's CPU.
+  const __m128d x01 = _mm_loadu_pd(fx), x23 = _mm_loadu_pd(fx + 2);
+  const __m128d hi = _mm_set1_pd(b), lo = _mm_set1_pd(-b);
+  for (int row = 0; row < 16; ++row) {
+    const __m128d y = _mm_set1_pd(fy[row & 3]), z = _mm_set1_pd(fz[row >> 2]);
+    const __m128d f01 = _mm_add_pd(_mm_add_pd(x01, y), z);
+    const __m128d f23 = _mm_add_pd(_mm_add_pd(x23, y), z);
+    const auto p = static_cast<uint64_t>(_mm_movemask_pd(_mm_cmpgt_pd(f01, hi)) |
+                                         _mm_movemask_pd(_mm_cmpgt_pd(f23, hi)) << 2);
+    const auto q = static_cast<uint64_t>(_mm_movemask_pd(_mm_cmplt_pd(f01, lo)) |
+                                         _mm_movemask_pd(_mm_cmplt_pd(f23, lo)) << 2);
+    pos |= p << (4 * row);
+    neg |= q << (4 * row);
+  }
+#else
   for (int row = 0; row < 16; ++row) {
     const double y = fy[row & 3], z = fz[row >> 2];
     const double f0 = (fx[0] + y) + z, f1 = (fx[1] + y) + z, f2 = (fx[2] + y) + z,
@@ -469,6 +397,7 @@ void PlaneSide::grid_masks(const double* xs, const double* ys, const double* zs,
     pos |= p << (4 * row);
     neg |= q << (4 * row);
   }
+#endif
   // Points the filter leaves undecided: orient3d.
   for (uint64_t m = ~(pos | neg); m != 0; m &= m - 1) {
     const int p = std::countr_zero(m);

@@ -139,6 +139,19 @@ struct SubGrid {
   Vec3 point(size_t p) const { return {xs[p % n], ys[(p / n) % n], zs[p / n / n]}; }
 };
 
+/// The grid planes of a cell's 8 children, per axis: the low face, the split plane, the high
+/// face (octant o spans planes[a][bit] .. planes[a][bit + 1], bit = (o >> a) & 1).
+struct Lattice {
+  double planes[3][3];
+
+  Bbox box() const {
+    Bbox b;
+    b.min = {planes[0][0], planes[1][0], planes[2][0]};
+    b.max = {planes[0][2], planes[1][2], planes[2][2]};
+    return b;
+  }
+};
+
 /// Per-chunk buffers, reused from cell to cell.
 struct Scratch {
   std::vector<int8_t> sides;     ///< points × planes
@@ -146,13 +159,13 @@ struct Scratch {
   std::vector<uint32_t> weight;  ///< per group: its number of points
   std::vector<uint64_t> keys;    ///< per group: its side vector in base 3
   // Sibling sets of the last level (Builder::sibling_representatives):
-  std::vector<detail::PlaneSide> planes;  ///< the parent's planes
+  std::vector<detail::PlaneSide> planes;  ///< the parent's planes, over its box
+  std::vector<uint32_t> lattice_pos, lattice_neg;  ///< their signs at its 27 lattice points
   std::vector<uint64_t> point_keys;       ///< per point of a cell: its side vector in base 3
   // Builder::sibling_masks: point sets of a sibling set as 9 words (word c < 8: the sub-points
   // of partial cell c, bit p = sub-point p; word 8: bit c = the centre of uncrossed cell c).
   std::vector<std::array<uint64_t, 9>> sets, split;
   std::vector<std::array<uint64_t, 9>> pos;  ///< per plane: the points on its positive side
-  SubGrid cell_grid[8];
   std::vector<uint32_t> rep;              ///< per group: its representative (index in the chunk)
   std::vector<uint32_t> last_cell;        ///< the groups the current cell touches
   std::vector<uint32_t> entry;            ///< per group: its points in the current cell
@@ -357,6 +370,16 @@ class Builder {
     return {2 * p[0] + (c & 1), 2 * p[1] + ((c >> 1) & 1), 2 * p[2] + ((c >> 2) & 1)};
   }
 
+  /// The lattice of the children (level d) of crossed cell `parent` (by rank) of level d − 1:
+  /// the same grid planes as their boxes.
+  Lattice lattice_of(size_t parent, int d) const {
+    Lattice l;
+    for (int a = 0; a < 3; ++a)
+      for (uint64_t t = 0; t < 3; ++t)
+        l.planes[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
+    return l;
+  }
+
   /// The octant (offset (o&1, (o>>1)&1, (o>>2)&1)) of the lattice `planes` whose open box
   /// contains the triangle's box, or −1.
   static int inside_octant(const Bvh::Tri& tri, const double (&planes)[3][3]) {
@@ -389,34 +412,20 @@ class Builder {
         const size_t parent = (b0 + g0) / 8;
         if (d > 0) {
           // The parent's triangles against its 8 octants at once.
-          double planes[3][3];
-          for (int a = 0; a < 3; ++a)
-            for (uint64_t t = 0; t < 3; ++t)
-              planes[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
+          const Lattice lattice = lattice_of(parent, d);
           for (auto& list : octant) list.clear();
-          // The last level's short-list sets need only whether a cell is crossed (see
-          // sibling_representatives): one witness triangle per cell.
-          const bool witness = d == depth_ && parent_lists_[parent].size() <= kSiblingMax;
-          uint8_t open = 0xFF;  // the octants still tested (witness: those without one yet)
           for (uint32_t t : parent_lists_[parent]) {
             const Bvh::Tri tri = bvh_.triangle(t);
             // A triangle whose box lies inside one octant's open box crosses that octant and
             // no other (no exact test): most triangles, above the last levels.
-            if (const int o = inside_octant(tri, planes); o >= 0) {
-              if (open >> o & 1) {
-                octant[o].push_back(t);
-                if (witness) open &= static_cast<uint8_t>(~(1u << o));
-              }
-              if (open == 0) break;
+            if (const int o = inside_octant(tri, lattice.planes); o >= 0) {
+              octant[o].push_back(t);
               continue;
             }
-            const uint8_t crossed = detail::crossed_octants(tri.a, tri.b, tri.c, planes, open);
-            for (uint8_t m = crossed; m != 0; m &= static_cast<uint8_t>(m - 1))
-              octant[std::countr_zero(m)].push_back(t);
-            if (witness) {
-              open &= static_cast<uint8_t>(~crossed);
-              if (open == 0) break;
-            }
+            const uint8_t crossed =
+                detail::crossed_octants(tri.a, tri.b, tri.c, lattice.planes, 0xFF);
+            for (uint8_t c = crossed; c != 0; c &= static_cast<uint8_t>(c - 1))
+              octant[std::countr_zero(c)].push_back(t);
           }
           for (int c = 0; c < 8; ++c) {
             out.insert(out.end(), octant[c].begin(), octant[c].end());
@@ -482,65 +491,56 @@ class Builder {
   /// splitting the set of points on no plane by each plane's positive side (a class is an
   /// intersection of sides), each class's weight in a cell is a popcount, and its
   /// representative its first point; the points on some plane are classified one by one.
-  void sibling_masks(int d, size_t b0, size_t g0, const Lists& lists, Scratch& s,
-                     Requests& out) const {
+  void sibling_masks(size_t g0, std::span<const uint32_t> tris, const Lattice& lattice,
+                     uint8_t crossed, Scratch& s, Requests& out) const {
     std::vector<Vec3>& points = out.points;
     std::vector<Entry>& entries = out.entries;
     using Set = std::array<uint64_t, 9>;
-    const size_t parent = (b0 + g0) / 8;
-    const std::span<const uint32_t> tris = parent_lists_[parent];
     const size_t k = tris.size();
-    const Bbox parent_box = box(parents_[parent], d - 1);
     const int n = samples_;
     const int count = n * n * n;
     const uint64_t all = count == 64 ? ~uint64_t{0} : (uint64_t{1} << count) - 1;
     Set full{}, on{};
-    Vec3 centres[8];
     for (int c = 0; c < 8; ++c) {
-      const Bbox b = box(coord(d, b0 + g0 + c), d);
-      if (lists[g0 + c].empty()) {
-        centres[c] = centre(b);
-        full[8] |= uint64_t{1} << c;
-      } else {
-        s.cell_grid[c].set(b, n);
+      if (crossed >> c & 1)
         full[c] = all;
-      }
+      else
+        full[8] |= uint64_t{1} << c;
     }
-    // The 27 corners of the 8 cells (the parent's lattice: the same grid planes as their boxes).
-    double lattice[3][3];
+    // Sub-point coordinates and centres per half of each axis: the values SubGrid::set and
+    // centre() give for the cells' boxes (the same grid planes).
+    double sub[3][2][kMaxSamples], mid[3][2];
     for (int a = 0; a < 3; ++a)
-      for (uint64_t t = 0; t < 3; ++t)
-        lattice[a][t] = plane(a, (2 * uint64_t{parents_[parent][a]} + t) << (depth_ - d));
+      for (int h = 0; h < 2; ++h) {
+        const double lo = lattice.planes[a][h], hi = lattice.planes[a][h + 1];
+        const double step = (hi - lo) / n;
+        for (int i = 0; i < n; ++i) sub[a][h][i] = lo + (i + 0.5) * step;
+        mid[a][h] = lo + 0.5 * (hi - lo);
+      }
     s.pos.resize(k);
+    constexpr uint32_t kAll27 = (uint32_t{1} << 27) - 1;
     for (size_t j = 0; j < k; ++j) {
-      const Bvh::Tri tri = bvh_.triangle(tris[j]);
-      const detail::PlaneSide plane(tri.a, tri.b, tri.c, parent_box);
-      int8_t corner[27];  // exact signs, [(iz·3 + iy)·3 + ix]
-      plane.grid_signs(lattice[0], lattice[1], lattice[2], 3, corner, 1);
+      const detail::PlaneSide& plane = s.planes[j];
+      // A cell whose 8 corners lie strictly on one side has all its points there (the sign of
+      // orient3d is affine in the point): no per-point signs.
+      const uint32_t some_nonpos = detail::spread27(~s.lattice_pos[j] & kAll27);
+      const uint32_t some_nonneg = detail::spread27(~s.lattice_neg[j] & kAll27);
       Set& pos = s.pos[j];
       pos.fill(0);
       for (int c = 0; c < 8; ++c) {
-        // A cell whose 8 corners lie strictly on one side has all its points there (the sign
-        // of orient3d is affine in the point): no per-point signs.
-        int lo = 1, hi = -1;
-        for (int q = 0; q < 8; ++q) {
-          const int sign = corner[(((c >> 2) + (q >> 2)) * 3 + ((c >> 1) & 1) + ((q >> 1) & 1)) *
-                                      3 + (c & 1) + (q & 1)];
-          lo = std::min(lo, sign);
-          hi = std::max(hi, sign);
-        }
-        if (lo == hi && lo != 0) {
-          if (lo > 0) pos[c] = full[c];
-          if (lo > 0 && (full[8] >> c & 1)) pos[8] |= uint64_t{1} << c;
+        const int corner = detail::kOctantCorner[c];
+        if (!(some_nonpos >> corner & 1)) {
+          pos[c] = full[c];
+          pos[8] |= full[8] & (uint64_t{1} << c);
           continue;
         }
-        uint64_t neg = 0;
+        if (!(some_nonneg >> corner & 1)) continue;
         if (full[c] != 0) {
-          const SubGrid& g = s.cell_grid[c];
-          plane.grid_masks(g.xs, g.ys, g.zs, n, pos[c], neg);
+          uint64_t neg = 0;
+          plane.grid_masks(sub[0][c & 1], sub[1][(c >> 1) & 1], sub[2][c >> 2], n, pos[c], neg);
           on[c] |= full[c] & ~(pos[c] | neg);
-        } else if (full[8] >> c & 1) {
-          const int side = plane.sign(centres[c]);
+        } else {
+          const int side = plane.sign({mid[0][c & 1], mid[1][(c >> 1) & 1], mid[2][c >> 2]});
           pos[8] |= uint64_t{side > 0} << c;
           on[8] |= uint64_t{side == 0} << c;
         }
@@ -568,7 +568,9 @@ class Builder {
       std::swap(s.sets, s.split);
     }
     const auto point = [&](int w, int bit) {
-      return w < 8 ? s.cell_grid[w].point(static_cast<size_t>(bit)) : centres[bit];
+      if (w == 8) return Vec3{mid[0][bit & 1], mid[1][(bit >> 1) & 1], mid[2][bit >> 2]};
+      return Vec3{sub[0][w & 1][bit % n], sub[1][(w >> 1) & 1][bit / n % n],
+                  sub[2][w >> 2][bit / n / n]};
     };
     // A class's representative: its first point, (word, bit).
     const auto first = [](const Set& set) {
@@ -676,23 +678,16 @@ class Builder {
   }
 
   /// (B) at the last level, for the sibling set g0 .. g0 + 7 (cells of the block) whose parent's
-  /// list T_P is short: the sub-points of its partial cells and the centres of its uncrossed
+  /// list T_P is short (s.planes: its planes over the parent's box; `crossed`: bit c for each
+  /// crossed cell g0 + c): the sub-points of its partial cells and the centres of its uncrossed
   /// cells, grouped by their sides of the planes of T_P. T_P holds every triangle that meets
   /// the parent's interior, so a side class is a convex part of it no surface meets, where
   /// membership is constant: one point per class is classified for all the set's cells, and a
   /// point ON a plane alone (it may be on a surface).
-  void sibling_representatives(int d, size_t b0, size_t g0, const Lists& lists, Scratch& s,
+  void sibling_representatives(int d, size_t b0, size_t g0, uint8_t crossed, Scratch& s,
                                SubGrid& subs, std::vector<Vec3>& points,
                                std::vector<Entry>& entries) const {
-    const size_t parent = (b0 + g0) / 8;
-    const std::span<const uint32_t> tris = parent_lists_[parent];
-    const size_t k = tris.size();
-    const Bbox parent_box = box(parents_[parent], d - 1);
-    s.planes.clear();
-    for (uint32_t t : tris) {
-      const Bvh::Tri tri = bvh_.triangle(t);
-      s.planes.emplace_back(tri.a, tri.b, tri.c, parent_box);
-    }
+    const size_t k = s.planes.size();
     s.keys.clear();  // per group: its side vector in base 3 (exact: k ≤ kExactKey), or
     s.rep.clear();   // kOnPlane for a point on some plane, never matched
     s.entry.clear();
@@ -702,7 +697,7 @@ class Builder {
     std::vector<uint64_t>& key = s.point_keys;
     for (uint32_t cell = static_cast<uint32_t>(g0); cell < g0 + 8; ++cell) {
       const Bbox b = box(coord(d, b0 + cell), d);
-      const bool partial = !lists[cell].empty();
+      const bool partial = crossed >> (cell - g0) & 1;
       Vec3 c;
       size_t count = 1;
       if (partial) {
@@ -753,51 +748,129 @@ class Builder {
     }
   }
 
-  /// (B) The points to classify for the cells [b0, b0 + m) of level d, per chunk: one centre per
-  /// sibling set's uncrossed cells (one per cell when the parent's centre is on a surface), one
-  /// sub-point per side class of a partial cell.
+  /// (B) The points to classify for the sibling set g0 .. g0 + siblings − 1 of level d (cells
+  /// of the block starting at b0; cell i's triangles list(i)): one centre for its uncrossed
+  /// cells (one per cell when the parent's centre is on a surface) and, at the last level, one
+  /// sub-point per side class of each partial cell.
+  template <typename CellList>
+  void cells_representatives(int d, size_t b0, size_t g0, size_t siblings, CellList list,
+                             Scratch& s, SubGrid& subs, std::vector<uint32_t>& candidates,
+                             std::vector<Vec3>& points, std::vector<Entry>& entries) const {
+    size_t uncrossed = 0;
+    for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += list(i).empty();
+    const bool shared =
+        uncrossed > 1 && !open_ && !centre_on_surface((b0 + g0) / 8, d, candidates);
+    uint32_t rep = UINT32_MAX;
+    for (size_t i = g0; i < g0 + siblings; ++i) {
+      if (!list(i).empty()) continue;
+      if (rep == UINT32_MAX || !shared) {
+        rep = static_cast<uint32_t>(points.size());
+        points.push_back(centre(box(coord(d, b0 + i), d)));
+      }
+      entries.push_back({static_cast<uint32_t>(i), rep, 1});
+    }
+    if (d < depth_) return;
+    for (size_t i = g0; i < g0 + siblings; ++i) {
+      if (list(i).empty()) continue;
+      const Bbox b = box(coord(d, b0 + i), d);
+      subs.set(b, samples_);
+      group_by_sides(bvh_, list(i), b, subs, s);
+      const uint32_t base = static_cast<uint32_t>(points.size());
+      for (uint32_t g = 0; g < s.first.size(); ++g) {
+        points.push_back(subs.point(s.first[g]));
+        entries.push_back({static_cast<uint32_t>(i), base + g, s.weight[g]});
+      }
+    }
+  }
+
+  /// (B) The points to classify for the cells [b0, b0 + m) of level d (below the last level,
+  /// or the root), per chunk: cells_representatives per sibling set.
   void representatives(int d, size_t b0, size_t m, const Lists& lists,
                        std::vector<Requests>& requests) const {
     parallel_for(m, kGrain, [&](size_t begin, size_t end) {
-      std::vector<Vec3>& points = requests[begin / kGrain].points;
-      std::vector<Entry>& entries = requests[begin / kGrain].entries;
+      Requests& out = requests[begin / kGrain];
       Scratch s;
       SubGrid subs;
       std::vector<uint32_t> candidates;
       const size_t siblings = d == 0 ? 1 : 8;
-      for (size_t g0 = begin; g0 < end; g0 += siblings) {
-        if (d == depth_ && d > 0 && parent_lists_[(b0 + g0) / 8].size() <= kSiblingMax) {
+      for (size_t g0 = begin; g0 < end; g0 += siblings)
+        cells_representatives(
+            d, b0, g0, siblings, [&](size_t i) { return lists[i]; }, s, subs, candidates,
+            out.points, out.entries);
+    });
+  }
+
+  /// (A) and (B) at the last level D ≥ 1, per sibling set of the cells [b0, b0 + m), in one
+  /// pass: which cells a triangle of the parent's list T_P crosses (bit c of crossed[set] for
+  /// cell c of the set), and the points to classify. A short T_P (at most kSiblingMax) needs
+  /// only one witness triangle per cell and shares each triangle's plane signs between the
+  /// octant tests and the side classes (sibling_masks); a longer one gets full per-cell lists
+  /// (group_by_sides).
+  void last_level(size_t b0, size_t m, std::vector<Requests>& requests,
+                  std::vector<uint8_t>& crossed) const {
+    const int d = depth_;
+    parallel_for(m, kGrain, [&](size_t begin, size_t end) {
+      Requests& out = requests[begin / kGrain];
+      Scratch s;
+      SubGrid subs;
+      std::vector<uint32_t> candidates;
+      Lists local;  // long lists: the set's per-cell lists
+      std::array<std::vector<uint32_t>, 8> octant;
+      for (size_t g0 = begin; g0 < end; g0 += 8) {
+        const size_t parent = (b0 + g0) / 8;
+        const std::span<const uint32_t> tris = parent_lists_[parent];
+        const Lattice lattice = lattice_of(parent, d);
+        uint8_t open = 0xFF;  // the octants without a witness yet
+        if (tris.size() <= kSiblingMax) {
+          const Bbox parent_box = lattice.box();
+          s.planes.clear();
+          s.lattice_pos.clear();
+          s.lattice_neg.clear();
+          for (uint32_t t : tris) {
+            const Bvh::Tri tri = bvh_.triangle(t);
+            const detail::PlaneSide& plane = s.planes.emplace_back(tri.a, tri.b, tri.c, parent_box);
+            uint32_t pos = 0, neg = 0;
+            plane.lattice_masks(lattice.planes, pos, neg);
+            s.lattice_pos.push_back(pos);
+            s.lattice_neg.push_back(neg);
+            if (open == 0) continue;
+            // A triangle whose box lies inside one octant's open box crosses that octant alone.
+            const int o = inside_octant(tri, lattice.planes);
+            open &= static_cast<uint8_t>(
+                ~(o >= 0 ? 1u << o
+                         : detail::crossed_octants(tri.a, tri.b, tri.c, lattice.planes, pos, neg,
+                                                   open)));
+          }
+          const uint8_t cross = static_cast<uint8_t>(~open);
+          crossed[g0 / 8] = cross;
           if (samples_ * samples_ * samples_ <= 64)
-            sibling_masks(d, b0, g0, lists, s, requests[begin / kGrain]);
+            sibling_masks(g0, tris, lattice, cross, s, out);
           else
-            sibling_representatives(d, b0, g0, lists, s, subs, points, entries);
+            sibling_representatives(d, b0, g0, cross, s, subs, out.points, out.entries);
           continue;
         }
-        size_t uncrossed = 0;
-        for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += lists[i].empty();
-        const bool shared = uncrossed > 1 && !open_ &&
-                            !centre_on_surface((b0 + g0) / 8, d, candidates);
-        uint32_t rep = UINT32_MAX;
-        for (size_t i = g0; i < g0 + siblings; ++i) {
-          if (!lists[i].empty()) continue;
-          if (rep == UINT32_MAX || !shared) {
-            rep = static_cast<uint32_t>(points.size());
-            points.push_back(centre(box(coord(d, b0 + i), d)));
-          }
-          entries.push_back({static_cast<uint32_t>(i), rep, 1});
+        for (auto& list : octant) list.clear();
+        for (uint32_t t : tris) {
+          const Bvh::Tri tri = bvh_.triangle(t);
+          const int o = inside_octant(tri, lattice.planes);
+          const uint8_t cross =
+              o >= 0 ? static_cast<uint8_t>(1u << o)
+                     : detail::crossed_octants(tri.a, tri.b, tri.c, lattice.planes, 0xFF);
+          for (uint8_t c = cross; c != 0; c &= static_cast<uint8_t>(c - 1))
+            octant[std::countr_zero(c)].push_back(t);
         }
-        if (d < depth_) continue;
-        for (size_t i = g0; i < g0 + siblings; ++i) {
-          if (lists[i].empty()) continue;
-          const Bbox b = box(coord(d, b0 + i), d);
-          subs.set(b, samples_);
-          group_by_sides(bvh_, lists[i], b, subs, s);
-          const uint32_t base = static_cast<uint32_t>(points.size());
-          for (uint32_t g = 0; g < s.first.size(); ++g) {
-            points.push_back(subs.point(s.first[g]));
-            entries.push_back({static_cast<uint32_t>(i), base + g, s.weight[g]});
-          }
+        local.start.assign(1, 0);
+        local.tris.clear();
+        uint8_t cross = 0;
+        for (int c = 0; c < 8; ++c) {
+          local.tris.insert(local.tris.end(), octant[c].begin(), octant[c].end());
+          local.start.push_back(local.tris.size());
+          cross |= static_cast<uint8_t>(!octant[c].empty()) << c;
         }
+        crossed[g0 / 8] = cross;
+        cells_representatives(
+            d, b0, g0, 8, [&](size_t i) { return local[i - g0]; }, s, subs, candidates,
+            out.points, out.entries);
       }
     });
   }
@@ -808,7 +881,16 @@ class Builder {
              std::vector<Coord>& next, Lists& next_lists) {
     const size_t m = b1 - b0;
     const size_t chunks = (m + kGrain - 1) / kGrain;
-    const Lists lists = meeting(d, b0, m);
+    const bool last = d == depth_ && d > 0;
+    std::vector<Requests> requests(chunks);
+    Lists lists;                   // below the last level: per cell, T_C
+    std::vector<uint8_t> crossed;  // the last level: per sibling set, bit c for crossed cell c
+    if (last) {
+      crossed.resize(m / 8);
+      last_level(b0, m, requests, crossed);
+    } else {
+      lists = meeting(d, b0, m);
+    }
     std::vector<uint32_t> rank;  // d < D: per crossed cell, its rank among the level's
     // The crossed cells above the maximum depth are the next level's parents, in rank order.
     if (d < depth_) {
@@ -823,8 +905,7 @@ class Builder {
         next_lists.start.push_back(base + lists.start[i + 1]);
       }
     }
-    std::vector<Requests> requests(chunks);
-    representatives(d, b0, m, lists, requests);
+    if (!last) representatives(d, b0, m, lists, requests);
     // (C) Classify the representatives of the whole block at once: the points one by one, the
     // references by their leaves' windings.
     std::vector<size_t> offset(chunks + 1, 0), ref_offset(chunks + 1, 0);
@@ -870,7 +951,8 @@ class Builder {
         const Coord c = coord(d, b0 + i);
         node.cell = {static_cast<uint16_t>(c[0]), static_cast<uint16_t>(c[1]),
                      static_cast<uint16_t>(c[2])};
-        if (lists[i].empty()) {  // the centre of an uncrossed cell is on no surface: 0 or 2
+        const bool is_crossed = last ? (crossed[i / 8] >> (i % 8) & 1) != 0 : !lists[i].empty();
+        if (!is_crossed) {  // the centre of an uncrossed cell is on no surface: 0 or 2
           node.state = sum[i] == 2 ? CellState::kFull : CellState::kEmpty;
           node.occupancy = sum[i] == 2 ? 1.0f : 0.0f;
         } else {

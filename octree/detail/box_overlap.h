@@ -34,6 +34,18 @@
 
 namespace cover::detail {
 
+/// Octant o's low corner in a 3 × 3 × 3 lattice (index (iz·3 + iy)·3 + ix).
+inline constexpr int kOctantCorner[8] = {0, 1, 3, 4, 9, 10, 12, 13};
+
+/// Bit i of the result set where any of the bits i + {0, 1, 3, 4, 9, 10, 12, 13} of m is: over
+/// a 3 × 3 × 3 lattice's bit mask, bit kOctantCorner[o] says whether any of octant o's 8
+/// corners is set.
+constexpr uint32_t spread27(uint32_t m) {
+  m |= m >> 1;
+  m |= m >> 3;
+  return m | m >> 9;
+}
+
 /// True when the closed triangle abc and the closed box intersect (exact).
 bool triangle_meets_box(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box);
 
@@ -68,6 +80,9 @@ class PlaneSide {
   /// Precondition: n³ ≤ 64.
   void grid_masks(const double* xs, const double* ys, const double* zs, int n, uint64_t& pos,
                   uint64_t& neg) const;
+  /// The signs at the 27 points of the lattice planes[0] × planes[1] × planes[2] as bit masks
+  /// (bit (iz·3 + iy)·3 + ix). Precondition: the lattice lies in the box.
+  void lattice_masks(const double (&planes)[3][3], uint32_t& pos, uint32_t& neg) const;
 
  private:
   int exact_sign(const Vec3& p) const;
@@ -84,6 +99,10 @@ class PlaneSide {
 /// planes[a][0] < planes[a][1] < planes[a][2]; abc not collinear.
 uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c, const double (&planes)[3][3],
                         uint8_t wanted);
+/// The same with the plane's lattice signs given (PlaneSide over the lattice's box,
+/// lattice_masks), as a caller that needs them too computes them once.
+uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c, const double (&planes)[3][3],
+                        uint32_t pos, uint32_t neg, uint8_t wanted);
 
 /// triangle_meets_box for the 8 octants of one box, sharing the work: the octants' corners are
 /// the 27 points of the lattice planes[0] × planes[1] × planes[2] (per axis: low face, split
@@ -103,13 +122,6 @@ class OctantOverlap {
   /// plane dropping it (edge axes) instead of per octant. Precondition: the octants have
   /// positive size on every axis.
   uint8_t crossed_octants(uint8_t wanted);
-  /// crossed_octants in two stages. quick_octants: the octants among `wanted` proven crossed
-  /// without the edge axes (returned), and in `undecided` those left to edge_octants; the box
-  /// normals and the plane have separated the rest. edge_octants: those of `undecided` that no
-  /// edge axis separates, i.e. crossed. A caller that needs only some of them (one witness
-  /// per octant) can skip edge_octants for octants another triangle has proven.
-  uint8_t quick_octants(uint8_t wanted, uint8_t& undecided);
-  uint8_t edge_octants(uint8_t undecided);
   /// The exact plane sign at lattice point (ix, iy, iz), each 0..2.
   int plane_sign(int ix, int iy, int iz) const { return plane_cache_[(iz * 3 + iy) * 3 + ix]; }
 
