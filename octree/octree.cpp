@@ -119,6 +119,24 @@ struct Requests {
   std::vector<Delta> deltas;
 };
 
+/// The last level: a reference point classified by its leaves' windings and shared by the
+/// sibling sets of one grandparent G (level D − 2), through whose interior both it and those
+/// sets' references lie. A later set's reference r takes the anchor's windings plus the signed
+/// crossings of the segment from the anchor to r with T_G (the triangles that meet G's
+/// interior: the segment lies there, G being convex), tested as within a set; one ray per
+/// grandparent instead of one per sibling set.
+struct Anchor {
+  size_t grand = SIZE_MAX;  ///< the grandparent's rank; SIZE_MAX: none
+  size_t parent = 0;        ///< the parent (by rank) of the set being processed, G's child
+  bool valid = false;       ///< `point` is a reference strictly off every plane of T_G
+  bool planes_ready = false;
+  Vec3 point;
+  uint32_t ref = 0;  ///< its index in Requests::refs
+  std::span<const uint32_t> tris;         ///< T_G
+  std::vector<detail::PlaneSide> planes;  ///< their planes over G's box
+  std::vector<int8_t> sides;              ///< the anchor's side of each
+};
+
 /// The samples³ sub-points of a cell (the centres of a regular sub-grid): their coordinates per
 /// axis, and the points, x fastest.
 struct SubGrid {
@@ -268,6 +286,28 @@ std::string octree_subject(int depth) {
   return "--depth " + std::to_string(depth) + ": the octree";
 }
 
+/// How the segment rq, whose ends lie strictly on opposite sides of a triangle's plane, meets
+/// the triangle: it crosses the interior where the three orient3d(r, q, edge) agree strictly,
+/// passes by where two disagree strictly, and otherwise goes through an edge or vertex.
+enum class Crossing { kPasses, kCrosses, kThroughEdge };
+
+Crossing segment_crossing(const Vec3& r, const Vec3& q, const Bvh::Tri& tri) {
+  const int o0 = orient3d(r, q, tri.a, tri.b), o1 = orient3d(r, q, tri.b, tri.c),
+            o2 = orient3d(r, q, tri.c, tri.a);
+  const bool some_neg = o0 < 0 || o1 < 0 || o2 < 0, some_pos = o0 > 0 || o1 > 0 || o2 > 0;
+  if (some_neg && some_pos) return Crossing::kPasses;
+  return o0 == 0 || o1 == 0 || o2 == 0 ? Crossing::kThroughEdge : Crossing::kCrosses;
+}
+
+/// std::popcount without a call: the x86-64 baseline has no POPCNT instruction, and GCC's
+/// library fallback (a call per word) showed in sibling_masks' profile. SWAR, a dozen operations.
+inline uint32_t popcount(uint64_t x) {
+  x -= (x >> 1) & 0x5555555555555555u;
+  x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
+  x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0Fu;
+  return static_cast<uint32_t>((x * 0x0101010101010101u) >> 56);
+}
+
 /// Twice the weight of a class in an occupancy: inside 2, on the surface 1, outside 0.
 uint32_t halves(PointClass c) {
   if (c == PointClass::kInside) return 2;
@@ -289,6 +329,10 @@ class Builder {
         open_(solid.has_open_leaf()) {
     if (open_ && options.gwn == nullptr) own_gwn_ = build_gwn(solid);
     if (solid.leaves.size() <= kTableLeaves) table_ = solid.tree.truth_table(solid.leaves.size());
+    const int n = samples_;
+    for (int p = 0; p < std::min(n * n * n, 64); ++p)
+      sub_index_[p] = {static_cast<uint8_t>(p % n), static_cast<uint8_t>(p / n % n),
+                       static_cast<uint8_t>(p / n / n)};
     gwn_ = options.gwn != nullptr ? options.gwn : (own_gwn_ ? &*own_gwn_ : nullptr);
   }
 
@@ -322,6 +366,7 @@ class Builder {
       Lists next_lists;
       if (d < depth_) {
         next.reserve(n);
+        if (d + 1 == depth_ && d >= 1) next_grand_.reserve(n);
         next_lists.start.reserve(n + 1);
         next_lists.tris.reserve(2 * parent_lists_.tris.size());
       }
@@ -332,6 +377,10 @@ class Builder {
           progress_((weight_done + std::ldexp(1.0, 2 * d) * static_cast<double>(b1) / n) / weight_total);
       }
       weight_done += std::ldexp(1.0, 2 * d);
+      if (d + 1 == depth_ && d >= 1) {  // the last level's grandparents
+        grand_lists_ = std::move(parent_lists_);
+        grand_rank_ = std::move(next_grand_);
+      }
       parents_ = std::move(next);
       parent_lists_ = std::move(next_lists);
       level_start += n;
@@ -487,12 +536,69 @@ class Builder {
     return false;
   }
 
+  /// The anchor for the sibling set of `parent` (by rank) at the last level: `anchor`, reset
+  /// when the set's grandparent differs from the anchor's; nullptr without grandparents or
+  /// with open leaves (no windings).
+  Anchor* anchor_of(size_t parent, Anchor& anchor) const {
+    if (grand_rank_.empty() || open_) return nullptr;
+    const size_t grand = grand_rank_[parent];
+    anchor.parent = parent;
+    if (grand != anchor.grand) {
+      anchor.grand = grand;
+      anchor.valid = false;
+      anchor.tris = grand_lists_[grand];
+      anchor.planes.clear();
+      anchor.planes_ready = false;
+    }
+    return &anchor;
+  }
+
+  /// Makes reference `point` (Requests::refs[ref], in the interior of a cell of the anchor's
+  /// grandparent) the anchor, when it lies strictly off every plane of T_G.
+  void set_anchor(Anchor& anchor, const Vec3& point, uint32_t ref) const {
+    if (!anchor.planes_ready) {
+      anchor.planes_ready = true;
+      const Coord& p = parents_[anchor.parent];  // a child of G
+      const Bbox g = box({p[0] / 2, p[1] / 2, p[2] / 2}, depth_ - 2);
+      for (uint32_t t : anchor.tris) {
+        const Bvh::Tri tri = bvh_.triangle(t);
+        anchor.planes.emplace_back(tri.a, tri.b, tri.c, g);
+      }
+    }
+    anchor.sides.clear();
+    for (const detail::PlaneSide& plane : anchor.planes) {
+      const int side = plane.sign(point);
+      if (side == 0) return;
+      anchor.sides.push_back(static_cast<int8_t>(side));
+    }
+    anchor.point = point;
+    anchor.ref = ref;
+    anchor.valid = true;
+  }
+
+  /// Appends to `deltas` the signed crossings of the segment from the anchor to r (a reference
+  /// in the interior of another cell of the anchor's grandparent) with T_G, as sibling_masks
+  /// does within a set; false (deltas partly written) when r lies on a plane of T_G or the
+  /// segment passes through a triangle's edge or vertex.
+  bool anchor_deltas(const Anchor& anchor, const Vec3& r, std::vector<Delta>& deltas) const {
+    for (size_t j = 0; j < anchor.planes.size(); ++j) {
+      const int side = anchor.planes[j].sign(r);
+      if (side == 0) return false;
+      if (side == anchor.sides[j]) continue;
+      const Bvh::Tri tri = bvh_.triangle(anchor.tris[j]);
+      const Crossing x = segment_crossing(anchor.point, r, tri);
+      if (x == Crossing::kThroughEdge) return false;
+      if (x == Crossing::kCrosses) deltas.push_back({tri.leaf, anchor.sides[j] > 0 ? 1 : -1});
+    }
+    return true;
+  }
+
   /// sibling_representatives for samples³ ≤ 64, on bit masks: the side classes are found by
   /// splitting the set of points on no plane by each plane's positive side (a class is an
   /// intersection of sides), each class's weight in a cell is a popcount, and its
   /// representative its first point; the points on some plane are classified one by one.
   void sibling_masks(size_t g0, std::span<const uint32_t> tris, const Lattice& lattice,
-                     uint8_t crossed, Scratch& s, Requests& out) const {
+                     uint8_t crossed, Anchor* anchor, Scratch& s, Requests& out) const {
     std::vector<Vec3>& points = out.points;
     std::vector<Entry>& entries = out.entries;
     using Set = std::array<uint64_t, 9>;
@@ -569,8 +675,8 @@ class Builder {
     }
     const auto point = [&](int w, int bit) {
       if (w == 8) return Vec3{mid[0][bit & 1], mid[1][(bit >> 1) & 1], mid[2][bit >> 2]};
-      return Vec3{sub[0][w & 1][bit % n], sub[1][(w >> 1) & 1][bit / n % n],
-                  sub[2][w >> 2][bit / n / n]};
+      const std::array<uint8_t, 3>& ijk = sub_index_[bit];
+      return Vec3{sub[0][w & 1][ijk[0]], sub[1][(w >> 1) & 1][ijk[1]], sub[2][w >> 2][ijk[2]]};
     };
     // A class's representative: its first point, (word, bit).
     const auto first = [](const Set& set) {
@@ -582,7 +688,7 @@ class Builder {
       for (int c = 0; c < 8; ++c)
         if (set[c] != 0)
           entries.push_back({static_cast<uint32_t>(g0 + c), rep,
-                             static_cast<uint32_t>(std::popcount(set[c]))});
+                             static_cast<uint32_t>(popcount(set[c]))});
       for (uint64_t m = set[8]; m != 0; m &= m - 1)
         entries.push_back({static_cast<uint32_t>(g0 + std::countr_zero(m)), rep, 1});
     };
@@ -599,9 +705,11 @@ class Builder {
     // orient3d(r, q, edge) agree strictly (crossing from its outer side, the side its normal
     // points to, adds 1 to its leaf's winding). A segment through a triangle's edge or vertex
     // (some orient3d zero, none disagreeing) leaves q to classify().
+    // With an anchor (last_level), r itself may be derived from the anchor's windings: the
+    // deltas base_begin .. + base_count, which every other class of the set then starts with.
     int ref_w = -1, ref_bit = 0;
     Vec3 r;
-    uint32_t ref = 0;
+    uint32_t ref = 0, base_begin = 0, base_count = 0;
     for (const Set& set : s.sets) {
       if (!std::any_of(set.begin(), set.end(), [](uint64_t x) { return x != 0; })) continue;
       if (open_) {
@@ -615,20 +723,26 @@ class Builder {
         ref_w = w;
         ref_bit = bit;
         r = q;
-        ref = static_cast<uint32_t>(out.refs.size());
-        out.refs.push_back(r);
+        if (anchor != nullptr && anchor->valid && anchor_deltas(*anchor, r, out.deltas)) {
+          ref = anchor->ref;
+          base_begin = delta_begin;
+          base_count = static_cast<uint32_t>(out.deltas.size()) - delta_begin;
+        } else {
+          out.deltas.resize(delta_begin);
+          ref = static_cast<uint32_t>(out.refs.size());
+          out.refs.push_back(r);
+          if (anchor != nullptr && !anchor->valid) set_anchor(*anchor, r, ref);
+        }
       } else {
+        for (uint32_t i = 0; i < base_count; ++i) out.deltas.push_back(out.deltas[base_begin + i]);
         bool through_edge = false;
         for (size_t j = 0; j < k && !through_edge; ++j) {
           const bool r_pos = s.pos[j][ref_w] >> ref_bit & 1, q_pos = s.pos[j][w] >> bit & 1;
           if (r_pos == q_pos) continue;
           const Bvh::Tri tri = bvh_.triangle(tris[j]);
-          const int o0 = orient3d(r, q, tri.a, tri.b), o1 = orient3d(r, q, tri.b, tri.c),
-                    o2 = orient3d(r, q, tri.c, tri.a);
-          const bool some_neg = o0 < 0 || o1 < 0 || o2 < 0, some_pos = o0 > 0 || o1 > 0 || o2 > 0;
-          if (some_neg && some_pos) continue;  // the segment passes the triangle by
-          if (o0 == 0 || o1 == 0 || o2 == 0) through_edge = true;
-          else out.deltas.push_back({tri.leaf, r_pos ? 1 : -1});
+          const Crossing x = segment_crossing(r, q, tri);
+          if (x == Crossing::kThroughEdge) through_edge = true;
+          if (x == Crossing::kCrosses) out.deltas.push_back({tri.leaf, r_pos ? 1 : -1});
         }
         if (through_edge) {
           out.deltas.resize(delta_begin);
@@ -815,6 +929,7 @@ class Builder {
       SubGrid subs;
       std::vector<uint32_t> candidates;
       Lists local;  // long lists: the set's per-cell lists
+      Anchor anchor;
       std::array<std::vector<uint32_t>, 8> octant;
       for (size_t g0 = begin; g0 < end; g0 += 8) {
         const size_t parent = (b0 + g0) / 8;
@@ -844,7 +959,7 @@ class Builder {
           const uint8_t cross = static_cast<uint8_t>(~open);
           crossed[g0 / 8] = cross;
           if (samples_ * samples_ * samples_ <= 64)
-            sibling_masks(g0, tris, lattice, cross, s, out);
+            sibling_masks(g0, tris, lattice, cross, anchor_of(parent, anchor), s, out);
           else
             sibling_representatives(d, b0, g0, cross, s, subs, out.points, out.entries);
           continue;
@@ -902,6 +1017,7 @@ class Builder {
         if (lists[i].empty()) continue;
         rank[i] = static_cast<uint32_t>(next.size());
         next.push_back(coord(d, b0 + i));
+        if (d + 1 == depth_ && d >= 1) next_grand_.push_back(static_cast<uint32_t>((b0 + i) / 8));
         next_lists.start.push_back(base + lists.start[i + 1]);
       }
     }
@@ -977,9 +1093,15 @@ class Builder {
   bool open_ = false;                  ///< some leaf is open: no shared centres
   std::optional<GwnForest> own_gwn_;   ///< built here when options.gwn is null
   std::vector<uint8_t> table_;  ///< membership per set of inside leaves (≤ kTableLeaves leaves)
+  /// Sub-point p = (k·n + j)·n + i of a cell (samples³ ≤ 64): (i, j, k), without divisions.
+  std::array<std::array<uint8_t, 3>, 64> sub_index_{};
   const GwnForest* gwn_ = nullptr;
   std::vector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank
+  /// The last level (D ≥ 2): per parent (by rank), its own parent's rank at level D − 2, and
+  /// the triangles of those grandparents, by rank (see Anchor).
+  std::vector<uint32_t> grand_rank_, next_grand_;
+  Lists grand_lists_;
 };
 
 /// Checks the options and the bounds and refuses builds beyond options.max_bytes (see octree.h).

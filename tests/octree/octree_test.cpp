@@ -412,6 +412,36 @@ TEST(Octree, EveryPartialOccupancyMatchesItsPoints) {
     check_leaves(s, t);
     expect_occupancy_by_points(s, t, 4, SIZE_MAX);
   }
+  // Octahedra centred on sub-points, their vertices h/8-snapped: their edges run along the
+  // sub-grid's diagonals, so segments between sub-points (within a sibling set, and from one
+  // set's reference to another's across their grandparent) pass through edges and vertices.
+  const double h4 = h / 2;  // depth 4: more sibling sets share a grandparent
+  std::uniform_int_distribution<int> centre(4, 58), radius(3, 24);
+  const auto octahedron = [&] {
+    Vec3 c;
+    for (int a = 0; a < 3; ++a)
+      (a == 0 ? c.x : a == 1 ? c.y : c.z) = (2 * centre(rng) + 1) * h4 / 8;
+    const double r = radius(rng) * h4 / 8;
+    PolygonMesh m;
+    m.vertices = {c + Vec3{r, 0, 0}, c - Vec3{r, 0, 0}, c + Vec3{0, r, 0},
+                  c - Vec3{0, r, 0}, c + Vec3{0, 0, r}, c - Vec3{0, 0, r}};
+    for (uint32_t z : {4u, 5u})
+      for (uint32_t x : {0u, 1u})
+        for (uint32_t y : {2u, 3u}) {
+          // Counter-clockwise seen from outside: (x, y, z) positive when the signs agree.
+          const bool flip = (x == 1) != (y == 3) != (z == 5);
+          for (uint32_t v : flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z})
+            m.face_vertices.push_back(v);
+          m.face_start.push_back(static_cast<uint32_t>(m.face_vertices.size()));
+        }
+    return make_leaf(m, "octahedron");
+  };
+  for (int round = 0; round < 4; ++round) {
+    const Solid s = subtract({unite({octahedron(), octahedron(), snapped_box()}), octahedron()});
+    const Octree t = build(s, cube({0, 0, 0}, 1), 4);
+    check_leaves(s, t);
+    expect_occupancy_by_points(s, t, 4, SIZE_MAX);
+  }
 }
 
 TEST(Octree, MoreThan64SubPointsPerCellGroupWithoutMasks) {
