@@ -76,8 +76,8 @@ using Coord = std::array<uint32_t, 3>;
 
 /// One list of triangle indices per cell (compressed rows).
 struct Lists {
-  std::vector<uint64_t> start{0};
-  std::vector<uint32_t> tris;
+  LargeVector<uint64_t> start{0};
+  LargeVector<uint32_t> tris;
 
   std::span<const uint32_t> operator[](size_t i) const {
     return {tris.data() + start[i], static_cast<size_t>(start[i + 1] - start[i])};
@@ -360,15 +360,18 @@ class Builder {
                    octree_subject(depth_));
       tree.nodes.resize(level_start + n);
       // At most every cell is crossed: reserved (address space; pages are touched as used)
-      // so that growing never copies. Fresh pages are dear on this kind of machine (a copy of
-      // bunny00's level-9 parents cost more than building them).
-      std::vector<Coord> next;
+      // so that growing never copies, and on huge pages like every per-level array here.
+      // Fresh pages are dear on this kind of machine: on 4 KiB pages, these arrays took about
+      // 10,000 page faults per bunny00 depth-10 build (0.14–0.5 s of system time, most of it
+      // in the serial pass), against about 200 now.
+      LargeVector<Coord> next;
       Lists next_lists;
       if (d < depth_) {
         next.reserve(n);
         if (d + 1 == depth_ && d >= 1) next_grand_.reserve(n);
         next_lists.start.reserve(n + 1);
-        next_lists.tris.reserve(2 * parent_lists_.tris.size());
+        // Each parent triangle lies in at most 8 children's lists (address space only).
+        next_lists.tris.reserve(8 * parent_lists_.tris.size());
       }
       for (size_t b0 = 0; b0 < n; b0 += kBlock) {
         const size_t b1 = std::min(n, b0 + kBlock);
@@ -451,7 +454,7 @@ class Builder {
   /// kSiblingMax), only the first such triangle (whether a cell is crossed is all that is used).
   Lists meeting(int d, size_t b0, size_t m) const {
     std::vector<std::vector<uint32_t>> chunk_tris((m + kGrain - 1) / kGrain);
-    std::vector<uint32_t> count(m);
+    LargeVector<uint32_t> count(m);
     parallel_for(m, kGrain, [&](size_t begin, size_t end) {
       std::vector<uint32_t>& out = chunk_tris[begin / kGrain];
       std::vector<uint32_t> candidates;
@@ -993,7 +996,7 @@ class Builder {
   /// Cells [b0, b1) of level d; `nodes` is the level's first node, `next_start` the next level's.
   /// Appends the crossed cells (d < D) and their triangles to `next` / `next_lists`.
   void block(int d, size_t b0, size_t b1, Octree::Node* nodes, size_t next_start,
-             std::vector<Coord>& next, Lists& next_lists) {
+             LargeVector<Coord>& next, Lists& next_lists) {
     const size_t m = b1 - b0;
     const size_t chunks = (m + kGrain - 1) / kGrain;
     const bool last = d == depth_ && d > 0;
@@ -1006,7 +1009,7 @@ class Builder {
     } else {
       lists = meeting(d, b0, m);
     }
-    std::vector<uint32_t> rank;  // d < D: per crossed cell, its rank among the level's
+    LargeVector<uint32_t> rank;  // d < D: per crossed cell, its rank among the level's
     // The crossed cells above the maximum depth are the next level's parents, in rank order.
     if (d < depth_) {
       // The crossed cells' lists are all of `lists` (the others are empty), in cell order.
@@ -1044,7 +1047,7 @@ class Builder {
     const std::vector<PointClass> classes = classify(solid_, bvh_, points, options);
     const LeafWindings windings = leaf_windings(solid_, bvh_, refs, options);
     // (D) States and occupancies (a cell's entries all lie in its own chunk).
-    std::vector<uint32_t> sum(m, 0);
+    LargeVector<uint32_t> sum(m, 0);
     parallel_for(chunks, 1, [&](size_t begin, size_t end) {
       std::vector<uint32_t> derived_halves;
       std::vector<int> winding;
@@ -1096,11 +1099,11 @@ class Builder {
   /// Sub-point p = (k·n + j)·n + i of a cell (samples³ ≤ 64): (i, j, k), without divisions.
   std::array<std::array<uint8_t, 3>, 64> sub_index_{};
   const GwnForest* gwn_ = nullptr;
-  std::vector<Coord> parents_;  ///< crossed cells of the previous level, by rank
+  LargeVector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank
   /// The last level (D ≥ 2): per parent (by rank), its own parent's rank at level D − 2, and
   /// the triangles of those grandparents, by rank (see Anchor).
-  std::vector<uint32_t> grand_rank_, next_grand_;
+  LargeVector<uint32_t> grand_rank_, next_grand_;
   Lists grand_lists_;
 };
 
