@@ -35,6 +35,8 @@
 //       exact triangle / open-box test; a triangle whose box lies inside one child's open box
 //       crosses that child alone, untested (most triangles above the last levels). At the last
 //       level below a short parent list only T_C ≠ ∅ is used: one witness triangle per cell;
+//       there (A) and (B) run in one pass per sibling set (last_level), sharing each triangle's
+//       plane signs, and no lists are stored;
 //   (B) the points to classify. Uncrossed siblings: each interior is connected and meets no
 //       surface; the parent's centre p is a corner of each, so when no surface passes through p,
 //       a small ball around p joins them all into one connected set no surface meets, where
@@ -48,7 +50,9 @@
 //       them): the sub-points of its partial cells and the centres of its uncrossed cells share
 //       one side class per region of the parent. With closed leaves only one class per set is
 //       classified (a reference, by its leaves' windings); the others add the signed crossings
-//       of the segment from the reference with T_P's triangles (sibling_masks);
+//       of the segment from the reference with T_P's triangles (sibling_masks), and the
+//       references of the sets under one grandparent G add those of their segments from one
+//       anchor reference with T_G's (Anchor): one ray per grandparent;
 //   (C) one classify() and one leaf_windings() call per block; (D) states, occupancies and
 //       child links.
 // Node order, ranks and results depend only on the input: every parallel step writes per cell or

@@ -13,8 +13,9 @@
 // weak separation (touching allowed) suffices: T misses the open box iff 0 is not inside the
 // Minkowski difference B − T, a polytope whose facet normals are among the 13 axes (the e_i ×
 // edge axes that are non-zero). A triangle touching the box only on its boundary does not cross
-// it. OctantOverlap tests the 8 children of one octree cell against one triangle, sharing the
-// signs at their common corners.
+// it. crossed_octants tests the 8 children of one octree cell against one triangle at once
+// (the octree's lists); OctantOverlap, octant by octant with lazily cached signs, is the
+// single-box test and the independent path the tests compare crossed_octants with.
 // Edge-axis filter: orient2d(p, q, x) is linear in x, g(x) = (p_w − q_w)(x_u − p_u) +
 // (q_u − p_u)(x_w − p_w) (the coefficients' signs exact: one rounded subtraction each), so at
 // the 3 × 3 lattice points of the plane dropping an axis it is the sum of two of 6 products,
@@ -22,7 +23,7 @@
 // the two magnitudes; ≥ 9u, as kPlaneSideErr) in the filter range; orient2d (exact) decides a
 // point the bound leaves undecided. An axis whose 9 signs are all strictly the third vertex's
 // separates no octant and is dropped. The 27 plane signs come the same way from
-// PlaneSide::grid_signs.
+// PlaneSide::grid_signs / lattice_masks.
 // PlaneSide: sign of orient3d(a, b, c, p) for many points p of one box, from a floating-point
 // evaluation n·(p − a) with one forward error bound valid for the whole box; orient3d (exact)
 // decides whenever the value is inside the bound.
@@ -117,10 +118,9 @@ class OctantOverlap {
   /// True when the triangle meets the interior of octant o. Precondition: octant o has positive
   /// size on every axis.
   bool crosses(int o) { return !separated(o, true); }
-  /// The octants among `wanted` (bit o = octant o) whose interior the triangle meets: crosses()
-  /// for all of them at once, each axis tested per half (box normals) or per quadrant of the
-  /// plane dropping it (edge axes) instead of per octant. Precondition: the octants have
-  /// positive size on every axis.
+  /// The octants among `wanted` (bit o = octant o) whose interior the triangle meets:
+  /// detail::crossed_octants on this lattice. Precondition: the octants have positive size on
+  /// every axis.
   uint8_t crossed_octants(uint8_t wanted);
   /// The exact plane sign at lattice point (ix, iy, iz), each 0..2.
   int plane_sign(int ix, int iy, int iz) const { return plane_cache_[(iz * 3 + iy) * 3 + ix]; }
