@@ -429,7 +429,7 @@ TEST(Octree, EveryPartialOccupancyMatchesItsPoints) {
       for (uint32_t x : {0u, 1u})
         for (uint32_t y : {2u, 3u}) {
           // Counter-clockwise seen from outside: (x, y, z) positive when the signs agree.
-          const bool flip = (x == 1) != (y == 3) != (z == 5);
+          const bool flip = ((x == 1) != (y == 3)) != (z == 5);
           for (uint32_t v : flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z})
             m.face_vertices.push_back(v);
           m.face_start.push_back(static_cast<uint32_t>(m.face_vertices.size()));
