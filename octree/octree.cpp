@@ -623,10 +623,13 @@ class Builder {
     // Sub-point coordinates and centres per half of each axis: the values SubGrid::set and
     // centre() give for the cells' boxes (the same grid planes).
     double sub[3][2][kMaxSamples], mid[3][2];
+    const double inv_n = 1.0 / n;
     for (int a = 0; a < 3; ++a)
       for (int h = 0; h < 2; ++h) {
         const double lo = lattice.planes[a][h], hi = lattice.planes[a][h + 1];
-        const double step = (hi - lo) / n;
+        // SubGrid::set's step (hi − lo)/n; for n a power of two the product by 1/n is the same
+        // double without a division (6 per set).
+        const double step = (n & (n - 1)) == 0 ? (hi - lo) * inv_n : (hi - lo) / n;
         for (int i = 0; i < n; ++i) sub[a][h][i] = lo + (i + 0.5) * step;
         mid[a][h] = lo + 0.5 * (hi - lo);
       }
