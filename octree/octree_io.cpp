@@ -1,7 +1,5 @@
 #include "octree/octree_io.h"
 
-#include <octomap/OcTree.h>
-
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -144,73 +142,113 @@ void write_htg(std::ostream& out, const Octree& tree) {
 // OctoMap's voxels are the cells of a grid through the origin with 2^16 keys per axis and no
 // origin field, so the cube is written centred on the origin (x_octomap = x − cube centre): cell
 // (i, j, k) of depth d then spans the keys 2^15 − 2^(D−1) + i·2^(D−d) + [0, 2^(D−d)), a node of
-// OctoMap depth 16 − (D − d). The root cell (d = 0 < D) is no OctoMap node; a root leaf is written
-// as its 8 children.
+// OctoMap depth 16 − (D − d). For D < 16 the root cell straddles key 2^15 on every axis and is no
+// OctoMap node: OctoMap's root has 8 children, and child o reaches the depth-1 cell o through a
+// chain of single children (index o's complement: the corner at the centre) down to depth
+// 17 − D. A root leaf is written as its 8 children.
+// Written directly, as liboctomap's OcTree::writeBinary would write the tree it builds from these
+// leaves (to maximum likelihood, then prune(): bottom-up, a node whose 8 children are leaves of
+// one state becomes a leaf, level by level from depth 15, stopping at the first level where none
+// does, the root never), node by node depth-first: per node 2 bytes, 2 bits per child (01
+// occupied leaf, 10 free leaf, 11 inner, 00 none), then its inner children. Why not liboctomap:
+// its tree, built leaf by leaf, took 3.3 s for bunny00 at depth 10 (9.5 M nodes) against a
+// 1 s build; this writes it in a single pass over the nodes. The tests compare the bytes with
+// liboctomap's.
 
-/// An OcTree whose leaves are placed at any depth (OctoMap's updates address finest voxels).
-class OcTreeWriter : public octomap::OcTree {
- public:
-  explicit OcTreeWriter(double resolution) : octomap::OcTree(resolution) {}
-
-  /// Makes the node at `depth` (0 = root) over `key` a leaf with value `log_odds`.
-  void set_leaf(const octomap::OcTreeKey& key, unsigned depth, float log_odds) {
-    if (root == nullptr) {
-      root = new octomap::OcTreeNode();
-      ++tree_size;
-    }
-    octomap::OcTreeNode* node = root;
-    for (unsigned d = 0; d < depth; ++d) {
-      const unsigned pos = octomap::computeChildIdx(key, static_cast<int>(tree_depth - 1 - d));
-      node = nodeChildExists(node, pos) ? getNodeChild(node, pos) : createNodeChild(node, pos);
-    }
-    node->setLogOdds(log_odds);
+/// Per node, its OctoMap child code after pruning: 1 occupied leaf, 2 free leaf, 3 inner.
+std::vector<uint8_t> bt_codes(const Octree& tree, double threshold) {
+  std::vector<uint8_t> code(tree.nodes.size());
+  for (size_t i = 0; i < tree.nodes.size(); ++i) {
+    const Octree::Node& node = tree.nodes[i];
+    const bool occupied = node.state == CellState::kFull ||
+                          (node.state == CellState::kPartial && node.occupancy >= threshold);
+    code[i] = node.first_child != 0 ? 3 : (occupied ? 1 : 2);
   }
-
-  /// The maximum-likelihood, pruned tree in OctoMap's binary format, as writeBinary() writes it
-  /// but without liboctomap's progress line on stderr; the resolution with all 17 digits.
-  bool write(std::ostream& s) {
-    updateInnerOccupancy();
-    toMaxLikelihood();
-    prune();
-    s.precision(17);
-    s << binaryFileHeader << "\n# (written by Cover)\nid " << getTreeType() << "\nsize " << size()
-      << "\nres " << getResolution() << "\ndata\n";
-    writeBinaryData(s);
-    return s.good();
+  // prune(): depth d of the tree is OctoMap depth 16 − D + d; from d = D − 1 (OctoMap 15) up to
+  // d = 1, stopping at the first depth that prunes nothing (above d = 1 lie the chains and the
+  // root, never pruned). Nodes are in breadth-first order, so depth d is one contiguous run.
+  std::vector<size_t> first(tree.depth + 2, tree.nodes.size());
+  for (size_t i = tree.nodes.size(); i-- > 0;) first[tree.nodes[i].depth] = i;
+  for (int d = tree.depth; d > 0; --d) first[d - 1] = std::min(first[d - 1], first[d]);
+  for (int d = tree.depth - 1; d >= 1; --d) {
+    size_t pruned = 0;
+    for (size_t i = first[d]; i < first[d + 1]; ++i) {
+      const uint32_t c = tree.nodes[i].first_child;
+      if (c == 0 || code[c] == 3) continue;
+      bool same = true;
+      for (uint32_t k = 1; k < 8 && same; ++k) same = code[c + k] == code[c];
+      if (!same) continue;
+      code[i] = code[c];
+      ++pruned;
+    }
+    if (pruned == 0) break;
   }
-};
+  return code;
+}
+
+/// The 2 bytes of an OctoMap node whose children have the codes children[0..7].
+void bt_node_bytes(const uint8_t (&children)[8], std::string& out) {
+  uint8_t bytes[2] = {0, 0};
+  for (int c = 0; c < 8; ++c) {
+    // bit 2i: free or inner, bit 2i + 1: occupied or inner (code 1 occupied, 2 free, 3 inner).
+    const uint8_t bits = children[c] == 1 ? 2 : (children[c] == 2 ? 1 : children[c]);
+    bytes[c / 4] |= static_cast<uint8_t>(bits << (2 * (c % 4)));
+  }
+  out.push_back(static_cast<char>(bytes[0]));
+  out.push_back(static_cast<char>(bytes[1]));
+}
+
+/// Node `i` (inner after pruning) and its inner descendants, depth-first.
+void bt_write_node(const Octree& tree, const std::vector<uint8_t>& code, uint32_t i,
+                   std::string& out, uint64_t& count) {
+  const uint32_t c = tree.nodes[i].first_child;
+  uint8_t children[8];
+  for (uint32_t k = 0; k < 8; ++k) children[k] = code[c + k];
+  bt_node_bytes(children, out);
+  count += 8;
+  for (uint32_t k = 0; k < 8; ++k)
+    if (code[c + k] == 3) bt_write_node(tree, code, c + k, out, count);
+}
 
 bool write_bt(const fs::path& file, const Octree& tree, double threshold) {
   const int depth = tree.depth;
-  OcTreeWriter out(tree.cell_size(depth));
-  const uint32_t base = (1u << 15) - (1u << (depth - 1));
-  // Integer corners of every node, from the parent's (children follow their parent).
-  std::vector<std::array<uint32_t, 3>> coord(tree.nodes.size());
-  for (size_t i = 0; i < tree.nodes.size(); ++i) {
-    const Octree::Node& node = tree.nodes[i];
-    if (node.first_child != 0) {
-      for (uint32_t c = 0; c < 8; ++c)
-        coord[node.first_child + c] = {2 * coord[i][0] + (c & 1), 2 * coord[i][1] + ((c >> 1) & 1),
-                                       2 * coord[i][2] + ((c >> 2) & 1)};
-      continue;
+  const std::vector<uint8_t> code = bt_codes(tree, threshold);
+  const Octree::Node& root = tree.nodes[0];
+  std::string data;
+  data.reserve(2 * tree.nodes.size() / 8 + 64);
+  uint64_t count = 1;  // OctoMap's nodes: its root, then 8 per inner node
+  // The depth-1 cells' codes (a root leaf: 8 leaves of its state).
+  uint8_t top[8];
+  for (uint32_t o = 0; o < 8; ++o) top[o] = root.first_child != 0 ? code[root.first_child + o]
+                                                                    : (code[0] == 1 ? 1 : 2);
+  if (depth == 16) {
+    bt_node_bytes(top, data);
+    count += 8;
+    for (uint32_t o = 0; o < 8; ++o)
+      if (top[o] == 3) bt_write_node(tree, code, root.first_child + o, data, count);
+  } else {
+    const uint8_t inner[8] = {3, 3, 3, 3, 3, 3, 3, 3};
+    bt_node_bytes(inner, data);
+    count += 8;
+    for (uint32_t o = 0; o < 8; ++o) {
+      // The chain of octant o: OctoMap depths 1 .. 16 − D, each node's one child at index ~o.
+      for (int t = 1; t <= 16 - depth; ++t) {
+        uint8_t one[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        one[~o & 7] = t < 16 - depth ? 3 : top[o];
+        bt_node_bytes(one, data);
+        ++count;
+      }
+      if (top[o] == 3) bt_write_node(tree, code, root.first_child + o, data, count);
     }
-    const bool occupied = node.state == CellState::kFull ||
-                          (node.state == CellState::kPartial && node.occupancy >= threshold);
-    const float value = occupied ? out.getClampingThresMaxLog() : out.getClampingThresMinLog();
-    const auto place = [&](const std::array<uint32_t, 3>& at, int d) {
-      const uint32_t step = 1u << (depth - d);
-      const octomap::OcTreeKey key(static_cast<uint16_t>(base + at[0] * step),
-                                   static_cast<uint16_t>(base + at[1] * step),
-                                   static_cast<uint16_t>(base + at[2] * step));
-      out.set_leaf(key, static_cast<unsigned>(16 - (depth - d)), value);
-    };
-    if (node.depth > 0)
-      place(coord[i], node.depth);
-    else
-      for (uint32_t c = 0; c < 8; ++c) place({c & 1, (c >> 1) & 1, (c >> 2) & 1}, 1);
   }
   std::ofstream stream(file, std::ios::binary);
-  if (!stream || !out.write(stream)) return false;
+  if (!stream) return false;
+  // OcTree::writeBinary's header (AbstractOccupancyOcTree::binaryFileHeader, getTreeType()),
+  // the resolution with all 17 digits.
+  stream.precision(17);
+  stream << "# Octomap OcTree binary file\n# (written by Cover)\nid OcTree\nsize " << count
+         << "\nres " << tree.cell_size(depth) << "\ndata\n";
+  stream.write(data.data(), static_cast<std::streamsize>(data.size()));
   stream.close();
   return !stream.fail();
 }

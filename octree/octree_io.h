@@ -4,8 +4,9 @@
 //   .htg   VTK XML HyperTreeGrid, file version 1.0 (opens in ParaView; read back by VTK 9.1's
 //          vtkXMLHyperTreeGridReader): one tree over the cube, cell arrays "state" (UInt8:
 //          0 empty, 1 full, 2 partial) and "occupancy" (Float32), inline base64
-//   .bt    OctoMap binary tree through liboctomap (octovis opens it): an OcTree whose resolution
-//          is the finest cell size; occupied = full, or partial with occupancy >= threshold;
+//   .bt    OctoMap binary tree (octovis and liboctomap open it; the bytes liboctomap's
+//          OcTree::writeBinary writes for the same leaves): an OcTree whose resolution is the
+//          finest cell size; occupied = full, or partial with occupancy >= threshold;
 //          free = empty, or partial below it. OctoMap keys have no origin: the cube is stored
 //          centred on the origin (x_octomap = x − (bounds.min + size/2)); depth 1..16
 //   .json  summary: bounds {min, size}, depth, nodes, leaves {empty, full, partial}, threshold,

@@ -17,6 +17,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -737,6 +738,81 @@ TEST_F(OctreeFiles, BtReadsBackWithLiboctomap) {
       EXPECT_EQ(read.isNodeOccupied(leaf), occupied);
     }
   }
+}
+
+/// The oracle for .bt: liboctomap's own OcTree built leaf by leaf from the octree (each leaf
+/// cell placed at its OctoMap depth, the cube centred on the origin, a root leaf as its 8
+/// children), then written as OcTree::writeBinary writes it (maximum likelihood, pruned).
+class OctomapOracle : public octomap::OcTree {
+ public:
+  OctomapOracle(const Octree& tree, double threshold) : octomap::OcTree(tree.cell_size(tree.depth)) {
+    const int depth = tree.depth;
+    const uint32_t base = (1u << 15) - (1u << (depth - 1));
+    std::vector<std::array<uint32_t, 3>> coord(tree.nodes.size());
+    for (size_t i = 0; i < tree.nodes.size(); ++i) {
+      const Octree::Node& node = tree.nodes[i];
+      if (node.first_child != 0) continue;
+      const bool occupied = node.state == CellState::kFull ||
+                            (node.state == CellState::kPartial && node.occupancy >= threshold);
+      const float value = occupied ? getClampingThresMaxLog() : getClampingThresMinLog();
+      const auto place = [&](uint32_t i0, uint32_t j0, uint32_t k0, int d) {
+        const uint32_t step = 1u << (depth - d);
+        const octomap::OcTreeKey key(static_cast<uint16_t>(base + i0 * step),
+                                     static_cast<uint16_t>(base + j0 * step),
+                                     static_cast<uint16_t>(base + k0 * step));
+        set_leaf(key, static_cast<unsigned>(16 - (depth - d)), value);
+      };
+      if (node.depth > 0)
+        place(node.cell[0], node.cell[1], node.cell[2], node.depth);
+      else
+        for (uint32_t c = 0; c < 8; ++c) place(c & 1, (c >> 1) & 1, (c >> 2) & 1, 1);
+    }
+  }
+
+  std::string bytes() {
+    updateInnerOccupancy();
+    toMaxLikelihood();
+    prune();
+    std::ostringstream s;
+    s.precision(17);
+    s << binaryFileHeader << "\n# (written by Cover)\nid " << getTreeType() << "\nsize "
+      << size() << "\nres " << getResolution() << "\ndata\n";
+    writeBinaryData(s);
+    return s.str();
+  }
+
+ private:
+  void set_leaf(const octomap::OcTreeKey& key, unsigned depth, float log_odds) {
+    if (root == nullptr) {
+      root = new octomap::OcTreeNode();
+      ++tree_size;
+    }
+    octomap::OcTreeNode* node = root;
+    for (unsigned d = 0; d < depth; ++d) {
+      const unsigned pos = octomap::computeChildIdx(key, static_cast<int>(tree_depth - 1 - d));
+      node = nodeChildExists(node, pos) ? getNodeChild(node, pos) : createNodeChild(node, pos);
+    }
+    node->setLogOdds(log_odds);
+  }
+};
+
+TEST_F(OctreeFiles, BtIsTheBytesLiboctomapWrites) {
+  // The direct .bt writer against liboctomap's own tree of the same leaves: the fixture at
+  // several thresholds; depths 1, 2, 3 and 16; a root leaf; a cell whose 8 children are full
+  // leaves (two boxes meeting on a grid plane inside it), pruned at depth 2 but not at depth 3,
+  // where OctoMap's level-by-level prune stops at the first level that prunes nothing.
+  const auto expect_same = [&](const Octree& t, double threshold, const std::string& what) {
+    write_octree(dir_ / "t.bt", t, threshold);
+    EXPECT_EQ(test::read_file(dir_ / "t.bt"), OctomapOracle(t, threshold).bytes()) << what;
+  };
+  for (double threshold : {0.0, 0.1, 0.5, 1.0}) expect_same(tree_, threshold, "elephant");
+  const Solid halves = unite({box_solid({0, 0, 0}, {0.25, 0.5, 0.5}),
+                              box_solid({0.25, 0, 0}, {0.5, 0.5, 0.5})});
+  for (int depth : {1, 2, 3}) expect_same(build(halves, cube({0, 0, 0}, 1), depth), 0.5, "halves");
+  const Solid small = box_solid({0.1, 0.2, 0.3}, {0.1004, 0.2003, 0.3002});
+  expect_same(build(small, cube({0, 0, 0}, 1), 16), 0.5, "depth 16");
+  expect_same(build(small, cube({2, 2, 2}, 1), 3), 0.5, "root leaf");
+  expect_same(build(small, cube({0, 0, 0}, 1), 16), 0.0, "depth 16, threshold 0");
 }
 
 TEST_F(OctreeFiles, JsonListsEveryLeaf) {
