@@ -454,8 +454,7 @@ class Builder {
   }
 
   /// (A) The triangles that meet the interior of each cell of [b0, b0 + m) at level d, one list
-  /// per cell; at the last level, for a sibling set whose parent's list is short (at most
-  /// kSiblingMax), only the first such triangle (whether a cell is crossed is all that is used).
+  /// per cell (levels above the last, and the root; the last level runs last_level).
   Lists meeting(int d, size_t b0, size_t m) const {
     std::vector<std::vector<uint32_t>> chunk_tris((m + kGrain - 1) / kGrain);
     LargeVector<uint32_t> count(m);
