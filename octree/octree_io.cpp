@@ -272,21 +272,35 @@ void write_json(std::ostream& out, const Octree& tree, double threshold) {
   // One short array per leaf cell, in node order (about 25 bytes a cell: the integer corner at
   // its depth instead of 17-digit coordinates; armadillo at depth 10 took 844 MB as objects with
   // coordinates). Streamed: nothing but the current line is held.
+  // Formatted with to_chars into 1 MiB chunks (snprintf and a stream write per cell took
+  // 1.2 s for bunny00's 7.1 M leaves at depth 10).
   bool first = true;
+  std::string chunk;
+  chunk.reserve(size_t{1} << 20);
   char line[128];
   for (const Octree::Node& node : tree.nodes) {
     if (node.first_child != 0) continue;
     const auto& ijk = node.cell;
     char* p = line;
+    char* const end = line + sizeof line;
     *p++ = first ? '\n' : ',';
     if (!first) *p++ = '\n';
-    p += std::snprintf(p, 48, "[%d,%d,%d,%d,%d,", node.depth, int{ijk[0]}, int{ijk[1]},
-                       int{ijk[2]}, static_cast<int>(node.state));
-    p = std::to_chars(p, line + sizeof line - 1, node.occupancy).ptr;
+    *p++ = '[';
+    for (const int v : {int{node.depth}, int{ijk[0]}, int{ijk[1]}, int{ijk[2]},
+                        static_cast<int>(node.state)}) {
+      p = std::to_chars(p, end, v).ptr;
+      *p++ = ',';
+    }
+    p = std::to_chars(p, end - 1, node.occupancy).ptr;
     *p++ = ']';
-    out.write(line, p - line);
+    chunk.append(line, p);
+    if (chunk.size() > (size_t{1} << 20) - sizeof line) {
+      out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+      chunk.clear();
+    }
     first = false;
   }
+  out.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
   out << (first ? "]\n}\n" : "\n]\n}\n");
 }
 
