@@ -48,40 +48,53 @@ std::string number(T value) {
 // file declares: the machine's); a Bit array packs 8 values per byte, most significant bit first
 // (vtkBitArray's layout).
 
-std::string base64(const std::vector<uint8_t>& bytes) {
+/// Writes, in base64, the stream of an 8-byte UInt64 `size` (the machine's byte order) followed
+/// by `size` bytes that fill(offset, count, dst) produces, a chunk at a time: nothing of the
+/// size of the array is allocated (bunny00's depth-10 tree: 48 MB of cell data, written in
+/// 0.66 s through whole-array copies and a per-character append, 0.2 s this way).
+void base64_payload(std::ostream& out, uint64_t size,
+                    const std::function<void(size_t, size_t, uint8_t*)>& fill) {
   static constexpr char kDigits[] =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const size_t n = std::min<size_t>(3, bytes.size() - i);
-    uint32_t v = uint32_t{bytes[i]} << 16;
-    if (n > 1) v |= uint32_t{bytes[i + 1]} << 8;
-    if (n > 2) v |= bytes[i + 2];
-    out += kDigits[(v >> 18) & 63];
-    out += kDigits[(v >> 12) & 63];
-    out += n > 1 ? kDigits[(v >> 6) & 63] : '=';
-    out += n > 2 ? kDigits[v & 63] : '=';
+  constexpr size_t kChunk = size_t{3} << 16;  // raw bytes per chunk, a multiple of 3
+  std::vector<uint8_t> raw(kChunk);
+  std::string text(kChunk / 3 * 4, '\0');
+  const uint64_t total = 8 + size;
+  for (uint64_t at = 0; at < total; at += kChunk) {
+    const size_t len = static_cast<size_t>(std::min<uint64_t>(kChunk, total - at));
+    size_t k = 0;
+    for (; k < len && at + k < 8; ++k) raw[k] = static_cast<uint8_t>(size >> (8 * (at + k)));
+    if (k < len) fill(static_cast<size_t>(at + k - 8), len - k, raw.data() + k);
+    char* o = text.data();
+    for (size_t i = 0; i < len; i += 3) {
+      const size_t n = std::min<size_t>(3, len - i);
+      uint32_t v = uint32_t{raw[i]} << 16;
+      if (n > 1) v |= uint32_t{raw[i + 1]} << 8;
+      if (n > 2) v |= raw[i + 2];
+      *o++ = kDigits[(v >> 18) & 63];
+      *o++ = kDigits[(v >> 12) & 63];
+      *o++ = n > 1 ? kDigits[(v >> 6) & 63] : '=';
+      *o++ = n > 2 ? kDigits[v & 63] : '=';
+    }
+    out.write(text.data(), o - text.data());
   }
-  return out;
 }
 
-/// Inline binary payload: the byte count (UInt64) followed by `data`, in the machine's order.
-std::string binary_payload(const void* data, size_t size) {
-  std::vector<uint8_t> bytes(8 + size);
-  const uint64_t count = size;
-  std::memcpy(bytes.data(), &count, 8);
-  if (size > 0) std::memcpy(bytes.data() + 8, data, size);
-  return base64(bytes);
+/// A DataArray whose body `body` writes (one line, after the indentation).
+void data_array(std::ostream& out, const std::string& indent, const std::string& type,
+                const std::string& name, size_t tuples, const std::string& format,
+                const std::function<void(std::ostream&)>& body) {
+  out << indent << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfTuples=\""
+      << tuples << "\" format=\"" << format << "\">\n"
+      << indent << "  ";
+  body(out);
+  out << "\n" << indent << "</DataArray>\n";
 }
 
 void data_array(std::ostream& out, const std::string& indent, const std::string& type,
                 const std::string& name, size_t tuples, const std::string& format,
                 const std::string& body) {
-  out << indent << "<DataArray type=\"" << type << "\" Name=\"" << name << "\" NumberOfTuples=\""
-      << tuples << "\" format=\"" << format << "\">\n"
-      << indent << "  " << body << "\n"
-      << indent << "</DataArray>\n";
+  data_array(out, indent, type, name, tuples, format, [&](std::ostream& o) { o << body; });
 }
 
 void write_htg(std::ostream& out, const Octree& tree) {
@@ -98,12 +111,6 @@ void write_htg(std::ostream& out, const Octree& tree) {
   std::vector<uint8_t> bits((described + 7) / 8, 0);
   for (size_t i = 0; i < described; ++i)
     if (tree.nodes[i].first_child != 0) bits[i / 8] |= static_cast<uint8_t>(0x80u >> (i % 8));
-  std::vector<uint8_t> state(n);
-  std::vector<float> occupancy(n);
-  for (size_t i = 0; i < n; ++i) {
-    state[i] = static_cast<uint8_t>(tree.nodes[i].state);
-    occupancy[i] = tree.nodes[i].occupancy;
-  }
   std::string counts;
   for (size_t l = 0; l < per_level.size(); ++l) {
     if (l > 0) counts += ' ';
@@ -124,13 +131,28 @@ void write_htg(std::ostream& out, const Octree& tree) {
       << "    <Trees>\n"
       << "      <Tree Index=\"0\" NumberOfLevels=\"" << levels << "\" NumberOfVertices=\"" << n
       << "\">\n";
-  data_array(out, "        ", "Bit", "Descriptor", described, "binary",
-             binary_payload(bits.data(), bits.size()));
+  data_array(out, "        ", "Bit", "Descriptor", described, "binary", [&](std::ostream& o) {
+    base64_payload(o, bits.size(), [&](size_t at, size_t count, uint8_t* dst) {
+      std::memcpy(dst, bits.data() + at, count);
+    });
+  });
   data_array(out, "        ", "Int64", "NbVerticesByLevel", per_level.size(), "ascii", counts);
   out << "        <CellData>\n";
-  data_array(out, "          ", "UInt8", "state", n, "binary", binary_payload(state.data(), n));
-  data_array(out, "          ", "Float32", "occupancy", n, "binary",
-             binary_payload(occupancy.data(), n * sizeof(float)));
+  data_array(out, "          ", "UInt8", "state", n, "binary", [&](std::ostream& o) {
+    base64_payload(o, n, [&](size_t at, size_t count, uint8_t* dst) {
+      for (size_t i = 0; i < count; ++i) dst[i] = static_cast<uint8_t>(tree.nodes[at + i].state);
+    });
+  });
+  data_array(out, "          ", "Float32", "occupancy", n, "binary", [&](std::ostream& o) {
+    base64_payload(o, n * sizeof(float), [&](size_t at, size_t count, uint8_t* dst) {
+      // Bytes at .. at + count of the floats, in the machine's order.
+      for (size_t i = 0; i < count; ++i) {
+        const size_t byte = at + i;
+        const float value = tree.nodes[byte / sizeof(float)].occupancy;
+        dst[i] = reinterpret_cast<const uint8_t*>(&value)[byte % sizeof(float)];
+      }
+    });
+  });
   out << "        </CellData>\n"
       << "      </Tree>\n"
       << "    </Trees>\n"
