@@ -47,6 +47,21 @@ constexpr uint32_t spread27(uint32_t m) {
   return m | m >> 9;
 }
 
+/// The vector instructions PlaneSide::grid_masks and lattice_masks use. Every level computes
+/// the same sums in the same order (IEEE doubles, no contraction: -ffp-contract=off), so every
+/// level gives the same signs; the widest the CPU has is used unless use_simd() narrows it.
+enum class Simd : int {
+  kBaseline = 0,  ///< SSE2 on x86-64 (part of the baseline), scalar elsewhere
+  kAvx2 = 1,
+  kAvx512 = 2,
+};
+/// The widest level this CPU supports (detected once).
+Simd best_simd();
+/// The level in use.
+Simd simd();
+/// Uses `level`, or best_simd() when the CPU lacks it (for tests comparing the levels).
+void use_simd(Simd level);
+
 /// True when the closed triangle abc and the closed box intersect (exact).
 bool triangle_meets_box(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box);
 

@@ -330,6 +330,49 @@ TEST(BoxOverlap, PlaneSideIsExact) {
   }
 }
 
+TEST(BoxOverlap, PlaneMasksAreSignAtEverySimdLevel) {
+  // grid_masks (4³ points) and lattice_masks (3³) against sign() point by point, at every
+  // vector level this CPU has: planes through quarter-grid points (many points exactly on
+  // them: the exact fallback) and random ones.
+  std::mt19937_64 rng(10);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> grid(-4, 4);
+  const detail::Simd best = detail::best_simd();
+  for (int level = 0; level <= static_cast<int>(best); ++level) {
+    detail::use_simd(static_cast<detail::Simd>(level));
+    ASSERT_EQ(detail::simd(), static_cast<detail::Simd>(level));
+    for (int i = 0; i < 4000; ++i) {
+      const bool on_grid = i % 2 == 0;
+      const auto x = [&] { return on_grid ? grid(rng) / 4.0 : u(rng); };
+      const Vec3 a{x(), x(), x()}, c{x(), x(), x()}, d{x(), x(), x()};
+      double xs[3][4], planes[3][3];
+      for (int k = 0; k < 3; ++k) {
+        const double lo = grid(rng) / 8.0, step = (1 + i % 3) / 8.0;
+        for (int j = 0; j < 4; ++j) xs[k][j] = lo + (j + 0.5) * step / 2;
+        for (int j = 0; j < 3; ++j) planes[k][j] = lo + j * step;
+      }
+      Bbox box;
+      box.min = {planes[0][0], planes[1][0], planes[2][0]};
+      box.max = {planes[0][2], planes[1][2], planes[2][2]};
+      const detail::PlaneSide side(a, c, d, box);
+      uint64_t pos = 0, neg = 0;
+      side.grid_masks(xs[0], xs[1], xs[2], 4, pos, neg);
+      for (int p = 0; p < 64; ++p) {
+        const int s = side.sign({xs[0][p & 3], xs[1][(p >> 2) & 3], xs[2][p >> 4]});
+        ASSERT_EQ(int(pos >> p & 1) - int(neg >> p & 1), s) << level << " " << i << " " << p;
+      }
+      uint32_t lpos = 0, lneg = 0;
+      side.lattice_masks(planes, lpos, lneg);
+      EXPECT_EQ((lpos | lneg) >> 27, 0u);
+      for (int p = 0; p < 27; ++p) {
+        const int s = side.sign({planes[0][p % 3], planes[1][p / 3 % 3], planes[2][p / 9]});
+        ASSERT_EQ(int(lpos >> p & 1) - int(lneg >> p & 1), s) << level << " " << i << " " << p;
+      }
+    }
+  }
+  detail::use_simd(best);
+}
+
 TEST(Octree, BoxSphereElephantAndDifferenceAreExactAndConservative) {
   const Solid box = box_solid({0.1, 0.2, 0.3}, {0.8, 0.7, 0.9});
   const Octree tb = build(box, cube({0, 0, 0}, 1), 5);
