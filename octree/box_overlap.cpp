@@ -1,13 +1,12 @@
 #include "octree/detail/box_overlap.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <iterator>
 #include <limits>
-
-#include <atomic>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -72,8 +71,8 @@ std::atomic<int> g_simd{-1};  ///< the level in use; −1: not chosen yet (best_
 // took the octree's CPU time from 2.10–2.15 to 1.91–2.01 s.
 /// n = 4 with the baseline instructions: SSE2 (part of x86-64), two points per instruction,
 /// the signs gathered by movemask; scalar elsewhere.
-void masks4_baseline(const double* fx, const double* fy, const double* fz, double b,
-                     uint64_t& pos, uint64_t& neg) {
+void masks4_baseline(const double* fx, const double* fy, const double* fz, double b, uint64_t& pos,
+                     uint64_t& neg) {
   pos = neg = 0;
 #if defined(__SSE2__)
   const __m128d x01 = _mm_loadu_pd(fx), x23 = _mm_loadu_pd(fx + 2);
@@ -94,8 +93,8 @@ void masks4_baseline(const double* fx, const double* fy, const double* fz, doubl
     const double y = fy[row & 3], z = fz[row >> 2];
     const double f0 = (fx[0] + y) + z, f1 = (fx[1] + y) + z, f2 = (fx[2] + y) + z,
                  f3 = (fx[3] + y) + z;
-    const uint64_t p = uint64_t{f0 > b} | uint64_t{f1 > b} << 1 | uint64_t{f2 > b} << 2 |
-                       uint64_t{f3 > b} << 3;
+    const uint64_t p =
+        uint64_t{f0 > b} | uint64_t{f1 > b} << 1 | uint64_t{f2 > b} << 2 | uint64_t{f3 > b} << 3;
     const uint64_t q = uint64_t{f0 < -b} | uint64_t{f1 < -b} << 1 | uint64_t{f2 < -b} << 2 |
                        uint64_t{f3 < -b} << 3;
     pos |= p << (4 * row);
@@ -111,13 +110,13 @@ void masks4_baseline(const double* fx, const double* fy, const double* fz, doubl
 #pragma GCC diagnostic ignored "-Wuninitialized"
 /// n = 4 (64 points), 8 per instruction: lanes i + 4·(j & 1) of rows (j, j + 1).
 __attribute__((target("avx512f"))) void masks4_avx512(const double* fx, const double* fy,
-                                                     const double* fz, double bound,
-                                                     uint64_t& pos, uint64_t& neg) {
+                                                      const double* fz, double bound, uint64_t& pos,
+                                                      uint64_t& neg) {
   const __m512d x = _mm512_broadcast_f64x4(_mm256_loadu_pd(fx));
-  const __m512d xy01 = _mm512_add_pd(
-      x, _mm512_insertf64x4(_mm512_set1_pd(fy[0]), _mm256_set1_pd(fy[1]), 1));
-  const __m512d xy23 = _mm512_add_pd(
-      x, _mm512_insertf64x4(_mm512_set1_pd(fy[2]), _mm256_set1_pd(fy[3]), 1));
+  const __m512d xy01 =
+      _mm512_add_pd(x, _mm512_insertf64x4(_mm512_set1_pd(fy[0]), _mm256_set1_pd(fy[1]), 1));
+  const __m512d xy23 =
+      _mm512_add_pd(x, _mm512_insertf64x4(_mm512_set1_pd(fy[2]), _mm256_set1_pd(fy[3]), 1));
   const __m512d hi = _mm512_set1_pd(bound), lo = _mm512_set1_pd(-bound);
   uint64_t p = 0, q = 0;
   for (int k = 0; k < 4; ++k) {
@@ -174,8 +173,8 @@ constexpr LatticeLanes kLatticeLanes;
 
 /// The 27 lattice points, 8 per instruction.
 __attribute__((target("avx512f"))) void masks27_avx512(const double* fx, const double* fy,
-                                                      const double* fz, double bound,
-                                                      uint32_t& pos, uint32_t& neg) {
+                                                       const double* fz, double bound,
+                                                       uint32_t& pos, uint32_t& neg) {
   const __m512d x = _mm512_setr_pd(fx[0], fx[1], fx[2], 0, 0, 0, 0, 0);
   const __m512d y = _mm512_setr_pd(fy[0], fy[1], fy[2], 0, 0, 0, 0, 0);
   const __m512d z = _mm512_setr_pd(fz[0], fz[1], fz[2], 0, 0, 0, 0, 0);
@@ -267,8 +266,8 @@ bool OctantOverlap::skip(int e, int axis) {
     gu[i] = cu * (planes_[u][i] - p[u]);
     gw[i] = cw * (planes_[w][i] - p[w]);
   }
-  const double mag = std::max(std::abs(gu[0]), std::abs(gu[2])) +
-                     std::max(std::abs(gw[0]), std::abs(gw[2]));
+  const double mag =
+      std::max(std::abs(gu[0]), std::abs(gu[2])) + std::max(std::abs(gw[0]), std::abs(gw[2]));
   int8_t* signs = edge_cache_[e * 3 + axis];
   int lo = 1, hi = -1;  // the signs' range, kUnknown counting as both
   if (in_filter_range(mag)) {
@@ -332,8 +331,8 @@ bool OctantOverlap::separated(int o, bool open) {
   }
   // The triangle's normal: all 8 corners on one side of its plane.
   const auto corner = [&](int c) {
-    return int{plane_cache_[((bit[2] + (c >> 2)) * 3 + bit[1] + ((c >> 1) & 1)) * 3 + bit[0] +
-                            (c & 1)]};
+    return int{
+        plane_cache_[((bit[2] + (c >> 2)) * 3 + bit[1] + ((c >> 1) & 1)) * 3 + bit[0] + (c & 1)]};
   };
   if (common_side(8, open, corner) != 0) return true;
   // e_axis × edge: in the plane that drops `axis`, the octant's rectangle on one side of the
@@ -367,8 +366,8 @@ constexpr uint32_t spread9(uint32_t m) {
 
 }  // namespace
 
-uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
-                        const double (&planes)[3][3], uint8_t wanted) {
+uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c, const double (&planes)[3][3],
+                        uint8_t wanted) {
   if (wanted == 0) return 0;
   Bbox box;
   box.min = {planes[0][0], planes[1][0], planes[2][0]};
@@ -378,9 +377,137 @@ uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
   return crossed_octants(a, b, c, planes, pos, neg, wanted);
 }
 
-uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
-                        const double (&planes)[3][3], uint32_t pos, uint32_t neg,
-                        uint8_t wanted) {
+namespace {
+
+/// The octants of `alive` that the axis e_axis × (q − p) does not separate from the triangle
+/// (t: its projected orientation, orient2d(a, b, c, axis)): in the plane that drops `axis`, per
+/// quadrant of the lattice, the quadrant's rectangle weakly on one side of the edge's line and
+/// the triangle on the line or the other side.
+uint8_t edge_axis(const Vec3& p, const Vec3& q, int axis, int t, const double (&planes)[3][3],
+                  uint8_t alive) {
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  if (p[u] == q[u] && p[w] == q[w]) return alive;  // the zero axis separates nothing
+  // orient2d(p, q, x) = cu·(x_u − p_u) + cw·(x_w − p_w), its coefficients' signs exact.
+  const double cu = p[w] - q[w], cw = q[u] - p[u];
+  double gu[3], gw[3];
+  for (int i = 0; i < 3; ++i) {
+    gu[i] = cu * (planes[u][i] - p[u]);
+    gw[i] = cw * (planes[w][i] - p[w]);
+  }
+  const double mag =
+      std::max(std::abs(gu[0]), std::abs(gu[2])) + std::max(std::abs(gw[0]), std::abs(gw[2]));
+  uint32_t pos = 0, neg = 0;
+  if (in_filter_range(mag)) {
+    const double bound = kPlaneSideErr * mag;
+    // The common case: the whole lattice strictly on the third vertex's side (the sums are
+    // monotone in iu and iw: one sum decides it exactly as the 9 would).
+    if (t > 0 && std::min(gu[0], gu[2]) + std::min(gw[0], gw[2]) > bound) return alive;
+    if (t < 0 && std::max(gu[0], gu[2]) + std::max(gw[0], gw[2]) < -bound) return alive;
+    for (int iw = 0; iw < 3; ++iw)
+      for (int iu = 0; iu < 3; ++iu) {
+        const double g = gu[iu] + gw[iw];
+        pos |= uint32_t{g > bound} << (iw * 3 + iu);
+        neg |= uint32_t{g < -bound} << (iw * 3 + iu);
+      }
+  }
+  for (uint32_t m = ~(pos | neg) & 0x1FF; m != 0; m &= m - 1) {
+    const int i = std::countr_zero(m);
+    double x[3] = {planes[0][0], planes[1][0], planes[2][0]};  // the dropped one: irrelevant
+    x[u] = planes[u][i % 3];
+    x[w] = planes[w][i / 3];
+    const int s = orient2d(p, q, Vec3{x[0], x[1], x[2]}, axis);
+    pos |= uint32_t{s > 0} << i;
+    neg |= uint32_t{s < 0} << i;
+  }
+  const uint32_t any_pos = spread9(pos), any_neg = spread9(neg);
+  for (int hw = 0; hw < 2; ++hw)
+    for (int hu = 0; hu < 2; ++hu) {
+      const int at = hw * 3 + hu;
+      const bool hp = any_pos >> at & 1, hn = any_neg >> at & 1;
+      // The rectangle's side: 0 when it has corners strictly on both sides, else +1 when one
+      // is strictly positive, else −1 (all ≤ 0); separated when that side is not 0 and not the
+      // third vertex's.
+      const bool separated = t > 0 ? !hp : (t < 0 ? hp && !hn : !(hp && hn));
+      if (separated) alive &= static_cast<uint8_t>(~(kHalf[u][hu] & kHalf[w][hw]));
+    }
+  return alive;
+}
+
+#if defined(COVER_X86_DISPATCH)
+/// The 9 edge axes, one coordinate axis at a time with the 3 edges in the lanes of one AVX2
+/// register (lane 3 unused): edge_axis's sums at all 9 lattice points, the quadrants' sides
+/// by lane masks. A lane whose magnitude is outside the filter's range or with a point the
+/// filter leaves undecided goes through edge_axis (orient2d). Hand-written: the scalar loop,
+/// an edge and axis at a time, was about 30% of an octree build's CPU time (bunny00, depth 10).
+__attribute__((target("avx2"))) uint8_t edge_axes_avx2(const Vec3 (&v)[3],
+                                                       const double (&planes)[3][3],
+                                                       uint8_t alive) {
+  const __m256d sign_bit = _mm256_set1_pd(-0.0);
+  const __m256d err = _mm256_set1_pd(kPlaneSideErr);
+  const __m256d mag_lo = _mm256_set1_pd(kFilterMin), mag_hi = _mm256_set1_pd(kFilterMax);
+  const __m256d zero = _mm256_setzero_pd();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (alive == 0) return 0;
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const int t = orient2d(v[0], v[1], v[2], axis);
+    // Lane e: edge e from p = v[e] to q = v[(e + 1) % 3].
+    const __m256d pu = _mm256_setr_pd(v[0][u], v[1][u], v[2][u], v[0][u]);
+    const __m256d pw = _mm256_setr_pd(v[0][w], v[1][w], v[2][w], v[0][w]);
+    const __m256d qu = _mm256_setr_pd(v[1][u], v[2][u], v[0][u], v[1][u]);
+    const __m256d qw = _mm256_setr_pd(v[1][w], v[2][w], v[0][w], v[1][w]);
+    const __m256d cu = _mm256_sub_pd(pw, qw), cw = _mm256_sub_pd(qu, pu);
+    __m256d gu[3], gw[3];
+    for (int i = 0; i < 3; ++i) {
+      gu[i] = _mm256_mul_pd(cu, _mm256_sub_pd(_mm256_set1_pd(planes[u][i]), pu));
+      gw[i] = _mm256_mul_pd(cw, _mm256_sub_pd(_mm256_set1_pd(planes[w][i]), pw));
+    }
+    const __m256d mag = _mm256_add_pd(
+        _mm256_max_pd(_mm256_andnot_pd(sign_bit, gu[0]), _mm256_andnot_pd(sign_bit, gu[2])),
+        _mm256_max_pd(_mm256_andnot_pd(sign_bit, gw[0]), _mm256_andnot_pd(sign_bit, gw[2])));
+    const __m256d hi = _mm256_mul_pd(err, mag);
+    const __m256d lo = _mm256_xor_pd(hi, sign_bit);
+    __m256d pos[9], neg[9];
+    __m256d decided = _mm256_and_pd(_mm256_cmp_pd(mag, mag_lo, _CMP_GT_OQ),
+                                    _mm256_cmp_pd(mag, mag_hi, _CMP_LT_OQ));
+    for (int iw = 0; iw < 3; ++iw)
+      for (int iu = 0; iu < 3; ++iu) {
+        const __m256d g = _mm256_add_pd(gu[iu], gw[iw]);
+        pos[iw * 3 + iu] = _mm256_cmp_pd(g, hi, _CMP_GT_OQ);
+        neg[iw * 3 + iu] = _mm256_cmp_pd(g, lo, _CMP_LT_OQ);
+        decided = _mm256_and_pd(decided, _mm256_or_pd(pos[iw * 3 + iu], neg[iw * 3 + iu]));
+      }
+    // The zero axis (an edge parallel to e_axis: cu = cw = 0 exactly) separates nothing.
+    const int zero_axis = _mm256_movemask_pd(
+        _mm256_and_pd(_mm256_cmp_pd(cu, zero, _CMP_EQ_OQ), _mm256_cmp_pd(cw, zero, _CMP_EQ_OQ)));
+    const int exact = ~_mm256_movemask_pd(decided) & ~zero_axis & 7;
+    const int vector_lanes = ~exact & ~zero_axis & 7;
+    for (int hw = 0; hw < 2; ++hw)
+      for (int hu = 0; hu < 2; ++hu) {
+        const int c = hw * 3 + hu;  // the quadrant's low corner
+        const __m256d hp =
+            _mm256_or_pd(_mm256_or_pd(pos[c], pos[c + 1]), _mm256_or_pd(pos[c + 3], pos[c + 4]));
+        const __m256d hn =
+            _mm256_or_pd(_mm256_or_pd(neg[c], neg[c + 1]), _mm256_or_pd(neg[c + 3], neg[c + 4]));
+        // edge_axis's rule: separated when t > 0 and no corner is strictly positive, t < 0 and
+        // one is but none is strictly negative, t = 0 and not both.
+        const int any_pos = _mm256_movemask_pd(hp), any_neg = _mm256_movemask_pd(hn);
+        const int separated =
+            t > 0 ? ~any_pos : (t < 0 ? any_pos & ~any_neg : ~(any_pos & any_neg));
+        if (separated & vector_lanes) alive &= static_cast<uint8_t>(~(kHalf[u][hu] & kHalf[w][hw]));
+      }
+    for (int m = exact; m != 0; m &= m - 1) {
+      const int e = std::countr_zero(static_cast<unsigned>(m));
+      alive = edge_axis(v[e], v[(e + 1) % 3], axis, t, planes, alive);
+    }
+  }
+  return alive;
+}
+#endif
+
+}  // namespace
+
+uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c, const double (&planes)[3][3],
+                        uint32_t pos, uint32_t neg, uint8_t wanted) {
   const Vec3 v[3] = {a, b, c};
   uint8_t alive = wanted;
   // Box normals (exact comparisons), per half: lo ≥ the half's high face or hi ≤ its low face.
@@ -393,61 +520,15 @@ uint8_t crossed_octants(const Vec3& a, const Vec3& b, const Vec3& c,
   const uint32_t both = spread27(pos) & spread27(neg);
   for (int o = 0; o < 8; ++o)
     if (!(both >> kOctantCorner[o] & 1)) alive &= static_cast<uint8_t>(~(1u << o));
-  // e_axis × edge: in the plane that drops `axis`, per quadrant, the quadrant's rectangle weakly
-  // on one side of the edge's line and the triangle on the line or the other side.
-  int third[3] = {2, 2, 2};  // per axis: the projected orientation, when first needed
-  for (int e = 0; e < 3; ++e) {
-    const Vec3 &p = v[e], &q = v[(e + 1) % 3];
-    for (int axis = 0; axis < 3; ++axis) {
-      if (alive == 0) return 0;
-      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-      if (p[u] == q[u] && p[w] == q[w]) continue;  // the zero axis separates nothing
-      // orient2d(p, q, x) = cu·(x_u − p_u) + cw·(x_w − p_w), its coefficients' signs exact.
-      const double cu = p[w] - q[w], cw = q[u] - p[u];
-      double gu[3], gw[3];
-      for (int i = 0; i < 3; ++i) {
-        gu[i] = cu * (planes[u][i] - p[u]);
-        gw[i] = cw * (planes[w][i] - p[w]);
-      }
-      if (third[axis] == 2) third[axis] = orient2d(v[0], v[1], v[2], axis);
-      const int t = third[axis];
-      const double mag = std::max(std::abs(gu[0]), std::abs(gu[2])) +
-                         std::max(std::abs(gw[0]), std::abs(gw[2]));
-      uint32_t pos = 0, neg = 0;
-      if (in_filter_range(mag)) {
-        const double bound = kPlaneSideErr * mag;
-        // The common case: the whole lattice strictly on the third vertex's side (the sums are
-        // monotone in iu and iw: one sum decides it exactly as the 9 would).
-        if (t > 0 && std::min(gu[0], gu[2]) + std::min(gw[0], gw[2]) > bound) continue;
-        if (t < 0 && std::max(gu[0], gu[2]) + std::max(gw[0], gw[2]) < -bound) continue;
-        for (int iw = 0; iw < 3; ++iw)
-          for (int iu = 0; iu < 3; ++iu) {
-            const double g = gu[iu] + gw[iw];
-            pos |= uint32_t{g > bound} << (iw * 3 + iu);
-            neg |= uint32_t{g < -bound} << (iw * 3 + iu);
-          }
-      }
-      for (uint32_t m = ~(pos | neg) & 0x1FF; m != 0; m &= m - 1) {
-        const int i = std::countr_zero(m);
-        double x[3] = {planes[0][0], planes[1][0], planes[2][0]};  // the dropped one: irrelevant
-        x[u] = planes[u][i % 3];
-        x[w] = planes[w][i / 3];
-        const int s = orient2d(p, q, Vec3{x[0], x[1], x[2]}, axis);
-        pos |= uint32_t{s > 0} << i;
-        neg |= uint32_t{s < 0} << i;
-      }
-      const uint32_t any_pos = spread9(pos), any_neg = spread9(neg);
-      for (int hw = 0; hw < 2; ++hw)
-        for (int hu = 0; hu < 2; ++hu) {
-          const int at = hw * 3 + hu;
-          const bool hp = any_pos >> at & 1, hn = any_neg >> at & 1;
-          // The rectangle's side: 0 when it has corners strictly on both sides, else +1 when
-          // one is strictly positive, else −1 (all ≤ 0); separated when that side is not 0 and
-          // not the third vertex's.
-          const bool separated = t > 0 ? !hp : (t < 0 ? hp && !hn : !(hp && hn));
-          if (separated) alive &= static_cast<uint8_t>(~(kHalf[u][hu] & kHalf[w][hw]));
-        }
-    }
+  if (alive == 0) return 0;
+    // e_axis × edge for the 9 pairs.
+#if defined(COVER_X86_DISPATCH)
+  if (simd() >= Simd::kAvx2) return edge_axes_avx2(v, planes, alive);
+#endif
+  for (int axis = 0; axis < 3 && alive != 0; ++axis) {
+    const int t = orient2d(v[0], v[1], v[2], axis);
+    for (int e = 0; e < 3 && alive != 0; ++e)
+      alive = edge_axis(v[e], v[(e + 1) % 3], axis, t, planes, alive);
   }
   return alive;
 }
@@ -477,8 +558,8 @@ PlaneSide::PlaneSide(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& bo
 
 int PlaneSide::exact_sign(const Vec3& p) const { return orient3d(a_, b_, c_, p); }
 
-void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs, int n,
-                           int8_t* out, size_t stride) const {
+void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs, int n, int8_t* out,
+                           size_t stride) const {
   double fx[32], fy[32], fz[32];
   for (int i = 0; i < n; ++i) {
     fx[i] = normal_.x * (xs[i] - a_.x);
@@ -508,8 +589,7 @@ void PlaneSide::grid_signs(const double* xs, const double* ys, const double* zs,
     }
 }
 
-void PlaneSide::lattice_masks(const double (&planes)[3][3], uint32_t& pos,
-                              uint32_t& neg) const {
+void PlaneSide::lattice_masks(const double (&planes)[3][3], uint32_t& pos, uint32_t& neg) const {
   double fx[3], fy[3], fz[3];
   for (int i = 0; i < 3; ++i) {
     fx[i] = normal_.x * (planes[0][i] - a_.x);

@@ -285,30 +285,43 @@ TEST(BoxOverlap, PointBoxesAgreeWithCgal) {
 TEST(BoxOverlap, CrossedOctantsIsCrossesPerOctant) {
   // OctantOverlap::crossed_octants (all octants at once, as the octree's lists use it) against
   // crosses(o) octant by octant, on quarter-grid triangles and lattices (touching cases) and on
-  // random ones, for every subset of wanted octants drawn at random.
-  std::mt19937_64 rng(8);
-  std::uniform_real_distribution<double> u(-0.6, 1.6);
-  std::uniform_int_distribution<int> grid(-2, 6), step(1, 3), mask(0, 255);
-  for (int i = 0; i < 20000; ++i) {
-    const bool on_grid = i % 2 == 0;
-    const auto x = [&] { return on_grid ? grid(rng) / 4.0 : u(rng); };
-    const Vec3 a{x(), x(), x()}, c{x(), x(), x()}, d{x(), x(), x()};
-    if (orient2d(a, c, d, 0) == 0 && orient2d(a, c, d, 1) == 0 && orient2d(a, c, d, 2) == 0)
-      continue;  // collinear: never a covering triangle
-    double planes[3][3];
-    for (auto& axis : planes) {
-      axis[0] = grid(rng) / 8.0;
-      axis[1] = axis[0] + step(rng) / 8.0;
-      axis[2] = axis[1] + step(rng) / 8.0;
+  // random ones, for every subset of wanted octants drawn at random; at every vector level
+  // this CPU has (the edge axes' AVX2 path and the scalar one).
+  const detail::Simd best = detail::best_simd();
+  for (int level = 0; level <= static_cast<int>(best); ++level) {
+    detail::use_simd(static_cast<detail::Simd>(level));
+    std::mt19937_64 rng(8);
+    std::uniform_real_distribution<double> u(-0.6, 1.6);
+    std::uniform_int_distribution<int> grid(-2, 6), step(1, 3), mask(0, 255);
+    for (int i = 0; i < 20000; ++i) {
+      const bool on_grid = i % 2 == 0;
+      const auto x = [&] { return on_grid ? grid(rng) / 4.0 : u(rng); };
+      const Vec3 a{x(), x(), x()}, c{x(), x(), x()}, d{x(), x(), x()};
+      if (orient2d(a, c, d, 0) == 0 && orient2d(a, c, d, 1) == 0 && orient2d(a, c, d, 2) == 0)
+        continue;  // collinear: never a covering triangle
+      double planes[3][3];
+      for (auto& axis : planes) {
+        axis[0] = grid(rng) / 8.0;
+        axis[1] = axis[0] + step(rng) / 8.0;
+        axis[2] = axis[1] + step(rng) / 8.0;
+      }
+      if (i % 8 == 3)  // the split point an ulp from vertex a: edge signs the filter cannot decide
+        for (int k = 0; k < 3; ++k) {
+          const double s = step(rng) / 8.0;
+          planes[k][1] = std::nextafter(a[k], (i / 8 + k) % 2 ? 2.0 : -2.0);
+          planes[k][0] = planes[k][1] - s;
+          planes[k][2] = planes[k][1] + s;
+        }
+      detail::OctantOverlap one(a, c, d, planes);
+      const uint8_t wanted = static_cast<uint8_t>(i % 4 == 1 ? mask(rng) : 0xFF);
+      uint8_t expected = 0;
+      for (int o = 0; o < 8; ++o)
+        if ((wanted >> o & 1) && one.crosses(o)) expected |= static_cast<uint8_t>(1 << o);
+      detail::OctantOverlap all(a, c, d, planes);
+      EXPECT_EQ(all.crossed_octants(wanted), expected) << level << " " << i;
     }
-    detail::OctantOverlap one(a, c, d, planes);
-    const uint8_t wanted = static_cast<uint8_t>(i % 4 == 1 ? mask(rng) : 0xFF);
-    uint8_t expected = 0;
-    for (int o = 0; o < 8; ++o)
-      if ((wanted >> o & 1) && one.crosses(o)) expected |= static_cast<uint8_t>(1 << o);
-    detail::OctantOverlap all(a, c, d, planes);
-    EXPECT_EQ(all.crossed_octants(wanted), expected) << i;
   }
+  detail::use_simd(best);
 }
 
 TEST(BoxOverlap, PlaneSideIsExact) {
@@ -425,9 +438,9 @@ TEST(Octree, EveryPartialOccupancyMatchesItsPoints) {
   // winding is 2, entering it from one sphere adds 1) and where segments pass through edges and
   // points lie on planes (box faces at multiples of h/8, where the sub-points sit at the odd
   // multiples; in union, difference, intersection and complement).
-  const Solid spheres = make_leaf(concatenate(make_sphere({0, 0, 0}, 0.6, 12),
-                                              make_sphere({0.35, 0.1, 0.05}, 0.5, 10)),
-                                  "spheres");
+  const Solid spheres = make_leaf(
+      concatenate(make_sphere({0, 0, 0}, 0.6, 12), make_sphere({0.35, 0.1, 0.05}, 0.5, 10)),
+      "spheres");
   const Octree ts = build(spheres, cube({-0.8, -0.8, -0.8}, 1.8), 3);
   check_leaves(spheres, ts);
   expect_occupancy_by_points(spheres, ts, 4, SIZE_MAX);
@@ -474,7 +487,8 @@ TEST(Octree, EveryPartialOccupancyMatchesItsPoints) {
         for (uint32_t y : {2u, 3u}) {
           // Counter-clockwise seen from outside: (x, y, z) positive when the signs agree.
           const bool flip = ((x == 1) != (y == 3)) != (z == 5);
-          for (uint32_t v : flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z})
+          for (uint32_t v :
+               flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z})
             m.face_vertices.push_back(v);
           m.face_start.push_back(static_cast<uint32_t>(m.face_vertices.size()));
         }
@@ -788,7 +802,8 @@ TEST_F(OctreeFiles, BtReadsBackWithLiboctomap) {
 /// children), then written as OcTree::writeBinary writes it (maximum likelihood, pruned).
 class OctomapOracle : public octomap::OcTree {
  public:
-  OctomapOracle(const Octree& tree, double threshold) : octomap::OcTree(tree.cell_size(tree.depth)) {
+  OctomapOracle(const Octree& tree, double threshold)
+      : octomap::OcTree(tree.cell_size(tree.depth)) {
     const int depth = tree.depth;
     const uint32_t base = (1u << 15) - (1u << (depth - 1));
     std::vector<std::array<uint32_t, 3>> coord(tree.nodes.size());
@@ -818,8 +833,8 @@ class OctomapOracle : public octomap::OcTree {
     prune();
     std::ostringstream s;
     s.precision(17);
-    s << binaryFileHeader << "\n# (written by Cover)\nid " << getTreeType() << "\nsize "
-      << size() << "\nres " << getResolution() << "\ndata\n";
+    s << binaryFileHeader << "\n# (written by Cover)\nid " << getTreeType() << "\nsize " << size()
+      << "\nres " << getResolution() << "\ndata\n";
     writeBinaryData(s);
     return s.str();
   }
@@ -849,8 +864,8 @@ TEST_F(OctreeFiles, BtIsTheBytesLiboctomapWrites) {
     EXPECT_EQ(test::read_file(dir_ / "t.bt"), OctomapOracle(t, threshold).bytes()) << what;
   };
   for (double threshold : {0.0, 0.1, 0.5, 1.0}) expect_same(tree_, threshold, "elephant");
-  const Solid halves = unite({box_solid({0, 0, 0}, {0.25, 0.5, 0.5}),
-                              box_solid({0.25, 0, 0}, {0.5, 0.5, 0.5})});
+  const Solid halves =
+      unite({box_solid({0, 0, 0}, {0.25, 0.5, 0.5}), box_solid({0.25, 0, 0}, {0.5, 0.5, 0.5})});
   for (int depth : {1, 2, 3}) expect_same(build(halves, cube({0, 0, 0}, 1), depth), 0.5, "halves");
   const Solid small = box_solid({0.1, 0.2, 0.3}, {0.1004, 0.2003, 0.3002});
   expect_same(build(small, cube({0, 0, 0}, 1), 16), 0.5, "depth 16");
