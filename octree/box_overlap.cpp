@@ -214,9 +214,68 @@ __attribute__((target("avx2"))) void masks27_avx2(const double* fx, const double
   neg = q;
 }
 #pragma GCC diagnostic pop
+
+/// edge_orientations with the 3 edges in the lanes of one AVX2 register (lane 3 unused): each
+/// lane evaluates orient3d's filtered determinant and permanent as orient3d does, operation for
+/// operation; a lane the filter leaves undecided goes to orient3d_exact.
+__attribute__((target("avx2"))) void edge_orientations_avx2(const Vec3& r, const Vec3& q,
+                                                            const Vec3& a, const Vec3& b,
+                                                            const Vec3& c, int (&out)[3]) {
+  const Vec3* v[3] = {&a, &b, &c};
+  const __m256d sign_bit = _mm256_set1_pd(-0.0);
+  // orient3d(r, q, C, D) for lane e: C = v[e], D = v[(e + 1) % 3].
+  __m256d ad[3], bd[3], cd[3];
+  for (int k = 0; k < 3; ++k) {
+    const __m256d dk = _mm256_setr_pd((*v[1])[k], (*v[2])[k], (*v[0])[k], (*v[1])[k]);
+    const __m256d ck = _mm256_setr_pd((*v[0])[k], (*v[1])[k], (*v[2])[k], (*v[0])[k]);
+    ad[k] = _mm256_sub_pd(_mm256_set1_pd(r[k]), dk);
+    bd[k] = _mm256_sub_pd(_mm256_set1_pd(q[k]), dk);
+    cd[k] = _mm256_sub_pd(ck, dk);
+  }
+  const __m256d bdxcdy = _mm256_mul_pd(bd[0], cd[1]), cdxbdy = _mm256_mul_pd(cd[0], bd[1]);
+  const __m256d cdxady = _mm256_mul_pd(cd[0], ad[1]), adxcdy = _mm256_mul_pd(ad[0], cd[1]);
+  const __m256d adxbdy = _mm256_mul_pd(ad[0], bd[1]), bdxady = _mm256_mul_pd(bd[0], ad[1]);
+  const __m256d det =
+      _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(ad[2], _mm256_sub_pd(bdxcdy, cdxbdy)),
+                                  _mm256_mul_pd(bd[2], _mm256_sub_pd(cdxady, adxcdy))),
+                    _mm256_mul_pd(cd[2], _mm256_sub_pd(adxbdy, bdxady)));
+  const __m256d permanent = _mm256_add_pd(
+      _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(_mm256_andnot_pd(sign_bit, bdxcdy),
+                                                _mm256_andnot_pd(sign_bit, cdxbdy)),
+                                  _mm256_andnot_pd(sign_bit, ad[2])),
+                    _mm256_mul_pd(_mm256_add_pd(_mm256_andnot_pd(sign_bit, cdxady),
+                                                _mm256_andnot_pd(sign_bit, adxcdy)),
+                                  _mm256_andnot_pd(sign_bit, bd[2]))),
+      _mm256_mul_pd(
+          _mm256_add_pd(_mm256_andnot_pd(sign_bit, adxbdy), _mm256_andnot_pd(sign_bit, bdxady)),
+          _mm256_andnot_pd(sign_bit, cd[2])));
+  const __m256d in_range =
+      _mm256_and_pd(_mm256_cmp_pd(permanent, _mm256_set1_pd(kFilterMin), _CMP_GT_OQ),
+                    _mm256_cmp_pd(permanent, _mm256_set1_pd(kFilterMax), _CMP_LT_OQ));
+  const __m256d bound = _mm256_mul_pd(_mm256_set1_pd(kOrient3dErr), permanent);
+  // Shewchuk's sign of det, negated (orient3d's convention).
+  const int above =
+      _mm256_movemask_pd(_mm256_and_pd(in_range, _mm256_cmp_pd(det, bound, _CMP_GT_OQ)));
+  const int below = _mm256_movemask_pd(
+      _mm256_and_pd(in_range, _mm256_cmp_pd(det, _mm256_xor_pd(bound, sign_bit), _CMP_LT_OQ)));
+  for (int e = 0; e < 3; ++e)
+    out[e] = above >> e & 1   ? -1
+             : below >> e & 1 ? 1
+                              : orient3d_exact(r, q, *v[e], *v[(e + 1) % 3]);
+}
 #endif
 
 }  // namespace
+
+void edge_orientations(const Vec3& r, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c,
+                       int (&out)[3]) {
+#if defined(COVER_X86_DISPATCH)
+  if (simd() >= Simd::kAvx2) return edge_orientations_avx2(r, q, a, b, c, out);
+#endif
+  out[0] = orient3d(r, q, a, b);
+  out[1] = orient3d(r, q, b, c);
+  out[2] = orient3d(r, q, c, a);
+}
 
 Simd best_simd() {
   static const Simd best = detect_simd();

@@ -1,7 +1,4 @@
-#include "covering/detail/bvh_walk.h"
 #include "octree/octree.h"
-
-#include <optional>
 
 #include <algorithm>
 #include <array>
@@ -9,11 +6,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 
 #include "covering/bvh.h"
 #include "covering/classify.h"
+#include "covering/detail/bvh_walk.h"
 #include "octree/detail/box_overlap.h"
 #include "solid/errors.h"
 #include "solid/parallel.h"
@@ -69,7 +68,7 @@ constexpr size_t kExactKey = 40;    // side vectors up to this length are exact 
 constexpr size_t kSiblingMax = 16;  // last level: parent lists up to this length group a whole
                                     // sibling set's points at once
 constexpr size_t kGrain = 512;  // cells per parallel chunk (a multiple of 8: whole sibling sets)
-constexpr size_t kTableLeaves = 10;  // expressions of up to this many leaves are tabulated
+constexpr size_t kTableLeaves = 10;         // expressions of up to this many leaves are tabulated
 constexpr size_t kBlock = size_t{1} << 18;  // cells per classification batch (multiple of kGrain)
 // Memory per node of a build: the node array (sizeof(Node) = 16 bytes), the per-cell triangle
 // lists, the next level's parents and the block buffers. Measured: bunny00 at depth 10 peaks at
@@ -135,7 +134,7 @@ struct Anchor {
   bool valid = false;       ///< `point` is a reference strictly off every plane of T_G
   bool planes_ready = false;
   Vec3 point;
-  uint32_t ref = 0;  ///< its index in Requests::refs
+  uint32_t ref = 0;                       ///< its index in Requests::refs
   std::span<const uint32_t> tris;         ///< T_G
   std::vector<detail::PlaneSide> planes;  ///< their planes over G's box
   std::vector<int8_t> sides;              ///< the anchor's side of each
@@ -181,16 +180,16 @@ struct Scratch {
   std::vector<uint32_t> weight;  ///< per group: its number of points
   std::vector<uint64_t> keys;    ///< per group: its side vector in base 3
   // Sibling sets of the last level (Builder::sibling_representatives):
-  std::vector<detail::PlaneSide> planes;  ///< the parent's planes, over its box
+  std::vector<detail::PlaneSide> planes;           ///< the parent's planes, over its box
   std::vector<uint32_t> lattice_pos, lattice_neg;  ///< their signs at its 27 lattice points
-  std::vector<uint64_t> point_keys;       ///< per point of a cell: its side vector in base 3
+  std::vector<uint64_t> point_keys;  ///< per point of a cell: its side vector in base 3
   // Builder::sibling_masks: point sets of a sibling set as 9 words (word c < 8: the sub-points
   // of partial cell c, bit p = sub-point p; word 8: bit c = the centre of uncrossed cell c).
   std::vector<std::array<uint64_t, 9>> sets, split;
   std::vector<std::array<uint64_t, 9>> pos;  ///< per plane: the points on its positive side
-  std::vector<uint32_t> rep;              ///< per group: its representative (index in the chunk)
-  std::vector<uint32_t> last_cell;        ///< the groups the current cell touches
-  std::vector<uint32_t> entry;            ///< per group: its points in the current cell
+  std::vector<uint32_t> rep;                 ///< per group: its representative (index in the chunk)
+  std::vector<uint32_t> last_cell;           ///< the groups the current cell touches
+  std::vector<uint32_t> entry;               ///< per group: its points in the current cell
 };
 
 /// Appends every triangle whose box (the BVH's float bounds contain the exact ones) meets the
@@ -296,9 +295,10 @@ std::string octree_subject(int depth) {
 enum class Crossing { kPasses, kCrosses, kThroughEdge };
 
 Crossing segment_crossing(const Vec3& r, const Vec3& q, const Bvh::Tri& tri) {
-  const int o0 = orient3d(r, q, tri.a, tri.b), o1 = orient3d(r, q, tri.b, tri.c),
-            o2 = orient3d(r, q, tri.c, tri.a);
-  const bool some_neg = o0 < 0 || o1 < 0 || o2 < 0, some_pos = o0 > 0 || o1 > 0 || o2 > 0;
+  int o[3];
+  detail::edge_orientations(r, q, tri.a, tri.b, tri.c, o);
+  const int o0 = o[0], o1 = o[1], o2 = o[2];
+  const bool some_neg = o0 < 0 || o1 < 0 || o2<0, some_pos = o0> 0 || o1 > 0 || o2 > 0;
   if (some_neg && some_pos) return Crossing::kPasses;
   return o0 == 0 || o1 == 0 || o2 == 0 ? Crossing::kThroughEdge : Crossing::kCrosses;
 }
@@ -381,7 +381,8 @@ class Builder {
         const size_t b1 = std::min(n, b0 + kBlock);
         block(d, b0, b1, tree.nodes.data() + level_start, level_start + n, next, next_lists);
         if (progress_)
-          progress_((weight_done + std::ldexp(1.0, 2 * d) * static_cast<double>(b1) / n) / weight_total);
+          progress_((weight_done + std::ldexp(1.0, 2 * d) * static_cast<double>(b1) / n) /
+                    weight_total);
       }
       weight_done += std::ldexp(1.0, 2 * d);
       if (d + 1 == depth_ && d >= 1) {  // the last level's grandparents
@@ -696,8 +697,8 @@ class Builder {
     const auto add_entries = [&](const Set& set, uint32_t rep) {
       for (int c = 0; c < 8; ++c)
         if (set[c] != 0)
-          entries.push_back({static_cast<uint32_t>(g0 + c), rep,
-                             static_cast<uint32_t>(popcount(set[c]))});
+          entries.push_back(
+              {static_cast<uint32_t>(g0 + c), rep, static_cast<uint32_t>(popcount(set[c]))});
       for (uint64_t m = set[8]; m != 0; m &= m - 1)
         entries.push_back({static_cast<uint32_t>(g0 + std::countr_zero(m)), rep, 1});
     };
@@ -881,8 +882,7 @@ class Builder {
                              std::vector<Vec3>& points, std::vector<Entry>& entries) const {
     size_t uncrossed = 0;
     for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += list(i).empty();
-    const bool shared =
-        uncrossed > 1 && !open_ && !centre_on_surface((b0 + g0) / 8, d, candidates);
+    const bool shared = uncrossed > 1 && !open_ && !centre_on_surface((b0 + g0) / 8, d, candidates);
     uint32_t rep = UINT32_MAX;
     for (size_t i = g0; i < g0 + siblings; ++i) {
       if (!list(i).empty()) continue;
@@ -993,8 +993,8 @@ class Builder {
         }
         crossed[g0 / 8] = cross;
         cells_representatives(
-            d, b0, g0, 8, [&](size_t i) { return local[i - g0]; }, s, subs, candidates,
-            out.points, out.entries);
+            d, b0, g0, 8, [&](size_t i) { return local[i - g0]; }, s, subs, candidates, out.points,
+            out.entries);
       }
     });
   }
@@ -1060,12 +1060,12 @@ class Builder {
       for (size_t c = begin; c < end; ++c) {
         derived_halves.clear();
         for (const Derived& x : requests[c].derived)
-          derived_halves.push_back(derived_class(x, windings, ref_offset[c], requests[c].deltas,
-                                                 winding));
+          derived_halves.push_back(
+              derived_class(x, windings, ref_offset[c], requests[c].deltas, winding));
         for (const Entry& e : requests[c].entries)
-          sum[e.cell] += e.weight * (e.rep & Entry::kDerived
-                                         ? derived_halves[e.rep & ~Entry::kDerived]
-                                         : halves(classes[offset[c] + e.rep]));
+          sum[e.cell] +=
+              e.weight * (e.rep & Entry::kDerived ? derived_halves[e.rep & ~Entry::kDerived]
+                                                  : halves(classes[offset[c] + e.rep]));
       }
     });
     const double total = 2.0 * samples_ * samples_ * samples_;
@@ -1099,8 +1099,8 @@ class Builder {
   double h_;
   uint64_t max_bytes_;
   std::function<void(double)> progress_;
-  bool open_ = false;                  ///< some leaf is open: no shared centres
-  std::optional<GwnForest> own_gwn_;   ///< built here when options.gwn is null
+  bool open_ = false;                 ///< some leaf is open: no shared centres
+  std::optional<GwnForest> own_gwn_;  ///< built here when options.gwn is null
   std::vector<uint8_t> table_;  ///< membership per set of inside leaves (≤ kTableLeaves leaves)
   /// Sub-point p = (k·n + j)·n + i of a cell (samples³ ≤ 64): (i, j, k), without divisions.
   std::array<std::array<uint8_t, 3>, 64> sub_index_{};
@@ -1114,7 +1114,8 @@ class Builder {
 };
 
 /// Checks the options and the bounds and refuses builds beyond options.max_bytes (see octree.h).
-void check_octree_request(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options) {
+void check_octree_request(const Solid& solid, const VoxelBounds& bounds,
+                          const OctreeOptions& options) {
   if (options.depth < 0 || options.depth > kMaxDepth)
     throw InputError("--depth: expected a whole number from 0 to " + std::to_string(kMaxDepth) +
                      ", got " + std::to_string(options.depth));
@@ -1171,6 +1172,5 @@ Octree build_octree(const Solid& solid, const Bvh& bvh, const VoxelBounds& bound
   check_octree_request(solid, bounds, options);
   return Builder(solid, bvh, bounds, options).run();
 }
-
 
 }  // namespace cover

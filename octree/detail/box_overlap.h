@@ -62,6 +62,11 @@ Simd simd();
 /// Uses `level`, or best_simd() when the CPU lacks it (for tests comparing the levels).
 void use_simd(Simd level);
 
+/// orient3d(r, q, a, b), orient3d(r, q, b, c) and orient3d(r, q, c, a) (exact), the three at
+/// once: the sides of the line rq that the triangle abc's edges pass (a segment's crossing test).
+void edge_orientations(const Vec3& r, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c,
+                       int (&out)[3]);
+
 /// True when the closed triangle abc and the closed box intersect (exact).
 bool triangle_meets_box(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box);
 
@@ -80,8 +85,7 @@ class PlaneSide {
   const Vec3& normal() const { return normal_; }
 
   int sign(const Vec3& p) const {
-    const double f =
-        normal_.x * (p.x - a_.x) + normal_.y * (p.y - a_.y) + normal_.z * (p.z - a_.z);
+    const double f = normal_.x * (p.x - a_.x) + normal_.y * (p.y - a_.y) + normal_.z * (p.z - a_.z);
     if (f > bound_) return 1;
     if (f < -bound_) return -1;
     return exact_sign(p);

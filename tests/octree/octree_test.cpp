@@ -386,6 +386,34 @@ TEST(BoxOverlap, PlaneMasksAreSignAtEverySimdLevel) {
   detail::use_simd(best);
 }
 
+TEST(BoxOverlap, EdgeOrientationsAreOrient3dAtEverySimdLevel) {
+  // Quarter-grid points (many coplanar quadruples: the exact path) and random ones.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> grid(-2, 2);
+  const detail::Simd best = detail::best_simd();
+  for (int level = 0; level <= static_cast<int>(best); ++level) {
+    detail::use_simd(static_cast<detail::Simd>(level));
+    int zeros = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const bool on_grid = i % 2 == 0;
+      const auto x = [&] { return on_grid ? grid(rng) / 4.0 : u(rng); };
+      const Vec3 r{x(), x(), x()}, a{x(), x(), x()}, b{x(), x(), x()}, c{x(), x(), x()};
+      Vec3 q{x(), x(), x()};
+      if (i % 4 == 1)  // q on the plane of r, a, b up to rounding: the filter cannot decide
+        q = a + u(rng) * (b - a) + u(rng) * (r - a);
+      int o[3];
+      detail::edge_orientations(r, q, a, b, c, o);
+      ASSERT_EQ(o[0], orient3d(r, q, a, b)) << level << " " << i;
+      ASSERT_EQ(o[1], orient3d(r, q, b, c)) << level << " " << i;
+      ASSERT_EQ(o[2], orient3d(r, q, c, a)) << level << " " << i;
+      zeros += o[0] == 0;
+    }
+    EXPECT_GT(zeros, 100);
+  }
+  detail::use_simd(best);
+}
+
 TEST(Octree, BoxSphereElephantAndDifferenceAreExactAndConservative) {
   const Solid box = box_solid({0.1, 0.2, 0.3}, {0.8, 0.7, 0.9});
   const Octree tb = build(box, cube({0, 0, 0}, 1), 5);
