@@ -51,7 +51,8 @@
 //       classified (a reference, by its leaves' windings); the others add the signed crossings
 //       of the segment from the reference with T_P's triangles (sibling_masks), and the
 //       references of the sets under one grandparent G add those of their segments from one
-//       anchor reference with T_G's (Anchor): one ray per grandparent;
+//       anchor reference with T_G's (Anchor): one ray per grandparent. Above the last level
+//       the uncrossed cells' centres are derived from an anchor the same way;
 //   (C) one classify() and one leaf_windings() call per block; (D) states, occupancies and
 //       child links.
 // Node order, ranks and results depend only on the input: every parallel step writes per cell or
@@ -65,6 +66,7 @@ constexpr int kMaxSamples = 32;     // 32³ sub-points per partial cell
 constexpr size_t kInheritMax = 64;  // centre_on_surface: longer parent lists go through the BVH
 constexpr size_t kGroupMax = 64;    // planes up to which points are grouped by sides
 constexpr size_t kExactKey = 40;    // side vectors up to this length are exact base-3 keys
+constexpr size_t kAnchorMax = 64;   // grandparent lists up to this length anchor (Anchor)
 constexpr size_t kSiblingMax = 16;  // last level: parent lists up to this length group a whole
                                     // sibling set's points at once
 constexpr size_t kGrain = 512;  // cells per parallel chunk (a multiple of 8: whole sibling sets)
@@ -122,15 +124,16 @@ struct Requests {
   std::vector<Delta> deltas;
 };
 
-/// The last level: a reference point classified by its leaves' windings and shared by the
-/// sibling sets of one grandparent G (level D − 2), through whose interior both it and those
-/// sets' references lie. A later set's reference r takes the anchor's windings plus the signed
-/// crossings of the segment from the anchor to r with T_G (the triangles that meet G's
-/// interior: the segment lies there, G being convex), tested as within a set; one ray per
-/// grandparent instead of one per sibling set.
+/// A reference point classified by its leaves' windings and shared by the sibling sets of level
+/// d ≥ 2 under one grandparent G (level d − 2), through whose interior both it and those sets'
+/// points lie. A later point r (a set's reference at the last level, an uncrossed cell's centre
+/// above it) takes the anchor's windings plus the signed crossings of the segment from the
+/// anchor to r with T_G (the triangles that meet G's interior: the segment lies there, G being
+/// convex), tested as within a set; one ray per grandparent instead of one per sibling set.
 struct Anchor {
   size_t grand = SIZE_MAX;  ///< the grandparent's rank; SIZE_MAX: none
   size_t parent = 0;        ///< the parent (by rank) of the set being processed, G's child
+  int level = 0;            ///< d, the level of the sets' cells
   bool valid = false;       ///< `point` is a reference strictly off every plane of T_G
   bool planes_ready = false;
   Vec3 point;
@@ -372,7 +375,7 @@ class Builder {
       Lists next_lists;
       if (d < depth_) {
         next.reserve(n);
-        if (d + 1 == depth_ && d >= 1) next_grand_.reserve(n);
+        if (d >= 1) next_grand_.reserve(n);
         next_lists.start.reserve(n + 1);
         // Each parent triangle lies in at most 8 children's lists (address space only).
         next_lists.tris.reserve(8 * parent_lists_.tris.size());
@@ -385,7 +388,7 @@ class Builder {
                     weight_total);
       }
       weight_done += std::ldexp(1.0, 2 * d);
-      if (d + 1 == depth_ && d >= 1) {  // the last level's grandparents
+      if (d >= 1) {  // the next level's grandparents
         grand_lists_ = std::move(parent_lists_);
         grand_rank_ = std::move(next_grand_);
       }
@@ -543,13 +546,16 @@ class Builder {
     return false;
   }
 
-  /// The anchor for the sibling set of `parent` (by rank) at the last level: `anchor`, reset
-  /// when the set's grandparent differs from the anchor's; nullptr without grandparents or
-  /// with open leaves (no windings).
-  Anchor* anchor_of(size_t parent, Anchor& anchor) const {
-    if (grand_rank_.empty() || open_) return nullptr;
+  /// The anchor for the sibling set of `parent` (by rank) at level d: `anchor`, reset when the
+  /// set's grandparent differs from the anchor's; nullptr without grandparents (d < 2), with
+  /// open leaves (no windings) or when T_G holds more than kAnchorMax triangles (a ray is
+  /// cheaper than that many plane signs per point).
+  Anchor* anchor_of(size_t parent, int d, Anchor& anchor) const {
+    if (d < 2 || open_) return nullptr;
     const size_t grand = grand_rank_[parent];
+    if (grand_lists_[grand].size() > kAnchorMax) return nullptr;
     anchor.parent = parent;
+    anchor.level = d;
     if (grand != anchor.grand) {
       anchor.grand = grand;
       anchor.valid = false;
@@ -566,7 +572,7 @@ class Builder {
     if (!anchor.planes_ready) {
       anchor.planes_ready = true;
       const Coord& p = parents_[anchor.parent];  // a child of G
-      const Bbox g = box({p[0] / 2, p[1] / 2, p[2] / 2}, depth_ - 2);
+      const Bbox g = box({p[0] / 2, p[1] / 2, p[2] / 2}, anchor.level - 2);
       for (uint32_t t : anchor.tris) {
         const Bvh::Tri tri = bvh_.triangle(t);
         anchor.planes.emplace_back(tri.a, tri.b, tri.c, g);
@@ -875,21 +881,42 @@ class Builder {
   /// (B) The points to classify for the sibling set g0 .. g0 + siblings − 1 of level d (cells
   /// of the block starting at b0; cell i's triangles list(i)): one centre for its uncrossed
   /// cells (one per cell when the parent's centre is on a surface) and, at the last level, one
-  /// sub-point per side class of each partial cell.
+  /// sub-point per side class of each partial cell. With an anchor (anchor_of) the centres are
+  /// derived from its windings, or become references (leaf_windings): an uncrossed cell's
+  /// centre is on no surface.
   template <typename CellList>
   void cells_representatives(int d, size_t b0, size_t g0, size_t siblings, CellList list,
                              Scratch& s, SubGrid& subs, std::vector<uint32_t>& candidates,
-                             std::vector<Vec3>& points, std::vector<Entry>& entries) const {
+                             Anchor* anchor, Requests& out) const {
+    std::vector<Vec3>& points = out.points;
+    std::vector<Entry>& entries = out.entries;
     size_t uncrossed = 0;
     for (size_t i = g0; i < g0 + siblings; ++i) uncrossed += list(i).empty();
     const bool shared = uncrossed > 1 && !open_ && !centre_on_surface((b0 + g0) / 8, d, candidates);
+    // An uncrossed cell's centre c: an entry's `rep`.
+    const auto request = [&](const Vec3& c) {
+      if (anchor == nullptr) {
+        points.push_back(c);
+        return static_cast<uint32_t>(points.size() - 1);
+      }
+      const uint32_t delta_begin = static_cast<uint32_t>(out.deltas.size());
+      uint32_t ref = 0;
+      if (anchor->valid && anchor_deltas(*anchor, c, out.deltas)) {
+        ref = anchor->ref;
+      } else {
+        out.deltas.resize(delta_begin);
+        ref = static_cast<uint32_t>(out.refs.size());
+        out.refs.push_back(c);
+        if (!anchor->valid) set_anchor(*anchor, c, ref);
+      }
+      out.derived.push_back(
+          {c, ref, delta_begin, static_cast<uint32_t>(out.deltas.size()) - delta_begin});
+      return static_cast<uint32_t>(out.derived.size() - 1) | Entry::kDerived;
+    };
     uint32_t rep = UINT32_MAX;
     for (size_t i = g0; i < g0 + siblings; ++i) {
       if (!list(i).empty()) continue;
-      if (rep == UINT32_MAX || !shared) {
-        rep = static_cast<uint32_t>(points.size());
-        points.push_back(centre(box(coord(d, b0 + i), d)));
-      }
+      if (rep == UINT32_MAX || !shared) rep = request(centre(box(coord(d, b0 + i), d)));
       entries.push_back({static_cast<uint32_t>(i), rep, 1});
     }
     if (d < depth_) return;
@@ -915,11 +942,12 @@ class Builder {
       Scratch s;
       SubGrid subs;
       std::vector<uint32_t> candidates;
+      Anchor anchor;
       const size_t siblings = d == 0 ? 1 : 8;
       for (size_t g0 = begin; g0 < end; g0 += siblings)
         cells_representatives(
             d, b0, g0, siblings, [&](size_t i) { return lists[i]; }, s, subs, candidates,
-            out.points, out.entries);
+            d == 0 ? nullptr : anchor_of((b0 + g0) / 8, d, anchor), out);
     });
   }
 
@@ -968,7 +996,7 @@ class Builder {
           const uint8_t cross = static_cast<uint8_t>(~open);
           crossed[g0 / 8] = cross;
           if (samples_ * samples_ * samples_ <= 64)
-            sibling_masks(g0, tris, lattice, cross, anchor_of(parent, anchor), s, out);
+            sibling_masks(g0, tris, lattice, cross, anchor_of(parent, d, anchor), s, out);
           else
             sibling_representatives(d, b0, g0, cross, s, subs, out.points, out.entries);
           continue;
@@ -993,8 +1021,8 @@ class Builder {
         }
         crossed[g0 / 8] = cross;
         cells_representatives(
-            d, b0, g0, 8, [&](size_t i) { return local[i - g0]; }, s, subs, candidates, out.points,
-            out.entries);
+            d, b0, g0, 8, [&](size_t i) { return local[i - g0]; }, s, subs, candidates,
+            anchor_of(parent, d, anchor), out);
       }
     });
   }
@@ -1026,7 +1054,7 @@ class Builder {
         if (lists[i].empty()) continue;
         rank[i] = static_cast<uint32_t>(next.size());
         next.push_back(coord(d, b0 + i));
-        if (d + 1 == depth_ && d >= 1) next_grand_.push_back(static_cast<uint32_t>((b0 + i) / 8));
+        if (d >= 1) next_grand_.push_back(static_cast<uint32_t>((b0 + i) / 8));
         next_lists.start.push_back(base + lists.start[i + 1]);
       }
     }
@@ -1107,8 +1135,8 @@ class Builder {
   const GwnForest* gwn_ = nullptr;
   LargeVector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank
-  /// The last level (D ≥ 2): per parent (by rank), its own parent's rank at level D − 2, and
-  /// the triangles of those grandparents, by rank (see Anchor).
+  /// Levels d ≥ 2: per parent (by rank), its own parent's rank at level d − 2, and the
+  /// triangles of those grandparents, by rank (see Anchor).
   LargeVector<uint32_t> grand_rank_, next_grand_;
   Lists grand_lists_;
 };
