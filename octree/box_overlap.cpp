@@ -505,15 +505,17 @@ __attribute__((target("avx2"))) uint8_t edge_axes_avx2(const Vec3 (&v)[3],
   const __m256d err = _mm256_set1_pd(kPlaneSideErr);
   const __m256d mag_lo = _mm256_set1_pd(kFilterMin), mag_hi = _mm256_set1_pd(kFilterMax);
   const __m256d zero = _mm256_setzero_pd();
+  // Lane e: edge e from p = v[e] to q = v[(e + 1) % 3]; p's and q's coordinate k.
+  __m256d ps[3], qs[3];
+  for (int k = 0; k < 3; ++k) {
+    ps[k] = _mm256_setr_pd(v[0][k], v[1][k], v[2][k], v[0][k]);
+    qs[k] = _mm256_permute4x64_pd(ps[k], 0x09);  // lanes 1, 2, 0, 0
+  }
   for (int axis = 0; axis < 3; ++axis) {
     if (alive == 0) return 0;
     const int u = (axis + 1) % 3, w = (axis + 2) % 3;
     const int t = orient2d(v[0], v[1], v[2], axis);
-    // Lane e: edge e from p = v[e] to q = v[(e + 1) % 3].
-    const __m256d pu = _mm256_setr_pd(v[0][u], v[1][u], v[2][u], v[0][u]);
-    const __m256d pw = _mm256_setr_pd(v[0][w], v[1][w], v[2][w], v[0][w]);
-    const __m256d qu = _mm256_setr_pd(v[1][u], v[2][u], v[0][u], v[1][u]);
-    const __m256d qw = _mm256_setr_pd(v[1][w], v[2][w], v[0][w], v[1][w]);
+    const __m256d pu = ps[u], pw = ps[w], qu = qs[u], qw = qs[w];
     const __m256d cu = _mm256_sub_pd(pw, qw), cw = _mm256_sub_pd(qu, pu);
     __m256d gu[3], gw[3];
     for (int i = 0; i < 3; ++i) {
