@@ -108,6 +108,7 @@ void masks4_baseline(const double* fx, const double* fy, const double* fz, doubl
 // -Wuninitialized reports at every use.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 /// n = 4 (64 points), 8 per instruction: lanes i + 4·(j & 1) of rows (j, j + 1).
 __attribute__((target("avx512f"))) void masks4_avx512(const double* fx, const double* fy,
                                                       const double* fz, double bound, uint64_t& pos,
@@ -153,6 +154,28 @@ __attribute__((target("avx2"))) void masks4_avx2(const double* fx, const double*
   }
   pos = p;
   neg = q;
+}
+
+/// The cells of `cells` (bit c: cell c takes half (c >> a) & 1 of axis a), each with masks4.
+/// fx[h], fy[h], fz[h]: the plane's terms at a half's 4 sub-point coordinates.
+using HalfTerms = double[2][4];
+__attribute__((target("avx512f"))) void cells4_avx512(const HalfTerms& fx, const HalfTerms& fy,
+                                                      const HalfTerms& fz, double bound,
+                                                      uint32_t cells, uint64_t* pos,
+                                                      uint64_t* neg) {
+  for (; cells != 0; cells &= cells - 1) {
+    const int c = std::countr_zero(cells);
+    masks4_avx512(fx[c & 1], fy[(c >> 1) & 1], fz[c >> 2], bound, pos[c], neg[c]);
+  }
+}
+
+__attribute__((target("avx2"))) void cells4_avx2(const HalfTerms& fx, const HalfTerms& fy,
+                                                 const HalfTerms& fz, double bound, uint32_t cells,
+                                                 uint64_t* pos, uint64_t* neg) {
+  for (; cells != 0; cells &= cells - 1) {
+    const int c = std::countr_zero(cells);
+    masks4_avx2(fx[c & 1], fy[(c >> 1) & 1], fz[c >> 2], bound, pos[c], neg[c]);
+  }
 }
 
 /// Lane l of index vector v of axis a: the lattice coordinate along a of point 8v + l (27
@@ -720,6 +743,49 @@ void PlaneSide::grid_masks(const double* xs, const double* ys, const double* zs,
     const int sign = exact_sign({xs[p & 3], ys[(p >> 2) & 3], zs[p >> 4]});
     pos |= uint64_t{sign > 0} << p;
     neg |= uint64_t{sign < 0} << p;
+  }
+}
+
+void PlaneSide::cell_masks(const double* const (&xs)[2], const double* const (&ys)[2],
+                           const double* const (&zs)[2], int n, uint8_t cells, uint64_t* pos,
+                           uint64_t* neg) const {
+  if (n != 4) {
+    for (uint32_t m = cells; m != 0; m &= m - 1) {
+      const int c = std::countr_zero(m);
+      grid_masks(xs[c & 1], ys[(c >> 1) & 1], zs[c >> 2], n, pos[c], neg[c]);
+    }
+    return;
+  }
+  // grid_masks' terms, once per half instead of once per cell.
+  double fx[2][4], fy[2][4], fz[2][4];
+  for (int h = 0; h < 2; ++h)
+    for (int i = 0; i < 4; ++i) {
+      fx[h][i] = normal_.x * (xs[h][i] - a_.x);
+      fy[h][i] = normal_.y * (ys[h][i] - a_.y);
+      fz[h][i] = normal_.z * (zs[h][i] - a_.z);
+    }
+#if defined(COVER_X86_DISPATCH)
+  const Simd level = simd();
+  if (level == Simd::kAvx512)
+    cells4_avx512(fx, fy, fz, bound_, cells, pos, neg);
+  else if (level == Simd::kAvx2)
+    cells4_avx2(fx, fy, fz, bound_, cells, pos, neg);
+  else
+#endif
+    for (uint32_t m = cells; m != 0; m &= m - 1) {
+      const int c = std::countr_zero(m);
+      masks4_baseline(fx[c & 1], fy[(c >> 1) & 1], fz[c >> 2], bound_, pos[c], neg[c]);
+    }
+  // Points the filter leaves undecided: orient3d.
+  for (uint32_t m = cells; m != 0; m &= m - 1) {
+    const int c = std::countr_zero(m);
+    const double *x = xs[c & 1], *y = ys[(c >> 1) & 1], *z = zs[c >> 2];
+    for (uint64_t u = ~(pos[c] | neg[c]); u != 0; u &= u - 1) {
+      const int p = std::countr_zero(u);
+      const int sign = exact_sign({x[p & 3], y[(p >> 2) & 3], z[p >> 4]});
+      pos[c] |= uint64_t{sign > 0} << p;
+      neg[c] |= uint64_t{sign < 0} << p;
+    }
   }
 }
 

@@ -639,6 +639,8 @@ class Builder {
         for (int i = 0; i < n; ++i) sub[a][h][i] = lo + (i + 0.5) * step;
         mid[a][h] = lo + 0.5 * (hi - lo);
       }
+    const double* const halves[3][2] = {
+        {sub[0][0], sub[0][1]}, {sub[1][0], sub[1][1]}, {sub[2][0], sub[2][1]}};
     s.pos.resize(k);
     constexpr uint32_t kAll27 = (uint32_t{1} << 27) - 1;
     for (size_t j = 0; j < k; ++j) {
@@ -649,6 +651,7 @@ class Builder {
       const uint32_t some_nonneg = detail::spread27(~s.lattice_neg[j] & kAll27);
       Set& pos = s.pos[j];
       pos.fill(0);
+      uint8_t grid = 0;  // the crossed cells the plane passes through: per-point signs
       for (int c = 0; c < 8; ++c) {
         const int corner = detail::kOctantCorner[c];
         if (!(some_nonpos >> corner & 1)) {
@@ -658,13 +661,19 @@ class Builder {
         }
         if (!(some_nonneg >> corner & 1)) continue;
         if (full[c] != 0) {
-          uint64_t neg = 0;
-          plane.grid_masks(sub[0][c & 1], sub[1][(c >> 1) & 1], sub[2][c >> 2], n, pos[c], neg);
-          on[c] |= full[c] & ~(pos[c] | neg);
+          grid |= static_cast<uint8_t>(1u << c);
         } else {
           const int side = plane.sign({mid[0][c & 1], mid[1][(c >> 1) & 1], mid[2][c >> 2]});
           pos[8] |= uint64_t{side > 0} << c;
           on[8] |= uint64_t{side == 0} << c;
+        }
+      }
+      if (grid != 0) {
+        uint64_t neg[8];
+        plane.cell_masks(halves[0], halves[1], halves[2], n, grid, pos.data(), neg);
+        for (uint32_t m = grid; m != 0; m &= m - 1) {
+          const int c = std::countr_zero(m);
+          on[c] |= full[c] & ~(pos[c] | neg[c]);
         }
       }
     }

@@ -100,6 +100,12 @@ class PlaneSide {
   /// Precondition: n³ ≤ 64.
   void grid_masks(const double* xs, const double* ys, const double* zs, int n, uint64_t& pos,
                   uint64_t& neg) const;
+  /// grid_masks for the cells of `cells` (bit c) of a sibling set: cell c's points are
+  /// (xs[c & 1][i], ys[(c >> 1) & 1][j], zs[c >> 2][k]), its masks pos[c] and neg[c]. The
+  /// same signs, the terms computed once per half. Precondition: n³ ≤ 64.
+  void cell_masks(const double* const (&xs)[2], const double* const (&ys)[2],
+                  const double* const (&zs)[2], int n, uint8_t cells, uint64_t* pos,
+                  uint64_t* neg) const;
   /// The signs at the 27 points of the lattice planes[0] × planes[1] × planes[2] as bit masks
   /// (bit (iz·3 + iy)·3 + ix). Precondition: the lattice lies in the box.
   void lattice_masks(const double (&planes)[3][3], uint32_t& pos, uint32_t& neg) const;

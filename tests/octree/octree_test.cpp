@@ -374,6 +374,28 @@ TEST(BoxOverlap, PlaneMasksAreSignAtEverySimdLevel) {
         const int s = side.sign({xs[0][p & 3], xs[1][(p >> 2) & 3], xs[2][p >> 4]});
         ASSERT_EQ(int(pos >> p & 1) - int(neg >> p & 1), s) << level << " " << i << " " << p;
       }
+      // cell_masks over a sibling set: cell c takes the half (c >> a) & 1 of axis a, each half
+      // 4 sub-points (both halves inside `box`).
+      double halves[3][2][4];
+      for (int k = 0; k < 3; ++k)
+        for (int h = 0; h < 2; ++h)
+          for (int j = 0; j < 4; ++j)
+            halves[k][h][j] = planes[k][h] + (j + 0.5) * (planes[k][h + 1] - planes[k][h]) / 4;
+      const double* const hx[2] = {halves[0][0], halves[0][1]};
+      const double* const hy[2] = {halves[1][0], halves[1][1]};
+      const double* const hz[2] = {halves[2][0], halves[2][1]};
+      const auto cells = static_cast<uint8_t>(i % 255 + 1);
+      uint64_t cpos[8] = {}, cneg[8] = {};
+      side.cell_masks(hx, hy, hz, 4, cells, cpos, cneg);
+      for (int cell = 0; cell < 8; ++cell) {
+        if (!(cells >> cell & 1)) continue;
+        for (int p = 0; p < 64; ++p) {
+          const int s = side.sign(
+              {hx[cell & 1][p & 3], hy[(cell >> 1) & 1][(p >> 2) & 3], hz[cell >> 2][p >> 4]});
+          ASSERT_EQ(int(cpos[cell] >> p & 1) - int(cneg[cell] >> p & 1), s)
+              << level << " " << i << " " << cell << " " << p;
+        }
+      }
       uint32_t lpos = 0, lneg = 0;
       side.lattice_masks(planes, lpos, lneg);
       EXPECT_EQ((lpos | lneg) >> 27, 0u);
