@@ -249,8 +249,8 @@ __attribute__((target("avx2"))) void edge_orientations_avx2(const Vec3& r, const
   // orient3d(r, q, C, D) for lane e: C = v[e], D = v[(e + 1) % 3].
   __m256d ad[3], bd[3], cd[3];
   for (int k = 0; k < 3; ++k) {
-    const __m256d dk = _mm256_setr_pd((*v[1])[k], (*v[2])[k], (*v[0])[k], (*v[1])[k]);
     const __m256d ck = _mm256_setr_pd((*v[0])[k], (*v[1])[k], (*v[2])[k], (*v[0])[k]);
+    const __m256d dk = _mm256_permute4x64_pd(ck, 0x49);  // lanes 1, 2, 0, 1
     ad[k] = _mm256_sub_pd(_mm256_set1_pd(r[k]), dk);
     bd[k] = _mm256_sub_pd(_mm256_set1_pd(q[k]), dk);
     cd[k] = _mm256_sub_pd(ck, dk);
