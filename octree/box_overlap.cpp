@@ -717,33 +717,11 @@ void PlaneSide::grid_masks(const double* xs, const double* ys, const double* zs,
     }
     return;
   }
-  // n = 4: one row of 4 points per nibble, the same sums as sign() (x, y, z in that order).
-  double fx[4], fy[4], fz[4];
-  for (int i = 0; i < 4; ++i) {
-    fx[i] = normal_.x * (xs[i] - a_.x);
-    fy[i] = normal_.y * (ys[i] - a_.y);
-    fz[i] = normal_.z * (zs[i] - a_.z);
-  }
-  const double b = bound_;
-  pos = neg = 0;
-#if defined(COVER_X86_DISPATCH)
-  const Simd level = simd();
-  if (level == Simd::kAvx512) {
-    masks4_avx512(fx, fy, fz, b, pos, neg);
-  } else if (level == Simd::kAvx2) {
-    masks4_avx2(fx, fy, fz, b, pos, neg);
-  } else
-#endif
-  {
-    masks4_baseline(fx, fy, fz, b, pos, neg);
-  }
-  // Points the filter leaves undecided: orient3d.
-  for (uint64_t m = ~(pos | neg); m != 0; m &= m - 1) {
-    const int p = std::countr_zero(m);
-    const int sign = exact_sign({xs[p & 3], ys[(p >> 2) & 3], zs[p >> 4]});
-    pos |= uint64_t{sign > 0} << p;
-    neg |= uint64_t{sign < 0} << p;
-  }
+  // n = 4: cell_masks with one cell (cell 0 takes the low half of every axis).
+  const double* const x[2] = {xs, xs};
+  const double* const y[2] = {ys, ys};
+  const double* const z[2] = {zs, zs};
+  cell_masks(x, y, z, 4, 1, &pos, &neg);
 }
 
 void PlaneSide::cell_masks(const double* const (&xs)[2], const double* const (&ys)[2],
@@ -756,7 +734,7 @@ void PlaneSide::cell_masks(const double* const (&xs)[2], const double* const (&y
     }
     return;
   }
-  // grid_masks' terms, once per half instead of once per cell.
+  // sign()'s products, once per half: the cells taking a half share them.
   double fx[2][4], fy[2][4], fz[2][4];
   for (int h = 0; h < 2; ++h)
     for (int i = 0; i < 4; ++i) {
