@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 
 #include "brep/clip.h"
 #include "covering/bounds.h"
@@ -85,12 +86,16 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
 /// `where`: the input file, and a leaf's JSON path in a scene.
 template <typename Clip>
 brep::ClipResult clip_named(Clip&& clip, const std::string& where) {
+  const auto named = [&](const char* what) {  // once: a leaf's own message may start with it
+    return std::string_view(what).starts_with(where + ": ") ? std::string(what)
+                                                             : where + ": " + what;
+  };
   try {
     return clip();
   } catch (const InputError& e) {
-    throw InputError(where + ": " + e.what());
+    throw InputError(named(e.what()));
   } catch (const NotComputable& e) {
-    throw NotComputable(where + ": " + e.what());
+    throw NotComputable(named(e.what()));
   }
 }
 
@@ -110,7 +115,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     if (!scene_out && !is_mesh_extension(out))
       throw InputError(out.string() + ": unsupported output format (use .off .obj .stl .ply or .json)");
   }
-  const Model model = load_model(o.input, common.load_options());
+  const Model model = load_model(o.input, common.load_options(), "clip needs closed leaves");
   const Solid& s = model.solid();
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);

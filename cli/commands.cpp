@@ -89,8 +89,14 @@ json camera_json(const Camera& c) {
 
 }  // namespace
 
-Model load_model(const std::string& input, const LoadOptions& options) {
+Model load_model(const std::string& input, const LoadOptions& options,
+                 const std::string& closed_needed) {
   Model model = load(input, options);
+  if (!closed_needed.empty())
+    for (const Leaf& l : model.solid().leaves)
+      if (l.open())
+        throw InputError(l.name + ": open mesh (" + std::to_string(l.boundary_edges) +
+                         " boundary edges): " + closed_needed);
   for (const std::string& w : model.warnings()) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   return model;
 }
@@ -174,7 +180,9 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
 
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   Timing timing;
-  const Model model = load_model(o.input, common.load_options());
+  const Model model = load_model(
+      o.input, common.load_options(),
+      o.exact ? "no exact volume; the winding method estimates it (without --exact)" : "");
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
   VolumeOptions vo;

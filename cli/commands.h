@@ -33,8 +33,11 @@ struct CommonOptions {
 };
 
 /// Loads INPUT as every command does (cover::load with the --max-memory file limit, or `options`)
-/// and prints its warnings on stderr ("cover: warning: ...").
-Model load_model(const std::string& input, const LoadOptions& options);
+/// and prints its warnings on stderr ("cover: warning: ..."). For a command that refuses open
+/// leaves, `closed_needed` gives the reason: an open leaf is then refused at once with InputError
+/// "LEAF: open mesh (N boundary edges): REASON", and no warning is printed.
+Model load_model(const std::string& input, const LoadOptions& options,
+                 const std::string& closed_needed = {});
 
 struct InfoOptions {
   std::string input;

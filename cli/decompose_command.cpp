@@ -2,7 +2,7 @@
 // exact convex decomposition by reflex-edge plane cuts (brep/decompose.h). A scene is evaluated
 // first (boolean/evaluate.h, as `cover evaluate`); a single leaf is decomposed as it is.
 // DIR/piece_NNNN.EXT (closed, outward, exactly convex triangle meshes) and DIR/pieces.json
-// are written as one batch: all or nothing.
+// are written as one batch: all or nothing, DIR swapped in whole (cli/output.h pieces_folder).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,9 +26,8 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   if (!is_mesh_extension("piece" + ext))
     throw InputError("--ext " + o.ext + ": unsupported mesh format (use .off, .obj, .stl or .ply)");
   const std::filesystem::path dir = o.output;
-  if (std::filesystem::exists(dir) && !std::filesystem::is_directory(dir))
-    throw InputError(dir.string() + ": exists and is not a folder");
-  const Model model = load_model(o.input, common.load_options());
+  const auto folder = pieces_folder(o.output);
+  const Model model = load_model(o.input, common.load_options(), "decompose needs closed leaves");
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
   brep::DecomposeResult r;
@@ -43,16 +42,13 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   if (r.pieces.empty())
     std::fprintf(stderr, "cover: warning: the result is empty; no piece written\n");
 
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw InputError(dir.string() + ": cannot create the folder (" + ec.message() + ")");
   nlohmann::json list = nlohmann::json::array();
   OutputBatch outputs;
   for (size_t i = 0; i < r.pieces.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "piece_%04zu", i);
     const std::string file = name + ext;
-    write_mesh(dir / file, r.pieces[i]);
+    write_mesh(folder->path() / file, r.pieces[i]);
     list.push_back({{"file", file},
                     {"volume", signed_volume(r.pieces[i])},
                     {"vertices", r.pieces[i].vertices.size()},
@@ -68,12 +64,13 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   j["hull_change"] = r.hull_change;
   nlohmann::json doc = j;
   doc["pieces"] = list;
-  write_atomically(dir / "pieces.json", [&](const std::filesystem::path& temp) {
+  write_atomically(folder->path() / "pieces.json", [&](const std::filesystem::path& temp) {
     std::ofstream out(temp, std::ios::binary);
     out << doc.dump(1) << "\n";
     out.flush();
     return out.good();
   }, "the piece list");
+  folder->commit();
   outputs.commit();
   timing.lap(Timing::kWrite);
   timing.put(j);

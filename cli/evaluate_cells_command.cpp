@@ -2,7 +2,8 @@
 // (CONTRACT.md "More inputs and outputs"): the result evaluated, cut into N×N×N cells by the
 // plane patcher (brep/cells.h) and glued back into OUT; with --pieces, DIR/cell_I_J_K.ext (one
 // closed piece per non-empty cell, I, J, K without padding) and DIR/pieces.json. OUT and every
-// file of DIR are committed together (one OutputBatch).
+// file of DIR are committed together (one OutputBatch; DIR swapped in whole, cli/output.h
+// pieces_folder).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -42,15 +43,18 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
   const double n = o.cells;
   check_memory(n * n * n * kBytesPerCell, common.max_memory_bytes(),
-               "--cells " + std::to_string(o.cells) + ": the pieces");
+               "--cells " + std::to_string(o.cells) + ": cutting into cells");
   std::optional<VoxelBounds> bounds;
   if (!o.bounds.empty()) {
     const std::vector<double> v = parse_numbers(o.bounds, "--bounds", 4, ",");
     if (!(v[3] > 0))
       throw InputError("--bounds: expected xmin,ymin,zmin,size with size > 0, got '" + o.bounds + "'");
+    check_bounds_range({v[0], v[1], v[2]}, v[3]);
     bounds = VoxelBounds{{v[0], v[1], v[2]}, v[3]};
   }
-  const Model model = load_model(o.input, common.load_options());
+  std::unique_ptr<OutputFolder> folder;
+  if (!o.pieces.empty()) folder = pieces_folder(o.pieces);
+  const Model model = load_model(o.input, common.load_options(), "evaluate needs closed leaves");
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
   const CellsEvaluation r = model.evaluate_cells(o.cells, bounds);
@@ -75,12 +79,7 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
                       {"collapsed_edges", p.collapsed_edges}});
   }
   if (!o.pieces.empty()) {
-    const std::filesystem::path dir(o.pieces);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-      throw InputError(o.pieces + ": cannot create the pieces folder" +
-                       (ec ? " (" + ec.message() + ")" : std::string(" (not a folder)")));
+    const std::filesystem::path dir = folder->path();
     for (const brep::CellPiece& p : r.cells.pieces) write_mesh(dir / piece_name(p, ext), p.mesh);
     const json index = {{"cells", o.cells},
                         {"bounds", {{"min", to_json(r.grid.min)}, {"size", r.grid.size}}},
@@ -92,6 +91,7 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
       const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
       return std::fclose(f) == 0 && ok;
     }, "the pieces index");
+    folder->commit();
   }
   outputs.commit();
   timing.lap(Timing::kWrite);

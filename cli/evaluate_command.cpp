@@ -32,7 +32,7 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
   if (o.leaf_ids && lower_extension(o.output) != ".ply" && lower_extension(o.output) != ".obj")
     throw InputError(o.output + ": --leaf-ids needs a .ply or .obj output");
-  const Model model = load_model(o.input, common.load_options());
+  const Model model = load_model(o.input, common.load_options(), "evaluate needs closed leaves");
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
   const EvaluateResult r = model.evaluate();

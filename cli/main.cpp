@@ -75,6 +75,16 @@ CLI::Validator real_number(double lo, double hi) {
       help.str());
 }
 
+/// Check for a path or list option: not empty ("--pieces: expected a folder, got ''"); an empty
+/// value would otherwise read as "not given".
+CLI::Validator non_empty(const std::string& expected) {
+  return CLI::Validator(
+      [expected](std::string& text) -> std::string {
+        return text.empty() ? "expected " + expected + ", got ''" : "";
+      },
+      "NON-EMPTY");
+}
+
 void add_common(CLI::App* cmd, cover::cli::CommonOptions& common) {
   cmd->add_flag("--json", common.json, "Print exactly one JSON object on stdout");
   cmd->add_flag("--quiet", common.quiet, "No progress bars");
@@ -141,14 +151,15 @@ int main(int argc, char** argv) {
   cover::cli::RenderCommandOptions ren;
   CLI::App* ren_cmd = app.add_subcommand("render", "Ray-cast preview PNG of the non-evaluated solid");
   ren_cmd->add_option("INPUT", ren.input, "Mesh or scene")->required();
-  ren_cmd->add_option("-o,--output", ren.output, "Output PNG")->required();
+  ren_cmd->add_option("-o,--output", ren.output, "Output PNG")->required()->check(non_empty("a file"));
   ren_cmd->add_option("--size", ren.size, "Image size WxH")->capture_default_str();
   ren_cmd->add_option("--view", ren.view, "iso, front, back, left, right, top or bottom")
       ->capture_default_str();
   ren_cmd->add_flag("--perspective", ren.perspective, "Perspective camera (default orthographic)");
   ren_cmd->add_option("--section", ren.section, "Remove n.x > d and show the cut: nx,ny,nz,d");
-  ren_cmd->add_option("--depth", ren.depth, "Also write 16-bit depth PNG");
-  ren_cmd->add_option("--ids", ren.ids, "Also write 16-bit leaf-id PNG (0 background, 65535 cap)");
+  ren_cmd->add_option("--depth", ren.depth, "Also write 16-bit depth PNG")->check(non_empty("a file"));
+  ren_cmd->add_option("--ids", ren.ids, "Also write 16-bit leaf-id PNG (0 background, 65535 cap)")
+      ->check(non_empty("a file"));
   ren_cmd->add_option("--background", ren.background, "Background colour r,g,b (0-255)")
       ->capture_default_str();
   ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
@@ -162,6 +173,7 @@ int main(int argc, char** argv) {
   ren_cmd->add_option("--views", ren.views,
                       "Frames from several views, e.g. iso,front,top: OUT_iso.png ... "
                       "(one load, one BVH)")
+      ->check(non_empty("views, e.g. iso,front,top"))
       ->excludes(turntable);
   add_common(ren_cmd, common);
 
@@ -189,7 +201,8 @@ int main(int argc, char** argv) {
   vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy, .raw, .zarr or .vdb")->required();
   vox_cmd->add_option("--bounds", vox.bounds, "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
   vox_cmd->add_option("--chunk", vox.chunk, "Zarr chunk edge C (default 128)")->transform(whole_number(1, 16384));
-  vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)");
+  vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)")
+      ->check(non_empty("a file"));
   add_common(vox_cmd, common);
 
   cover::cli::OctreeCommandOptions oct;
@@ -213,7 +226,8 @@ int main(int argc, char** argv) {
   clp_cmd->add_option("--plane", clp.plane, "Plane nx,ny,nz,d (ABOVE: n.x >= d)")->required();
   clp_cmd->add_option("-o,--output", clp.output, "ABOVE: mesh (.off .obj .stl .ply) or .json scene")
       ->required();
-  clp_cmd->add_option("--below", clp.below, "Also write BELOW (same kind as ABOVE)");
+  clp_cmd->add_option("--below", clp.below, "Also write BELOW (same kind as ABOVE)")
+      ->check(non_empty("a file"));
   clp_cmd->add_flag("--triangulate", clp.triangulate, "Triangulate caps (default: convex polygons)");
   add_common(clp_cmd, common);
 
@@ -223,12 +237,13 @@ int main(int argc, char** argv) {
   eva_cmd->add_option("INPUT", eva.input, "Mesh or scene")->required();
   eva_cmd->add_option("-o,--output", eva.output, "OUT.off, .obj, .stl or .ply")->required();
   eva_cmd->add_flag("--leaf-ids", eva.leaf_ids,
-                    "Each face's source leaf: PLY face property 'leaf', OBJ groups leaf_<i>_<name>");
+                    "Each face's source leaf index i: PLY face property 'leaf', OBJ groups 'g leaf_<i>'");
   eva_cmd->add_option("--cells", eva.cells,
                       "Evaluate through N×N×N cells (plane clip and patch); OUT = the pieces glued")
       ->transform(whole_number(1));
   eva_cmd->add_option("--pieces", eva.pieces,
-                      "With --cells: write DIR/cell_I_J_K.ext (closed pieces) and DIR/pieces.json");
+                      "With --cells: write DIR/cell_I_J_K.ext (closed pieces) and DIR/pieces.json")
+      ->check(non_empty("a folder"));
   eva_cmd->add_option("--bounds", eva.bounds,
                       "With --cells: the cells' cube xmin,ymin,zmin,size (default: the box, cubic)");
   add_common(eva_cmd, common);
@@ -238,7 +253,8 @@ int main(int argc, char** argv) {
       "decompose", "Exact convex decomposition by plane cuts through reflex edges");
   dec_cmd->add_option("INPUT", dec.input, "Closed mesh or scene (evaluated first)")->required();
   dec_cmd->add_option("-o,--output", dec.output, "DIR: piece_NNNN.EXT and pieces.json")
-      ->required();
+      ->required()
+      ->check(non_empty("a folder"));
   dec_cmd->add_option("--ext", dec.ext, "Pieces' mesh format: .off, .obj, .stl or .ply")
       ->capture_default_str();
   add_common(dec_cmd, common);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "solid/errors.h"
+#include "solid/mesh_io.h"
 
 namespace cover::cli {
 
@@ -29,6 +30,40 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
   return out;
 }
 
+namespace {
+
+/// True when `text` from `at` on is `parts` runs of digits joined by '_', then a mesh extension.
+bool numbers_then_mesh(const std::string& text, size_t at, int parts) {
+  for (int p = 0; p < parts; ++p) {
+    const size_t start = at;
+    while (at < text.size() && text[at] >= '0' && text[at] <= '9') ++at;
+    if (at == start) return false;
+    if (p + 1 < parts && (at >= text.size() || text[at++] != '_')) return false;
+  }
+  const std::string ext = text.substr(at);
+  return ext.find('.', 1) == std::string::npos && is_mesh_extension("piece" + ext);
+}
+
+bool own_piece_name(const std::string& name) {
+  if (name == "pieces.json") return true;
+  if (name.rfind("piece_", 0) == 0) return numbers_then_mesh(name, 6, 1);
+  if (name.rfind("cell_", 0) == 0) return numbers_then_mesh(name, 5, 3);
+  return false;
+}
+
+}  // namespace
+
+std::unique_ptr<OutputFolder> pieces_folder(const std::string& dir) {
+  return std::make_unique<OutputFolder>(dir, "the pieces", [](const std::filesystem::path& folder) {
+    return refuse_unless_own_folder(folder, "pieces.json", own_piece_name, "a pieces folder");
+  });
+}
+void check_bounds_range(const Vec3& min, double size) {
+  for (int a = 0; a < 3; ++a)
+    if (!(std::abs(min[a]) <= kMaxCoordinate && std::abs(min[a] + size) <= kMaxCoordinate))
+      throw InputError("--bounds: the cube reaches beyond the supported coordinate range ±2^64 "
+                       "(about ±1.8e19) on " + std::string(1, "xyz"[a]));
+}
 
 Progress::Progress(std::string label, bool quiet)
     : label_(std::move(label)),

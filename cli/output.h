@@ -2,10 +2,12 @@
 // Small helpers for the CLI's outputs: progress on a terminal, and JSON of shared types.
 
 #include <chrono>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "solid/atomic_file.h"
 #include "solid/types.h"
 
 namespace cover::cli {
@@ -34,6 +36,17 @@ nlohmann::json to_json(const Bbox& b);
 /// naming `option` otherwise.
 std::vector<double> parse_numbers(const std::string& text, const std::string& option, size_t count,
                                   const char* separators);
+
+/// The output folder of `--pieces DIR` and `decompose -o DIR` (solid/atomic_file.h OutputFolder):
+/// built beside DIR and swapped in whole at the batch's commit. An existing DIR is replaced only
+/// when it is empty or a pieces folder Cover wrote: pieces.json, and only regular files named
+/// pieces.json, piece_N.EXT or cell_I_J_K.EXT (EXT a mesh extension); anything else is refused.
+std::unique_ptr<OutputFolder> pieces_folder(const std::string& dir);
+
+/// Refuses (InputError "--bounds: ...") a cube reaching beyond the supported coordinate range
+/// ±kMaxCoordinate (solid/types.h) on some axis: its cells and their corners would overflow or
+/// leave the range every exact predicate is proven for.
+void check_bounds_range(const Vec3& min, double size);
 
 /// Seconds since `start` as a double.
 double seconds_since(std::chrono::steady_clock::time_point start);

@@ -43,6 +43,7 @@ VoxelBounds bounds_option(const std::string& text, const Model& model, int n,
       !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]) || !(v[3] > 0) ||
       !std::isfinite(v[3]))
     throw InputError("--bounds: expected xmin,ymin,zmin,size with size > 0, got '" + text + "'");
+  check_bounds_range({v[0], v[1], v[2]}, v[3]);
   return {{v[0], v[1], v[2]}, v[3]};
 }
 
@@ -179,7 +180,15 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   oo.max_bytes = common.max_memory_bytes();
   Progress progress("octree", common.quiet);
   oo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
-  const Octree tree = model.octree(oo, bounds_option(o.bounds, model, 1 << o.depth, o.input));
+  // A .bt's cube lies on OctoMap's grid (octree/octree_io.h); given --bounds are checked there.
+  const bool bt = lower_extension(o.output) == ".bt";
+  VoxelBounds bounds;
+  if (bt && o.bounds.empty() && o.depth >= 1 && model.bounded())
+    bounds = octomap_bounds(*model.bounds(), o.depth);
+  else
+    bounds = bounds_option(o.bounds, model, 1 << o.depth, o.input);
+  if (bt && o.depth >= 1) check_octomap_cube(o.output, bounds, o.depth);
+  const Octree tree = model.octree(oo, bounds);
   progress.finish();
   timing.lap(Timing::kKernel);
   OutputBatch outputs;

@@ -161,115 +161,181 @@ void write_htg(std::ostream& out, const Octree& tree) {
 }
 
 // ---- .bt: OctoMap binary tree -------------------------------------------------------------------
-// OctoMap's voxels are the cells of a grid through the origin with 2^16 keys per axis and no
-// origin field, so the cube is written centred on the origin (x_octomap = x − cube centre): cell
-// (i, j, k) of depth d then spans the keys 2^15 − 2^(D−1) + i·2^(D−d) + [0, 2^(D−d)), a node of
-// OctoMap depth 16 − (D − d). For D < 16 the root cell straddles key 2^15 on every axis and is no
-// OctoMap node: OctoMap's root has 8 children, and child o reaches the depth-1 cell o through a
-// chain of single children (index o's complement: the corner at the centre) down to depth
-// 17 − D. A root leaf is written as its 8 children.
-// Written directly, as liboctomap's OcTree::writeBinary would write the tree it builds from these
-// leaves (to maximum likelihood, then prune(): bottom-up, a node whose 8 children are leaves of
-// one state becomes a leaf, level by level from depth 15, stopping at the first level where none
-// does, the root never), node by node depth-first: per node 2 bytes, 2 bits per child (01
-// occupied leaf, 10 free leaf, 11 inner, 00 none), then its inner children. Why not liboctomap:
-// its tree, built leaf by leaf, took 3.3 s for bunny00 at depth 10 (9.5 M nodes) against a
-// 1 s build; this writes it in a single pass over the nodes. The tests compare the bytes with
-// liboctomap's.
+// Notation: res = h = the finest cell size; OctoMap's key k (0 ≤ k < 2^16 per axis) is the world
+// interval [(k − 2^15)·res, (k − 2^15 + 1)·res); an OctoMap node of depth t (0..16) spans S =
+// 2^(16−t) keys per axis from a multiple of S. The cube's min is m·res (m = min/res, a whole
+// number, checked), so Cover's cell (i, j, k) of depth d spans the keys b + (i, j, k)·2^(D−d) +
+// [0, 2^(D−d)), b = m + 2^15: its world place. b need not be a multiple of the cell's span, so a
+// Cover cell may straddle OctoMap nodes: the OctoMap tree is walked from its root, and for each
+// node the Cover nodes meeting it at its scale ("refs": Cover nodes of span ≤ S, or leaves, whose
+// parent spans more; at most 8) tell its code: a node inside the cube whose refs all have one
+// uniform code (every leaf below them occupied, or every one free) is a leaf of that code; a
+// node outside the cube is absent; any other is inner. The result is the canonical pruned tree
+// (every node whose 8 children are leaves of one code is a leaf; OctoMap's root is always inner).
+// Written node by node depth-first, as OcTree::writeBinary does: per inner node 2 bytes, 2 bits
+// per child (01 occupied leaf, 10 free leaf, 11 inner, 00 none), then its inner children. The
+// tests compare the bytes with liboctomap's own tree of the same leaves, fully pruned.
 
-/// Per node, its OctoMap child code after pruning: 1 occupied leaf, 2 free leaf, 3 inner.
-std::vector<uint8_t> bt_codes(const Octree& tree, double threshold) {
-  std::vector<uint8_t> code(tree.nodes.size());
-  for (size_t i = 0; i < tree.nodes.size(); ++i) {
-    const Octree::Node& node = tree.nodes[i];
-    const bool occupied = node.state == CellState::kFull ||
-                          (node.state == CellState::kPartial && node.occupancy >= threshold);
-    code[i] = node.first_child != 0 ? 3 : (occupied ? 1 : 2);
+/// Codes: 0 none, 1 occupied leaf, 2 free leaf, 3 inner.
+struct BtKeys {
+  std::array<int64_t, 3> base;  ///< b: the key of the cube's min corner
+  int depth;                    ///< D
+};
+
+/// b of a .bt of the cube `bounds` at `depth`; InputError naming `path` when the cube is not on
+/// OctoMap's grid.
+BtKeys bt_keys(const fs::path& path, const VoxelBounds& bounds, int depth) {
+  const double res = std::ldexp(bounds.size, -depth);
+  const int64_t span = int64_t{1} << depth;
+  BtKeys keys{{0, 0, 0}, depth};
+  const char* axes = "xyz";
+  for (int a = 0; a < 3; ++a) {
+    const double q = bounds.min[a] / res;
+    if (!(std::abs(q) <= 65536) || q != std::nearbyint(q))
+      throw InputError(path.string() + ": OctoMap .bt puts cells at whole multiples of the "
+                       "resolution size/2^depth = " + number(res) + " from the origin; the cube's " +
+                       axes[a] + "min " + number(bounds.min[a]) + " is " + number(q) +
+                       " of them (give --bounds with xmin, ymin, zmin whole multiples of "
+                       "size/2^depth, or no --bounds)");
+    keys.base[a] = static_cast<int64_t>(q) + 32768;
+    if (keys.base[a] < 0 || keys.base[a] + span > 65536)
+      throw InputError(path.string() + ": OctoMap .bt keys reach ±32768 cells of size " +
+                       number(res) + " (±" + number(32768 * res) + ") from the origin; the cube's " +
+                       axes[a] + " range [" + number(bounds.min[a]) + ", " +
+                       number(bounds.min[a] + bounds.size) +
+                       "] is outside (use a smaller --depth, whose cells are larger)");
   }
-  // prune(): depth d of the tree is OctoMap depth 16 − D + d; from d = D − 1 (OctoMap 15) up to
-  // d = 1, stopping at the first depth that prunes nothing (above d = 1 lie the chains and the
-  // root, never pruned). Nodes are in breadth-first order, so depth d is one contiguous run.
-  std::vector<size_t> first(tree.depth + 2, tree.nodes.size());
-  for (size_t i = tree.nodes.size(); i-- > 0;) first[tree.nodes[i].depth] = i;
-  for (int d = tree.depth; d > 0; --d) first[d - 1] = std::min(first[d - 1], first[d]);
-  for (int d = tree.depth - 1; d >= 1; --d) {
-    size_t pruned = 0;
-    for (size_t i = first[d]; i < first[d + 1]; ++i) {
-      const uint32_t c = tree.nodes[i].first_child;
-      if (c == 0 || code[c] == 3) continue;
-      bool same = true;
-      for (uint32_t k = 1; k < 8 && same; ++k) same = code[c + k] == code[c];
-      if (!same) continue;
-      code[i] = code[c];
-      ++pruned;
+  return keys;
+}
+
+/// Per Cover node: 1 if every leaf below it (itself, for a leaf) is occupied, 2 if every one is
+/// free, 3 otherwise.
+std::vector<uint8_t> bt_uniform_codes(const Octree& tree, double threshold) {
+  std::vector<uint8_t> code(tree.nodes.size());
+  for (size_t i = tree.nodes.size(); i-- > 0;) {  // breadth-first: children after parents
+    const Octree::Node& node = tree.nodes[i];
+    if (node.first_child == 0) {
+      const bool occupied = node.state == CellState::kFull ||
+                            (node.state == CellState::kPartial && node.occupancy >= threshold);
+      code[i] = occupied ? 1 : 2;
+      continue;
     }
-    if (pruned == 0) break;
+    code[i] = code[node.first_child];
+    for (uint32_t k = 1; k < 8; ++k)
+      if (code[node.first_child + k] != code[i]) code[i] = 3;
   }
   return code;
 }
 
-/// The 2 bytes of an OctoMap node whose children have the codes children[0..7].
-void bt_node_bytes(const uint8_t (&children)[8], std::string& out) {
-  uint8_t bytes[2] = {0, 0};
-  for (int c = 0; c < 8; ++c) {
-    // bit 2i: free or inner, bit 2i + 1: occupied or inner (code 1 occupied, 2 free, 3 inner).
-    const uint8_t bits = children[c] == 1 ? 2 : (children[c] == 2 ? 1 : children[c]);
-    bytes[c / 4] |= static_cast<uint8_t>(bits << (2 * (c % 4)));
+/// A Cover node with its key box [lo, lo + span) per axis.
+struct BtRef {
+  uint32_t node;
+  int64_t span;
+  std::array<int64_t, 3> lo;
+};
+
+/// At most 8 refs (see above).
+struct BtRefs {
+  std::array<BtRef, 8> at;
+  int count = 0;
+};
+
+class BtWriter {
+ public:
+  BtWriter(const Octree& tree, const BtKeys& keys, double threshold)
+      : tree_(tree), keys_(keys), uniform_(bt_uniform_codes(tree, threshold)) {}
+
+  /// The data section; `count` gets OctoMap's node count.
+  std::string write(uint64_t& count) {
+    BtRefs root;
+    root.at[0] = {0, int64_t{1} << keys_.depth, keys_.base};
+    root.count = 1;
+    count_ = 1;
+    inner(std::array<int64_t, 3>{0, 0, 0}, int64_t{1} << 16, root);
+    count = count_;
+    return std::move(out_);
   }
-  out.push_back(static_cast<char>(bytes[0]));
-  out.push_back(static_cast<char>(bytes[1]));
-}
 
-/// Node `i` (inner after pruning) and its inner descendants, depth-first.
-void bt_write_node(const Octree& tree, const std::vector<uint8_t>& code, uint32_t i,
-                   std::string& out, uint64_t& count) {
-  const uint32_t c = tree.nodes[i].first_child;
-  uint8_t children[8];
-  for (uint32_t k = 0; k < 8; ++k) children[k] = code[c + k];
-  bt_node_bytes(children, out);
-  count += 8;
-  for (uint32_t k = 0; k < 8; ++k)
-    if (code[c + k] == 3) bt_write_node(tree, code, c + k, out, count);
-}
+ private:
+  static bool meets(const BtRef& r, const std::array<int64_t, 3>& o, int64_t size) {
+    for (int a = 0; a < 3; ++a)
+      if (!(r.lo[a] < o[a] + size && o[a] < r.lo[a] + r.span)) return false;
+    return true;
+  }
 
-bool write_bt(const fs::path& file, const Octree& tree, double threshold) {
-  const int depth = tree.depth;
-  const std::vector<uint8_t> code = bt_codes(tree, threshold);
-  const Octree::Node& root = tree.nodes[0];
-  std::string data;
-  data.reserve(2 * tree.nodes.size() / 8 + 64);
-  uint64_t count = 1;  // OctoMap's nodes: its root, then 8 per inner node
-  // The depth-1 cells' codes (a root leaf: 8 leaves of its state).
-  uint8_t top[8];
-  for (uint32_t o = 0; o < 8; ++o) top[o] = root.first_child != 0 ? code[root.first_child + o]
-                                                                    : (code[0] == 1 ? 1 : 2);
-  if (depth == 16) {
-    bt_node_bytes(top, data);
-    count += 8;
-    for (uint32_t o = 0; o < 8; ++o)
-      if (top[o] == 3) bt_write_node(tree, code, root.first_child + o, data, count);
-  } else {
-    const uint8_t inner[8] = {3, 3, 3, 3, 3, 3, 3, 3};
-    bt_node_bytes(inner, data);
-    count += 8;
-    for (uint32_t o = 0; o < 8; ++o) {
-      // The chain of octant o: OctoMap depths 1 .. 16 − D, each node's one child at index ~o.
-      for (int t = 1; t <= 16 - depth; ++t) {
-        uint8_t one[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        one[~o & 7] = t < 16 - depth ? 3 : top[o];
-        bt_node_bytes(one, data);
-        ++count;
-      }
-      if (top[o] == 3) bt_write_node(tree, code, root.first_child + o, data, count);
+  /// Adds `r` (or, when it spans more than `size` and is inner, its children meeting the box)
+  /// to `refs`.
+  void add(const BtRef& r, const std::array<int64_t, 3>& o, int64_t size, BtRefs& refs) const {
+    if (!meets(r, o, size)) return;
+    const uint32_t child = tree_.nodes[r.node].first_child;
+    if (child == 0 || r.span <= size) {
+      for (int i = 0; i < refs.count; ++i)
+        if (refs.at[i].node == r.node) return;
+      if (refs.count == 8) throw InternalError("write_octree: more than 8 refs for a .bt node");
+      refs.at[refs.count++] = r;
+      return;
     }
+    const int64_t half = r.span / 2;
+    for (uint32_t k = 0; k < 8; ++k)
+      add({child + k, half, {r.lo[0] + (k & 1) * half, r.lo[1] + ((k >> 1) & 1) * half,
+                             r.lo[2] + ((k >> 2) & 1) * half}},
+          o, size, refs);
   }
+
+  /// The code of the OctoMap node at `o` of span `size` whose refs are `refs`.
+  uint8_t code(const std::array<int64_t, 3>& o, int64_t size, const BtRefs& refs) const {
+    if (refs.count == 0) return 0;
+    const int64_t span = int64_t{1} << keys_.depth;
+    for (int a = 0; a < 3; ++a)
+      if (o[a] < keys_.base[a] || o[a] + size > keys_.base[a] + span) return 3;
+    const uint8_t first = uniform_[refs.at[0].node];
+    for (int i = 1; i < refs.count; ++i)
+      if (uniform_[refs.at[i].node] != first) return 3;
+    return first;
+  }
+
+  /// Writes the inner OctoMap node at `o` of span `size` (refs `refs`) and its inner children.
+  void inner(const std::array<int64_t, 3>& o, int64_t size, const BtRefs& refs) {
+    const int64_t half = size / 2;
+    std::array<BtRefs, 8> child_refs;
+    std::array<std::array<int64_t, 3>, 8> child_o;
+    uint8_t codes[8];
+    for (uint32_t k = 0; k < 8; ++k) {
+      child_o[k] = {o[0] + (k & 1) * half, o[1] + ((k >> 1) & 1) * half,
+                    o[2] + ((k >> 2) & 1) * half};
+      for (int i = 0; i < refs.count; ++i) add(refs.at[i], child_o[k], half, child_refs[k]);
+      codes[k] = code(child_o[k], half, child_refs[k]);
+      if (codes[k] != 0) ++count_;
+    }
+    uint8_t bytes[2] = {0, 0};
+    for (int c = 0; c < 8; ++c) {
+      // bit 2c: free or inner, bit 2c + 1: occupied or inner.
+      const uint8_t bits = codes[c] == 1 ? 2 : (codes[c] == 2 ? 1 : codes[c]);
+      bytes[c / 4] |= static_cast<uint8_t>(bits << (2 * (c % 4)));
+    }
+    out_.push_back(static_cast<char>(bytes[0]));
+    out_.push_back(static_cast<char>(bytes[1]));
+    for (uint32_t k = 0; k < 8; ++k)
+      if (codes[k] == 3) inner(child_o[k], half, child_refs[k]);
+  }
+
+  const Octree& tree_;
+  const BtKeys& keys_;
+  std::vector<uint8_t> uniform_;
+  std::string out_;
+  uint64_t count_ = 0;
+};
+
+bool write_bt(const fs::path& file, const Octree& tree, const BtKeys& keys, double threshold) {
+  uint64_t count = 0;
+  const std::string data = BtWriter(tree, keys, threshold).write(count);
   std::ofstream stream(file, std::ios::binary);
   if (!stream) return false;
   // OcTree::writeBinary's header (AbstractOccupancyOcTree::binaryFileHeader, getTreeType()),
   // the resolution with all 17 digits.
   stream.precision(17);
   stream << "# Octomap OcTree binary file\n# (written by Cover)\nid OcTree\nsize " << count
-         << "\nres " << tree.cell_size(depth) << "\ndata\n";
+         << "\nres " << tree.cell_size(tree.depth) << "\ndata\n";
   stream.write(data.data(), static_cast<std::streamsize>(data.size()));
   stream.close();
   return !stream.fail();
@@ -328,6 +394,32 @@ void write_json(std::ostream& out, const Octree& tree, double threshold) {
 
 }  // namespace
 
+VoxelBounds octomap_bounds(const Bbox& box, int depth) {
+  if (depth < 1 || depth > 16)
+    throw PreconditionError("octomap_bounds: depth " + std::to_string(depth) + " is not 1 to 16");
+  const Vec3 lo = box.empty() ? Vec3{-0.5, -0.5, -0.5} : box.min;
+  double extent = 0;
+  if (!box.empty())
+    extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+  if (!(extent > 0) || !std::isfinite(extent)) extent = 1;
+  // n cells of side h = 2^e contain [lo, lo + extent] from m·h, m = floor(lo/h) − margin, when
+  // (n − 1 − 2·margin)·h ≥ extent; one cell of margin per side from n = 4 on.
+  const double n = std::ldexp(1.0, depth);
+  const int margin = depth >= 2 ? 1 : 0;
+  int e = 0;
+  const double f = std::frexp(extent / (n - 1 - 2 * margin), &e);  // = f·2^e, f in [0.5, 1)
+  const double h = std::ldexp(1.0, f == 0.5 ? e - 1 : e);
+  VoxelBounds bounds;
+  bounds.size = n * h;
+  const auto corner = [&](double x) { return (std::floor(x / h) - margin) * h; };
+  bounds.min = {corner(lo.x), corner(lo.y), corner(lo.z)};
+  return bounds;
+}
+
+void check_octomap_cube(const std::filesystem::path& path, const VoxelBounds& bounds, int depth) {
+  bt_keys(path, bounds, depth);
+}
+
 bool is_octree_extension(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);
   return ext == ".htg" || ext == ".bt" || ext == ".json";
@@ -351,7 +443,9 @@ void write_octree(const std::filesystem::path& path, const Octree& tree, double 
     if (tree.depth < 1 || tree.depth > 16)
       throw InputError(path.string() + ": OctoMap .bt needs a depth from 1 to 16, got " +
                        std::to_string(tree.depth));
-    write_atomically(path, [&](const fs::path& tmp) { return write_bt(tmp, tree, threshold); }, "the octree");
+    const BtKeys keys = bt_keys(path, tree.bounds, tree.depth);
+    write_atomically(path, [&](const fs::path& tmp) { return write_bt(tmp, tree, keys, threshold); },
+                     "the octree");
   } else {
     throw InputError(path.string() + ": unsupported octree format (expected .htg, .bt, .json)");
   }

@@ -2,6 +2,7 @@
 
 #include <png.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -19,11 +20,16 @@ struct FileCloser {
   }
 };
 
-/// Writes rows through libpng into `tmp`; returns false on any libpng or I/O error.
+/// Writes rows through libpng into `tmp`; returns false on any libpng or I/O error, with the
+/// I/O error's errno in `os_error` (0 when none).
 bool encode(const std::filesystem::path& tmp, int width, int height, int bit_depth, int color,
-            const std::vector<std::vector<uint8_t>>& rows) {
+            const std::vector<std::vector<uint8_t>>& rows, int& os_error) {
+  errno = 0;
   std::unique_ptr<FILE, FileCloser> file(std::fopen(tmp.c_str(), "wb"));
-  if (!file) return false;
+  if (!file) {
+    os_error = errno;
+    return false;
+  }
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
@@ -31,6 +37,7 @@ bool encode(const std::filesystem::path& tmp, int width, int height, int bit_dep
     return false;
   }
   if (setjmp(png_jmpbuf(png))) {  // libpng reports errors by longjmp
+    os_error = std::ferror(file.get()) ? errno : 0;
     png_destroy_write_struct(&png, &info);
     return false;
   }
@@ -41,19 +48,27 @@ bool encode(const std::filesystem::path& tmp, int width, int height, int bit_dep
   for (const auto& row : rows) png_write_row(png, const_cast<png_bytep>(row.data()));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  return std::fflush(file.get()) == 0;
+  if (std::fflush(file.get()) == 0 && !std::ferror(file.get())) return true;
+  os_error = errno;
+  return false;
 }
 
 void write_atomic(const std::filesystem::path& path, int width, int height, int bit_depth,
                   int color, const std::vector<std::vector<uint8_t>>& rows) {
   check_png_path(path);
   if (width <= 0 || height <= 0) throw InputError(path.string() + ": empty image");
-  write_atomically(
-      path,
-      [&](const std::filesystem::path& tmp) {
-        return encode(tmp, width, height, bit_depth, color, rows);
-      },
-      "PNG");
+  int os_error = 0;
+  try {
+    write_atomically(
+        path,
+        [&](const std::filesystem::path& tmp) {
+          return encode(tmp, width, height, bit_depth, color, rows, os_error);
+        },
+        "PNG");
+  } catch (const InputError& e) {
+    if (os_error == 0) throw;
+    throw InputError(std::string(e.what()) + " (" + std::strerror(os_error) + ")");
+  }
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "raster/voxelize.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -16,6 +18,13 @@
 
 namespace cover {
 namespace {
+
+/// Shortest decimal text that reads back as `value` ("1e-10", not std::to_string's "0.000000").
+std::string shortest(double value) {
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), result.ptr);
+}
 
 /// One crossing of a column's centre line by a covering triangle, as the triangle pass records it.
 struct Crossing {
@@ -323,7 +332,7 @@ VoxelLattice voxel_lattice(const Bbox& result_box, const VoxelizeOptions& option
     for (int a = 0; a < 3; ++a) {
       const double guess = std::ceil(extent[a] / h);
       if (!(guess <= kMaxVoxelDims))
-        throw InputError("--voxel-size: " + std::to_string(h) + " gives more than " +
+        throw InputError("--voxel-size: " + shortest(h) + " gives more than " +
                          std::to_string(kMaxVoxelDims) + " voxels on an axis");
       int d = std::max(1, static_cast<int>(guess));
       while (d * h < extent[a]) ++d;  // the rounded quotient may fall short by one

@@ -8,7 +8,6 @@
 #include "raster/zarr_io.h"
 
 #include <zlib.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -25,6 +24,7 @@
 #include <vector>
 
 #include "raster/detail/bit_expand.h"
+#include "solid/atomic_file.h"
 #include "solid/errors.h"
 #include "solid/memory_limit.h"
 #include "solid/mesh_io.h"
@@ -123,41 +123,24 @@ bool all_bits(const uint64_t* column, int k0, int k1) {
   return true;
 }
 
-/// Whether an existing `target` may be replaced: an empty directory or one holding .zarray.
-bool replaceable_store(const fs::path& target) {
-  std::error_code ec;
-  if (!fs::is_directory(target, ec)) return false;
-  if (fs::exists(target / ".zarray", ec)) return true;
-  return fs::is_empty(target, ec) && !ec;
-}
-
-/// A unique sibling name TARGET.SUFFIX-PID-K.
-fs::path sibling(const fs::path& target, const char* suffix) {
-  static std::atomic<int> counter{0};
-  fs::path p = target;
-  p += std::string(".") + suffix + "-" + std::to_string(::getpid()) + "-" +
-       std::to_string(counter.fetch_add(1));
-  return p;
-}
-
-/// Removes the temporary directory unless released.
-class TemporaryDirectory {
- public:
-  explicit TemporaryDirectory(fs::path path) : path_(std::move(path)) {}
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-  ~TemporaryDirectory() {
-    if (!path_.empty()) {
-      std::error_code ignored;
-      fs::remove_all(path_, ignored);
+/// True for the names Cover writes in a store: .zarray, .zattrs and chunks I.J.K.
+bool own_store_name(const std::string& name) {
+  if (name == ".zarray" || name == ".zattrs") return true;
+  int dots = 0;
+  bool digit = false;
+  for (const char ch : name) {
+    if (ch == '.') {
+      if (!digit) return false;
+      ++dots;
+      digit = false;
+    } else if (ch >= '0' && ch <= '9') {
+      digit = true;
+    } else {
+      return false;
     }
   }
-  const fs::path& path() const { return path_; }
-  void release() { path_.clear(); }
-
- private:
-  fs::path path_;
-};
+  return dots == 2 && digit;
+}
 
 }  // namespace
 
@@ -183,13 +166,6 @@ ZarrResult write_zarr(const fs::path& path, const VoxelLattice& lattice, const Z
     throw InputError(name + ": zlib level must be 1 to 9, got " + std::to_string(options.level));
   for (const int d : lattice.dims)
     if (d < 1) throw PreconditionError("write_zarr: lattice dims must be ≥ 1");
-  std::error_code ec;
-  const fs::path target = path;
-  const fs::file_status status = fs::symlink_status(target, ec);
-  const bool exists = fs::exists(status);
-  if (exists && !replaceable_store(target))
-    throw InputError(name + ": cannot write: exists and is not a Zarr store (a directory with "
-                            ".zarray, or an empty directory)");
   // C is at most the largest dim: a larger chunk only pads.
   const int c = std::min(options.chunk, std::max({lattice.dims[0], lattice.dims[1], lattice.dims[2]}));
   ZarrResult result;
@@ -206,12 +182,10 @@ ZarrResult write_zarr(const fs::path& path, const VoxelLattice& lattice, const Z
   result.bricks_in_flight = in_flight;
   result.chunks = static_cast<uint64_t>(bricks) * chunks[2];
 
-  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  TemporaryDirectory temporary(sibling(target, "tmp"));
-  if (!fs::create_directory(temporary.path(), ec) || ec) {
-    temporary.release();
-    throw InputError(name + ": cannot write: " + (ec ? ec.message() : "cannot create a folder in " + parent.string()));
-  }
+  OutputFolder temporary(path, "the Zarr store", [](const fs::path& folder) {
+    return refuse_unless_own_folder(folder, ".zarray", own_store_name, "a Zarr store");
+  });
+  const fs::path& target = path;
   const std::string array = zarray(lattice, c, options.level);
   write_bytes(temporary.path() / ".zarray", array.data(), array.size(), target);
   const std::string attrs = zattrs(lattice);
@@ -293,21 +267,7 @@ ZarrResult write_zarr(const fs::path& path, const VoxelLattice& lattice, const Z
   });
   if (error) std::rethrow_exception(error);
 
-  // Commit: the old store aside, the new one in, the old one removed.
-  fs::path old;
-  if (exists) {
-    old = sibling(target, "old");
-    fs::rename(target, old, ec);
-    if (ec) throw InputError(name + ": cannot write: " + ec.message());
-  }
-  fs::rename(temporary.path(), target, ec);
-  if (ec) {
-    std::error_code ignored;
-    if (exists) fs::rename(old, target, ignored);
-    throw InputError(name + ": cannot write: " + ec.message());
-  }
-  temporary.release();
-  if (exists) fs::remove_all(old, ec);
+  temporary.commit();
   if (options.progress) options.progress(1.0);
   result.occupied = occupied;
   result.chunks_written = written;

@@ -16,10 +16,12 @@
 // covering triangle is then processed once per brick it reaches, not once per chunk), computed
 // by `brick` and turned into chunk files at once; at most `bricks_in_flight` bricks exist at a
 // time, so memory is bounded by them, not by NX·NY·NZ.
-// Atomic: the store is built in OUT.zarr.tmp-PID beside the target and renamed onto it at the end;
-// an existing store (a directory holding .zarray, or an empty directory) is first renamed aside
-// to OUT.zarr.old-PID and removed once the new one is in place (restored if the rename fails).
-// Any failure removes the temporary directory and leaves the target as it was.
+// Atomic (solid/atomic_file.h OutputFolder): the store is built in OUT.zarr.tmp-PID-K beside the
+// target (links followed: writing through a link fills the folder it names) and swapped in
+// whole; the old store is then removed. An existing target is replaced only when it is an empty
+// folder or a store Cover wrote (.zarray, and only .zarray, .zattrs and chunk files I.J.K).
+// Any failure, or SIGINT / SIGTERM / SIGHUP, removes the temporary folder and leaves the target
+// as it was.
 
 #include <cstdint>
 #include <filesystem>
@@ -61,8 +63,8 @@ bool is_zarr_extension(const std::filesystem::path& path);
 double zarr_brick_bytes(const VoxelLattice& lattice, int chunk);
 
 /// Writes the store (see above). \throws InputError "PATH: ..." for chunk < 1 or level out of
-/// 1..9, a target that exists and is not a Zarr store directory (a regular file, a non-empty
-/// directory without .zarray), an unwritable folder, or a write failure; the check_memory
+/// 1..9, a target that exists and is not a Zarr store Cover wrote (a regular file, a folder
+/// holding other files), an unwritable folder, or a write failure; the check_memory
 /// message when one brick does not fit max_bytes. Exceptions from `brick` are rethrown after
 /// the temporary directory is removed.
 ZarrResult write_zarr(const std::filesystem::path& path, const VoxelLattice& lattice,

@@ -3,6 +3,9 @@
 //   ply
 //   format <ascii|binary_little_endian|binary_big_endian> <version>
 //   comment ... | obj_info ...
+//   any other line before the first element: free text, read as a comment (Blender 2.4x writes
+//   "Created by Blender3D ..." without the comment keyword); after it, an unknown keyword is an
+//   error (a misspelt "property" would otherwise shift every value after it)
 //   element <name> <count>
 //   property <type> <name>                       scalar
 //   property list <count type> <item type> <name>
@@ -143,6 +146,9 @@ Header parse_header(const std::string& file, std::string_view data) {
         if (other.name == property.name)
           fail_line(file, n, "duplicate property " + quote(property.name));
       header.elements.back().properties.push_back(std::move(property));
+    } else if (header.elements.empty()) {
+      continue;  // free text before the first element, read as a comment (Blender 2.4x writes
+                 // "Created by Blender3D ..." there without the comment keyword)
     } else {
       fail_line(file, n, "unknown PLY header keyword " + quote(keyword));
     }

@@ -10,7 +10,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -175,6 +177,150 @@ TEST_F(Outputs, SignalRemovesTemporary) {
     EXPECT_TRUE(temporaries(dir_).empty()) << "signal " << s << ": " << temporaries(dir_)[0];
     EXPECT_FALSE(fs::exists(out));
   }
+}
+
+/// The names in `dir` that Cover's signal thread or a folder swap could leave (".tmp-" or
+/// ".gone").
+std::vector<std::string> leftovers(const fs::path& dir) {
+  std::vector<std::string> out = temporaries(dir);
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename().string().find(".gone") != std::string::npos)
+      out.push_back(entry.path().filename().string());
+  return out;
+}
+
+/// The file names in `dir`, sorted.
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& entry : fs::directory_iterator(dir)) out.push_back(entry.path().filename());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// pieces.json's file names plus "pieces.json", sorted: what a pieces folder must hold exactly.
+std::vector<std::string> listed_in(const fs::path& dir) {
+  const nlohmann::json index = nlohmann::json::parse(test::read_file(dir / "pieces.json"));
+  std::vector<std::string> out{"pieces.json"};
+  for (const auto& p : index["pieces"]) out.push_back(p["file"].get<std::string>());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST_F(Outputs, SignalDuringZarrWriteRemovesTheTemporaryFolder) {
+  // A .zarr store is a folder of chunk files written by several threads: SIGINT, SIGTERM or
+  // SIGHUP while chunks are being written removes the whole temporary folder.
+  const fs::path out = dir_ / "x.zarr";
+  const std::string elephant = test::cgal_mesh("elephant.off").string();
+  for (const int s : {SIGTERM, SIGINT, SIGHUP}) {
+    const pid_t pid = start_cover({"voxelize", elephant, "--res", "4096", "--chunk", "64",
+                                   "--threads", "2", "-o", out.string()});
+    ASSERT_GT(pid, 0);
+    int status = 0;
+    bool exited = false, writing = false;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!writing && std::chrono::steady_clock::now() < deadline) {
+      if ((exited = ::waitpid(pid, &status, WNOHANG) == pid)) break;
+      for (const std::string& t : temporaries(dir_)) {  // chunk files beside .zarray, .zattrs
+        std::error_code ignored;
+        const auto n = std::distance(fs::directory_iterator(dir_ / t, ignored),
+                                     fs::directory_iterator());
+        writing = writing || n > 2;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ASSERT_FALSE(exited) << "voxelize ended before its chunks appeared";
+    ASSERT_TRUE(writing) << "no chunk within 30 s";
+    ::kill(pid, s);
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == s) << "signal " << s;
+    EXPECT_TRUE(leftovers(dir_).empty()) << "signal " << s << ": " << leftovers(dir_)[0];
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+TEST_F(Outputs, ZarrThroughASymlinkFillsTheFolderItNames) {
+  const fs::path real = dir_ / "real.zarr", link = dir_ / "link.zarr";
+  fs::create_directory(real);
+  fs::create_directory_symlink("real.zarr", link);
+  ASSERT_EQ(run_cover("voxelize " + q(box_) + " --res 8 -o " + q(link)).status, 0);
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(fs::read_symlink(link), "real.zarr");
+  EXPECT_TRUE(fs::is_regular_file(real / ".zarray"));
+  EXPECT_TRUE(leftovers(dir_).empty());
+}
+
+TEST_F(Outputs, PiecesFolderKeepsNoFileOfAnEarlierRun) {
+  // --pieces DIR and decompose -o DIR: the second run's folder holds exactly its own files.
+  const fs::path pieces = dir_ / "p";
+  test::write_file(dir_ / "l.json", R"({"difference": [
+      {"box": {"min": [0, 0, 0], "max": [2, 2, 2]}},
+      {"box": {"min": [1, 1, 1], "max": [3, 3, 3]}}]})");
+  const std::string cells = " -o " + q(dir_ / "g.off") + " --cells 2 --pieces " + q(pieces);
+  ASSERT_EQ(run_cover("evaluate " + q(dir_ / "l.json") + cells + " --bounds 0,0,0,2").status, 0);
+  ASSERT_EQ(listed_in(pieces).size(), 8u);  // 7 pieces
+  ASSERT_EQ(run_cover("evaluate " + q(box_) + cells + " --bounds 0,0,0,2").status, 0);
+  EXPECT_EQ(names_in(pieces), listed_in(pieces));
+  EXPECT_EQ(listed_in(pieces).size(), 2u);  // the unit box is cell (0, 0, 0)
+  EXPECT_TRUE(leftovers(dir_).empty());
+  // decompose -o the same folder (a pieces folder Cover wrote) replaces it too.
+  ASSERT_EQ(run_cover("decompose " + q(box_) + " -o " + q(pieces)).status, 0);
+  EXPECT_EQ(names_in(pieces), (std::vector<std::string>{"piece_0000.off", "pieces.json"}));
+  EXPECT_TRUE(leftovers(dir_).empty());
+}
+
+TEST_F(Outputs, PiecesFolderOfOtherFilesIsRefused) {
+  // A folder Cover did not write is never replaced: refused (exit 2) before any work, its
+  // files untouched. An empty folder is used.
+  const fs::path mine = dir_ / "mine";
+  fs::create_directory(mine);
+  test::write_file(mine / "notes.txt", "keep");
+  const std::string g = " -o " + q(dir_ / "g.off") + " --cells 2 --pieces ";
+  for (const std::string& c : {"evaluate " + q(box_) + g + q(mine),
+                               "decompose " + q(box_) + " -o " + q(mine)}) {
+    expect_refused(run_cover(c), "mine: exists and is not a pieces folder written by Cover (it "
+                                 "holds 'notes.txt'); remove it or name another folder");
+    EXPECT_EQ(names_in(mine), std::vector<std::string>{"notes.txt"});
+    EXPECT_EQ(test::read_file(mine / "notes.txt"), "keep");
+  }
+  test::write_file(dir_ / "file", "x");
+  expect_refused(run_cover("decompose " + q(box_) + " -o " + q(dir_ / "file")),
+                 "file: exists and is not a folder");
+  fs::create_directory(dir_ / "empty");
+  ASSERT_EQ(run_cover("decompose " + q(box_) + " -o " + q(dir_ / "empty/")).status, 0);
+  EXPECT_EQ(names_in(dir_ / "empty"), listed_in(dir_ / "empty"));
+  EXPECT_TRUE(leftovers(dir_).empty());
+}
+
+TEST_F(Outputs, ConcurrentRunsIntoOnePiecesFolderDoNotMix) {
+  // Two runs writing the same folder at once: it ends as one run's output, whole.
+  const fs::path pieces = dir_ / "p";
+  test::write_file(dir_ / "l.json", R"({"difference": [
+      {"box": {"min": [0, 0, 0], "max": [2, 2, 2]}},
+      {"box": {"min": [1, 1, 1], "max": [3, 3, 3]}}]})");
+  for (int round = 0; round < 3; ++round) {
+    std::vector<pid_t> pids;
+    for (const fs::path& in : {dir_ / "l.json", box_})
+      pids.push_back(start_cover({"evaluate", in.string(), "-o", (dir_ / (in.stem().string() + ".off")).string(),
+                                  "--cells", "2", "--bounds", "0,0,0,2", "--pieces",
+                                  pieces.string()}));
+    for (const pid_t pid : pids) {
+      int status = 0;
+      ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    }
+    EXPECT_EQ(names_in(pieces), listed_in(pieces)) << "round " << round;
+    EXPECT_TRUE(leftovers(dir_).empty());
+  }
+}
+
+TEST_F(Outputs, PiecesFolderThroughASymlinkFillsTheFolderItNames) {
+  const fs::path real = dir_ / "real", link = dir_ / "link";
+  fs::create_directory(real);
+  fs::create_directory_symlink("real", link);
+  ASSERT_EQ(run_cover("decompose " + q(box_) + " -o " + q(link)).status, 0);
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(names_in(real), (std::vector<std::string>{"piece_0000.off", "pieces.json"}));
+  EXPECT_TRUE(leftovers(dir_).empty());
 }
 
 class Limits : public Outputs {};

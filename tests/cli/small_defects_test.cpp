@@ -232,5 +232,81 @@ TEST_F(SmallDefects, OctreeTouchingCellsEmpty) {
   EXPECT_EQ(j["nodes"], 17);
 }
 
+TEST_F(SmallDefects, OpenMeshRefusedOnceWithoutAWarningFirst) {
+  // evaluate, clip, decompose and volume --exact need closed leaves: one error line naming the
+  // file once (clip named it twice), no open-mesh warning printed just before the refusal.
+  test::write_file(dir_ / "open.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
+  const std::string in = q(dir_ / "open.off"), name = (dir_ / "open.off").string();
+  const std::string refused = name + ": open mesh (3 boundary edges): ";
+  expect_error(run_cover("clip " + in + " --plane 0,0,1,0.5 -o " + q(dir_ / "a.off")),
+               refused + "clip needs closed leaves");
+  expect_error(run_cover("evaluate " + in + " -o " + q(dir_ / "e.off")),
+               refused + "evaluate needs closed leaves");
+  expect_error(run_cover("evaluate " + in + " -o " + q(dir_ / "e.off") + " --cells 2"),
+               refused + "evaluate needs closed leaves");
+  expect_error(run_cover("decompose " + in + " -o " + q(dir_ / "d")),
+               refused + "decompose needs closed leaves");
+  expect_error(run_cover("volume --exact " + in),
+               refused + "no exact volume; the winding method estimates it (without --exact)");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "d"));
+}
+
+TEST_F(SmallDefects, LeafIdsHelpNamesTheObjGroupsWritten) {
+  const auto help = run_cover("evaluate --help");
+  EXPECT_NE(help.out.find("OBJ groups 'g leaf_<i>'"), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("leaf_<i>_<name>"), std::string::npos) << help.out;
+  ASSERT_EQ(run_cover("evaluate " + box() + " --leaf-ids -o " + q(dir_ / "e.obj")).status, 0);
+  EXPECT_NE(test::read_file(dir_ / "e.obj").find("\ng leaf_0\n"), std::string::npos);
+}
+
+TEST_F(SmallDefects, CellsMemoryRefusalReadsAsASentence) {
+  expect_error_with(run_cover("evaluate " + box() + " -o " + q(dir_ / "e.off") +
+                              " --cells 100 --max-memory 1"),
+                    {"--cells 100: cutting into cells needs ", " MiB, over --max-memory 1 MiB"});
+}
+
+TEST_F(SmallDefects, VoxelSizeTooSmallShowsItsValue) {
+  expect_error(run_cover("voxelize " + box() + " --voxel-size 1e-10 -o " + q(dir_ / "v.npy")),
+               "--voxel-size: 1e-10 gives more than 16384 voxels on an axis");
+}
+
+TEST_F(SmallDefects, EmptyPathOrListValueIsAnError) {
+  const std::string e = "evaluate " + box() + " -o " + q(dir_ / "e.off");
+  expect_error(run_cover(e + " --cells 2 --pieces ''"), "--pieces: expected a folder, got ''");
+  expect_error(run_cover("render " + box() + " -o " + q(dir_ / "r.png") + " --views ''"),
+               "--views: expected views, e.g. iso,front,top, got ''");
+  expect_error(run_cover("decompose " + box() + " -o ''"), "--output: expected a folder, got ''");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "e.off"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "r.png"));
+}
+
+TEST_F(SmallDefects, BoundsBeyondTheCoordinateRangeRefused) {
+  // size 1e308 would overflow the cells' corners; the cube must stay within ±2^64.
+  const std::string message =
+      "--bounds: the cube reaches beyond the supported coordinate range ±2^64 (about ±1.8e19) on x";
+  expect_error(run_cover("voxelize " + box() + " --res 8 --bounds 0,0,0,1e308 -o " +
+                         q(dir_ / "v.npy")),
+               message);
+  expect_error(run_cover("octree " + box() + " --depth 2 --bounds 0,0,0,1e308 -o " +
+                         q(dir_ / "o.json")),
+               message);
+  expect_error(run_cover("evaluate " + box() + " -o " + q(dir_ / "e.off") +
+                         " --cells 2 --bounds 0,0,0,1e308"),
+               message);
+  expect_error(run_cover("voxelize " + box() + " --res 8 --bounds -2e19,0,0,1 -o " +
+                         q(dir_ / "v.npy")),
+               message);
+  // Up to the range itself is accepted.
+  EXPECT_EQ(run_cover("voxelize " + box() + " --res 8 --bounds 0,0,0,1e19 -o " +
+                      q(dir_ / "v.npy")).status,
+            0);
+}
+
+TEST_F(SmallDefects, PngWriteFailureGivesTheReason) {
+  expect_error(run_cover("render " + box() + " --size 8x8 -o " + q(dir_ / "missing" / "r.png")),
+               (dir_ / "missing" / "r.png").string() +
+                   ": cannot write PNG (No such file or directory)");
+}
+
 }  // namespace
 }  // namespace cover

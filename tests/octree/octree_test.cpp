@@ -710,12 +710,14 @@ class OctreeFiles : public ::testing::Test {
   void SetUp() override {
     solid_ = subtract({elephant(), box_solid({-1, -1, 0.05}, {1, 1, 1})});  // the top sliced off
     tree_ = build(solid_, default_bounds(solid_, 5), 5);
+    bt_tree_ = build(solid_, octomap_bounds(solid_.bbox(), 5), 5);
     dir_ = test::temp_dir("octree");
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
   Solid solid_;
   Octree tree_;
+  Octree bt_tree_;  ///< over octomap_bounds: a .bt can be written
   std::filesystem::path dir_;
 };
 
@@ -825,62 +827,139 @@ TEST_F(OctreeFiles, HtgLoadsInVtkWithTheSameLeaves) {
   }
 }
 
-TEST_F(OctreeFiles, BtReadsBackWithLiboctomap) {
-  for (double threshold : {0.5, 0.1}) {
-    write_octree(dir_ / "t.bt", tree_, threshold);
-    octomap::OcTree read(0.1);
-    ASSERT_TRUE(read.readBinary((dir_ / "t.bt").string()));
-    const double h = tree_.cell_size(tree_.depth);
-    EXPECT_EQ(read.getResolution(), h);
-    const Vec3 centre =
-        tree_.bounds.min + 0.5 * Vec3{tree_.bounds.size, tree_.bounds.size, tree_.bounds.size};
-    for (const Octree::Node& node : tree_.nodes) {
-      if (node.first_child != 0) continue;
-      const double half = 0.5 * tree_.cell_size(node.depth);
-      const Vec3 p = tree_.min(node) + Vec3{half, half, half} - centre;  // OctoMap's frame
-      const octomap::OcTreeNode* leaf = read.search(p.x, p.y, p.z);
-      ASSERT_NE(leaf, nullptr);
-      const bool occupied = node.state == CellState::kFull ||
-                            (node.state == CellState::kPartial && node.occupancy >= threshold);
-      EXPECT_EQ(read.isNodeOccupied(leaf), occupied);
+/// Whether a leaf is occupied in a .bt written at `threshold`.
+bool bt_occupied(const Octree::Node& node, double threshold) {
+  return node.state == CellState::kFull ||
+         (node.state == CellState::kPartial && node.occupancy >= threshold);
+}
+
+/// The Cover leaf holding the finest cell (i, j, k) (0 ≤ i, j, k < 2^depth).
+const Octree::Node& leaf_at(const Octree& t, uint32_t i, uint32_t j, uint32_t k) {
+  uint32_t id = 0;
+  for (int d = 0; t.nodes[id].first_child != 0; ++d) {
+    const int shift = t.depth - d - 1;
+    id = t.nodes[id].first_child + ((i >> shift) & 1) + 2 * ((j >> shift) & 1) +
+         4 * ((k >> shift) & 1);
+  }
+  return t.nodes[id];
+}
+
+TEST_F(OctreeFiles, BtPlacesCellsAtTheirWorldCoordinates) {
+  // Loaded with liboctomap, every finest cell's world centre (Cover's own box, in world
+  // coordinates) finds an OctoMap voxel of the cell's occupancy and resolution-sized extent,
+  // and every OctoMap leaf lies inside the cube: the map sits where the model is. The fixture's
+  // cube (octomap_bounds) is not aligned with OctoMap's own octants, and a cube far from the
+  // origin checks that no centring remains.
+  const Octree far = build(solid_, cube({-3.5, 1000.25, -0.75}, 2), 4);
+  for (const Octree* t : {&bt_tree_, &far}) {
+    for (double threshold : {0.5, 0.1}) {
+      write_octree(dir_ / "t.bt", *t, threshold);
+      octomap::OcTree read(0.1);
+      ASSERT_TRUE(read.readBinary((dir_ / "t.bt").string()));
+      const double h = t->cell_size(t->depth);
+      EXPECT_EQ(read.getResolution(), h);
+      const uint32_t n = 1u << t->depth;
+      for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j)
+          for (uint32_t k = 0; k < n; ++k) {
+            const Vec3 c{t->bounds.min.x + (i + 0.5) * h, t->bounds.min.y + (j + 0.5) * h,
+                         t->bounds.min.z + (k + 0.5) * h};
+            const octomap::OcTreeNode* leaf = read.search(c.x, c.y, c.z);
+            ASSERT_NE(leaf, nullptr) << i << " " << j << " " << k;
+            ASSERT_EQ(read.isNodeOccupied(leaf), bt_occupied(leaf_at(*t, i, j, k), threshold))
+                << i << " " << j << " " << k;
+          }
+      // Every OctoMap leaf inside the cube; their volume is the cube's.
+      double volume = 0;
+      for (auto it = read.begin_leafs(); it != read.end_leafs(); ++it) {
+        const double half = 0.5 * it.getSize();
+        const octomap::point3d p = it.getCoordinate();
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_GE(p(a) - half, t->bounds.min[a] - 1e-9 * t->bounds.size);
+          EXPECT_LE(p(a) + half, t->bounds.min[a] + t->bounds.size * (1 + 1e-9));
+        }
+        volume += std::pow(it.getSize(), 3);
+      }
+      EXPECT_DOUBLE_EQ(volume, std::pow(t->bounds.size, 3));
     }
   }
 }
 
-/// The oracle for .bt: liboctomap's own OcTree built leaf by leaf from the octree (each leaf
-/// cell placed at its OctoMap depth, the cube centred on the origin, a root leaf as its 8
-/// children), then written as OcTree::writeBinary writes it (maximum likelihood, pruned).
+TEST_F(OctreeFiles, BtCubeOffOctomapGridRefused) {
+  // A cube whose min is no whole multiple of size/2^depth, or beyond OctoMap's ±32768 keys,
+  // cannot be placed: refused with the reason, nothing written.
+  const Octree off = build(solid_, cube({0.01, 0, 0}, 2), 3);
+  try {
+    write_octree(dir_ / "t.bt", off, 0.5);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("whole multiples of the resolution"), std::string::npos)
+        << e.what();
+  }
+  const Octree beyond = build(solid_, cube({4096, 0, 0}, 1), 4);  // 65536 cells of 1/16 away
+  try {
+    write_octree(dir_ / "t.bt", beyond, 0.5);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("keys reach ±32768 cells"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "t.bt"));
+}
+
+TEST(OctomapBounds, HoldTheBoxWithAMarginOnOctomapsGrid) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-100, 100), e(1e-3, 10);
+  for (int trial = 0; trial < 200; ++trial) {
+    Bbox box;
+    const Vec3 lo{u(rng), u(rng), u(rng)};
+    box.add(lo);
+    box.add(lo + Vec3{e(rng), e(rng), e(rng)});
+    const int depth = 2 + trial % 9;
+    const VoxelBounds b = octomap_bounds(box, depth);
+    const double h = std::ldexp(b.size, -depth);
+    int exponent = 0;
+    EXPECT_EQ(std::frexp(h, &exponent), 0.5);  // a power of two
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(b.min[a] / h, std::floor(b.min[a] / h));
+      EXPECT_LE(b.min[a] + h, box.min[a]);
+      EXPECT_GE(b.min[a] + b.size - h, box.max[a]);
+    }
+    // The smallest such power of two: half of it no longer holds the box with its margin.
+    const double extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y,
+                                    box.max.z - box.min.z});
+    EXPECT_LT(0.5 * h * ((1 << depth) - 3), extent);
+  }
+}
+
+/// The oracle for .bt: liboctomap's own OcTree built from the octree's leaves at their world
+/// keys (key = cell index + min/res + 2^15; each leaf split into OctoMap-aligned cubes, halving
+/// until aligned), fully pruned (every node whose 8 children are leaves of one value becomes a
+/// leaf, bottom-up), then written as OcTree::writeBinary writes it.
 class OctomapOracle : public octomap::OcTree {
  public:
   OctomapOracle(const Octree& tree, double threshold)
       : octomap::OcTree(tree.cell_size(tree.depth)) {
     const int depth = tree.depth;
-    const uint32_t base = (1u << 15) - (1u << (depth - 1));
-    std::vector<std::array<uint32_t, 3>> coord(tree.nodes.size());
-    for (size_t i = 0; i < tree.nodes.size(); ++i) {
-      const Octree::Node& node = tree.nodes[i];
+    const double h = tree.cell_size(depth);
+    std::array<int64_t, 3> base{};
+    for (int a = 0; a < 3; ++a) base[a] = std::llround(tree.bounds.min[a] / h) + 32768;
+    for (const Octree::Node& node : tree.nodes) {
       if (node.first_child != 0) continue;
-      const bool occupied = node.state == CellState::kFull ||
-                            (node.state == CellState::kPartial && node.occupancy >= threshold);
-      const float value = occupied ? getClampingThresMaxLog() : getClampingThresMinLog();
-      const auto place = [&](uint32_t i0, uint32_t j0, uint32_t k0, int d) {
-        const uint32_t step = 1u << (depth - d);
-        const octomap::OcTreeKey key(static_cast<uint16_t>(base + i0 * step),
-                                     static_cast<uint16_t>(base + j0 * step),
-                                     static_cast<uint16_t>(base + k0 * step));
-        set_leaf(key, static_cast<unsigned>(16 - (depth - d)), value);
-      };
-      if (node.depth > 0)
-        place(node.cell[0], node.cell[1], node.cell[2], node.depth);
-      else
-        for (uint32_t c = 0; c < 8; ++c) place(c & 1, (c >> 1) & 1, (c >> 2) & 1, 1);
+      const float value =
+          bt_occupied(node, threshold) ? getClampingThresMaxLog() : getClampingThresMinLog();
+      const int64_t span = int64_t{1} << (depth - node.depth);
+      place({base[0] + node.cell[0] * span, base[1] + node.cell[1] * span,
+             base[2] + node.cell[2] * span},
+            span, value);
     }
   }
 
   std::string bytes() {
     updateInnerOccupancy();
     toMaxLikelihood();
-    prune();
+    for (unsigned c = 0; c < 8; ++c)
+      if (root != nullptr && nodeChildExists(root, c)) prune_all(getNodeChild(root, c));
     std::ostringstream s;
     s.precision(17);
     s << binaryFileHeader << "\n# (written by Cover)\nid " << getTreeType() << "\nsize " << size()
@@ -890,6 +969,28 @@ class OctomapOracle : public octomap::OcTree {
   }
 
  private:
+  /// The cube of `span` keys from `lo`: one OctoMap node when aligned, else its 8 halves.
+  void place(const std::array<int64_t, 3>& lo, int64_t span, float value) {
+    if (lo[0] % span == 0 && lo[1] % span == 0 && lo[2] % span == 0) {
+      const octomap::OcTreeKey key(static_cast<uint16_t>(lo[0]), static_cast<uint16_t>(lo[1]),
+                                   static_cast<uint16_t>(lo[2]));
+      set_leaf(key, static_cast<unsigned>(16 - std::countr_zero(static_cast<uint64_t>(span))),
+               value);
+      return;
+    }
+    const int64_t half = span / 2;
+    for (int c = 0; c < 8; ++c)
+      place({lo[0] + (c & 1) * half, lo[1] + ((c >> 1) & 1) * half, lo[2] + ((c >> 2) & 1) * half},
+            half, value);
+  }
+
+  void prune_all(octomap::OcTreeNode* node) {
+    for (unsigned c = 0; c < 8; ++c)
+      if (nodeChildExists(node, c) && nodeHasChildren(getNodeChild(node, c)))
+        prune_all(getNodeChild(node, c));
+    if (isNodeCollapsible(node)) pruneNode(node);
+  }
+
   void set_leaf(const octomap::OcTreeKey& key, unsigned depth, float log_odds) {
     if (root == nullptr) {
       root = new octomap::OcTreeNode();
@@ -905,22 +1006,26 @@ class OctomapOracle : public octomap::OcTree {
 };
 
 TEST_F(OctreeFiles, BtIsTheBytesLiboctomapWrites) {
-  // The direct .bt writer against liboctomap's own tree of the same leaves: the fixture at
-  // several thresholds; depths 1, 2, 3 and 16; a root leaf; a cell whose 8 children are full
-  // leaves (two boxes meeting on a grid plane inside it), pruned at depth 2 but not at depth 3,
-  // where OctoMap's level-by-level prune stops at the first level that prunes nothing.
+  // The direct .bt writer against liboctomap's own tree of the same leaves at their world keys:
+  // the fixture at several thresholds; depths 1, 2, 3 and 16; cubes aligned with OctoMap's
+  // octants and not; a root leaf; a cell whose 8 children are full leaves (two boxes meeting
+  // on a grid plane inside it).
   const auto expect_same = [&](const Octree& t, double threshold, const std::string& what) {
     write_octree(dir_ / "t.bt", t, threshold);
     EXPECT_EQ(test::read_file(dir_ / "t.bt"), OctomapOracle(t, threshold).bytes()) << what;
   };
-  for (double threshold : {0.0, 0.1, 0.5, 1.0}) expect_same(tree_, threshold, "elephant");
+  for (double threshold : {0.0, 0.1, 0.5, 1.0}) expect_same(bt_tree_, threshold, "elephant");
   const Solid halves =
       unite({box_solid({0, 0, 0}, {0.25, 0.5, 0.5}), box_solid({0.25, 0, 0}, {0.5, 0.5, 0.5})});
-  for (int depth : {1, 2, 3}) expect_same(build(halves, cube({0, 0, 0}, 1), depth), 0.5, "halves");
+  for (int depth : {1, 2, 3}) {
+    expect_same(build(halves, cube({0, 0, 0}, 1), depth), 0.5, "halves");
+    expect_same(build(halves, cube({-0.375, -0.625, 0.125}, 1), depth), 0.5, "halves, shifted");
+  }
   const Solid small = box_solid({0.1, 0.2, 0.3}, {0.1004, 0.2003, 0.3002});
-  expect_same(build(small, cube({0, 0, 0}, 1), 16), 0.5, "depth 16");
+  expect_same(build(small, cube({-0.5, -0.5, -0.5}, 1), 16), 0.5, "depth 16");
   expect_same(build(small, cube({2, 2, 2}, 1), 3), 0.5, "root leaf");
-  expect_same(build(small, cube({0, 0, 0}, 1), 16), 0.0, "depth 16, threshold 0");
+  expect_same(build(small, cube({2.125, 1.875, 2.375}, 1), 3), 0.5, "root leaf, shifted");
+  expect_same(build(small, cube({-0.5, -0.5, -0.5}, 1), 16), 0.0, "depth 16, threshold 0");
 }
 
 TEST_F(OctreeFiles, JsonListsEveryLeaf) {

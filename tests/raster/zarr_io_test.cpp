@@ -134,12 +134,13 @@ TEST(Zarr, BadTargetsAndFailuresLeaveWhatWasThere) {
   EXPECT_EQ(test::read_file(dir / "folder.zarr" / "notes.txt"), "mine");
   // An unwritable place (a missing folder).
   EXPECT_THROW(write_zarr(dir / "missing" / "a.zarr", lattice, o, bricks), InputError);
-  // An existing store is replaced as a whole; a failing brick leaves it as it was.
+  // An existing store is replaced as a whole (a chunk of an earlier, larger store does not
+  // survive); a failing brick leaves it as it was.
   write_zarr(dir / "s.zarr", lattice, o, bricks);
-  test::write_file(dir / "s.zarr" / "stale.txt", "old");
+  test::write_file(dir / "s.zarr" / "99.99.99", "old");
   write_zarr(dir / "s.zarr", lattice, o, bricks);
-  EXPECT_FALSE(fs::exists(dir / "s.zarr" / "stale.txt"));
-  test::write_file(dir / "s.zarr" / "stale.txt", "old");
+  EXPECT_FALSE(fs::exists(dir / "s.zarr" / "99.99.99"));
+  test::write_file(dir / "s.zarr" / "99.99.99", "old");
   int calls = 0;
   EXPECT_THROW(write_zarr(dir / "s.zarr", lattice, o,
                           [&](const IndexBox& box, VoxelGrid& grid) {
@@ -147,7 +148,19 @@ TEST(Zarr, BadTargetsAndFailuresLeaveWhatWasThere) {
                             bricks(box, grid);
                           }),
                std::runtime_error);
-  EXPECT_EQ(test::read_file(dir / "s.zarr" / "stale.txt"), "old");
+  EXPECT_EQ(test::read_file(dir / "s.zarr" / "99.99.99"), "old");
+  // A store holding a file Cover does not write is not Cover's own: refused, kept.
+  test::write_file(dir / "s.zarr" / "notes.txt", "mine");
+  EXPECT_THROW(write_zarr(dir / "s.zarr", lattice, o, bricks), InputError);
+  EXPECT_EQ(test::read_file(dir / "s.zarr" / "notes.txt"), "mine");
+  fs::remove(dir / "s.zarr" / "notes.txt");
+  // Through a link: the folder it names gets the store, the link stays.
+  fs::create_directory_symlink("s.zarr", dir / "link.zarr");
+  write_zarr(dir / "link.zarr", lattice, o, bricks);
+  EXPECT_TRUE(fs::is_symlink(dir / "link.zarr"));
+  EXPECT_FALSE(fs::exists(dir / "s.zarr" / "99.99.99"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "s.zarr" / ".zarray"));
+  fs::remove(dir / "link.zarr");
   // Nothing but the targets is left in the folder (no temporary or old stores).
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());

@@ -16,6 +16,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solid/errors.h"
@@ -900,6 +901,55 @@ TEST(SmallDefects, NumberRuleSameInEveryReader) {
   EXPECT_NE(skipped.find(":11: out-of-range number in element 'vertex' entry 0: '1e400'"),
             std::string::npos)
       << skipped;
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, PlyFreeTextBeforeTheFirstElementIsAComment) {
+  // assimp's PLY/Wuson.ply (Blender 2.47) has "Created by Blender3D 247 - www.blender.org, source
+  // file: " as its third header line, without the comment keyword.
+  const fs::path wuson = test::assimp_models() / "PLY/Wuson.ply";
+  if (fs::exists(wuson)) {
+    const PolygonMesh mesh = cover::read_mesh(wuson);
+    EXPECT_EQ(mesh.vertices.size(), 11184u);
+    EXPECT_EQ(mesh.face_count(), 3732u);
+  }
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::string tail =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const PolygonMesh mesh =
+      read_text(dir, "created.ply", "ply\nformat ascii 1.0\nCreated by Blender3D 247\n" + tail);
+  EXPECT_EQ(mesh.vertices.size(), 3u);
+  EXPECT_EQ(mesh.face_count(), 1u);
+  // After the first element an unknown keyword is still an error: a misspelt property line
+  // would shift every value after it.
+  const std::string misspelt =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "propety float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_NE(bad_file(dir, "misspelt.ply", misspelt).find(":6: unknown PLY header keyword 'propety'"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST(MeshIoTest, VertexIndexOf2To63IsPrintedAsWritten) {
+  // 2^63 does not fit a signed 64-bit index: every reader names the token as written, never a
+  // negative number.
+  const fs::path dir = test::temp_dir("mesh-io");
+  const std::string big = "9223372036854775808";
+  const std::string ply_head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"big.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 " + big + "\n"},
+      {"big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 " + big + "\n"},
+      {"big.ply", ply_head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 " + big + "\n"}};
+  for (const auto& [name, bytes] : files) {
+    const std::string message = bad_file(dir, name, bytes);
+    EXPECT_NE(message.find("'" + big + "'"), std::string::npos) << message;
+    EXPECT_EQ(message.find("-9223372036854775808"), std::string::npos) << message;
+  }
   fs::remove_all(dir);
 }
 
