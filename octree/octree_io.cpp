@@ -170,9 +170,11 @@ void write_htg(std::ostream& out, const Octree& tree) {
 // node the Cover nodes meeting it at its scale ("refs": Cover nodes of span ≤ S, or leaves, whose
 // parent spans more; at most 8) tell its code: a node inside the cube whose refs all have one
 // uniform code (every leaf below them occupied, or every one free) is a leaf of that code; a
-// node outside the cube is absent; any other is inner. The result is the canonical pruned tree
-// (every node whose 8 children are leaves of one code is a leaf; OctoMap's root is always inner).
-// Written node by node depth-first, as OcTree::writeBinary does: per inner node 2 bytes, 2 bits
+// node outside the cube is absent; any other is resolved from its 8 children, bottom-up, and
+// becomes a leaf when they are leaves of one code (a ref may reach beyond the node, so uniform
+// refs are sufficient, not necessary). The result is the canonical pruned tree (every node whose
+// 8 children are leaves of one code is a leaf; OctoMap's root is always inner), kept as its inner
+// nodes, then written depth-first, as OcTree::writeBinary does: per inner node 2 bytes, 2 bits
 // per child (01 occupied leaf, 10 free leaf, 11 inner, 00 none), then its inner children. The
 // tests compare the bytes with liboctomap's own tree of the same leaves, fully pruned.
 
@@ -240,6 +242,13 @@ struct BtRefs {
   int count = 0;
 };
 
+/// An inner node of the OctoMap tree: its children's codes and, for inner children, their
+/// records.
+struct BtInner {
+  uint8_t codes[8];
+  uint32_t child[8];
+};
+
 class BtWriter {
  public:
   BtWriter(const Octree& tree, const BtKeys& keys, double threshold)
@@ -250,10 +259,13 @@ class BtWriter {
     BtRefs root;
     root.at[0] = {0, int64_t{1} << keys_.depth, keys_.base};
     root.count = 1;
-    count_ = 1;
-    inner(std::array<int64_t, 3>{0, 0, 0}, int64_t{1} << 16, root);
-    count = count_;
-    return std::move(out_);
+    uint32_t record = 0;
+    resolve(std::array<int64_t, 3>{0, 0, 0}, int64_t{1} << 16, root, true, record);
+    count = 1;
+    std::string out;
+    out.reserve(2 * inner_.size());
+    emit(record, out, count);
+    return out;
   }
 
  private:
@@ -282,48 +294,64 @@ class BtWriter {
           o, size, refs);
   }
 
-  /// The code of the OctoMap node at `o` of span `size` whose refs are `refs`.
-  uint8_t code(const std::array<int64_t, 3>& o, int64_t size, const BtRefs& refs) const {
-    if (refs.count == 0) return 0;
+  bool inside_cube(const std::array<int64_t, 3>& o, int64_t size) const {
     const int64_t span = int64_t{1} << keys_.depth;
     for (int a = 0; a < 3; ++a)
-      if (o[a] < keys_.base[a] || o[a] + size > keys_.base[a] + span) return 3;
-    const uint8_t first = uniform_[refs.at[0].node];
-    for (int i = 1; i < refs.count; ++i)
-      if (uniform_[refs.at[i].node] != first) return 3;
-    return first;
+      if (o[a] < keys_.base[a] || o[a] + size > keys_.base[a] + span) return false;
+    return true;
   }
 
-  /// Writes the inner OctoMap node at `o` of span `size` (refs `refs`) and its inner children.
-  void inner(const std::array<int64_t, 3>& o, int64_t size, const BtRefs& refs) {
-    const int64_t half = size / 2;
-    std::array<BtRefs, 8> child_refs;
-    std::array<std::array<int64_t, 3>, 8> child_o;
-    uint8_t codes[8];
-    for (uint32_t k = 0; k < 8; ++k) {
-      child_o[k] = {o[0] + (k & 1) * half, o[1] + ((k >> 1) & 1) * half,
-                    o[2] + ((k >> 2) & 1) * half};
-      for (int i = 0; i < refs.count; ++i) add(refs.at[i], child_o[k], half, child_refs[k]);
-      codes[k] = code(child_o[k], half, child_refs[k]);
-      if (codes[k] != 0) ++count_;
+  /// The code of the OctoMap node at `o` of span `size` whose refs are `refs`, bottom-up: 0
+  /// outside the cube; a leaf code when every Cover leaf it meets has it (at once when its refs
+  /// are uniform, else when its 8 children came out as leaves of one code; never the root);
+  /// else 3, with its record in `record`.
+  uint8_t resolve(const std::array<int64_t, 3>& o, int64_t size, const BtRefs& refs, bool root,
+                  uint32_t& record) {
+    if (refs.count == 0) return 0;
+    if (!root && inside_cube(o, size)) {
+      const uint8_t first = uniform_[refs.at[0].node];
+      bool same = first != 3;
+      for (int i = 1; i < refs.count && same; ++i) same = uniform_[refs.at[i].node] == first;
+      if (same) return first;
     }
+    const int64_t half = size / 2;
+    BtInner node{};
+    for (uint32_t k = 0; k < 8; ++k) {
+      const std::array<int64_t, 3> c = {o[0] + (k & 1) * half, o[1] + ((k >> 1) & 1) * half,
+                                        o[2] + ((k >> 2) & 1) * half};
+      BtRefs child;
+      for (int i = 0; i < refs.count; ++i) add(refs.at[i], c, half, child);
+      node.codes[k] = resolve(c, half, child, false, node.child[k]);
+    }
+    if (!root && (node.codes[0] == 1 || node.codes[0] == 2) &&
+        std::all_of(node.codes + 1, node.codes + 8, [&](uint8_t c) { return c == node.codes[0]; }))
+      return node.codes[0];  // pruned: 8 leaves of one code
+    record = static_cast<uint32_t>(inner_.size());
+    inner_.push_back(node);
+    return 3;
+  }
+
+  /// Writes inner node `record` and its inner descendants depth-first (OcTree::writeBinary's
+  /// order): 2 bytes, 2 bits per child (bit 2c: free or inner, bit 2c + 1: occupied or inner).
+  void emit(uint32_t record, std::string& out, uint64_t& count) const {
+    const BtInner& node = inner_[record];
     uint8_t bytes[2] = {0, 0};
     for (int c = 0; c < 8; ++c) {
-      // bit 2c: free or inner, bit 2c + 1: occupied or inner.
-      const uint8_t bits = codes[c] == 1 ? 2 : (codes[c] == 2 ? 1 : codes[c]);
+      const uint8_t code = node.codes[c];
+      const uint8_t bits = code == 1 ? 2 : (code == 2 ? 1 : code);
       bytes[c / 4] |= static_cast<uint8_t>(bits << (2 * (c % 4)));
+      if (code != 0) ++count;
     }
-    out_.push_back(static_cast<char>(bytes[0]));
-    out_.push_back(static_cast<char>(bytes[1]));
-    for (uint32_t k = 0; k < 8; ++k)
-      if (codes[k] == 3) inner(child_o[k], half, child_refs[k]);
+    out.push_back(static_cast<char>(bytes[0]));
+    out.push_back(static_cast<char>(bytes[1]));
+    for (int c = 0; c < 8; ++c)
+      if (node.codes[c] == 3) emit(node.child[c], out, count);
   }
 
   const Octree& tree_;
   const BtKeys& keys_;
   std::vector<uint8_t> uniform_;
-  std::string out_;
-  uint64_t count_ = 0;
+  std::vector<BtInner> inner_;  ///< inner nodes, children before parents
 };
 
 bool write_bt(const fs::path& file, const Octree& tree, const BtKeys& keys, double threshold) {
@@ -402,18 +430,29 @@ VoxelBounds octomap_bounds(const Bbox& box, int depth) {
   if (!box.empty())
     extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
   if (!(extent > 0) || !std::isfinite(extent)) extent = 1;
-  // n cells of side h = 2^e contain [lo, lo + extent] from m·h, m = floor(lo/h) − margin, when
-  // (n − 1 − 2·margin)·h ≥ extent; one cell of margin per side from n = 4 on.
+  // n cells of side h = 2^e from m·h hold [lo, hi] with `margin` cells per side when
+  // m ≤ floor(lo/h) − margin and m + n ≥ ceil(hi/h) + margin, which needs (n − 2·margin)·h ≥
+  // extent; OctoMap's keys need −2^15 ≤ m ≤ 2^15 − n. The smallest such h whose m exists.
   const double n = std::ldexp(1.0, depth);
   const int margin = depth >= 2 ? 1 : 0;
+  const Vec3 hi = box.empty() ? Vec3{0.5, 0.5, 0.5} : box.max;
   int e = 0;
-  const double f = std::frexp(extent / (n - 1 - 2 * margin), &e);  // = f·2^e, f in [0.5, 1)
-  const double h = std::ldexp(1.0, f == 0.5 ? e - 1 : e);
-  VoxelBounds bounds;
-  bounds.size = n * h;
-  const auto corner = [&](double x) { return (std::floor(x / h) - margin) * h; };
-  bounds.min = {corner(lo.x), corner(lo.y), corner(lo.z)};
-  return bounds;
+  const double f = std::frexp(extent / (n - 2 * margin), &e);  // = f·2^e, f in [0.5, 1)
+  for (double h = std::ldexp(1.0, f == 0.5 ? e - 1 : e);; h *= 2) {
+    VoxelBounds bounds;
+    bounds.size = n * h;
+    bool fits = true;
+    double m[3];
+    for (int a = 0; a < 3; ++a) {
+      const double top = std::min(std::floor(lo[a] / h) - margin, 32768 - n);
+      const double bottom = std::max(std::ceil(hi[a] / h) + margin - n, -32768.0);
+      fits = fits && bottom <= top;
+      m[a] = top;
+    }
+    if (!fits) continue;
+    bounds.min = {m[0] * h, m[1] * h, m[2] * h};
+    return bounds;
+  }
 }
 
 void check_octomap_cube(const std::filesystem::path& path, const VoxelBounds& bounds, int depth) {

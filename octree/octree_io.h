@@ -24,8 +24,9 @@ namespace cover {
 
 /// The default cube of a .bt octree of `depth` (1..16) around `box` (an empty box: the unit
 /// cube centred on the origin): cells of side res = 2^e, the smallest power of two for which
-/// 2^depth cells from a whole multiple of res hold the box with one cell of margin per side (no
-/// margin at depth 1); min = (floor(box.min/res) − 1)·res, exact. \throws PreconditionError
+/// 2^depth cells from a whole multiple m·res of it hold the box with one cell of margin per side
+/// (none at depth 1) and lie within OctoMap's keys (−32768 ≤ m ≤ 32768 − 2^depth); m is the
+/// largest such, at most floor(box.min/res) − 1. Exact: min = m·res. \throws PreconditionError
 /// for a depth outside 1..16.
 VoxelBounds octomap_bounds(const Bbox& box, int depth);
 

@@ -851,7 +851,7 @@ TEST_F(OctreeFiles, BtPlacesCellsAtTheirWorldCoordinates) {
   // cube (octomap_bounds) is not aligned with OctoMap's own octants, and a cube far from the
   // origin checks that no centring remains.
   const Octree far = build(solid_, cube({-3.5, 1000.25, -0.75}, 2), 4);
-  for (const Octree* t : {&bt_tree_, &far}) {
+  for (const Octree* t : std::initializer_list<const Octree*>{&bt_tree_, &far}) {
     for (double threshold : {0.5, 0.1}) {
       write_octree(dir_ / "t.bt", *t, threshold);
       octomap::OcTree read(0.1);
@@ -907,29 +907,52 @@ TEST_F(OctreeFiles, BtCubeOffOctomapGridRefused) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "t.bt"));
 }
 
-TEST(OctomapBounds, HoldTheBoxWithAMarginOnOctomapsGrid) {
+/// Whether 2^depth cells of side h from some whole multiple m·h hold `box` with one cell of
+/// margin per side and stay within OctoMap's keys (−32768 ≤ m ≤ 32768 − 2^depth).
+bool octomap_cube_exists(const Bbox& box, int depth, double h) {
+  const double n = std::ldexp(1.0, depth);
+  for (int a = 0; a < 3; ++a) {
+    const double top = std::min(std::floor(box.min[a] / h) - 1, 32768 - n);
+    const double bottom = std::max(std::ceil(box.max[a] / h) + 1 - n, -32768.0);
+    if (bottom > top) return false;
+  }
+  return true;
+}
+
+TEST(OctomapBounds, SmallestCubeOnOctomapsGridHoldingTheBox) {
+  // Boxes of sizes 1e-3 to 10 within ±100, depths 2 to 16: the cube holds the box with a cell
+  // of margin, starts at a whole multiple of its power-of-two cell, stays within ±32768 cells,
+  // and no cell half as large would do (where the keys' reach binds, at fine depths far from the
+  // origin, the cell grows for it).
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-100, 100), e(1e-3, 10);
-  for (int trial = 0; trial < 200; ++trial) {
+  for (int trial = 0; trial < 300; ++trial) {
     Bbox box;
     const Vec3 lo{u(rng), u(rng), u(rng)};
     box.add(lo);
     box.add(lo + Vec3{e(rng), e(rng), e(rng)});
-    const int depth = 2 + trial % 9;
+    const int depth = 2 + trial % 15;
     const VoxelBounds b = octomap_bounds(box, depth);
     const double h = std::ldexp(b.size, -depth);
     int exponent = 0;
     EXPECT_EQ(std::frexp(h, &exponent), 0.5);  // a power of two
     for (int a = 0; a < 3; ++a) {
-      EXPECT_EQ(b.min[a] / h, std::floor(b.min[a] / h));
+      const double m = b.min[a] / h;
+      EXPECT_EQ(m, std::floor(m));
+      EXPECT_GE(m, -32768);
+      EXPECT_LE(m + std::ldexp(1.0, depth), 32768);
       EXPECT_LE(b.min[a] + h, box.min[a]);
       EXPECT_GE(b.min[a] + b.size - h, box.max[a]);
     }
-    // The smallest such power of two: half of it no longer holds the box with its margin.
-    const double extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y,
-                                    box.max.z - box.min.z});
-    EXPECT_LT(0.5 * h * ((1 << depth) - 3), extent);
+    EXPECT_FALSE(octomap_cube_exists(box, depth, 0.5 * h)) << trial;
   }
+  // Depth 16 spans all of OctoMap's keys: the cube is OctoMap's whole range.
+  Bbox unit;
+  unit.add(Vec3{0, 0, 0});
+  unit.add(Vec3{1, 1, 1});
+  const VoxelBounds all = octomap_bounds(unit, 16);
+  EXPECT_EQ(all.size, 4);
+  EXPECT_EQ(all.min.x, -2);
 }
 
 /// The oracle for .bt: liboctomap's own OcTree built from the octree's leaves at their world
@@ -1019,7 +1042,7 @@ TEST_F(OctreeFiles, BtIsTheBytesLiboctomapWrites) {
       unite({box_solid({0, 0, 0}, {0.25, 0.5, 0.5}), box_solid({0.25, 0, 0}, {0.5, 0.5, 0.5})});
   for (int depth : {1, 2, 3}) {
     expect_same(build(halves, cube({0, 0, 0}, 1), depth), 0.5, "halves");
-    expect_same(build(halves, cube({-0.375, -0.625, 0.125}, 1), depth), 0.5, "halves, shifted");
+    expect_same(build(halves, cube({-0.5, -0.5, -0.5}, 1), depth), 0.5, "halves, shifted");
   }
   const Solid small = box_solid({0.1, 0.2, 0.3}, {0.1004, 0.2003, 0.3002});
   expect_same(build(small, cube({-0.5, -0.5, -0.5}, 1), 16), 0.5, "depth 16");
