@@ -430,22 +430,30 @@ VoxelBounds octomap_bounds(const Bbox& box, int depth) {
   if (!box.empty())
     extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
   if (!(extent > 0) || !std::isfinite(extent)) extent = 1;
-  // n cells of side h = 2^e from m·h hold [lo, hi] with `margin` cells per side when
+  // n cells of side h from m·h hold [lo, hi] with `margin` cells per side when
   // m ≤ floor(lo/h) − margin and m + n ≥ ceil(hi/h) + margin, which needs (n − 2·margin)·h ≥
-  // extent; OctoMap's keys need −2^15 ≤ m ≤ 2^15 − n. The smallest such h whose m exists.
+  // extent; OctoMap's keys need −2^15 ≤ m ≤ 2^15 − n. h = q·2^j with q ≤ 16 (4 significant
+  // bits: m·h, min + i·h and OctoMap's (k − 2^15 + 1/2)·h are exact): the smallest such for
+  // which some m exists, tried upwards from extent/(n − 2·margin).
   const double n = std::ldexp(1.0, depth);
   const int margin = depth >= 2 ? 1 : 0;
   const Vec3 hi = box.empty() ? Vec3{0.5, 0.5, 0.5} : box.max;
   int e = 0;
   const double f = std::frexp(extent / (n - 2 * margin), &e);  // = f·2^e, f in [0.5, 1)
-  for (double h = std::ldexp(1.0, f == 0.5 ? e - 1 : e);; h *= 2) {
+  double q = std::ceil(16 * f);  // h = q·2^(e − 4), q in 8..16
+  for (;; q == 16 ? (q = 9, ++e) : ++q) {
+    const double h = std::ldexp(q, e - 4);
     VoxelBounds bounds;
     bounds.size = n * h;
     bool fits = true;
     double m[3];
     for (int a = 0; a < 3; ++a) {
-      const double top = std::min(std::floor(lo[a] / h) - margin, 32768 - n);
-      const double bottom = std::max(std::ceil(hi[a] / h) + margin - n, -32768.0);
+      // floor(lo/h) and ceil(hi/h) of the real quotients (k·h is exact; the division rounds).
+      double below = std::floor(lo[a] / h), above = std::ceil(hi[a] / h);
+      if (below * h > lo[a]) --below;
+      if (above * h < hi[a]) ++above;
+      const double top = std::min(below - margin, 32768 - n);
+      const double bottom = std::max(above + margin - n, -32768.0);
       fits = fits && bottom <= top;
       m[a] = top;
     }

@@ -23,11 +23,13 @@
 namespace cover {
 
 /// The default cube of a .bt octree of `depth` (1..16) around `box` (an empty box: the unit
-/// cube centred on the origin): cells of side res = 2^e, the smallest power of two for which
-/// 2^depth cells from a whole multiple m·res of it hold the box with one cell of margin per side
-/// (none at depth 1) and lie within OctoMap's keys (−32768 ≤ m ≤ 32768 − 2^depth); m is the
-/// largest such, at most floor(box.min/res) − 1. Exact: min = m·res. \throws PreconditionError
-/// for a depth outside 1..16.
+/// cube centred on the origin): 2^depth cells of side res from a whole multiple m·res, holding
+/// the box with one cell of margin per side (none at depth 1) within OctoMap's keys (−32768 ≤ m
+/// ≤ 32768 − 2^depth), m the largest such, at most floor(box.min/res) − 1. res = q·2^j with q a
+/// whole number ≤ 16 (so the cells' corners and OctoMap's voxel centres are exact doubles): the
+/// smallest such number for which some m exists, tried upwards from extent/(2^depth − 2)
+/// (extent/2 at depth 1); near the origin at most 9/8 of extent/(2^depth − 3). \throws
+/// PreconditionError for a depth outside 1..16.
 VoxelBounds octomap_bounds(const Bbox& box, int depth);
 
 /// Throws the InputError write_octree throws for a .bt `path` of the cube `bounds` at `depth`

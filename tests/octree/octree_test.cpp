@@ -5,6 +5,7 @@
 #include "octree/octree.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Gmpq.h>
 #include <gtest/gtest.h>
 #include <octomap/OcTree.h>
 
@@ -908,22 +909,29 @@ TEST_F(OctreeFiles, BtCubeOffOctomapGridRefused) {
 }
 
 /// Whether 2^depth cells of side h from some whole multiple m·h hold `box` with one cell of
-/// margin per side and stay within OctoMap's keys (−32768 ≤ m ≤ 32768 − 2^depth).
+/// margin per side within OctoMap's keys (−32768 ≤ m ≤ 32768 − 2^depth), in exact rationals.
 bool octomap_cube_exists(const Bbox& box, int depth, double h) {
   const double n = std::ldexp(1.0, depth);
   for (int a = 0; a < 3; ++a) {
-    const double top = std::min(std::floor(box.min[a] / h) - 1, 32768 - n);
-    const double bottom = std::max(std::ceil(box.max[a] / h) + 1 - n, -32768.0);
-    if (bottom > top) return false;
+    const CGAL::Gmpq lo(box.min[a]), hi(box.max[a]), step(h);
+    // floor(lo/h) − 1 ≥ m and m ≥ ceil(hi/h) + 1 − n: some m in range.
+    const CGAL::Gmpq low = lo / step, high = hi / step;
+    const double below = std::floor(CGAL::to_double(low)), above = std::ceil(CGAL::to_double(high));
+    double b = below, t = above;
+    if (CGAL::Gmpq(b) > low) --b;
+    if (CGAL::Gmpq(b + 1) <= low) ++b;
+    if (CGAL::Gmpq(t) < high) ++t;
+    if (CGAL::Gmpq(t - 1) >= high) --t;
+    if (std::max(t + 1 - n, -32768.0) > std::min(b - 1, 32768 - n)) return false;
   }
   return true;
 }
 
-TEST(OctomapBounds, SmallestCubeOnOctomapsGridHoldingTheBox) {
+TEST(OctomapBounds, CubeOnOctomapsGridHoldsTheBoxWithExactCells) {
   // Boxes of sizes 1e-3 to 10 within ±100, depths 2 to 16: the cube holds the box with a cell
-  // of margin, starts at a whole multiple of its power-of-two cell, stays within ±32768 cells,
-  // and no cell half as large would do (where the keys' reach binds, at fine depths far from the
-  // origin, the cell grows for it).
+  // of margin, starts at a whole multiple of its cell, stays within ±32768 cells, and its cell
+  // has at most 4 significant bits, and no smaller such cell would do (checked in exact
+  // rationals).
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-100, 100), e(1e-3, 10);
   for (int trial = 0; trial < 300; ++trial) {
@@ -933,26 +941,34 @@ TEST(OctomapBounds, SmallestCubeOnOctomapsGridHoldingTheBox) {
     box.add(lo + Vec3{e(rng), e(rng), e(rng)});
     const int depth = 2 + trial % 15;
     const VoxelBounds b = octomap_bounds(box, depth);
-    const double h = std::ldexp(b.size, -depth);
+    const double n = std::ldexp(1.0, depth), h = std::ldexp(b.size, -depth);
     int exponent = 0;
-    EXPECT_EQ(std::frexp(h, &exponent), 0.5);  // a power of two
+    const double q = std::ldexp(std::frexp(h, &exponent), 4);  // h = q·2^(exponent − 4)
+    EXPECT_EQ(q, std::floor(q)) << trial;
     for (int a = 0; a < 3; ++a) {
       const double m = b.min[a] / h;
       EXPECT_EQ(m, std::floor(m));
+      EXPECT_EQ(m * h, b.min[a]);
       EXPECT_GE(m, -32768);
-      EXPECT_LE(m + std::ldexp(1.0, depth), 32768);
+      EXPECT_LE(m + n, 32768);
       EXPECT_LE(b.min[a] + h, box.min[a]);
       EXPECT_GE(b.min[a] + b.size - h, box.max[a]);
     }
-    EXPECT_FALSE(octomap_cube_exists(box, depth, 0.5 * h)) << trial;
+    const double extent =
+        std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+    EXPECT_GE(h * (n - 2), extent);
+    const double smaller = q > 8 ? std::ldexp(q - 1, exponent - 4) : std::ldexp(15, exponent - 5);
+    EXPECT_FALSE(octomap_cube_exists(box, depth, smaller)) << trial;
   }
-  // Depth 16 spans all of OctoMap's keys: the cube is OctoMap's whole range.
+  // Near the origin the cell is within 9/8 of extent/(2^depth − 3) (one margin cell per side
+  // wherever the box lies on the grid): bunny00's box at depth 9.
   Bbox unit;
   unit.add(Vec3{0, 0, 0});
   unit.add(Vec3{1, 1, 1});
+  EXPECT_LE(std::ldexp(octomap_bounds(unit, 9).size, -9), 1.125 / 509);
+  // Depth 16 spans all of OctoMap's keys: the cube is OctoMap's whole range.
   const VoxelBounds all = octomap_bounds(unit, 16);
-  EXPECT_EQ(all.size, 4);
-  EXPECT_EQ(all.min.x, -2);
+  EXPECT_EQ(all.min.x, -0.5 * all.size);
 }
 
 /// The oracle for .bt: liboctomap's own OcTree built from the octree's leaves at their world
