@@ -259,6 +259,7 @@ class BtWriter {
     BtRefs root;
     root.at[0] = {0, int64_t{1} << keys_.depth, keys_.base};
     root.count = 1;
+    inner_.reserve(tree_.nodes.size() / 4);
     uint32_t record = 0;
     resolve(std::array<int64_t, 3>{0, 0, 0}, int64_t{1} << 16, root, true, record);
     count = 1;
@@ -280,9 +281,7 @@ class BtWriter {
   void add(const BtRef& r, const std::array<int64_t, 3>& o, int64_t size, BtRefs& refs) const {
     if (!meets(r, o, size)) return;
     const uint32_t child = tree_.nodes[r.node].first_child;
-    if (child == 0 || r.span <= size) {
-      for (int i = 0; i < refs.count; ++i)
-        if (refs.at[i].node == r.node) return;
+    if (child == 0 || r.span <= size) {  // distinct refs give distinct nodes: no duplicate
       if (refs.count == 8) throw InternalError("write_octree: more than 8 refs for a .bt node");
       refs.at[refs.count++] = r;
       return;
