@@ -203,8 +203,9 @@ class Model {
   /// result gives its box), over the cube `bounds` (default voxel_bounds(n), the cube voxelize
   /// uses). cells.glued is the pieces glued back: the same solid as evaluate() when the cube
   /// contains the result (else the result ∩ cube). Cells are cut in parallel.
-  /// \throws InputError for n < 1, bad bounds, and as evaluate(); NotComputable as evaluate()
-  /// and brep::clip.
+  /// \throws InputError for n < 1, bad bounds, brep::cells_memory_bytes(n) over
+  /// options.max_memory_bytes (checked first, before evaluating), and as evaluate();
+  /// NotComputable as evaluate() and brep::clip.
   CellsEvaluation evaluate_cells(int n, const std::optional<VoxelBounds>& bounds = std::nullopt,
                                  const brep::CellsOptions& options = {}) const;
 

@@ -76,11 +76,11 @@ void check_scale(const Vec3& f) {
   // log2 of |sx·sy·sz| without forming the product (which may underflow or overflow).
   const double log2 = std::log2(std::abs(f.x)) + std::log2(std::abs(f.y)) + std::log2(std::abs(f.z));
   if (log2 < -1022 || log2 >= 1024) {
-    char text[160];
+    char text[256];
     std::snprintf(text, sizeof text,
                   "s: scale factors (%g, %g, %g) multiply volumes by about 1e%d, which %s a "
                   "double (their product must be within 2.2e-308 to 1.8e308 in magnitude)",
-                  f.x, f.y, f.z, static_cast<int>(std::floor(log2 * std::log10(2.0))),
+                  f.x, f.y, f.z, static_cast<int>(std::lround(log2 * std::log10(2.0))),
                   log2 < 0 ? "underflows" : "overflows");
     throw InputError(text);
   }
@@ -336,9 +336,18 @@ py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
 }
 
 /// evaluate_cells(n, bounds): one dict per non-empty cell, in (i, j, k) order.
-py::list cell_pieces(const Model& model, int n, const py::object& bounds, Threads threads) {
+py::list cell_pieces(const Model& model, int n, const py::object& bounds, int64_t max_memory,
+                     Threads threads) {
   const std::optional<VoxelBounds> given = bounds_arg(bounds);
+  if (max_memory < 1 || max_memory > (int64_t{1} << 40))
+    throw InputError("max_memory: expected MiB from 1 to 2^40, got " + std::to_string(max_memory));
   brep::CellsOptions o;
+  o.max_memory_bytes = static_cast<uint64_t>(max_memory) << 20;
+  // The library's refusal (Model::evaluate_cells), worded with this call's parameters.
+  if (const double need = brep::cells_memory_bytes(n); n >= 1 && need > o.max_memory_bytes)
+    throw InputError("evaluate_cells: n = " + std::to_string(n) + ": the pieces need " +
+                     std::to_string(static_cast<uint64_t>(std::ceil(need / (1 << 20)))) +
+                     " MiB, over max_memory = " + std::to_string(max_memory) + " MiB");
   o.glue = false;
   o.clip.triangulate_caps = true;
   CellsEvaluation r;
@@ -604,7 +613,7 @@ PYBIND11_MODULE(_cover, m) {
            doc::kEvaluate)
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
       .def("evaluate_cells", &cell_pieces, py::arg("n"), py::arg("bounds") = py::none(),
-           py::kw_only(), threads, doc::kEvaluateCells)
+           py::kw_only(), py::arg("max_memory") = 4096, threads, doc::kEvaluateCells)
       .def("decompose", &decompose_pieces, py::kw_only(), threads, doc::kDecompose)
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 

@@ -352,6 +352,55 @@ TEST(Model, FromBytesRefusesDamageOrReadsASolidEveryKernelAnswers) {
   EXPECT_GT(read, 0);  // e.g. a changed name or a moved vertex
 }
 
+TEST(Model, UnboundedResultIsNotComputableForEveryBrepKernel) {
+  // evaluate, evaluate_cells, decompose and clip of a complement root: one exception type.
+  const Model m = ~box({0, 0, 0}, {1, 1, 1});
+  EXPECT_THROW(m.evaluate(), NotComputable);
+  EXPECT_THROW(m.evaluate_cells(2, VoxelBounds{{0, 0, 0}, 1}), NotComputable);
+  EXPECT_THROW(m.decompose(), NotComputable);
+  EXPECT_THROW(m.clip(brep::Plane{{0, 0, 1}, 0.5}), NotComputable);
+  EXPECT_THROW(m.volume(), NotComputable);
+}
+
+TEST(Model, EvaluateCellsRefusesNOverTheMemoryLimitBeforeEvaluating) {
+  const Model m = part();
+  try {
+    (void)m.evaluate_cells(2000);  // 8e9 cells: refused at once, nothing evaluated
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "evaluate cells: n = 2000: the pieces needs 7812500 MiB, over --max-memory 4096 MiB");
+  }
+  brep::CellsOptions small;
+  small.max_memory_bytes = 1 << 20;  // 1 MiB: 10³ cells need 1000 KiB, 11³ more
+  EXPECT_NO_THROW((void)m.evaluate_cells(10, std::nullopt, small));
+  EXPECT_THROW((void)m.evaluate_cells(11, std::nullopt, small), InputError);
+  EXPECT_EQ(brep::cells_memory_bytes(80), 80.0 * 80 * 80 * 1024);
+}
+
+TEST(Model, TransformWithADeterminantBeyondTheDoublesSaysSo) {
+  const Model b = box({0, 0, 0}, {1, 1, 1});
+  auto message = [&](const Affine& m) {
+    try {
+      (void)b.transformed(m);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(make_trs({1e-200, 1e-200, 1e-200}, {0, 0, 1}, 0, {0, 0, 0})),
+            "transform: the determinant, about 1e-600, is beyond the range of normal doubles: "
+            "volumes would underflow");
+  EXPECT_EQ(message(make_trs({1e200, 1e200, 1e-10}, {0, 0, 1}, 0, {0, 0, 0})),
+            "transform: the determinant, about 1e390, is beyond the range of normal doubles: "
+            "volumes would overflow");
+  EXPECT_EQ(message(make_trs({1, 0, 1}, {0, 0, 1}, 0, {0, 0, 0})),
+            "transform: singular matrix (it flattens the solid)");
+  // Small but representable: accepted, and the volume is exact.
+  EXPECT_EQ(b.transformed(make_trs({1e-100, 1e-100, 1e-100}, {0, 0, 1}, 0, {0, 0, 0})).volume().volume,
+            1e-100 * 1e-100 * 1e-100);
+}
+
 TEST(Model, EmptyModelIsTheEmptySet) {
   const Model empty;
   const Model b = box({0, 0, 0}, {1, 1, 1});
