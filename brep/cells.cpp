@@ -28,6 +28,7 @@
 
 #include "solid/errors.h"
 #include "solid/measure.h"
+#include "solid/memory_limit.h"
 #include "solid/parallel.h"
 #include "solid/rounding_repair.h"
 
@@ -285,8 +286,16 @@ double cell_wall(const CellGrid& grid, int axis, int k) {
   return lo + k * (grid.size / grid.n);
 }
 
+double cells_memory_bytes(int n) {
+  constexpr double kBytesPerCell = 1024;
+  const double cells = std::max(n, 0);
+  return cells * cells * cells * kBytesPerCell;
+}
+
 CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid, const CellsOptions& options) {
   if (grid.n < 1) throw InputError("cells: expected at least 1 cell per axis");
+  check_memory(cells_memory_bytes(grid.n), options.max_memory_bytes,
+               "cells " + std::to_string(grid.n) + ": the pieces");
   if (!std::isfinite(grid.min.x) || !std::isfinite(grid.min.y) || !std::isfinite(grid.min.z) ||
       !std::isfinite(grid.size) || !(grid.size > 0))
     throw InputError("cells: expected a finite cube corner and a finite size > 0");

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "brep/clip.h"
+#include "solid/memory_limit.h"
 #include "solid/polygon_mesh.h"
 
 namespace cover::brep {
@@ -51,7 +52,15 @@ double cell_wall(const CellGrid& grid, int axis, int k);
 struct CellsOptions {
   bool glue = true;  ///< also build CellsResult::glued
   ClipOptions clip;  ///< cap faces: convex polygons (default) or triangles
+  /// cut_cells() refuses (InputError, solid/memory_limit.h check_memory) when
+  /// cells_memory_bytes(n) exceeds this (the CLI's --max-memory; default 4096 MiB).
+  uint64_t max_memory_bytes = kDefaultMaxMemoryBytes;
 };
+
+/// The bytes the pieces of n×n×n cells may need, from n alone (checked before any cut): every
+/// cell full, a box piece (8 vertices, 6 faces, face kinds) with its allocations, and the
+/// recursion's part of the same size; 1 KiB a cell.
+double cells_memory_bytes(int n);
 
 /// Face kinds of a piece.
 enum class CellFace : uint8_t {
@@ -95,8 +104,9 @@ struct CellsResult {
 /// 2-manifold, without self-intersections. The glued mesh is mesh ∩ cube (the same solid as
 /// `mesh` when the cube contains it), with extra vertices where the walls cross its faces.
 /// Deterministic: the same pieces for any thread count.
-/// \throws InputError for n < 1, a non-finite min or a size that is not finite and > 0, and as
-/// brep::clip; NotComputable as brep::clip; InternalError if a wall edge finds no partner.
+/// \throws InputError for n < 1, a non-finite min or a size that is not finite and > 0,
+/// cells_memory_bytes(n) over options.max_memory_bytes, and as brep::clip; NotComputable as
+/// brep::clip; InternalError if a wall edge finds no partner.
 CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid,
                       const CellsOptions& options = {});
 

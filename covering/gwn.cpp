@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "covering/classify.h"
 #include "covering/detail/triangles.h"
@@ -379,6 +380,40 @@ std::vector<uint8_t> open_inside(const GwnForest& forest, size_t k, std::span<co
     }
   });
   return inside;
+}
+
+namespace {
+
+/// round(w) when no half-integer lies within v.error of v.w (then it is the rounding of the
+/// true w), else nullopt.
+std::optional<double> settled_round(const GwnValue& v) {
+  const double r = std::round(v.w);
+  const double half = r + (v.w >= r ? 0.5 : -0.5);  // the nearest half-integer
+  if (!(std::abs(v.w - half) > v.error)) return std::nullopt;
+  return r;
+}
+
+}  // namespace
+
+std::vector<int32_t> open_windings(const GwnForest& forest, size_t k, std::span<const Vec3> points,
+                                   const GwnOptions& options) {
+  const std::vector<uint8_t> inside = open_inside(forest, k, points, options);
+  const GwnTree& tree = forest.trees[k];
+  std::vector<int32_t> out(points.size(), 0);
+  parallel_for(points.size(), 256, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (!inside[i]) continue;
+      GwnValue v = generalized_winding(tree, points[i], options.beta);
+      std::optional<double> r = settled_round(v);
+      if (!r) r = settled_round(v = generalized_winding(tree, points[i], options.refine_beta));
+      if (!r) r = settled_round(v = generalized_winding_direct(tree, points[i]));
+      // Undecided: toward zero (|w| within the allowance of m + 1/2 counts as m).
+      const double w = r ? *r : std::copysign(std::floor(std::abs(v.w)), v.w);
+      const double clamped = std::clamp(w, -2147483647.0, 2147483647.0);
+      out[i] = clamped != 0 ? static_cast<int32_t>(clamped) : (v.w < 0 ? -1 : 1);
+    }
+  });
+  return out;
 }
 
 GwnValue generalized_winding(const GwnTree& tree, const Vec3& q, double beta) {

@@ -99,6 +99,17 @@ struct GwnForest {
 std::vector<uint8_t> open_inside(const GwnForest& forest, size_t k, std::span<const Vec3> points,
                                  const GwnOptions& options = {});
 
+/// The generalized winding number w of the open leaf of trees[k] at every point, as the
+/// integer nearest to it: 0 exactly where open_inside() finds |w| ≤ 1/2 (so it is nonzero
+/// exactly where classify() counts the leaf inside), elsewhere round(w) with magnitude at least
+/// 1. w is evaluated with its error bound (generalized_winding at beta, then refine_beta, then
+/// the direct sum) until no half-integer lies within the bound; a value still that close to
+/// k + 1/2 rounds toward zero (the tie rule of the membership). Points on the leaf's own
+/// surface get an unspecified value (callers detect them: LeafWindings::on_surface).
+/// Parallel; thread-count independent.
+std::vector<int32_t> open_windings(const GwnForest& forest, size_t k, std::span<const Vec3> points,
+                                   const GwnOptions& options = {});
+
 /// Whether |w_C(q)| < limit provably for every q in the closed `box`, w_C the winding number of
 /// the triangles of `tree` (used with a closure's cones): a node at gap g > 0 from the box (box
 /// to sphere) adds at most A/(4π·g²) (a surface of area A seen from at least g subtends at most

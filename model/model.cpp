@@ -161,7 +161,22 @@ std::vector<PointClass> Model::classify(std::span<const Vec3> points,
 LeafWindings Model::windings(std::span<const Vec3> points, const ClassifyOptions& options) const {
   check_points(points, "windings");
   if (empty()) return LeafWindings{};
-  return leaf_windings(solid(), bvh(), points, options);
+  LeafWindings out = leaf_windings(solid(), bvh(), points, options);
+  // Open leaves: the crossing count above means nothing; their generalized winding number,
+  // rounded (decided as classify() decides membership).
+  const GwnForest* forest = options.gwn != nullptr ? options.gwn : gwn();
+  if (forest == nullptr) return out;
+  const GwnOptions& go = options.gwn_options;
+  for (size_t l = 0; l < out.leaves; ++l) {
+    const int32_t k = forest->tree_of_leaf[l];
+    if (k < 0) continue;
+    const std::vector<int32_t> w = open_windings(*forest, static_cast<size_t>(k), points, go);
+    for (size_t i = 0; i < points.size(); ++i) {
+      const size_t at = i * out.leaves + l;
+      out.winding[at] = out.on_surface[at] ? 0 : w[i];
+    }
+  }
+  return out;
 }
 
 std::vector<RayResult> Model::cast(std::span<const Ray> rays, const CastOptions& options) const {
@@ -448,7 +463,7 @@ brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& 
   if (solid().has_open_leaf())
     throw InputError(open_leaf_message(solid()) + ": clip needs closed leaves");
   if (!is_bounded(solid()))
-    throw InputError("clip: the result is unbounded (a complement at the root)");
+    throw NotComputable("clip: the result is unbounded (a complement at the root)");
   const Solid& s = solid();
   const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
   return brep::clip(one_leaf ? leaf_mesh(s, 0) : cover::evaluate(s).mesh, plane, options);
@@ -458,6 +473,8 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
                                       const brep::CellsOptions& options) const {
   if (n < 1) throw InputError("evaluate cells: expected at least 1 cell per axis, got " +
                               std::to_string(n));
+  check_memory(brep::cells_memory_bytes(n), options.max_memory_bytes,
+               "evaluate cells: n = " + std::to_string(n) + ": the pieces");  // before evaluating
   CellsEvaluation out;
   if (!empty() && !is_bounded(solid()))
     throw NotComputable("evaluate cells: the result is unbounded (a complement at the root)");
@@ -474,7 +491,7 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
 brep::DecomposeResult Model::decompose(const brep::DecomposeOptions& options) const {
   if (empty()) return brep::DecomposeResult{};
   if (!is_bounded(solid()))
-    throw InputError("decompose: the result is unbounded (a complement at the root)");
+    throw NotComputable("decompose: the result is unbounded (a complement at the root)");
   const Solid& s = solid();
   const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
   return brep::decompose(one_leaf ? leaf_mesh(s, 0) : cover::evaluate(s).mesh, options);

@@ -12,8 +12,10 @@
 // solid() gives the Solid and bvh() its BVH.
 //
 // Errors (solid/errors.h): InputError for bad input (files, arrays, options), with the CLI's
-// one-line message; NotComputable for a valid request no exact method can answer (e.g. the volume
-// of an unbounded result); PreconditionError for a violated precondition of a caller.
+// one-line message; NotComputable for a valid request no exact method can answer; among them an
+// unbounded result (a complement at the root) asked for a volume, an evaluation, cells, a clip or
+// a decomposition (always NotComputable; a grid without bounds — voxel_bounds, voxelize, octree —
+// is an InputError: give bounds); PreconditionError for a violated precondition of a caller.
 
 #include <array>
 #include <cstdint>
@@ -103,8 +105,12 @@ class Model {
   std::vector<PointClass> classify(std::span<const Vec3> points,
                                    const ClassifyOptions& options = {}) const;
 
-  /// Every leaf's exact winding number at every point (covering/classify.h LeafWindings).
-  /// \throws InputError as classify().
+  /// Every leaf's winding number at every point (covering/classify.h LeafWindings): a closed
+  /// leaf's exact winding number; an open leaf's generalized winding number w rounded to the
+  /// nearest integer (covering/gwn.h open_windings): 0 exactly where |w| ≤ 1/2 as classify()
+  /// decides it, so an entry is nonzero exactly where classify() counts that leaf inside.
+  /// Where a point is on leaf l's surface (on_surface) the entry is undefined: a closed leaf's
+  /// holds a neighbouring count, an open leaf's 0. \throws InputError as classify().
   LeafWindings windings(std::span<const Vec3> points, const ClassifyOptions& options = {}) const;
 
   /// All hits and inside spans of each ray (covering/ray.h). \throws InputError for a zero or
@@ -187,9 +193,9 @@ class Model {
   EvaluateResult evaluate(const EvaluateOptions& options = {}) const;
 
   /// Plane clip and patch (brep/clip.h) of the result: a single leaf is clipped as it is, any
-  /// other expression is evaluated first. \throws InputError for a zero or non-finite plane, an
-  /// unbounded result, or (as brep::clip) a leaf that is open or non-manifold; NotComputable
-  /// when the cap cannot be built.
+  /// other expression is evaluated first. \throws InputError for a zero or non-finite plane, or
+  /// (as brep::clip) a leaf that is open or non-manifold; NotComputable for an unbounded result
+  /// and when the cap cannot be built.
   brep::ClipResult clip(const brep::Plane& plane, const brep::ClipOptions& options = {}) const;
 
   /// The result through n×n×n cells (brep/cells.h): evaluate(), then its mesh cut by the plane
@@ -197,16 +203,17 @@ class Model {
   /// result gives its box), over the cube `bounds` (default voxel_bounds(n), the cube voxelize
   /// uses). cells.glued is the pieces glued back: the same solid as evaluate() when the cube
   /// contains the result (else the result ∩ cube). Cells are cut in parallel.
-  /// \throws InputError for n < 1, bad bounds, and as evaluate(); NotComputable as evaluate()
-  /// and brep::clip.
+  /// \throws InputError for n < 1, bad bounds, brep::cells_memory_bytes(n) over
+  /// options.max_memory_bytes (checked first, before evaluating), and as evaluate();
+  /// NotComputable as evaluate() and brep::clip.
   CellsEvaluation evaluate_cells(int n, const std::optional<VoxelBounds>& bounds = std::nullopt,
                                  const brep::CellsOptions& options = {}) const;
 
   /// Exact convex decomposition (brep/decompose.h) of the result: a single leaf as it is, any
   /// other expression evaluated first. Every piece is a closed, outward triangle mesh, convex
-  /// exactly on its doubles; the volumes sum to the result's. \throws InputError for an unbounded
-  /// result or (as brep::decompose) an open, non-manifold or inside-out leaf; NotComputable when
-  /// a cut cannot be made (a self-intersecting leaf).
+  /// exactly on its doubles; the volumes sum to the result's. \throws InputError (as
+  /// brep::decompose) for an open, non-manifold or inside-out leaf; NotComputable for an
+  /// unbounded result (as evaluate()) and when a cut cannot be made (a self-intersecting leaf).
   brep::DecomposeResult decompose(const brep::DecomposeOptions& options = {}) const;
 
  private:

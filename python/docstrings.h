@@ -59,12 +59,15 @@ result's boundary; a point on a leaf's surface buried in the result is inside / 
 Same classes as `cover classify`. Raises ValueError for a wrong shape, InputError for a
 non-finite point (naming its index).)";
 
-inline constexpr const char* kWinding = R"(Every leaf's exact winding number at every point: int32 (n, leaves).
+inline constexpr const char* kWinding = R"(Every leaf's winding number at every point: int32 (n, leaves).
 
 points: array-like (n, 3) as for classify(). Column l is leaf l (load order / operand order).
-Where a point lies ON leaf l's surface the winding number is undefined; the entry then holds
-the count of a symbolically perturbed point (a neighbouring value, 0 or 1 for a simple
-leaf): use classify() to detect such points (its face / edge / vertex codes).)";
+A closed leaf: its exact winding number. An open leaf: its generalized winding number w (the
+solid angle its triangles subtend / 4 pi) rounded to the nearest integer, 0 exactly where
+|w| <= 1/2 as classify() decides it; so an entry is nonzero exactly where classify() counts that
+leaf inside. Where a point lies ON leaf l's surface the entry is undefined: a closed leaf's
+holds the count of a symbolically perturbed point (a neighbouring value, 0 or 1 for a simple
+leaf), an open leaf's 0: use classify() to detect such points (its face / edge / vertex codes).)";
 
 inline constexpr const char* kCast = R"(First entry into the result along each ray: a Hits named tuple of arrays.
 
@@ -141,7 +144,9 @@ Each piece is result ∩ cell, closed on the cell walls by the plane patcher (ex
 Dict keys: cell (i, j, k), vertices float64 (n, 3), faces int64 (m, 3) (cap polygons
 triangulated), volume, area, cap_area. Pieces come in (i, j, k) order, i slowest. bounds =
 (xmin, ymin, zmin, size) as in voxelize (default: the cube voxelize uses for res=n). The same
-pieces as `cover evaluate --cells n --pieces DIR`. Not interruptible.)";
+pieces as `cover evaluate --cells n --pieces DIR`. max_memory (MiB, default 4096, the CLI's
+--max-memory): n whose pieces may need more (1 KiB a cell) is refused with InputError before
+anything is evaluated. Not interruptible.)";
 inline constexpr const char* kDecompose = R"(Exact convex decomposition by plane cuts through reflex edges: a list of pieces.
 
 Each piece is (V float64 (n, 3), F int64 (m, 3)): a closed, outward triangle mesh, convex

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "brep/halfedge.h"
@@ -60,6 +61,29 @@ Affine matrix_arg(py::handle obj) {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) m(r, c) = d.data()[4 * r + c];
   return m;
+}
+
+/// Model.scale's factors: finite, non-zero, and a product (the factor of every volume) within
+/// the normal doubles. \throws InputError naming `s`.
+void check_scale(const Vec3& f) {
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(f[a]))
+      throw InputError("s: expected finite scale factors, got " + std::to_string(f[a]));
+    if (f[a] == 0)
+      throw InputError(std::string("s: the ") + "xyz"[a] +
+                       " scale factor is 0 (it flattens the solid)");
+  }
+  // log2 of |sx·sy·sz| without forming the product (which may underflow or overflow).
+  const double log2 = std::log2(std::abs(f.x)) + std::log2(std::abs(f.y)) + std::log2(std::abs(f.z));
+  if (log2 < -1022 || log2 >= 1024) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "s: scale factors (%g, %g, %g) multiply volumes by about 1e%d, which %s a "
+                  "double (their product must be within 2.2e-308 to 1.8e308 in magnitude)",
+                  f.x, f.y, f.z, static_cast<int>(std::lround(log2 * std::log10(2.0))),
+                  log2 < 0 ? "underflows" : "overflows");
+    throw InputError(text);
+  }
 }
 
 py::array_t<uint8_t> classify_points(const Model& model, py::handle points, Threads threads) {
@@ -235,8 +259,11 @@ py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& boun
   VoxelizeOptions o;
   o.resolution = res;
   o.bounds = bounds_arg(bounds);
-  if (res < 1 || res > 4096)  // before allocating the output
-    throw InputError("--res: expected a whole number from 1 to 4096, got " + std::to_string(res));
+  if (res < 1 || res > kMaxVoxelResolution)  // before allocating the output
+    throw InputError("res: expected a whole number from 1 to " +
+                     std::to_string(kMaxVoxelResolution) + " (above, voxelize_brick or "
+                     "cover.dask.voxelize, up to " + std::to_string(kMaxVoxelDims) + "), got " +
+                     std::to_string(res));
   VoxelGrid grid;
   {
     KernelScope scope(threads);
@@ -269,7 +296,13 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height, con
     Interrupt interrupt;
     ro.progress = [&](size_t, size_t) { interrupt.poll(); };
     const Image img = model.render(co, ro);
-    std::copy(img.rgb.begin(), img.rgb.end(), dst);
+    // In 16 MiB steps: the output's first touch is page faults too (432 MB at 12000²).
+    constexpr size_t kStep = size_t{16} << 20;
+    for (size_t at = 0; at < img.rgb.size(); at += kStep) {
+      const size_t count = std::min(kStep, img.rgb.size() - at);
+      std::copy(img.rgb.begin() + at, img.rgb.begin() + at + count, dst + at);
+      interrupt.poll();
+    }
   }
   return out;
 }
@@ -303,9 +336,18 @@ py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
 }
 
 /// evaluate_cells(n, bounds): one dict per non-empty cell, in (i, j, k) order.
-py::list cell_pieces(const Model& model, int n, const py::object& bounds, Threads threads) {
+py::list cell_pieces(const Model& model, int n, const py::object& bounds, int64_t max_memory,
+                     Threads threads) {
   const std::optional<VoxelBounds> given = bounds_arg(bounds);
+  if (max_memory < 1 || max_memory > (int64_t{1} << 40))
+    throw InputError("max_memory: expected MiB from 1 to 2^40, got " + std::to_string(max_memory));
   brep::CellsOptions o;
+  o.max_memory_bytes = static_cast<uint64_t>(max_memory) << 20;
+  // The library's refusal (Model::evaluate_cells), worded with this call's parameters.
+  if (const double need = brep::cells_memory_bytes(n); n >= 1 && need > o.max_memory_bytes)
+    throw InputError("evaluate_cells: n = " + std::to_string(n) + ": the pieces need " +
+                     std::to_string(static_cast<uint64_t>(std::ceil(need / (1 << 20)))) +
+                     " MiB, over max_memory = " + std::to_string(max_memory) + " MiB");
   o.glue = false;
   o.clip.triangulate_caps = true;
   CellsEvaluation r;
@@ -487,6 +529,7 @@ PYBIND11_MODULE(_cover, m) {
              } else {
                f = vec3_arg(s, "s");
              }
+             check_scale(f);
              return a.transformed(make_trs({f.x, f.y, f.z}, {0, 0, 1}, 0, {0, 0, 0}));
            },
            py::arg("s"), doc::kScale)
@@ -530,8 +573,9 @@ PYBIND11_MODULE(_cover, m) {
            doc::kBounds)
       .def("voxel_bounds",
            [](const Model& a, int res) {
-             if (res < 1 || res > 4096)
-               throw InputError("--res: expected a whole number from 1 to 4096, got " + std::to_string(res));
+             if (res < 1 || res > kMaxVoxelDims)
+               throw InputError("res: expected a whole number from 1 to " +
+                                std::to_string(kMaxVoxelDims) + ", got " + std::to_string(res));
              const VoxelBounds b = a.voxel_bounds(res);
              return py::make_tuple(b.min.x, b.min.y, b.min.z, b.size);
            },
@@ -569,7 +613,7 @@ PYBIND11_MODULE(_cover, m) {
            doc::kEvaluate)
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
       .def("evaluate_cells", &cell_pieces, py::arg("n"), py::arg("bounds") = py::none(),
-           py::kw_only(), threads, doc::kEvaluateCells)
+           py::kw_only(), py::arg("max_memory") = 4096, threads, doc::kEvaluateCells)
       .def("decompose", &decompose_pieces, py::kw_only(), threads, doc::kDecompose)
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <thread>
 
@@ -69,6 +70,20 @@ Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
   if (!v.hit || v.cap) return to_sample(v, nullptr, ray, section);
   const Bvh::Tri t = bvh.triangle(v.enter.tri);
   return to_sample(v, &t, ray, section);
+}
+
+/// `v` as n copies of `value`, written 16 MiB at a time with step() after each.
+template <typename Vector>
+void fill_in_steps(Vector& v, size_t n, typename Vector::value_type value,
+                   const std::function<void()>& step) {
+  constexpr size_t kStepBytes = size_t{16} << 20;
+  const size_t per_step = std::max<size_t>(1, kStepBytes / sizeof(value));
+  v.clear();
+  v.reserve(n);
+  while (v.size() < n) {
+    v.resize(std::min(n, v.size() + per_step), value);
+    step();
+  }
 }
 
 std::array<uint8_t, 3> hsv(double h, double s, double v) {
@@ -134,15 +149,24 @@ Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const Render
   img.width = cam.width;
   img.height = cam.height;
   const size_t n = static_cast<size_t>(cam.width) * cam.height;
-  img.rgb.assign(3 * n, 0);
-  img.depth.assign(n, Image::kFarDepth);
-  img.ids.assign(n, Image::kBackgroundId);
-  LargeVector<Vec3> normals(n);  // for the outline (24 MiB at 1024²: on huge pages)
-  // A key light from the upper left of the camera plus a headlight and ambient.
-  const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
   const int tile = std::max(1, o.tile);
   const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
   const size_t tiles = static_cast<size_t>(tiles_x) * tiles_y;
+  // The buffers' first touch is seconds of page faults for a large image (7 bytes a pixel: about
+  // 1 GiB at 12000², ~2.8 ms per MiB on a fresh VM page): filled in steps, with a progress call
+  // (done 0) after each, so that a caller polling for an interrupt gets a say meanwhile.
+  const auto step = [&] {
+    if (o.progress) o.progress(0, tiles);
+  };
+  fill_in_steps(img.rgb, 3 * n, uint8_t{0}, step);
+  fill_in_steps(img.depth, n, Image::kFarDepth, step);
+  fill_in_steps(img.ids, n, Image::kBackgroundId, step);
+  // Unit normals for the outline, written and read only at pixels with a surface (ids not
+  // background): left unfilled, their pages are first touched by the tiles that write them.
+  LargeBuffer<std::array<double, 3>> normals(n);
+  auto normal = [&](size_t i) { return Vec3{normals[i][0], normals[i][1], normals[i][2]}; };
+  // A key light from the upper left of the camera plus a headlight and ambient.
+  const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
   auto shade = [&](size_t i, const Ray& ray, const Sample& s) {
     std::array<uint8_t, 3> c = o.background;
     if (s.hit) {
@@ -156,7 +180,7 @@ Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const Render
       img.depth[i] = static_cast<uint16_t>(std::lround(std::clamp(f, 0.0, 1.0) * 65534));
       img.ids[i] = s.cap ? Image::kCapId
                          : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
-      normals[i] = s.normal;
+      normals[i] = {s.normal.x, s.normal.y, s.normal.z};
     }
     std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);
   };
@@ -207,9 +231,10 @@ Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const Render
   // parallel, each writing only its own pixels): surface pixel p is darkened iff it differs from
   // its right or lower neighbour, or its left or upper neighbour is background.
   auto differ = [&](size_t i, size_t j) {
-    return img.ids[i] != img.ids[j] || dot(normals[i], normals[j]) < 0.82;
+    return img.ids[i] != img.ids[j] || dot(normal(i), normal(j)) < 0.82;
   };
   parallel_for(static_cast<size_t>(cam.height), 16, [&](size_t begin, size_t end) {
+    if (o.progress && std::this_thread::get_id() == caller) o.progress(tiles, tiles);
     for (size_t py = begin; py < end; ++py)
       for (int px = 0; px < cam.width; ++px) {
         const size_t i = py * cam.width + px;

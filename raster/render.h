@@ -32,9 +32,10 @@ struct RenderOptions {
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
   bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
   int tile = 32;        ///< tile side for the parallel loop (results never depend on it)
-  /// Called on the calling thread after each tile it finishes and once at the end, with the
-  /// tiles done so far and the total (non-decreasing); default: none. The image does not
-  /// depend on it.
+  /// Called on the calling thread with the tiles done so far and the total (non-decreasing):
+  /// with 0 after each 16 MiB of the image buffers set up, after each tile it finishes, once
+  /// at the end of the tiles and again during the outline pass; default: none. The image does
+  /// not depend on it; an exception thrown from it stops the render (how a caller cancels).
   std::function<void(size_t done, size_t total)> progress;
   /// Open leaves' trees (covering/gwn.h; Model passes its own), or nullptr: built when needed.
   /// An open leaf is drawn where its winding-number membership changes at a surface hit

@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -49,8 +50,21 @@ Solid transform_solid(const Affine& m, Solid solid) {
   if (!m.allFinite()) throw InputError("transform: expected finite numbers");
   if (m(3, 0) != 0 || m(3, 1) != 0 || m(3, 2) != 0 || m(3, 3) != 1)
     throw InputError("transform: the last row must be 0 0 0 1");
-  const double det = m.topLeftCorner<3, 3>().determinant();
-  if (!(std::abs(det) > 0) || !std::isfinite(det)) throw InputError("transform: singular matrix");
+  const Eigen::Matrix3d linear = m.topLeftCorner<3, 3>();
+  const double det = linear.determinant();
+  if (!(std::abs(det) >= std::numeric_limits<double>::min()) || !std::isfinite(det)) {
+    // Singular, or a determinant beyond the doubles: the latter tells by the matrix scaled to
+    // entries of at most 1 (scaling by a power of two is exact).
+    const double largest = linear.cwiseAbs().maxCoeff();
+    const double scaled =
+        largest > 0 ? (linear / std::exp2(std::ilogb(largest))).determinant() : 0.0;
+    if (scaled == 0) throw InputError("transform: singular matrix (it flattens the solid)");
+    const int exponent = static_cast<int>(std::lround(
+        std::log10(std::abs(scaled)) + 3.0 * std::ilogb(largest) * std::log10(2.0)));
+    throw InputError("transform: the determinant, about 1e" + std::to_string(exponent) +
+                     ", is beyond the range of normal doubles: volumes would " +
+                     (exponent < 0 ? "underflow" : "overflow"));
+  }
   for (size_t v = 0; v < solid.vertices.size(); ++v) {
     Vec3& p = solid.vertices[v];
     const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, 1.0);

@@ -24,8 +24,10 @@ void apply_transform(const Affine& m, PolygonMesh& mesh);
 /// The whole solid mapped by `m` (every leaf, the expression kept): vertices transformed and
 /// rounded once more, leaf boxes recomputed; when det(m) < 0 every stored face is reversed, which
 /// keeps each leaf outward and the covering's combined orientation (solid.h notation).
-/// \throws InputError when m is not affine (last row 0 0 0 1), has a non-finite entry or a
-/// singular linear part, or maps a vertex outside ±kMaxCoordinate.
+/// \throws InputError when m is not affine (last row 0 0 0 1), has a non-finite entry, a
+/// singular linear part or one whose determinant (the factor of every volume) is beyond the
+/// normal doubles (|det| < 2^-1022 or overflowing: "the determinant, about 1e-600, ..."), or
+/// maps a vertex outside ±kMaxCoordinate.
 Solid transform_solid(const Affine& m, Solid solid);
 
 }  // namespace cover

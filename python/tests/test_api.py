@@ -376,3 +376,52 @@ def test_ctrl_c_stops_a_long_classification(bunny_path):
         timer.cancel()
     assert not finished, "the kernel ran to its end before the interrupt"
     assert time.monotonic() - start >= 0  # (no timed assertion: the call stopped by raising)
+
+
+def test_evaluate_cells_refuses_n_over_max_memory_before_evaluating():
+    m = cover.box([0, 0, 0], [1, 1, 1]) - cover.sphere([1, 1, 1], 0.5)
+    start = time.monotonic()
+    with pytest.raises(cover.InputError, match=r"evaluate_cells: n = 2000: the pieces need "
+                                               r"7812500 MiB, over max_memory = 4096 MiB"):
+        m.evaluate_cells(2000)
+    assert time.monotonic() - start < 1
+    assert len(m.evaluate_cells(10, max_memory=1)) > 0  # 10^3 cells: 1000 KiB
+    with pytest.raises(cover.InputError, match="over max_memory = 1 MiB"):
+        m.evaluate_cells(11, max_memory=1)
+    with pytest.raises(cover.InputError, match="max_memory: expected MiB"):
+        m.evaluate_cells(2, max_memory=0)
+
+
+def test_scale_names_s_and_what_is_wrong():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    with pytest.raises(cover.InputError, match=r"s: scale factors \(1e-200, 1e-200, 1e-200\) "
+                                               r"multiply volumes by about 1e-600, which "
+                                               r"underflows a double"):
+        b.scale(1e-200)
+    with pytest.raises(cover.InputError, match="overflows a double"):
+        b.scale([1e200, 1e200, 1e-10])
+    with pytest.raises(cover.InputError, match="s: the y scale factor is 0"):
+        b.scale([1, 0, 1])
+    with pytest.raises(cover.InputError, match="s: expected finite scale factors"):
+        b.scale(np.inf)
+    assert b.scale(1e-100).volume() > 0  # small but representable
+    with pytest.raises(cover.InputError, match="the determinant, about 1e-600, is beyond"):
+        b.transform(np.diag([1e-200, 1e-200, 1e-200, 1.0]))
+
+
+def test_unbounded_result_raises_not_computable_from_every_brep_kernel():
+    m = ~cover.box([0, 0, 0], [1, 1, 1])
+    for call in (m.evaluate, m.decompose, lambda: m.clip((0, 0, 1, 0.5)),
+                 lambda: m.evaluate_cells(2, bounds=(0, 0, 0, 1)), m.volume, m.bounds):
+        with pytest.raises(cover.NotComputable, match="unbounded"):
+            call()
+
+
+def test_voxel_bounds_and_voxelize_name_res():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    assert b.voxel_bounds(8192) == b.voxel_bounds(8192)
+    with pytest.raises(cover.InputError, match=r"^res: expected a whole number from 1 to 16384"):
+        b.voxel_bounds(16385)
+    with pytest.raises(cover.InputError, match=r"^res: expected a whole number from 1 to 4096 "
+                                               r"\(above, voxelize_brick or cover.dask.voxelize"):
+        b.voxelize(8192)

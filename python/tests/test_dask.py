@@ -109,3 +109,20 @@ def test_bad_arguments(scene):
         cover.dask.voxelize(42, 32)
     with pytest.raises(ValueError):
         cover.dask.classify(scene, np.zeros((4, 2)))
+
+
+def test_voxelize_beyond_4096_without_bounds_is_bricks_of_the_default_cube():
+    # Model.voxelize stops at 4096; the lazy grid goes to 16384 (only bricks are held).
+    m = cover.box([0, 0, 0], [1, 2, 3]) - cover.sphere([1, 2, 3], 0.5)
+    lazy = cover.dask.voxelize(m, 8192, chunks=2048)
+    assert lazy.shape == (8192, 8192, 8192) and lazy.numblocks == (4, 4, 4)
+    task = lazy.dask[(lazy.name, 1, 2, 3)]
+    bounds, box = task[4], task[5]
+    assert bounds == m.voxel_bounds(8192)
+    assert box == ((2048, 4096), (4096, 6144), (6144, 8192))
+    small = (2048, 2058, 4096, 4100, 6144, 6150)
+    brick = cover.dask._brick(m.to_bytes(), "key-test", 8192, bounds,
+                              ((2048, 2058), (4096, 4100), (6144, 6150)))
+    assert np.array_equal(brick, m.voxelize_brick(8192, small))
+    with pytest.raises(ValueError, match="res: expected 1 to 16384"):
+        cover.dask.voxelize(m, 16385)

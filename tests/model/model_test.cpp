@@ -84,6 +84,91 @@ TEST(Model, WindingsAreEachLeafsWindingNumber) {
   EXPECT_GT(inside, 0u);
 }
 
+/// Σ solid angles / 4π (Van Oosterom–Strackee) over every triangle of `tris`, in long double,
+/// from the vertices themselves: the reference for an open leaf's generalized winding number.
+long double solid_angle_sum(const std::vector<std::array<Vec3, 3>>& tris, const Vec3& q) {
+  using L = long double;
+  L sum = 0;
+  for (const auto& t : tris) {
+    L A[3], B[3], C[3];
+    for (int k = 0; k < 3; ++k) A[k] = L(t[0][k]) - q[k], B[k] = L(t[1][k]) - q[k], C[k] = L(t[2][k]) - q[k];
+    auto dotl = [](const L* x, const L* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    const L la = std::sqrt(dotl(A, A)), lb = std::sqrt(dotl(B, B)), lc = std::sqrt(dotl(C, C));
+    const L det = A[0] * (B[1] * C[2] - B[2] * C[1]) - A[1] * (B[0] * C[2] - B[2] * C[0]) +
+                  A[2] * (B[0] * C[1] - B[1] * C[0]);
+    const L den = la * lb * lc + dotl(A, B) * lc + dotl(A, C) * lb + dotl(B, C) * la;
+    sum += 2 * std::atan2(det, den);
+  }
+  return sum / (4 * std::acos(L(-1)));
+}
+
+/// The unit cube without its top face (z = 1), as triangles; `copies` times over, each copy
+/// shifted a little (a surface covering most of the cube twice where one covers it once).
+PolygonMesh open_cube(int copies, std::vector<std::array<Vec3, 3>>& tris) {
+  const PolygonMesh cube = make_box({0, 0, 0}, {1, 1, 1});
+  PolygonMesh m;
+  for (int c = 0; c < copies; ++c) {
+    const uint32_t base = static_cast<uint32_t>(m.vertices.size());
+    for (const Vec3& v : cube.vertices) m.vertices.push_back(v + c * Vec3{0.013, 0.007, -0.011});
+    for (size_t f = 0; f < cube.face_count(); ++f) {
+      const auto face = cube.face(f);
+      bool top = true;
+      for (uint32_t v : face) top &= cube.vertices[v].z == 1;
+      if (top) continue;
+      for (size_t i = 1; i + 1 < face.size(); ++i) {
+        const std::array<uint32_t, 3> t{base + face[0], base + face[i], base + face[i + 1]};
+        m.add_face(t);
+        tris.push_back({m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]});
+      }
+    }
+  }
+  return m;
+}
+
+TEST(Model, WindingOfAnOpenLeafIsItsRoundedGeneralizedWindingNumber) {
+  for (int copies : {1, 2}) {
+    std::vector<std::array<Vec3, 3>> tris;
+    const Model open = mesh(open_cube(copies, tris), "open cube");
+    ASSERT_TRUE(open.solid().leaves[0].open());
+    // With a closed box as a second leaf: its column stays the exact crossing count.
+    const Model m = open | box({0.25, 0.25, 0.25}, {0.75, 0.75, 2});
+    std::vector<Vec3> points;  // 2,500: a 50 × 50 lattice in the plane x = 0.3 + noise
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> jitter(-1e-3, 1e-3);
+    for (int j = 0; j < 50; ++j)
+      for (int k = 0; k < 50; ++k)
+        points.push_back({0.3 + jitter(rng), -0.5 + 2.0 * (j + 0.5) / 50 + jitter(rng),
+                          -0.5 + 2.0 * (k + 0.5) / 50 + jitter(rng)});
+    const LeafWindings w = m.windings(points);
+    const LeafWindings alone = open.windings(points);
+    const std::vector<PointClass> c = open.classify(points);
+    std::vector<int> crossing;
+    std::vector<uint8_t> on;
+    int checked = 0, wrong_value = 0, wrong_membership = 0, above_one = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      ASSERT_FALSE(w.on_surface[2 * i]) << i;
+      EXPECT_EQ(w.winding[2 * i], alone.winding[i]) << i;
+      // Membership: nonzero exactly where classify() counts the leaf inside.
+      if ((w.winding[2 * i] != 0) != (c[i] == PointClass::kInside)) ++wrong_membership;
+      // Value: the nearest integer to the brute-force sum, away from half-integers.
+      const long double ref = solid_angle_sum(tris, points[i]);
+      if (std::abs(ref - std::round(ref)) > 0.49L) continue;
+      ++checked;
+      if (w.winding[2 * i] != static_cast<int>(std::lround(ref))) ++wrong_value;
+      above_one += std::abs(w.winding[2 * i]) > 1;
+      // The closed box's column: its exact winding number.
+      leaf_windings(m.solid(), points[i], crossing, on);
+      if (!on[1]) EXPECT_EQ(w.winding[2 * i + 1], crossing[1]) << i;
+    }
+    EXPECT_GT(checked, 2000) << copies;
+    EXPECT_EQ(wrong_membership, 0) << copies;
+    EXPECT_EQ(wrong_value, 0) << copies;
+    if (copies == 2) {
+      EXPECT_GT(above_one, 100);
+    }
+  }
+}
+
 TEST(Model, VolumeExactCoveringRaysAndBrep) {
   // Disjoint boxes: the covering is exact.
   const Model two = box({0, 0, 0}, {1, 1, 1}) | box({2, 0, 0}, {3, 2, 1});
@@ -215,6 +300,105 @@ TEST(Model, BytesRoundTripAnswersTheSame) {
   EXPECT_EQ(back.evaluate().volume, m.evaluate().volume);
   EXPECT_TRUE(Model::from_bytes(Model().to_bytes()).empty());
   EXPECT_THROW(Model::from_bytes("not a solid"), InputError);
+}
+
+TEST(Model, FromBytesRefusesDamageOrReadsASolidEveryKernelAnswers) {
+  // Closed, open and mirrored leaves under every operation; seeded random byte flips and
+  // truncations: InputError, or a solid on which classify (against brute force), windings,
+  // volume and voxelize run. Before reading validated the leaves, a closed leaf flagged open
+  // crashed classify / volume / voxelize, and one flagged closed with a face missing answered.
+  std::vector<std::array<Vec3, 3>> tris;
+  const Model open = mesh(open_cube(1, tris), "open");
+  const Model scene = (box({0, 0, 0}, {1, 1, 1}) - open.transformed(make_trs({0.5, 0.5, 0.5}, {0, 0, 1}, 0, {0.25, 0.25, 0.25}))) |
+                      (sphere({1, 1, 1}, 0.5, 6) & ~box({0.5, 0, 0}, {2, 1, 1}).transformed(make_trs({-1, 1, 1}, {0, 0, 1}, 0, {2.5, 0, 0})));
+  const std::string bytes = scene.to_bytes();
+  const std::vector<Vec3> points = random_points(64, -0.5, 1.5, 12);
+  std::mt19937_64 rng(40);
+#ifdef COVER_SANITIZED
+  const int trials = 300;
+#else
+  const int trials = 3000;
+#endif
+  int refused = 0, read = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    std::string damaged = bytes;
+    const int flips = 1 + static_cast<int>(rng() % 3);
+    for (int f = 0; f < flips; ++f) {
+      const size_t at = rng() % damaged.size();
+      // Half the flips one bit (a sign, a flag, an index off by a power of two).
+      damaged[at] ^= static_cast<char>(rng() % 2 ? 1 << (rng() % 8) : 1 + rng() % 255);
+    }
+    if (rng() % 8 == 0) damaged.resize(rng() % damaged.size());
+    Model m;
+    try {
+      m = Model::from_bytes(damaged);
+    } catch (const InputError&) {
+      ++refused;
+      continue;
+    }
+    ++read;
+    EXPECT_EQ(m.to_bytes(), damaged) << trial;
+    EXPECT_EQ(m.classify(points), classify_brute_force(m.solid(), points)) << trial;
+    (void)m.windings(points);
+    if (!m.bounded()) continue;
+    VolumeOptions vo;
+    vo.rays = 8;
+    (void)m.volume(vo);
+    VoxelizeOptions xo;
+    xo.resolution = 8;
+    (void)m.voxelize(xo);
+  }
+  EXPECT_GT(refused, trials / 4);
+  EXPECT_GT(read, 0);  // e.g. a changed name or a moved vertex
+}
+
+TEST(Model, UnboundedResultIsNotComputableForEveryBrepKernel) {
+  // evaluate, evaluate_cells, decompose and clip of a complement root: one exception type.
+  const Model m = ~box({0, 0, 0}, {1, 1, 1});
+  EXPECT_THROW(m.evaluate(), NotComputable);
+  EXPECT_THROW(m.evaluate_cells(2, VoxelBounds{{0, 0, 0}, 1}), NotComputable);
+  EXPECT_THROW(m.decompose(), NotComputable);
+  EXPECT_THROW(m.clip(brep::Plane{{0, 0, 1}, 0.5}), NotComputable);
+  EXPECT_THROW(m.volume(), NotComputable);
+}
+
+TEST(Model, EvaluateCellsRefusesNOverTheMemoryLimitBeforeEvaluating) {
+  const Model m = part();
+  try {
+    (void)m.evaluate_cells(2000);  // 8e9 cells: refused at once, nothing evaluated
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "evaluate cells: n = 2000: the pieces needs 7812500 MiB, over --max-memory 4096 MiB");
+  }
+  brep::CellsOptions small;
+  small.max_memory_bytes = 1 << 20;  // 1 MiB: 10³ cells need 1000 KiB, 11³ more
+  EXPECT_NO_THROW((void)m.evaluate_cells(10, std::nullopt, small));
+  EXPECT_THROW((void)m.evaluate_cells(11, std::nullopt, small), InputError);
+  EXPECT_EQ(brep::cells_memory_bytes(80), 80.0 * 80 * 80 * 1024);
+}
+
+TEST(Model, TransformWithADeterminantBeyondTheDoublesSaysSo) {
+  const Model b = box({0, 0, 0}, {1, 1, 1});
+  auto message = [&](const Affine& m) {
+    try {
+      (void)b.transformed(m);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(make_trs({1e-200, 1e-200, 1e-200}, {0, 0, 1}, 0, {0, 0, 0})),
+            "transform: the determinant, about 1e-600, is beyond the range of normal doubles: "
+            "volumes would underflow");
+  EXPECT_EQ(message(make_trs({1e200, 1e200, 1e-10}, {0, 0, 1}, 0, {0, 0, 0})),
+            "transform: the determinant, about 1e390, is beyond the range of normal doubles: "
+            "volumes would overflow");
+  EXPECT_EQ(message(make_trs({1, 0, 1}, {0, 0, 1}, 0, {0, 0, 0})),
+            "transform: singular matrix (it flattens the solid)");
+  // Small but representable: accepted, and the volume is exact.
+  EXPECT_EQ(b.transformed(make_trs({1e-100, 1e-100, 1e-100}, {0, 0, 1}, 0, {0, 0, 0})).volume().volume,
+            1e-100 * 1e-100 * 1e-100);
 }
 
 TEST(Model, EmptyModelIsTheEmptySet) {

@@ -62,7 +62,7 @@ TEST(Serialize, EveryTruncationAndTrailingByteIsRefused) {
   try {
     solid_from_bytes("COVERSOL", "worker cache");
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "worker cache: not a Cover solid: truncated");
+    EXPECT_EQ(std::string(e.what()), "worker cache: not a Cover solid: truncated at byte 8 of 8");
   }
 }
 
@@ -83,6 +83,104 @@ TEST(Serialize, RandomDamageIsRefusedOrReadsAValidSolid) {
     }
   }
   EXPECT_GT(refused, 1000u);
+}
+
+/// The message of solid_from_bytes(bytes), or "" when it reads.
+std::string refusal(const std::string& bytes) {
+  try {
+    solid_from_bytes(bytes);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// A unit cube leaf whose mesh is `m` (taken as it is, without the loader's repairs).
+Solid raw_leaf(PolygonMesh m, bool open_flag = false) {
+  Solid s = make_leaf(std::move(m), "cube");
+  s.leaves[0].boundary_edges = open_flag ? 1 : 0;
+  return s;
+}
+
+PolygonMesh unit_cube() { return make_box({0, 0, 0}, {1, 1, 1}); }
+
+/// The cube without its face f.
+PolygonMesh cube_without_face(size_t f) {
+  const PolygonMesh cube = unit_cube();
+  PolygonMesh m;
+  m.vertices = cube.vertices;
+  for (size_t g = 0; g < cube.face_count(); ++g)
+    if (g != f) m.add_face(std::vector<uint32_t>(cube.face(g).begin(), cube.face(g).end()));
+  return m;
+}
+
+TEST(Serialize, FaceWithFewerThanThreeVerticesIsRefused) {
+  PolygonMesh m = unit_cube();
+  m.add_face(std::vector<uint32_t>{0, 1});
+  EXPECT_NE(refusal(solid_to_bytes(raw_leaf(std::move(m)))).find("face 6: 2 vertices (at least 3"),
+            std::string::npos);
+}
+
+TEST(Serialize, LeafFlaggedClosedWithAFaceMissingIsRefused) {
+  // Read as closed it had volume 5/6 (the covering of five faces).
+  const std::string why = refusal(solid_to_bytes(raw_leaf(cube_without_face(2))));
+  EXPECT_NE(why.find("leaf 0 ('cube'): flagged closed, but its faces have 4 boundary edge(s)"),
+            std::string::npos)
+      << why;
+}
+
+TEST(Serialize, ClosedLeafFlaggedOpenIsRefused) {
+  // Read as open it crashed classify, volume and voxelize (a winding tree with no boundary).
+  const std::string why = refusal(solid_to_bytes(raw_leaf(unit_cube(), true)));
+  EXPECT_NE(why.find("flagged open, but its faces are closed"), std::string::npos) << why;
+}
+
+TEST(Serialize, InsideOutClosedLeafIsRefused) {
+  PolygonMesh m = unit_cube();
+  for (size_t f = 0; f < m.face_count(); ++f)
+    std::reverse(m.face_vertices.begin() + m.face_start[f], m.face_vertices.begin() + m.face_start[f + 1]);
+  const std::string why = refusal(solid_to_bytes(raw_leaf(std::move(m))));
+  EXPECT_NE(why.find("leaf 0 ('cube'): inside-out (signed volume -1"), std::string::npos) << why;
+}
+
+TEST(Serialize, InconsistentlyOrientedClosedLeafIsRefused) {
+  PolygonMesh m = unit_cube();
+  std::reverse(m.face_vertices.begin() + m.face_start[3], m.face_vertices.begin() + m.face_start[4]);
+  const std::string why = refusal(solid_to_bytes(raw_leaf(std::move(m))));
+  EXPECT_NE(why.find("is not traversed equally often in each direction"), std::string::npos) << why;
+}
+
+TEST(Serialize, FaceSignsAgainstTheExpressionAreRefused) {
+  // Leaf 1's faces reversed and their signs negated: its own orientation is unchanged, but the
+  // union does not reverse it.
+  Solid s = unite({make_leaf(unit_cube(), "a"), make_leaf(make_box({2, 0, 0}, {3, 1, 1}), "b")});
+  for (uint32_t f = s.leaves[1].first_face; f < s.leaves[1].first_face + s.leaves[1].face_count; ++f) {
+    std::reverse(s.face_vertices.begin() + s.face_start[f], s.face_vertices.begin() + s.face_start[f + 1]);
+    s.face_sign[f] = -1;
+  }
+  const std::string why = refusal(solid_to_bytes(s));
+  EXPECT_NE(why.find("face 6: sign -1, but its leaf's place in the expression gives 1"),
+            std::string::npos)
+      << why;
+}
+
+TEST(Serialize, NodeUsedAsTwoOperandsIsRefused) {
+  Solid s = small_scene();
+  s.tree.nodes.push_back(CsgNode{CsgOp::kUnion, 0, {s.tree.root, 0}});  // node 0 used twice
+  s.tree.root = static_cast<uint32_t>(s.tree.nodes.size() - 1);
+  EXPECT_NE(refusal(solid_to_bytes(s)).find("node 0 is the operand of 2 operations"),
+            std::string::npos);
+}
+
+TEST(Serialize, OpenLeafKeepsItsBoundaryCount) {
+  std::vector<std::string> warnings;
+  const Solid open = prepare_leaf(cube_without_face(2), "open", "open", LoadOptions{}, warnings);
+  ASSERT_EQ(open.leaves[0].boundary_edges, 4);
+  const Solid s = subtract({open, make_leaf(make_box({0.2, 0.2, 0.2}, {0.4, 0.4, 2}), "hole")});
+  const Solid back = solid_from_bytes(solid_to_bytes(s));
+  EXPECT_EQ(back.leaves[0].boundary_edges, 4);
+  EXPECT_EQ(back.leaves[1].boundary_edges, 0);
+  expect_same(s, back);
 }
 
 }  // namespace
