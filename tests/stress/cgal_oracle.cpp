@@ -77,8 +77,9 @@ ExactMesh corefine_node(const Solid& solid, uint32_t node) {
     if (n.op == CsgOp::kUnion) ok = PMP::corefine_and_compute_union(acc, other, out);
     if (n.op == CsgOp::kIntersection) ok = PMP::corefine_and_compute_intersection(acc, other, out);
     if (n.op == CsgOp::kDifference) ok = PMP::corefine_and_compute_difference(acc, other, out);
-    if (!ok) throw std::runtime_error("corefinement refused the operation at node " +
-                                      std::to_string(node));
+    if (!ok)
+      throw std::runtime_error("corefinement refused the operation at node " +
+                               std::to_string(node));
     acc = std::move(out);
   }
   return acc;

@@ -15,8 +15,8 @@ namespace cover::stress {
 /// The volume of `solid`'s expression computed by CGAL corefinement (Polygon_mesh_processing::
 /// corefine_and_compute_union / _intersection / _difference with the Epeck kernel, folded
 /// bottom-up over the tree; a difference subtracts its operands one by one) on every leaf's own
-/// doubles (leaf_mesh, faces triangulated by CGAL). nullopt, with the reason in `why`, when CGAL cannot
-/// compute it (a complement, an operation CGAL refuses, an exception).
+/// doubles (leaf_mesh, faces triangulated by CGAL). nullopt, with the reason in `why`, when CGAL
+/// cannot compute it (a complement, an operation CGAL refuses, an exception).
 std::optional<double> corefined_volume(const Solid& solid, std::string& why);
 
 /// CGAL's verdict on one output mesh (its faces and vertex indices as they are): empty when the

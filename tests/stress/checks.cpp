@@ -36,9 +36,8 @@ PolygonMesh welded(const PolygonMesh& mesh, bool& had_duplicates) {
     const Vec3& p = mesh.vertices[v];
     return std::array<double, 3>{p.x, p.y, p.z};
   };
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return key(a) != key(b) ? key(a) < key(b) : a < b;
-  });
+  std::sort(order.begin(), order.end(),
+            [&](uint32_t a, uint32_t b) { return key(a) != key(b) ? key(a) < key(b) : a < b; });
   had_duplicates = false;
   for (size_t i = 0; i < order.size(); ++i) {
     const bool same = i > 0 && key(order[i]) == key(order[i - 1]);
@@ -77,20 +76,24 @@ Outcome check_mesh(const PolygonMesh& mesh) {
   if (!r.oriented) add("not oriented", true);
   if (!r.manifold) add("not manifold", true);
   // validate_mesh decides outward on the volume in doubles: a sliver is decided exactly.
-  if (r.closed && r.oriented && !r.outward && exact_volume_sign(mesh) <= 0) add("not outward", true);
+  if (r.closed && r.oriented && !r.outward && exact_volume_sign(mesh) <= 0)
+    add("not outward", true);
   if (r.self_intersecting.value_or(false)) add("self-intersecting", false);
   if (r.degenerate_faces > 0) add(std::to_string(r.degenerate_faces) + " degenerate faces", false);
   try {
     const brep::BrepReport b = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(mesh));
-    if (!b.consistent || !b.closed || !b.manifold) add("half-edge mesh not a closed 2-manifold", true);
+    if (!b.consistent || !b.closed || !b.manifold)
+      add("half-edge mesh not a closed 2-manifold", true);
   } catch (const std::exception& e) {
     add(std::string("half-edge mesh: ") + e.what(), true);
   }
   const std::string cgal = cgal_mesh_problem(mesh);
   if (cover_problem.empty() && cgal.empty()) return {};
-  const std::string detail = "Cover: " + (cover_problem.empty() ? std::string("valid") : cover_problem) +
-                             "; " + (cgal.empty() ? std::string("CGAL: valid") : cgal);
-  if (structural || !(cgal.empty() || cgal == "CGAL: self-intersecting")) return {"invalid", detail};
+  const std::string detail =
+      "Cover: " + (cover_problem.empty() ? std::string("valid") : cover_problem) + "; " +
+      (cgal.empty() ? std::string("CGAL: valid") : cgal);
+  if (structural || !(cgal.empty() || cgal == "CGAL: self-intersecting"))
+    return {"invalid", detail};
   // Left: self-intersections (Cover's or CGAL's) and zero-area faces.
   if (!r.self_intersecting.value_or(false) && r.degenerate_faces > 0)
     return {"degenerate", detail + " (CGAL counts a collinear face as a self-intersection)"};
@@ -124,8 +127,8 @@ Outcome stage_cells(const Solid& solid, const PolygonMesh& mesh, int n) {
   double sum = 0;
   for (const brep::CellPiece& piece : r.pieces) {
     const std::string cell = "piece (" + std::to_string(piece.cell[0]) + "," +
-                             std::to_string(piece.cell[1]) + "," +
-                             std::to_string(piece.cell[2]) + ")";
+                             std::to_string(piece.cell[1]) + "," + std::to_string(piece.cell[2]) +
+                             ")";
     const Outcome o = check_mesh(piece.mesh);
     if (o.kind != "ok") return {o.kind, cell + ": " + o.detail, piece.mesh};
     const Bbox pb = face_bbox(piece.mesh);
@@ -149,7 +152,8 @@ Outcome stage_decompose(const Solid& solid, const PolygonMesh& mesh) {
   const double volume = signed_volume(mesh);
   double sum = 0;
   for (size_t i = 0; i < r.pieces.size(); ++i) {
-    const std::string piece = "piece " + std::to_string(i) + " of " + std::to_string(r.pieces.size());
+    const std::string piece =
+        "piece " + std::to_string(i) + " of " + std::to_string(r.pieces.size());
     const Outcome o = check_mesh(r.pieces[i]);
     if (o.kind != "ok") return {o.kind, piece + ": " + o.detail, r.pieces[i]};
     const std::string convex = cgal_convexity_problem(r.pieces[i]);

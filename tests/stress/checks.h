@@ -34,7 +34,7 @@ struct Outcome {
   Outcome(std::string k, std::string d, PolygonMesh e = {})
       : kind(std::move(k)), detail(std::move(d)), evidence(std::move(e)) {}
   std::string kind = "ok";
-  std::string detail;  ///< one line: what failed, or for the oracle the volume
+  std::string detail;    ///< one line: what failed, or for the oracle the volume
   PolygonMesh evidence;  ///< the output mesh that failed its check (empty when none)
 };
 

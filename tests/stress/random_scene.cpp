@@ -48,22 +48,23 @@ struct Leaf {
 
 Leaf box_leaf(Draw& d) {
   if (d.chance(2, 5)) {  // on the 1/4 grid: faces coincide with other grid boxes
-    const double lo[3] = {0.25 * (d.below(7) - 4), 0.25 * (d.below(7) - 4), 0.25 * (d.below(7) - 4)};
+    const double lo[3] = {0.25 * (d.below(7) - 4), 0.25 * (d.below(7) - 4),
+                          0.25 * (d.below(7) - 4)};
     const double hi[3] = {lo[0] + 0.25 * (1 + d.below(6)), lo[1] + 0.25 * (1 + d.below(6)),
                           lo[2] + 0.25 * (1 + d.below(6))};
-    return {"{\"box\": {\"min\": " + vec(lo[0], lo[1], lo[2]) + ", \"max\": " +
-                vec(hi[0], hi[1], hi[2]) + "}}",
+    return {"{\"box\": {\"min\": " + vec(lo[0], lo[1], lo[2]) +
+                ", \"max\": " + vec(hi[0], hi[1], hi[2]) + "}}",
             "gridbox"};
   }
   const double h[3] = {d.real(0.2, 0.8), d.real(0.2, 0.8), d.real(0.2, 0.8)};
   const Eigen::Vector3d a = axis(d);
   const double degrees = d.real(0, 360);
   const double t[3] = {d.real(-0.5, 0.5), d.real(-0.5, 0.5), d.real(-0.5, 0.5)};
-  return {"{\"box\": {\"min\": " + vec(-h[0], -h[1], -h[2]) + ", \"max\": " +
-              vec(h[0], h[1], h[2]) + "}, \"transform\": {\"rotate\": {\"axis\": " +
-              vec(a.x(), a.y(), a.z()) + ", \"degrees\": " + num(degrees) +
-              "}, \"translate\": " + vec(t[0], t[1], t[2]) + "}}",
-          "box"};
+  return {
+      "{\"box\": {\"min\": " + vec(-h[0], -h[1], -h[2]) + ", \"max\": " + vec(h[0], h[1], h[2]) +
+          "}, \"transform\": {\"rotate\": {\"axis\": " + vec(a.x(), a.y(), a.z()) +
+          ", \"degrees\": " + num(degrees) + "}, \"translate\": " + vec(t[0], t[1], t[2]) + "}}",
+      "box"};
 }
 
 Leaf mesh_leaf(Draw& d, const MeshEntry& m) {
@@ -97,8 +98,8 @@ Leaf operation(Draw& d, const std::vector<MeshEntry>& meshes, int depth, bool ro
   Leaf out{std::string("{\"") + kOps[op] + "\": [", "("};
   for (int k = 0; k < operands; ++k) {
     const bool nested = depth > 2 && ((root && k == 0) || d.chance(1, 2));
-    const Leaf child = nested ? operation(d, meshes, depth - 1, false, leaves)
-                              : leaf(d, meshes, leaves);
+    const Leaf child =
+        nested ? operation(d, meshes, depth - 1, false, leaves) : leaf(d, meshes, leaves);
     out.json += (k ? ",\n  " : "\n  ") + child.json;
     out.name += (k ? kSymbols[op] : "") + child.name;
   }

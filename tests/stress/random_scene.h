@@ -11,8 +11,9 @@
 //   tree      depth 2 or 3 (a root operation over leaves, or over operations of leaves); 2 or 3
 //             operands per operation; the first operand of the root is always an operation in a
 //             3-level scene. Operations are drawn uniformly.
-// The same seed and mesh list give the same text on every machine (std::mt19937_64 and integer
-// draws turned into doubles by exact arithmetic: no distribution whose output is unspecified).
+// A seed gives the same tree and draws everywhere (std::mt19937_64 with integer draws turned
+// into doubles by exact arithmetic, no std distribution); the rotation's matrix entries come from
+// the C library's sin / cos, so the JSON text, which is what reproduces a case, is kept.
 
 #include <cstdint>
 #include <filesystem>

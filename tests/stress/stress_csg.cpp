@@ -63,14 +63,16 @@ struct Options {
 };
 
 // Closed, self-intersection-free libcgal-demo meshes (checked at start-up as loaded, an
-// inside-out one reversed: a mesh that fails is dropped with a note). `small` is the ctest slice's: a few hundred faces.
+// inside-out one reversed: a mesh that fails is dropped with a note). `small` is the ctest slice's:
+// a few hundred faces.
 const std::vector<std::string> kSmall = {"tetrahedron.off", "octahedron.off", "icosahedron.off",
-                                         "cross.off", "tripod.off", "sphere.off"};
+                                         "cross.off",       "tripod.off",     "sphere.off"};
 const std::vector<std::string> kMedium = {
-    "tetrahedron.off", "octahedron.off", "icosahedron.off", "cross.off", "tripod.off",
-    "sphere.off", "ellipsoid.off", "blob-closed.off", "dragknob.off", "part.off", "joint.off",
-    "eight.off", "oblong.off", "anchor.off", "rotor.off", "cactus.off", "spool.off", "pinion.off",
-    "hand.off", "helmet.off", "mask_cone.off", "couplingdown.off"};
+    "tetrahedron.off", "octahedron.off", "icosahedron.off", "cross.off",    "tripod.off",
+    "sphere.off",      "ellipsoid.off",  "blob-closed.off", "dragknob.off", "part.off",
+    "joint.off",       "eight.off",      "oblong.off",      "anchor.off",   "rotor.off",
+    "cactus.off",      "spool.off",      "pinion.off",      "hand.off",     "helmet.off",
+    "couplingdown.off"};
 
 void put(int fd, const std::string& line) {
   std::string s = line + "\n";
@@ -135,9 +137,12 @@ std::vector<MeshEntry> load_catalogue(const Options& o) {
         const PolygonMesh m = leaf_mesh(in.solid, 0);
         const Outcome c = check_mesh(m);
         std::string why;
-        if (in.solid.leaves[0].open()) why = "open";
-        else if (c.kind != "ok") why = c.detail;
-        else if (!corefined_volume(in.solid, why)) why = "CGAL: " + why;
+        if (in.solid.leaves[0].open())
+          why = "open";
+        else if (c.kind != "ok")
+          why = c.detail;
+        else if (!corefined_volume(in.solid, why))
+          why = "CGAL: " + why;
         if (!why.empty()) {
           put(fd, "D\t" + name + "\t" + one_line(why));
           continue;
@@ -266,7 +271,8 @@ void run_stages(const Options& o, uint64_t seed, const std::string& json, size_t
 
 std::string signal_text(int sig) {
   const char* name = sigabbrev_np(sig);
-  return std::string("signal ") + std::to_string(sig) + (name ? std::string(" (SIG") + name + ")" : "");
+  return std::string("signal ") + std::to_string(sig) +
+         (name ? std::string(" (SIG") + name + ")" : "");
 }
 
 /// Runs every stage of one scene, restarting after a crash or a timeout with the next stage.
@@ -343,7 +349,8 @@ std::vector<Record> run_scene(const Options& o, uint64_t seed, const RandomScene
                                  : "exit " + std::to_string(WEXITSTATUS(status)));
     next = active + 1;
     if (active == 1) {  // no evaluated mesh: the later stages have nothing to cut
-      for (size_t s = 2; s < names.size(); ++s) record(s, "skipped", 0, "evaluate: " + done[1]->kind);
+      for (size_t s = 2; s < names.size(); ++s)
+        record(s, "skipped", 0, "evaluate: " + done[1]->kind);
       next = names.size();
     }
   }
@@ -362,8 +369,8 @@ void write_failure(const Options& o, const RandomScene& scene, const Record& r) 
   const std::string base = "seed-" + std::to_string(r.seed);
   std::ofstream(dir / (base + ".json")) << scene.json;
   std::ofstream(dir / (base + ".txt"), std::ios::app)
-      << "seed " << r.seed << " " << r.stage << " " << r.kind << ": " << r.detail
-      << " | scene " << scene.description << "\n";
+      << "seed " << r.seed << " " << r.stage << " " << r.kind << ": " << r.detail << " | scene "
+      << scene.description << "\n";
 }
 
 bool parse_list(const std::string& text, const std::function<void(const std::string&)>& add) {
@@ -376,10 +383,11 @@ bool parse_list(const std::string& text, const std::function<void(const std::str
 }
 
 int usage(const char* why) {
-  std::fprintf(stderr, "stress_csg: %s\nusage: stress_csg --meshes DIR [--catalogue small|medium] "
-                       "[--first S] [--count C] [--seeds A,B,..] [--cells 2,3,5,8] [--timeout SEC] "
-                       "[--threads T] [--memory MIB] [--failures DIR] [--results FILE] [--verbose]\n"
-                       "       stress_csg --summarize [--failures DIR] [--label TEXT] RESULTS...\n",
+  std::fprintf(stderr,
+               "stress_csg: %s\nusage: stress_csg --meshes DIR [--catalogue small|medium] "
+               "[--first S] [--count C] [--seeds A,B,..] [--cells 2,3,5,8] [--timeout SEC] "
+               "[--threads T] [--memory MIB] [--failures DIR] [--results FILE] [--verbose]\n"
+               "       stress_csg --summarize [--failures DIR] [--label TEXT] RESULTS...\n",
                why);
   return 2;
 }
@@ -398,10 +406,14 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
         return argv[++i];
       };
-      if (a == "--meshes") o.meshes = value();
-      else if (a == "--catalogue") o.catalogue = value();
-      else if (a == "--first") o.first = std::stoull(value());
-      else if (a == "--count") o.count = std::stoull(value());
+      if (a == "--meshes")
+        o.meshes = value();
+      else if (a == "--catalogue")
+        o.catalogue = value();
+      else if (a == "--first")
+        o.first = std::stoull(value());
+      else if (a == "--count")
+        o.count = std::stoull(value());
       else if (a == "--seeds") {
         if (!parse_list(value(), [&](const std::string& x) { o.seeds.push_back(std::stoull(x)); }))
           return usage("--seeds: expected A,B,...");
@@ -409,16 +421,26 @@ int main(int argc, char** argv) {
         o.cells.clear();
         if (!parse_list(value(), [&](const std::string& x) { o.cells.push_back(std::stoi(x)); }))
           return usage("--cells: expected N,N,...");
-      } else if (a == "--timeout") o.timeout = std::stod(value());
-      else if (a == "--threads") o.threads = std::stoi(value());
-      else if (a == "--memory") o.memory_mib = std::stol(value());
-      else if (a == "--failures") o.failures = value();
-      else if (a == "--results") o.results = value();
-      else if (a == "--label") label = value();
-      else if (a == "--verbose") o.verbose = true;
-      else if (a == "--summarize") summarize = true;
-      else if (!a.empty() && a[0] != '-' && summarize) inputs.push_back(a);
-      else return usage(("unknown argument " + a).c_str());
+      } else if (a == "--timeout")
+        o.timeout = std::stod(value());
+      else if (a == "--threads")
+        o.threads = std::stoi(value());
+      else if (a == "--memory")
+        o.memory_mib = std::stol(value());
+      else if (a == "--failures")
+        o.failures = value();
+      else if (a == "--results")
+        o.results = value();
+      else if (a == "--label")
+        label = value();
+      else if (a == "--verbose")
+        o.verbose = true;
+      else if (a == "--summarize")
+        summarize = true;
+      else if (!a.empty() && a[0] != '-' && summarize)
+        inputs.push_back(a);
+      else
+        return usage(("unknown argument " + a).c_str());
     }
   } catch (const std::exception& e) {
     return usage(e.what());
@@ -438,7 +460,8 @@ int main(int argc, char** argv) {
     return passed(all) ? 0 : 1;
   }
   if (o.meshes.empty()) return usage("--meshes DIR is required");
-  if (o.catalogue != "small" && o.catalogue != "medium") return usage("--catalogue: small or medium");
+  if (o.catalogue != "small" && o.catalogue != "medium")
+    return usage("--catalogue: small or medium");
   const std::vector<MeshEntry> meshes = load_catalogue(o);
   if (meshes.empty()) return usage("no usable mesh in the catalogue");
   if (o.seeds.empty())
@@ -458,7 +481,8 @@ int main(int argc, char** argv) {
       all.push_back(r);
     }
     char secs[32];
-    std::snprintf(secs, sizeof secs, "  (%.1f s)", std::chrono::duration<double>(Clock::now() - t).count());
+    std::snprintf(secs, sizeof secs, "  (%.1f s)",
+                  std::chrono::duration<double>(Clock::now() - t).count());
     std::printf("%s%s\n", line.c_str(), secs);
     std::fflush(stdout);
   }

@@ -12,9 +12,9 @@
 namespace cover::stress {
 namespace {
 
-const std::vector<std::string> kKinds = {"ok", "refused", "unavailable", "bad-input", "internal",
-                                         "memory", "invalid", "degenerate", "touching", "not-convex", "volume",
-                                         "crash", "timeout", "skipped"};
+const std::vector<std::string> kKinds = {
+    "ok",         "refused",  "unavailable", "bad-input", "internal", "memory",  "invalid",
+    "degenerate", "touching", "not-convex",  "volume",    "crash",    "timeout", "skipped"};
 
 /// Stage order: oracle, evaluate, cells by N, decompose.
 int stage_rank(const std::string& s) {
@@ -86,8 +86,9 @@ std::string summary(const std::vector<Record>& records, const std::string& label
   }
   std::vector<std::string> stages;
   for (const auto& [s, c] : counts) stages.push_back(s);
-  std::sort(stages.begin(), stages.end(),
-            [](const std::string& a, const std::string& b) { return stage_rank(a) < stage_rank(b); });
+  std::sort(stages.begin(), stages.end(), [](const std::string& a, const std::string& b) {
+    return stage_rank(a) < stage_rank(b);
+  });
   std::vector<std::string> kinds;
   for (const std::string& k : kKinds)
     if (kinds_seen.count(k)) kinds.push_back(k);
