@@ -122,7 +122,8 @@ std::string summary(const std::vector<Record>& records, const std::string& label
                                                       : a.second < b.second;
   });
   for (const auto& k : keys) {
-    const std::vector<uint64_t>& v = failing[k];
+    std::vector<uint64_t>& v = failing[k];
+    std::sort(v.begin(), v.end());
     out << "  " << k.first << " " << k.second << " (" << v.size() << "):";
     for (uint64_t s : v) out << " " << s;
     out << "\n";
