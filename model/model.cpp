@@ -1,6 +1,7 @@
 #include "model/model.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -201,6 +202,10 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
   try {
     r = cover::volume(solid(), bvh(), options);  // with exact: NotComputable where only the B-rep is
     evaluate_instead = !r.target_met && options.rays == 0;
+    // A covering volume below the normal doubles (a solid of side < ~1e-103) has underflowed:
+    // the B-rep's exact volume tells 0 from a volume no double states (NotComputable).
+    if (r.method == "covering" && !(std::abs(r.volume) >= DBL_MIN) && is_bounded(solid()))
+      evaluate_instead = true;
   } catch (const NotComputable&) {
     if (!options.exact || !is_bounded(solid())) throw;
     evaluate_instead = true;
