@@ -224,6 +224,20 @@ TEST(Evaluate, DefaultSceneSameMeshForAnyThreadCountAndRun) {
   }
 }
 
+// A random scene of rotated libcgal-demo meshes and boxes, ((box ∩ anchor) ∪ box) ∩ cheese (seed
+// 50 of a random-CSG generator), that failed with "an edge of the result has an odd number of
+// faces": checked against CGAL corefinement of the same leaves.
+TEST(Evaluate, RotatedBoxesAnchorAndCheeseScene) {
+  const std::string text = R"json({"intersection": [{"union": [{"intersection": [{"box": {"min": [-0.42424316782792254, -0.8407443507077996, -0.5357449403453367], "max": [0.6359759120153026, 0.3430339313833288, 0.11972597462878193]}, "transform": {"rotate": {"axis": [-0.6220620264300913, 0.9447505006829322, -0.34216161089945185], "degrees": 37.36242831904724}, "translate": [0.053747104215872143, 0.06749437782524803, 0.20769607993681005]}}, {"union": [{"union": [{"mesh": "anchor.off", "transform": {"translate": [-0.0, -0.0, -0.0]}}], "transform": {"scale": 1.835062859598275}}], "transform": {"rotate": {"axis": [0.28624717642078923, -0.13941571107915274, -0.5455577919267234], "degrees": -84.17513841722025}, "translate": [0.21500860688990003, 0.10003295162388942, -0.1971024267335511]}}]}, {"box": {"min": [-0.1682245140145378, -0.4556348739054516, -0.5029080934754839], "max": [0.39917867453661376, 0.40762553308234545, 0.2265044484047846]}, "transform": {"rotate": {"axis": [0.2488837970792439, 0.39196422643340845, 0.6388808506360171], "degrees": 127.14660462774128}, "translate": [0.062731924606579, 0.2332021353535454, -0.0019475317488711896]}}]}, {"union": [{"union": [{"mesh": "cheese.off", "transform": {"translate": [-0.0, -0.0, -0.0]}}], "transform": {"scale": 15.99518578132811}}], "transform": {"rotate": {"axis": [0.6531216281144503, -0.3989801094954506, 0.7150211687049219], "degrees": 92.94295866804589}, "translate": [-0.17488225919476286, -0.07080146294453105, 0.20234608123828207]}}]})json";
+  const Solid s = parse_scene(text, test::cgal_mesh("scene.json")).solid;
+  ASSERT_EQ(s.leaves.size(), 4u);
+  auto leaf = [&](uint32_t l) { return to_cgal(test::triangulate(leaf_mesh(s, l))); };
+  const Mesh expected = corefine(corefine(corefine(leaf(0), leaf(1), Op::kIntersection), leaf(2),
+                                          Op::kUnion),
+                                 leaf(3), Op::kIntersection);
+  check_against(s, expected, "((box ∩ anchor) ∪ box) ∩ cheese");
+}
+
 // ---- coplanar and touching leaves --------------------------------------------------------------
 
 Solid box(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
@@ -351,6 +365,25 @@ TEST(Evaluate, UnionOfBoxesOfSide1em200IsTheUnitResultScaled) {
       EXPECT_EQ(sorted_vertices(r.mesh, k), sorted_vertices(unit.mesh, 0)) << k << " " << turn;
     }
   }
+}
+
+// A nonzero exact volume below the normal doubles is refused, not rounded to 0 (or to a
+// subnormal with few digits); an empty result's exact 0 is not.
+TEST(Evaluate, ExactVolumeBelowTheNormalDoublesIsRefused) {
+  EvaluateOptions o;
+  o.exact_volume = true;
+  const double a = 1e-150;
+  EXPECT_THROW(evaluate(unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {2 * a, 2 * a, 2 * a})}), o),
+               NotComputable);
+  const EvaluateResult empty =
+      evaluate(intersect({box({0, 0, 0}, {a, a, a}), box({2 * a, 0, 0}, {3 * a, a, a})}), o);
+  EXPECT_EQ(*empty.exact_volume, 0);
+  const double b = 1e-102;  // volume about 1e-306: still a normal double
+  const EvaluateResult small = evaluate(unite({box({0, 0, 0}, {b, b, b})}), o);
+  const std::pair<double, double> bracket =
+      CGAL::to_interval(CGAL::Gmpq(b) * CGAL::Gmpq(b) * CGAL::Gmpq(b));
+  EXPECT_TRUE(*small.exact_volume == bracket.first || *small.exact_volume == bracket.second);
+  EXPECT_GT(*small.exact_volume, 0);
 }
 
 // A tiny box next to a unit box: both kept, each exact.
