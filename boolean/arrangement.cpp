@@ -113,28 +113,37 @@ std::vector<Tri> leaf_tris(const Solid& solid, const std::vector<uint32_t>& id,
 /// Merges points of equal exact value (union to the smallest id). Ids are built canonically, so
 /// equal values under different ids arise only at degeneracies (an edge crossing another leaf's
 /// edge exactly, a vertex on another leaf's face, triple points, coplanar overlaps); candidates
-/// are found by hashing grid cells (side h ≫ the width of the lazy intervals) that each point's
-/// interval box meets, then compared exactly within a cell — only really equal (or 1e-11 close)
-/// points ever reach exact arithmetic.
+/// are found by hashing grid cells that each point's interval box meets, then compared exactly
+/// within a cell. The cell side h is 2^-36 of the scene's extent or of its largest coordinate,
+/// whichever is larger, far above the width of the intervals, which is relative to the
+/// coordinates (a unit box at 1e15 has intervals about 0.1 wide). A point whose interval still
+/// spans more than two cells on an axis ("wide") is compared with every point whose interval
+/// meets its own (all of them, sorted exactly, when there are many wide points).
 std::vector<uint32_t> merge_equal(const std::vector<Point>& pts, const std::vector<uint32_t>& ids,
                                   const Bbox& box) {
   UnionFind sets(pts.size());
   const double extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y,
-                                  box.max.z - box.min.z, 1e-300});
+                                  box.max.z - box.min.z, std::abs(box.min.x), std::abs(box.min.y),
+                                  std::abs(box.min.z), std::abs(box.max.x), std::abs(box.max.y),
+                                  std::abs(box.max.z), 1e-300});
   const double h = extent * 0x1p-36;
   std::vector<std::pair<uint64_t, uint32_t>> cells;
+  std::vector<uint32_t> wide;
   cells.reserve(ids.size());
   for (uint32_t id : ids) {
     const auto& ap = CGAL::approx(pts[id]);
     int64_t lo[3], hi[3];
-    bool wide = false;
+    bool is_wide = false;
     for (int a = 0; a < 3; ++a) {
-      lo[a] = static_cast<int64_t>(std::floor((ap[a].inf() - box.min[a]) / h));
-      hi[a] = static_cast<int64_t>(std::floor((ap[a].sup() - box.min[a]) / h));
-      wide = wide || hi[a] - lo[a] > 1 || !std::isfinite(ap[a].inf()) || !std::isfinite(ap[a].sup());
+      const double l = std::floor((ap[a].inf() - box.min[a]) / h),
+                   u = std::floor((ap[a].sup() - box.min[a]) / h);
+      is_wide = is_wide || !(u - l <= 1) || !(std::abs(l) < 0x1p62 && std::abs(u) < 0x1p62);
+      if (is_wide) break;
+      lo[a] = static_cast<int64_t>(l);
+      hi[a] = static_cast<int64_t>(u);
     }
-    if (wide) {  // interval too loose for the grid: one cell for all such points
-      cells.emplace_back(~uint64_t{0}, id);
+    if (is_wide) {
+      wide.push_back(id);
       continue;
     }
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
@@ -143,8 +152,37 @@ std::vector<uint32_t> merge_equal(const std::vector<Point>& pts, const std::vect
           uint64_t key = static_cast<uint64_t>(x) * 0x9e3779b97f4a7c15ull;
           key ^= static_cast<uint64_t>(y) * 0xc2b2ae3d27d4eb4full + (key >> 29);
           key ^= static_cast<uint64_t>(z) * 0x165667b19e3779f9ull + (key >> 31);
-          cells.emplace_back(key == ~uint64_t{0} ? 0 : key, id);
+          cells.emplace_back(key, id);
         }
+  }
+  auto sorted_group = [&](std::vector<uint32_t>& group) {
+    std::sort(group.begin(), group.end(), [&](uint32_t x, uint32_t y) {
+      const CGAL::Comparison_result c = CGAL::compare_xyz(pts[x], pts[y]);
+      return c == CGAL::SMALLER || (c == CGAL::EQUAL && x < y);
+    });
+    for (size_t g = 1; g < group.size(); ++g)
+      if (group[g] != group[g - 1] &&
+          CGAL::compare_xyz(pts[group[g]], pts[group[g - 1]]) == CGAL::EQUAL)
+        sets.unite(group[g], group[g - 1]);
+  };
+  constexpr size_t kMaxWide = 64;
+  if (wide.size() > kMaxWide) {
+    std::vector<uint32_t> all(ids.begin(), ids.end());
+    sorted_group(all);
+    std::vector<uint32_t> rep(pts.size());
+    for (uint32_t x = 0; x < rep.size(); ++x) rep[x] = sets.find(x);
+    return rep;
+  }
+  for (uint32_t w : wide) {
+    const auto& aw = CGAL::approx(pts[w]);
+    for (uint32_t id : ids) {
+      if (id == w) continue;
+      const auto& ap = CGAL::approx(pts[id]);
+      bool meet = true;
+      for (int a = 0; a < 3 && meet; ++a)
+        meet = !(ap[a].sup() < aw[a].inf() || aw[a].sup() < ap[a].inf());
+      if (meet && CGAL::compare_xyz(pts[w], pts[id]) == CGAL::EQUAL) sets.unite(w, id);
+    }
   }
   // Boost's radix sort on the cell key (the pair order for ties): about twice std::sort here.
   boost::sort::spreadsort::integer_sort(
@@ -159,15 +197,7 @@ std::vector<uint32_t> merge_equal(const std::vector<Point>& pts, const std::vect
     group.clear();
     while (j < cells.size() && cells[j].first == cells[i].first) group.push_back(cells[j++].second);
     i = j;
-    if (group.size() < 2) continue;
-    std::sort(group.begin(), group.end(), [&](uint32_t x, uint32_t y) {
-      const CGAL::Comparison_result c = CGAL::compare_xyz(pts[x], pts[y]);
-      return c == CGAL::SMALLER || (c == CGAL::EQUAL && x < y);
-    });
-    for (size_t g = 1; g < group.size(); ++g)
-      if (group[g] != group[g - 1] &&
-          CGAL::compare_xyz(pts[group[g]], pts[group[g - 1]]) == CGAL::EQUAL)
-        sets.unite(group[g], group[g - 1]);
+    if (group.size() >= 2) sorted_group(group);
   }
   std::vector<uint32_t> rep(pts.size());
   for (uint32_t x = 0; x < rep.size(); ++x) rep[x] = sets.find(x);

@@ -22,9 +22,12 @@
 #include <CGAL/Mpzf.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "boolean/detail/arrangement.h"
 #include "solid/parallel.h"
@@ -78,7 +81,23 @@ double exact_volume(const Arrangement& arr, const std::vector<std::array<uint32_
   });
   ET total = 0;
   for (const ET& x : partial) total += x;
-  return nearest(K::FT(total / 6));
+  const ET volume = total / 6;
+  const double rounded = nearest(K::FT(volume));
+  if (CGAL::sign(volume) != CGAL::ZERO && !(std::abs(rounded) >= DBL_MIN)) {
+    // Below the normal doubles (a solid of side < ~1e-103): 0 or a subnormal with few digits
+    // would claim an exact volume it is not. Its decimal exponent, for the message: the volume
+    // scaled by 2^1000 per step (exact) until it is a normal double.
+    ET scaled = volume < 0 ? -volume : volume;
+    int steps = 0;
+    while (CGAL::to_double(scaled) < DBL_MIN) scaled = scaled * ET(0x1p1000), ++steps;
+    const double log10 = std::log10(CGAL::to_double(scaled)) - 1000.0 * steps * std::log10(2.0);
+    const double exponent = std::floor(log10);
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3ge%+.0f", std::pow(10.0, log10 - exponent), exponent);
+    throw NotComputable(std::string("evaluate: the exact volume, about ") + text +
+                        ", is below the normal doubles (2.2e-308): not representable");
+  }
+  return rounded;
 }
 
 ExactCrossing exact_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q,

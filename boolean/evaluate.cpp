@@ -2,6 +2,7 @@
 // arrangement.cpp, select.cpp and assemble.cpp).
 #include "boolean/evaluate.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -55,12 +56,32 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   r.rounding_contacts = repair.remaining_pairs;
   r.seconds.repair = since(t);
   t = Clock::now();
-  for (size_t f = 0; f < r.mesh.face_count(); ++f) {
-    auto t = r.mesh.face(f);
-    const Vec3 a = r.mesh.vertices[t[0]], b = r.mesh.vertices[t[1]], c = r.mesh.vertices[t[2]];
-    r.volume += dot(a, cross(b, c)) / 6;
-    const Vec3 n = cross(b - a, c - a);
-    r.area += 0.5 * std::sqrt(dot(n, n));
+  // Volume and area in doubles, relative to the centre o of the mesh's box and scaled by a power
+  // of two s (exact) so that |s·(v − o)| ≤ 1: summed about the origin, a solid far from it
+  // (a unit box at 1e15) loses every digit to cancellation, and a tiny one (side 1e-150)
+  // underflows in the products.
+  {
+    Bbox box;
+    for (const Vec3& p : r.mesh.vertices) box.add(p);
+    const Vec3 o = box.empty() ? Vec3{} : 0.5 * box.min + 0.5 * box.max;
+    double reach = 0;
+    for (const Vec3& p : r.mesh.vertices)
+      reach = std::max({reach, std::abs(p.x - o.x), std::abs(p.y - o.y), std::abs(p.z - o.z)});
+    const int e = reach > 0 ? std::ilogb(reach) + 1 : 0;
+    auto local = [&](const Vec3& p) {
+      return Vec3{std::ldexp(p.x - o.x, -e), std::ldexp(p.y - o.y, -e), std::ldexp(p.z - o.z, -e)};
+    };
+    double volume = 0, area = 0;
+    for (size_t f = 0; f < r.mesh.face_count(); ++f) {
+      auto t = r.mesh.face(f);
+      const Vec3 a = local(r.mesh.vertices[t[0]]), b = local(r.mesh.vertices[t[1]]),
+                 c = local(r.mesh.vertices[t[2]]);
+      volume += dot(a, cross(b, c)) / 6;
+      const Vec3 n = cross(b - a, c - a);
+      area += 0.5 * std::sqrt(dot(n, n));
+    }
+    r.volume = std::ldexp(volume, 3 * e);
+    r.area = std::ldexp(area, 2 * e);
   }
   // The result is closed and 2-manifold with its vertices split per fan (assemble() throws
   // otherwise), so E = 3F/2, components through edges are those through vertices, and

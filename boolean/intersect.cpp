@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <compare>
 
 #include "boolean/detail/arrangement_steps.h"
@@ -126,8 +127,19 @@ K::Approximate_kernel::Point_3 approximate_crossing(const std::array<Vec3, 5>& i
     return std::array<I, 3>{I(x.x) - I(y.x), I(x.y) - I(y.y), I(x.z) - I(y.z)};
   };
   const auto [a, b, p, q, r] = in;
-  const std::array<I, 3> u = diff(q, p), v = diff(r, p), ap = diff(a, p), bp = diff(b, p),
-                         ab = diff(b, a);
+  std::array<I, 3> u = diff(q, p), v = diff(r, p), ap = diff(a, p), bp = diff(b, p);
+  const std::array<I, 3> ab = diff(b, a);
+  // t is invariant under scaling u, v, ap, bp by one factor: a power of two 2^-e (exact) that
+  // brings them to magnitude ≤ 1, so that d_a, d_b (cubic) do not underflow for a tiny
+  // triangle (side 1e-200), which would leave t = [0, tiny]/[−tiny, tiny] unbounded.
+  double m = 0;
+  for (const auto* w : {&u, &v, &ap, &bp})
+    for (const I& x : *w) m = std::max({m, std::abs(x.inf()), std::abs(x.sup())});
+  if (m > 0 && std::isfinite(m)) {
+    const double s = std::ldexp(1.0, -std::ilogb(m));
+    for (auto* w : {&u, &v, &ap, &bp})
+      for (I& x : *w) x = x * s;
+  }
   const std::array<I, 3> n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
                            u[0] * v[1] - u[1] * v[0]};
   const I da = n[0] * ap[0] + n[1] * ap[1] + n[2] * ap[2];

@@ -158,8 +158,11 @@ std::vector<std::pair<uint32_t, uint32_t>> ray_candidates(const Arrangement& arr
   }
   const int g = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(m))), 1, 256);
   const double cu = std::max((hi[0] - lo[0]) / g, 1e-300), cv = std::max((hi[1] - lo[1]) / g, 1e-300);
+  // The cell of coordinate x, clamped in doubles before the conversion: a tri box widened by
+  // `pad` reaches far beyond a grid over tiny rays (a feature 1e-20 wide), where the quotient
+  // overflows an int.
   auto cell = [&](double x, double l, double w) {
-    return std::clamp(static_cast<int>(std::floor((x - l) / w)), 0, g - 1);
+    return static_cast<int>(std::clamp(std::floor((x - l) / w), 0.0, static_cast<double>(g - 1)));
   };
   std::vector<uint32_t> start(static_cast<size_t>(g) * g + 1, 0), order(m);
   for (size_t i = 0; i < m; ++i) ++start[cell(ru[i], lo[0], cu) * g + cell(rv[i], lo[1], cv) + 1];

@@ -232,8 +232,7 @@ bool split_polyline(const Tri& tri, const std::vector<TriHit>& hits, const Arran
   }
 
   // ---- projection (drops the dominant axis of the tri's normal) and the tri's sign there.
-  const Vec3 nd = cross(pos[tri.v[1]] - pos[tri.v[0]], pos[tri.v[2]] - pos[tri.v[0]]);
-  const int k = dominant_axis(nd);
+  const int k = dominant_axis(normal_direction(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]]));
   const int sign = orient2d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]], k);
   if (sign == 0) return false;
 
@@ -423,8 +422,17 @@ Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const Arrangeme
   const Point& a = pts[tri.v[0]];
   const Point& b = pts[tri.v[1]];
   const Point& c = pts[tri.v[2]];
-  const Vec3 nd = cross(pos[tri.v[1]] - pos[tri.v[0]], pos[tri.v[2]] - pos[tri.v[0]]);
-  const int k = dominant_axis(nd), i = (k + 1) % 3, j = (k + 2) % 3;
+  // The projection: the dominant axis of the normal in doubles, or the next axis where the
+  // exact orient2d is not 0 (a doubles normal can pick an axis the plane is parallel to); its
+  // sign is that of the normal's k component, exactly.
+  int k = dominant_axis(normal_direction(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]]));
+  int sign = orient2d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]], k);
+  for (int step = 1; sign == 0 && step < 3; ++step) {
+    const int axis = (k + step) % 3;
+    sign = orient2d(pos[tri.v[0]], pos[tri.v[1]], pos[tri.v[2]], axis);
+    if (sign != 0) k = axis;
+  }
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
   const K::Vector_3 n = CGAL::cross_product(b - a, c - a);
   auto to2 = [&](const Point& p) { return K::Point_2(p[i], p[j]); };
   Cdt cdt;
@@ -485,7 +493,7 @@ Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const Arrangeme
     xyz[k] = xk;
     local.points.emplace_back(xyz[0], xyz[1], xyz[2]);
   }
-  const bool flip = nd[k] < 0;
+  const bool flip = sign < 0;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     const uint32_t x = f->vertex(0)->info().id, y = f->vertex(1)->info().id,
                    z = f->vertex(2)->info().id;

@@ -1,6 +1,7 @@
 #include "model/model.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -216,6 +217,11 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
   try {
     r = cover::volume(solid(), bvh(), options);  // with exact: NotComputable where only the B-rep is
     evaluate_instead = !r.target_met && options.rays == 0;
+    // A covering or ray volume below the normal doubles, bound included (a solid of side below
+    // about 1e-103), has underflowed: the B-rep's exact volume tells 0 from a volume no double
+    // states (NotComputable).
+    if (!(std::abs(r.volume) + r.error_bound >= DBL_MIN) && is_bounded(solid()))
+      evaluate_instead = true;
   } catch (const NotComputable&) {
     if (!options.exact || !is_bounded(solid())) throw;
     evaluate_instead = true;

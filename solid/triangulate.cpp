@@ -7,6 +7,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 
@@ -26,17 +27,25 @@ Point2 project(const Vec3& p, int k) { return {p[(k + 1) % 3], p[(k + 2) % 3]}; 
 /// Newell normal of the loop (doubles). When it vanishes (lobes of opposite orientation cancel,
 /// as in a bow tie, or the loop is collinear), the normal of the first corner (loop[0], loop[i],
 /// loop[i+1]) that is not, so that the projection still shows a crossing.
+/// Both are computed on the coordinates scaled by a power of two (exact) to magnitude at most 1,
+/// so that a tiny face (side 1e-200 near the origin) gets a normal, not an underflowed 0.
 Vec3 projection_normal(std::span<const Vec3> points, std::span<const uint32_t> loop) {
+  double m = 0;
+  for (uint32_t v : loop)
+    m = std::max({m, std::abs(points[v].x), std::abs(points[v].y), std::abs(points[v].z)});
+  const int e = m > 0 && std::isfinite(m) ? -std::ilogb(m) : 0;
+  auto at = [&](size_t i) {
+    const Vec3& p = points[loop[i % loop.size()]];
+    return Vec3{std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
+  };
   Vec3 normal{};
   for (size_t i = 0; i < loop.size(); ++i) {
-    const Vec3& a = points[loop[i]];
-    const Vec3& b = points[loop[(i + 1) % loop.size()]];
+    const Vec3 a = at(i), b = at(i + 1);
     normal = normal + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
                            (a.x - b.x) * (a.y + b.y)};
   }
-  const Vec3& o = points[loop[0]];
   for (size_t i = 1; normal == Vec3{} && i + 1 < loop.size(); ++i)
-    normal = cross(points[loop[i]] - o, points[loop[i + 1]] - o);
+    normal = normal_direction(at(0), at(i), at(i + 1));
   return normal;
 }
 

@@ -15,6 +15,7 @@
 //               separates nothing, so holes stay holes
 // Every loop vertex is a corner of a triangle (no vertex in the middle of a fanned side).
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -30,6 +31,21 @@ namespace cover {
 inline int dominant_axis(const Vec3& n) {
   const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
   return ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+}
+
+/// (b − a) × (c − a) times a positive power of two, in doubles: the differences are first
+/// scaled (exactly) to magnitude at most 1, so that the normal of a tiny triangle (side 1e-200)
+/// does not underflow to 0. For choosing a projection; signs that matter are taken exactly.
+inline Vec3 normal_direction(const Vec3& a, const Vec3& b, const Vec3& c) {
+  Vec3 u = b - a, v = c - a;
+  const double m = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z), std::abs(v.x),
+                             std::abs(v.y), std::abs(v.z)});
+  if (m > 0 && std::isfinite(m)) {
+    const int e = -std::ilogb(m);
+    u = {std::ldexp(u.x, e), std::ldexp(u.y, e), std::ldexp(u.z, e)};
+    v = {std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)};
+  }
+  return cross(u, v);
 }
 
 /// What triangulate_face found out about a face's boundary.

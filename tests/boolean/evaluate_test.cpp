@@ -224,6 +224,20 @@ TEST(Evaluate, DefaultSceneSameMeshForAnyThreadCountAndRun) {
   }
 }
 
+// A random scene of rotated libcgal-demo meshes and boxes, ((box ∩ anchor) ∪ box) ∩ cheese (seed
+// 50 of a random-CSG generator), that failed with "an edge of the result has an odd number of
+// faces": checked against CGAL corefinement of the same leaves.
+TEST(Evaluate, RotatedBoxesAnchorAndCheeseScene) {
+  const std::string text = R"json({"intersection": [{"union": [{"intersection": [{"box": {"min": [-0.42424316782792254, -0.8407443507077996, -0.5357449403453367], "max": [0.6359759120153026, 0.3430339313833288, 0.11972597462878193]}, "transform": {"rotate": {"axis": [-0.6220620264300913, 0.9447505006829322, -0.34216161089945185], "degrees": 37.36242831904724}, "translate": [0.053747104215872143, 0.06749437782524803, 0.20769607993681005]}}, {"union": [{"union": [{"mesh": "anchor.off", "transform": {"translate": [-0.0, -0.0, -0.0]}}], "transform": {"scale": 1.835062859598275}}], "transform": {"rotate": {"axis": [0.28624717642078923, -0.13941571107915274, -0.5455577919267234], "degrees": -84.17513841722025}, "translate": [0.21500860688990003, 0.10003295162388942, -0.1971024267335511]}}]}, {"box": {"min": [-0.1682245140145378, -0.4556348739054516, -0.5029080934754839], "max": [0.39917867453661376, 0.40762553308234545, 0.2265044484047846]}, "transform": {"rotate": {"axis": [0.2488837970792439, 0.39196422643340845, 0.6388808506360171], "degrees": 127.14660462774128}, "translate": [0.062731924606579, 0.2332021353535454, -0.0019475317488711896]}}]}, {"union": [{"union": [{"mesh": "cheese.off", "transform": {"translate": [-0.0, -0.0, -0.0]}}], "transform": {"scale": 15.99518578132811}}], "transform": {"rotate": {"axis": [0.6531216281144503, -0.3989801094954506, 0.7150211687049219], "degrees": 92.94295866804589}, "translate": [-0.17488225919476286, -0.07080146294453105, 0.20234608123828207]}}]})json";
+  const Solid s = parse_scene(text, test::cgal_mesh("scene.json")).solid;
+  ASSERT_EQ(s.leaves.size(), 4u);
+  auto leaf = [&](uint32_t l) { return to_cgal(test::triangulate(leaf_mesh(s, l))); };
+  const Mesh expected = corefine(corefine(corefine(leaf(0), leaf(1), Op::kIntersection), leaf(2),
+                                          Op::kUnion),
+                                 leaf(3), Op::kIntersection);
+  check_against(s, expected, "((box ∩ anchor) ∪ box) ∩ cheese");
+}
+
 // ---- coplanar and touching leaves --------------------------------------------------------------
 
 Solid box(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
@@ -279,6 +293,128 @@ TEST(Evaluate, ExactVolumeIsTheRationalVolumeRounded) {
   EXPECT_TRUE(*r.exact_volume == bracket.first || *r.exact_volume == bracket.second)
       << *r.exact_volume << " vs [" << bracket.first << ", " << bracket.second << "]";
   EXPECT_NEAR(r.volume, *r.exact_volume, 1e-14);
+}
+
+/// The exact volume of [lo, lo + a]³ ∪ [lo + h, lo + b]³ as Cover reads the doubles (each corner
+/// coordinate rounded once), in rationals: a³ + (b − h)³ − (a − h)³ with the rounded corners.
+CGAL::Gmpq union_of_cubes(double lo, double a, double h, double b) {
+  const CGAL::Gmpq l(lo), x1(lo + a), y0(lo + h), y1(lo + b);
+  auto cube = [](const CGAL::Gmpq& q) { return q * q * q; };
+  return cube(x1 - l) + cube(y1 - y0) - cube(x1 - y0);
+}
+
+/// evaluate() of [lo, lo + a]³ ∪ [lo + h, lo + b]³ (h = a/2, b = 1.5·a): a valid mesh whose exact
+/// volume is the rational one rounded and whose doubles volume agrees with it.
+void expect_exact_union_of_cubes(double lo, double a) {
+  const double h = a / 2, b = 1.5 * a;
+  const Solid s = unite({box({lo, lo, lo}, {lo + a, lo + a, lo + a}),
+                         box({lo + h, lo + h, lo + h}, {lo + b, lo + b, lo + b})});
+  EvaluateOptions o;
+  o.exact_volume = true;
+  const EvaluateResult r = evaluate(s, o);
+  const CGAL::Gmpq exact = union_of_cubes(lo, a, h, b);
+  const std::pair<double, double> bracket = CGAL::to_interval(exact);
+  ASSERT_TRUE(r.exact_volume.has_value());
+  EXPECT_GT(bracket.first, 0) << a;
+  EXPECT_TRUE(*r.exact_volume == bracket.first || *r.exact_volume == bracket.second)
+      << "side " << a << " at " << lo << ": " << *r.exact_volume << " vs " << bracket.first;
+  EXPECT_NEAR(r.volume, bracket.first, 1e-12 * bracket.first) << a;
+  EXPECT_EQ(r.components, 1) << a;
+  check_manifold(r.mesh);
+  EXPECT_FALSE(PMP::does_self_intersect(to_cgal(r.mesh))) << a;
+}
+
+// No absolute threshold anywhere in the exact pipeline: sides from 1e-14 down to 1e-100 (the
+// volume stays a normal double), near the origin and at 1; rays were lost at 1e-16 and below
+// (the ray grid's cell index overflowed an int), so every patch read as outside.
+TEST(Evaluate, UnionOfTinyBoxesIsExact) {
+  for (double a : {1e-14, 1e-15, 1e-16, 1e-20, 1e-50, 1e-100}) expect_exact_union_of_cubes(0, a);
+  for (double a : {1e-6, 1e-10, 1e-14}) expect_exact_union_of_cubes(1, a);
+}
+
+// Below 1e-103 the volume is no longer a normal double, but the mesh must still be right: tiny
+// triangles' normals underflowed in doubles (projection and orientation of the re-triangulation,
+// the interval crossings), which broke the arrangement. Scaling by a power of two is exact, so
+// the result at scale 2^-k is the result at scale 1 scaled (the same sorted vertices and faces).
+TEST(Evaluate, UnionOfBoxesOfSide1em200IsTheUnitResultScaled) {
+  auto sorted_vertices = [](const PolygonMesh& m, int e) {
+    std::vector<std::array<double, 3>> v;
+    for (const Vec3& p : m.vertices)
+      v.push_back({std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)});
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  auto scene = [](double a, bool turn) {
+    PolygonMesh second = make_box({a / 2, a / 2, a / 2}, {1.5 * a, 1.5 * a, 1.5 * a});
+    if (turn) {  // transversal crossings of tiny triangles
+      const double c = 0.75 * a;
+      PolygonMesh unit = make_box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5});
+      apply_transform(make_trs({1, 1, 1}, {1, 2, 3}, 31, {0, 0, 0}), unit);
+      second = unit;
+      for (Vec3& p : second.vertices) p = {c + a * p.x, c + a * p.y, c + a * p.z};
+    }
+    return unite({box({0, 0, 0}, {a, a, a}), make_leaf(second, "b")});
+  };
+  for (bool turn : {false, true}) {
+    const EvaluateResult unit = evaluate(scene(1, turn));
+    for (int k : {664, 996}) {  // about 1e-200 and 1e-300
+      const EvaluateResult r = evaluate(scene(std::ldexp(1.0, -k), turn));
+      check_manifold(r.mesh);
+      EXPECT_EQ(r.components, 1) << k;
+      EXPECT_EQ(r.mesh.face_count(), unit.mesh.face_count()) << k << " " << turn;
+      EXPECT_EQ(sorted_vertices(r.mesh, k), sorted_vertices(unit.mesh, 0)) << k << " " << turn;
+    }
+  }
+}
+
+// A nonzero exact volume below the normal doubles is refused, not rounded to 0 (or to a
+// subnormal with few digits); an empty result's exact 0 is not.
+TEST(Evaluate, ExactVolumeBelowTheNormalDoublesIsRefused) {
+  EvaluateOptions o;
+  o.exact_volume = true;
+  const double a = 1e-150;
+  EXPECT_THROW(evaluate(unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {2 * a, 2 * a, 2 * a})}), o),
+               NotComputable);
+  const EvaluateResult empty =
+      evaluate(intersect({box({0, 0, 0}, {a, a, a}), box({2 * a, 0, 0}, {3 * a, a, a})}), o);
+  EXPECT_EQ(*empty.exact_volume, 0);
+  const double b = 1e-102;  // volume about 1e-306: still a normal double
+  const EvaluateResult small = evaluate(unite({box({0, 0, 0}, {b, b, b})}), o);
+  const std::pair<double, double> bracket =
+      CGAL::to_interval(CGAL::Gmpq(b) * CGAL::Gmpq(b) * CGAL::Gmpq(b));
+  EXPECT_TRUE(*small.exact_volume == bracket.first || *small.exact_volume == bracket.second);
+  EXPECT_GT(*small.exact_volume, 0);
+}
+
+// A tiny box next to a unit box: both kept, each exact.
+TEST(Evaluate, TinyBoxNextToAUnitBox) {
+  const double a = 1e-20;
+  const Solid s = unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {1.5 * a, 1.5 * a, 1.5 * a}),
+                         box({-1, -1, -1}, {-0.5, -0.5, -0.5})});
+  const EvaluateResult r = evaluate(s);
+  check_manifold(r.mesh);
+  EXPECT_EQ(r.components, 2);
+  EXPECT_DOUBLE_EQ(r.volume, 0.125);
+  const EvaluateResult t = evaluate(unite({box({0, 0, 0}, {a, a, a}), box({-1, -1, -1}, {0, 0, 0})}));
+  check_manifold(t.mesh);
+  EXPECT_EQ(t.components, 2);  // touching at the origin only
+}
+
+// Far from the origin: unit boxes at 1e15 (intervals of constructed points about 0.1 wide there,
+// wider than the identity grid's cells were) and the doubles volume summed about the mesh's
+// centre, not the origin (where it lost every digit: 1.4e29 for 1.875).
+TEST(Evaluate, UnitBoxesAtOffset1e15Unite) {
+  const double o = 1e15;
+  const Solid s = unite({box({o, o, o}, {o + 1, o + 1, o + 1}),
+                         box({o + 0.5, o + 0.5, o + 0.5}, {o + 1.5, o + 1.5, o + 1.5})});
+  EvaluateOptions opt;
+  opt.exact_volume = true;
+  const EvaluateResult r = evaluate(s, opt);
+  check_manifold(r.mesh);
+  EXPECT_EQ(*r.exact_volume, 1.875);
+  EXPECT_DOUBLE_EQ(r.volume, 1.875);
+  EXPECT_DOUBLE_EQ(r.area, 10.5);
+  expect_exact_union_of_cubes(1e15, 1);
 }
 
 TEST(Evaluate, IdenticalBoxes) {
