@@ -45,6 +45,7 @@ json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
   j["genus"] = r.genus >= 0 ? json(r.genus) : json(nullptr);
   j["degenerate_faces"] = r.degenerate_faces;
   j["self_intersecting"] = r.self_intersecting ? json(*r.self_intersecting) : json(nullptr);
+  j["self_touching"] = r.self_touching ? json(*r.self_touching) : json(nullptr);
   j["volume"] = r.volume;
   j["bbox"] = to_json(leaf.bbox);
   return j;
@@ -158,8 +159,10 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
                 leaf["genus"].is_null() ? "n/a" : std::to_string(leaf["genus"].get<long long>()).c_str());
     std::printf("  degenerate faces %lld, self-intersecting %s, covering volume %.17g\n",
                 leaf["degenerate_faces"].get<long long>(),
-                leaf["self_intersecting"].is_null() ? "not checked"
-                : leaf["self_intersecting"].get<bool>() ? "yes" : "no",
+                leaf["self_intersecting"].is_null()     ? "not checked"
+                : leaf["self_intersecting"].get<bool>() ? "yes"
+                : leaf["self_touching"].get<bool>()     ? "no (touches itself at vertices of equal coordinates)"
+                                                        : "no",
                 leaf["volume"].get<double>());
     const json& rp = leaf["repair"];
     std::printf("  rule %s; on load: %lld duplicate vertices welded, %lld zero-area faces dropped, "

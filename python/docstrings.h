@@ -158,7 +158,7 @@ Not interruptible.)";
 inline constexpr const char* kInfo = R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
 faces, leaves, bbox ((min, max) or None) and leaves_info (one dict per leaf: name, origin,
 vertices, faces, closed, manifold, oriented, outward, boundary_edges, nonmanifold_edges,
-components, genus, degenerate_faces, self_intersecting, volume, bbox, brep). A loaded Model
+components, genus, degenerate_faces, self_intersecting, self_touching, volume, bbox, brep). A loaded Model
 is the repaired one (outward, consistently oriented), so for a file that needs repairs this
 differs from `cover info`, which reports the file as found. self_intersection=False skips
 the exact self-intersection check (self_intersecting is then None).)";

@@ -434,6 +434,7 @@ py::dict info_dict(const Model& model, bool self_intersection) {
     d["genus"] = r.genus >= 0 ? py::object(py::int_(r.genus)) : py::none();
     d["degenerate_faces"] = r.degenerate_faces;
     d["self_intersecting"] = r.self_intersecting ? py::object(py::bool_(*r.self_intersecting)) : py::none();
+    d["self_touching"] = r.self_touching ? py::object(py::bool_(*r.self_touching)) : py::none();
     d["volume"] = r.volume;
     d["bbox"] = bbox_list(leaf.bbox);
     d["brep"] = brep_dict(reports[l].mesh);

@@ -25,9 +25,24 @@
 
 #include "solid/measure.h"
 #include "solid/predicates.h"
+#include "solid/repair.h"
 
 namespace cover {
 namespace {
+
+/// The number of distinct vertex indices of each face, summed (a face with a hole lists the
+/// vertices of its false edge twice).
+size_t distinct_face_vertices(const PolygonMesh& mesh) {
+  size_t total = 0;
+  std::vector<uint32_t> sorted;
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const std::span<const uint32_t> face = mesh.face(f);
+    sorted.assign(face.begin(), face.end());
+    std::sort(sorted.begin(), sorted.end());
+    total += static_cast<size_t>(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+  }
+  return total;
+}
 
 constexpr uint32_t kNone = UINT32_MAX;
 
@@ -259,7 +274,23 @@ MeshReport validate_mesh(const PolygonMesh& mesh, const ValidateOptions& options
     const int64_t chi = fans.vertices - table.edges + faces;
     report.genus = (2 * report.components - chi) / 2;
   }
-  if (options.check_self_intersection) report.self_intersecting = self_intersects(mesh);
+  if (options.check_self_intersection) {
+    report.self_intersecting = self_intersects(mesh);
+    report.self_touching = false;
+    // Distinct indices at equal coordinates count as a contact in self_intersects(); a mesh whose
+    // faces meet only there touches itself. Identify those vertices and test again: faces sharing
+    // a vertex or an edge then meet only if they meet beyond it. A face that would repeat a
+    // vertex keeps the contact (it touches itself within one face).
+    if (*report.self_intersecting) {
+      PolygonMesh welded = mesh;
+      if (weld_duplicate_vertices(welded) > 0 &&
+          distinct_face_vertices(welded) == distinct_face_vertices(mesh) &&
+          !self_intersects(welded)) {
+        report.self_intersecting = false;
+        report.self_touching = true;
+      }
+    }
+  }
   return report;
 }
 

@@ -51,7 +51,15 @@ struct MeshReport {
   int64_t genus = -1;  ///< -1 when not closed/manifold/oriented
   int64_t degenerate_faces = 0;
   double volume = 0;                      ///< signed covering volume, signed_volume() of measure.h
-  std::optional<bool> self_intersecting;  ///< empty when not checked
+  /// Faces meet beyond their shared vertices (self_intersects()), other than where distinct
+  /// vertices at equal coordinates touch: false for a mesh whose faces meet only there. Empty
+  /// when not checked.
+  std::optional<bool> self_intersecting;
+  /// Distinct vertices at equal coordinates where faces meet and nothing else: the mesh touches
+  /// itself (a pinched vertex or edge of a regularized result, as two boxes sharing an edge)
+  /// without crossing; exact (self_intersects() on the mesh with those vertices identified).
+  /// Empty when not checked.
+  std::optional<bool> self_touching;
 };
 
 /// Validates one mesh in O(n log d) for n face indices and largest vertex degree d (plus

@@ -323,6 +323,30 @@ TEST(SelfIntersects, VertexInTheMiddleOfAStraightSideIsNotAContact) {
   EXPECT_FALSE(*r.self_intersecting);
 }
 
+TEST(ValidateMesh, CubesTouchingAtDistinctVerticesOfEqualCoordinatesTouchWithoutIntersecting) {
+  // Two cubes sharing an edge or a corner, each with its own vertices: the faces meet only where
+  // distinct vertices have equal coordinates (the evaluated union of such cubes is this mesh).
+  for (const Vec3 offset : {Vec3{1, 1, 0}, Vec3{1, 1, 1}}) {
+    const PolygonMesh m = concat(cube(), cube(offset));
+    ASSERT_TRUE(self_intersects(m));
+    const MeshReport r = validate_mesh(m);
+    ASSERT_TRUE(r.self_intersecting.has_value());
+    EXPECT_FALSE(*r.self_intersecting) << offset.z;
+    EXPECT_TRUE(*r.self_touching) << offset.z;
+  }
+}
+
+TEST(ValidateMesh, CrossingCubesWithATouchingVertexStillIntersect) {
+  // A touching corner does not hide a crossing elsewhere.
+  const PolygonMesh m = concat(concat(cube(), cube({1, 1, 1})), cube({0.5, 0.5, -0.5}));
+  const MeshReport r = validate_mesh(m);
+  EXPECT_TRUE(*r.self_intersecting);
+  EXPECT_FALSE(*r.self_touching);
+  const MeshReport clean = validate_mesh(cube());
+  EXPECT_FALSE(*clean.self_intersecting);
+  EXPECT_FALSE(*clean.self_touching);
+}
+
 TEST(SelfIntersects, InterpenetratingCubes) {
   EXPECT_TRUE(self_intersects(concat(cube(), cube({0.5, 0.5, 0.5}))));
 }
