@@ -35,6 +35,7 @@
 #include "brep/detail/cells_check.h"
 #include "solid/errors.h"
 #include "solid/measure.h"
+#include "solid/memory_limit.h"
 #include "solid/parallel.h"
 #include "solid/rounding_repair.h"
 
@@ -313,11 +314,21 @@ double cell_wall(const CellGrid& grid, int axis, int k) {
   return lo + k * (grid.size / grid.n);
 }
 
+double cells_memory_bytes(int n, double mesh_faces) {
+  const double cells = static_cast<double>(n) * n * n;
+  return 3072 * cells + 1024 * mesh_faces;
+}
+
 CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid, const CellsOptions& options) {
   if (grid.n < 1) throw InputError("cells: expected at least 1 cell per axis");
   if (!std::isfinite(grid.min.x) || !std::isfinite(grid.min.y) || !std::isfinite(grid.min.z) ||
       !std::isfinite(grid.size) || !(grid.size > 0))
     throw InputError("cells: expected a finite cube corner and a finite size > 0");
+  if (options.max_memory_bytes > 0)
+    check_memory(cells_memory_bytes(grid.n, static_cast<double>(mesh.face_count())),
+                 options.max_memory_bytes,
+                 "cells: " + std::to_string(grid.n) + "³ cells of a mesh of " +
+                     std::to_string(mesh.face_count()) + " faces");
   CellsResult result;
   const auto start = Clock::now();
   Part whole;

@@ -25,10 +25,6 @@ namespace {
 
 using nlohmann::json;
 
-/// Bytes per cell the pieces may need at most when every cell is full: a box piece (8 vertices,
-/// 6 faces, face kinds) with its allocations, and the recursion's part of the same size.
-constexpr double kBytesPerCell = 1024;
-
 std::string piece_name(const brep::CellPiece& p, const std::string& ext) {
   return "cell_" + std::to_string(p.cell[0]) + "_" + std::to_string(p.cell[1]) + "_" +
          std::to_string(p.cell[2]) + ext;
@@ -40,8 +36,8 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   Timing timing;
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
-  const double n = o.cells;
-  check_memory(n * n * n * kBytesPerCell, common.max_memory_bytes(),
+  // The cells' part now, the evaluated mesh's part once it is known (CellsOptions).
+  check_memory(brep::cells_memory_bytes(o.cells), common.max_memory_bytes(),
                "--cells " + std::to_string(o.cells) + ": the pieces");
   std::optional<VoxelBounds> bounds;
   if (!o.bounds.empty()) {
@@ -53,7 +49,9 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   const Model model = load_model(o.input, common.load_options());
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
-  const CellsEvaluation r = model.evaluate_cells(o.cells, bounds);
+  brep::CellsOptions cells_options;
+  cells_options.max_memory_bytes = common.max_memory_bytes();
+  const CellsEvaluation r = model.evaluate_cells(o.cells, bounds, cells_options);
   timing.lap(Timing::kKernel);
   const PolygonMesh& glued = r.cells.glued;
   if (glued.face_count() == 0)
