@@ -331,6 +331,15 @@ CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid, const Cells
                      std::to_string(mesh.face_count()) + " faces");
   CellsResult result;
   const auto start = Clock::now();
+  // A mesh with distinct vertices at one point touches itself; its pieces may too.
+  bool touching = false;
+  {
+    std::vector<std::array<double, 3>> points;
+    points.reserve(mesh.vertices.size());
+    for (const Vec3& p : mesh.vertices) points.push_back(key(p));
+    std::sort(points.begin(), points.end());
+    touching = std::adjacent_find(points.begin(), points.end()) != points.end();
+  }
   Part whole;
   whole.mesh = mesh;
   whole.faces.assign(mesh.face_count(), CellFace::kSurface);
@@ -347,7 +356,7 @@ CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid, const Cells
     repair_rounding(result.glued, rounded);
     std::vector<uint8_t> no_kinds;
     detail::triangulate_nonplanar(result.glued, no_kinds);
-    const std::string why = detail::invalid_reason(result.glued);
+    const std::string why = detail::invalid_reason(result.glued, touching);
     if (!why.empty())
       throw NotComputable("cells: the glued pieces are not valid as written in doubles (" + why +
                           "): a wall lies within rounding distance of the surface");
@@ -367,7 +376,7 @@ CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid, const Cells
       const size_t faces = piece.faces.size();
       detail::triangulate_nonplanar(piece.mesh, piece.faces);
       if (piece.faces.size() != faces) measure(piece);
-      invalid[p] = detail::invalid_reason(piece.mesh);
+      invalid[p] = detail::invalid_reason(piece.mesh, touching);
     }
   });
   for (size_t p = 0; p < invalid.size(); ++p)

@@ -109,7 +109,7 @@ struct CellsResult {
 /// Deterministic: the same pieces for any thread count.
 /// Every piece and the glued mesh are checked as written (closed, consistently oriented
 /// 2-manifold, no face with all its vertices on one line, no self-intersection by CGAL's exact
-/// test, exact volume > 0).
+/// test, left out when `mesh` has distinct vertices at one point, exact volume > 0).
 /// \throws InputError for n < 1, a non-finite min or a size that is not finite and > 0, a
 /// cells_memory_bytes estimate over options.max_memory_bytes, and as brep::clip; NotComputable
 /// as brep::clip, and when a piece or the glued mesh is not valid as written in doubles (a wall

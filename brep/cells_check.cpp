@@ -144,7 +144,7 @@ void triangulate_nonplanar(PolygonMesh& mesh, std::vector<Kind>& kinds) {
 template void triangulate_nonplanar<CellFace>(PolygonMesh&, std::vector<CellFace>&);
 template void triangulate_nonplanar<uint8_t>(PolygonMesh&, std::vector<uint8_t>&);
 
-std::string invalid_reason(const PolygonMesh& mesh) {
+std::string invalid_reason(const PolygonMesh& mesh, bool contacts_allowed) {
   if (mesh.face_count() == 0) return "";
   ValidateOptions options;
   options.check_self_intersection = false;
@@ -153,7 +153,7 @@ std::string invalid_reason(const PolygonMesh& mesh) {
   if (!r.oriented || r.nonmanifold_edges > 0) return "not an oriented 2-manifold";
   if (!r.manifold) return "a vertex whose faces form more than one fan";
   if (r.degenerate_faces > 0) return "a face with all its vertices on one line";
-  if (cgal_self_intersects(mesh)) return "it intersects or touches itself";
+  if (!contacts_allowed && cgal_self_intersects(mesh)) return "it intersects or touches itself";
   if (volume_sign(mesh) <= 0) return "inside out (volume not positive)";
   return "";
 }
