@@ -266,6 +266,15 @@ class CapBuilder {
     return e == r ? e : 0;
   }
 
+  /// A corner a, b, c that a convex face may have: left turn in both geometries, or straight in
+  /// both (a node on a side, e.g. where an earlier wall split the side: merging across it keeps
+  /// the face convex and spares a diagonal that later walls would cross).
+  bool convex_corner(uint32_t a, uint32_t b, uint32_t c) const {
+    const int e = orient(a, b, c);
+    const int r = (swap_ ? -1 : 1) * orient2d(rounded_[a], rounded_[b], rounded_[c], c_.axis);
+    return e == r && e >= 0;
+  }
+
   // --- §3: rings ---------------------------------------------------------------------------
   /// Clockwise angle from direction (ref − v) to (q − v) is smaller for q1 than for q2.
   bool cw_before(uint32_t v, uint32_t ref, uint32_t q1, uint32_t q2) const {
@@ -765,8 +774,8 @@ class CapBuilder {
         const uint32_t t = twin[d];
         if (t == kNone || t < d) continue;
         const uint32_t u = from[d], v = from[t];
-        if (orient_both(poly[from[prev[d]]].slot, poly[u].slot, poly[from[next[next[t]]]].slot) <= 0 ||
-            orient_both(poly[from[prev[t]]].slot, poly[v].slot, poly[from[next[next[d]]]].slot) <= 0)
+        if (!convex_corner(poly[from[prev[d]]].slot, poly[u].slot, poly[from[next[next[t]]]].slot) ||
+            !convex_corner(poly[from[prev[t]]].slot, poly[v].slot, poly[from[next[next[d]]]].slot))
           continue;
         const uint32_t pd = prev[d], nd = next[d], pt = prev[t], nt = next[t];
         next[pd] = nt;

@@ -1,7 +1,13 @@
 // Cells of a cubic grid by repeated plane clip and patch, and the gluing of the pieces
 // (brep/cells.h has the notation).
 //
-// Cutting: a part is clipped only by the walls it crosses (a part whose box lies on one side of
+// Cutting: the mesh is first clipped by the cube's six faces, then by the interior walls. The
+// outer caps must exist before any interior wall is cut: a clip decomposes the cap of each half
+// on its own, so the two halves of an interior wall carry different cap diagonals, and an outer
+// wall cut later would cross them at different points on the two sides (its kept outer caps
+// would then have border edges without partners). Interior walls cross an outer cap face once,
+// at points shared by both halves.
+// A part is clipped only by the walls it crosses (a part whose box lies on one side of
 // a wall goes there whole, unclipped: the clip would put it there too, since a face lying in the
 // wall goes to the half it bounds from outside). Each clip reports the input face of every output
 // face (ClipHalf::face_source), so the kind of a face (surface, interior cap, outer cap) follows
@@ -26,6 +32,7 @@
 #include <tuple>
 #include <utility>
 
+#include "brep/detail/cells_check.h"
 #include "solid/errors.h"
 #include "solid/measure.h"
 #include "solid/memory_limit.h"
@@ -53,16 +60,25 @@ struct Part {
 };
 
 void measure(CellPiece& piece);
+bool on_cell_wall(const CellPiece& piece, uint32_t v, const CellGrid& grid);
 
 class Cutter {
  public:
   Cutter(const CellGrid& grid, const CellsOptions& options) : grid_(grid), options_(options) {}
 
-  /// Pieces of `part` (which lies in the cube's range of every axis before `axis`) for the cells
-  /// whose indices before `axis` are those of `cell`, in (i, j, k) order.
+  /// `part` ∩ cube: clipped by the cube's six faces, x first (module comment: before any
+  /// interior wall).
+  Part clip_to_cube(Part part) {
+    for (int axis = 0; axis < 3; ++axis) {
+      part = split(std::move(part), axis, 0, CellFace::kOuter).second;
+      part = split(std::move(part), axis, grid_.n, CellFace::kOuter).first;
+    }
+    return part;
+  }
+
+  /// Pieces of `part` (inside the cube) for the cells whose indices before `axis` are those of
+  /// `cell`, in (i, j, k) order.
   void start_axis(Part part, int axis, std::array<int, 3> cell, std::vector<CellPiece>& out) {
-    part = split(std::move(part), axis, 0, CellFace::kOuter).second;
-    part = split(std::move(part), axis, grid_.n, CellFace::kOuter).first;
     cut_range(std::move(part), axis, 0, grid_.n, cell, out);
   }
 
@@ -156,12 +172,7 @@ void measure(CellPiece& piece) {
 /// are the rounded ones.
 void repair_piece(CellPiece& piece, const CellGrid& grid) {
   std::vector<uint8_t> rounded(piece.mesh.vertices.size(), 0);
-  for (size_t v = 0; v < rounded.size(); ++v)
-    for (int a = 0; a < 3; ++a) {
-      const double x = piece.mesh.vertices[v][a];
-      if (x == cell_wall(grid, a, piece.cell[a]) || x == cell_wall(grid, a, piece.cell[a] + 1))
-        rounded[v] = 1;
-    }
+  for (uint32_t v = 0; v < rounded.size(); ++v) rounded[v] = on_cell_wall(piece, v, grid);
   // Cap faces on one wall are one valid triangulation of its rounded rings (no forced ear:
   // every triangle counter-clockwise on the rounded points and empty of other nodes, brep/cap.cpp)
   // merged into convex faces, so they are not tested against each other; a ring that is not
@@ -202,7 +213,19 @@ uint32_t find(std::vector<uint32_t>& parent, uint32_t v) {
   return v;
 }
 
-PolygonMesh glue(const std::vector<CellPiece>& pieces) {
+/// Whether vertex v of `piece` lies on a wall of its cell (every constructed point does).
+bool on_cell_wall(const CellPiece& piece, uint32_t v, const CellGrid& grid) {
+  for (int a = 0; a < 3; ++a) {
+    const double x = piece.mesh.vertices[v][a];
+    if (x == cell_wall(grid, a, piece.cell[a]) || x == cell_wall(grid, a, piece.cell[a] + 1))
+      return true;
+  }
+  return false;
+}
+
+/// The pieces glued (module comment); `rounded` gets one flag per output vertex: on a wall.
+PolygonMesh glue(const std::vector<CellPiece>& pieces, const CellGrid& grid,
+                 std::vector<uint8_t>& rounded) {
   std::vector<uint32_t> base(pieces.size() + 1, 0);
   for (size_t p = 0; p < pieces.size(); ++p)
     base[p + 1] = base[p] + static_cast<uint32_t>(pieces[p].mesh.vertices.size());
@@ -213,6 +236,8 @@ PolygonMesh glue(const std::vector<CellPiece>& pieces) {
   };
   std::vector<Border> border;
   std::vector<uint64_t> edges;
+  std::vector<uint32_t> parent(base.back());
+  std::iota(parent.begin(), parent.end(), 0u);
   for (size_t p = 0; p < pieces.size(); ++p) {
     const CellPiece& piece = pieces[p];
     edges.clear();
@@ -226,16 +251,18 @@ PolygonMesh glue(const std::vector<CellPiece>& pieces) {
     for (uint64_t e : edges) {
       const uint32_t a = static_cast<uint32_t>(e >> 32), b = static_cast<uint32_t>(e);
       if (std::binary_search(edges.begin(), edges.end(), uint64_t{b} << 32 | a)) continue;
-      border.push_back({key(piece.mesh.vertices[a]), key(piece.mesh.vertices[b]), base[p] + a,
-                        base[p] + b, static_cast<uint32_t>(p)});
+      const auto from = key(piece.mesh.vertices[a]), to = key(piece.mesh.vertices[b]);
+      if (from == to) {  // two constructed points rounded to one: one vertex, nothing to pair
+        parent[find(parent, base[p] + a)] = find(parent, base[p] + b);
+        continue;
+      }
+      border.push_back({from, to, base[p] + a, base[p] + b, static_cast<uint32_t>(p)});
     }
   }
   auto less = [](const Border& x, const Border& y) {
     return std::tie(x.from, x.to, x.piece, x.a) < std::tie(y.from, y.to, y.piece, y.a);
   };
   std::sort(border.begin(), border.end(), less);
-  std::vector<uint32_t> parent(base.back());
-  std::iota(parent.begin(), parent.end(), 0u);
   std::vector<uint8_t> paired(border.size(), 0);
   for (size_t e = 0; e < border.size(); ++e) {
     if (paired[e]) continue;
@@ -265,6 +292,7 @@ PolygonMesh glue(const std::vector<CellPiece>& pieces) {
         if (index[r] == kNoFace) {
           index[r] = static_cast<uint32_t>(out.vertices.size());
           out.vertices.push_back(piece.mesh.vertices[v]);
+          rounded.push_back(on_cell_wall(piece, v, grid));
         }
         // Two corners identified (a wall within rounding distance of a mesh vertex made two
         // constructed points round to one double point): one corner.
@@ -286,39 +314,79 @@ double cell_wall(const CellGrid& grid, int axis, int k) {
   return lo + k * (grid.size / grid.n);
 }
 
-double cells_memory_bytes(int n) {
-  constexpr double kBytesPerCell = 1024;
-  const double cells = std::max(n, 0);
-  return cells * cells * cells * kBytesPerCell;
+double cells_memory_bytes(int n, double mesh_faces) {
+  const double cells = static_cast<double>(n) * n * n;
+  return 3072 * cells + 1024 * mesh_faces;
 }
 
 CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid, const CellsOptions& options) {
   if (grid.n < 1) throw InputError("cells: expected at least 1 cell per axis");
-  check_memory(cells_memory_bytes(grid.n), options.max_memory_bytes,
-               "cells " + std::to_string(grid.n) + ": the pieces");
   if (!std::isfinite(grid.min.x) || !std::isfinite(grid.min.y) || !std::isfinite(grid.min.z) ||
       !std::isfinite(grid.size) || !(grid.size > 0))
     throw InputError("cells: expected a finite cube corner and a finite size > 0");
+  if (options.max_memory_bytes > 0)
+    check_memory(cells_memory_bytes(grid.n, static_cast<double>(mesh.face_count())),
+                 options.max_memory_bytes,
+                 "cells: " + std::to_string(grid.n) + "³ cells of a mesh of " +
+                     std::to_string(mesh.face_count()) + " faces");
   CellsResult result;
   const auto start = Clock::now();
+  // A mesh with distinct vertices at one point touches itself; its pieces may too.
+  bool touching = false;
+  {
+    std::vector<std::array<double, 3>> points;
+    points.reserve(mesh.vertices.size());
+    for (const Vec3& p : mesh.vertices) points.push_back(key(p));
+    std::sort(points.begin(), points.end());
+    touching = std::adjacent_find(points.begin(), points.end()) != points.end();
+  }
   Part whole;
   whole.mesh = mesh;
   whole.faces.assign(mesh.face_count(), CellFace::kSurface);
   Cutter cutter(grid, options);
-  cutter.start_axis(std::move(whole), 0, {0, 0, 0}, result.pieces);
+  cutter.start_axis(cutter.clip_to_cube(std::move(whole)), 0, {0, 0, 0}, result.pieces);
   result.clips = cutter.clips();
   result.forced_ears = cutter.forced_ears();
   for (const CellPiece& piece : result.pieces) result.cap_faces += piece.cap_faces;
   const auto cut_end = Clock::now();
   result.cut_seconds = std::chrono::duration<double>(cut_end - start).count();
   if (options.glue) {
-    result.glued = glue(result.pieces);
+    std::vector<uint8_t> rounded;
+    result.glued = glue(result.pieces, grid, rounded);
+    repair_rounding(result.glued, rounded);
+    std::vector<uint8_t> no_kinds;
+    detail::triangulate_nonplanar(result.glued, no_kinds);
+    const std::string why = detail::invalid_reason(result.glued, touching);
+    if (!why.empty())
+      throw NotComputable("cells: the glued pieces are not valid as written in doubles (" + why +
+                          "): a wall lies within rounding distance of the surface");
     result.glue_seconds = std::chrono::duration<double>(Clock::now() - cut_end).count();
   }
   const auto repair_start = Clock::now();
+  std::vector<std::string> invalid(result.pieces.size());
   parallel_for(result.pieces.size(), 1, [&](size_t p0, size_t p1) {
-    for (size_t p = p0; p < p1; ++p) repair_piece(result.pieces[p], grid);
+    for (size_t p = p0; p < p1; ++p) {
+      CellPiece& piece = result.pieces[p];
+      repair_piece(piece, grid);
+      // A piece of six cap faces over eight vertices is its cell's box (valid as it is).
+      if (piece.faces.size() == 6 && piece.mesh.vertices.size() == 8 &&
+          std::none_of(piece.faces.begin(), piece.faces.end(),
+                       [](CellFace k) { return k == CellFace::kSurface; }))
+        continue;
+      const size_t faces = piece.faces.size();
+      detail::triangulate_nonplanar(piece.mesh, piece.faces);
+      if (piece.faces.size() != faces) measure(piece);
+      invalid[p] = detail::invalid_reason(piece.mesh, touching);
+    }
   });
+  for (size_t p = 0; p < invalid.size(); ++p)
+    if (!invalid[p].empty()) {
+      const auto& c = result.pieces[p].cell;
+      throw NotComputable("cells: the piece of cell (" + std::to_string(c[0]) + ", " +
+                          std::to_string(c[1]) + ", " + std::to_string(c[2]) +
+                          ") is not valid as written in doubles (" + invalid[p] +
+                          "): a wall lies within rounding distance of the surface");
+    }
   for (const CellPiece& piece : result.pieces) {
     result.collapsed_edges += piece.collapsed_edges;
     result.rounding_contacts += piece.rounding_contacts;

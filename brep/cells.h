@@ -52,15 +52,19 @@ double cell_wall(const CellGrid& grid, int axis, int k);
 struct CellsOptions {
   bool glue = true;  ///< also build CellsResult::glued
   ClipOptions clip;  ///< cap faces: convex polygons (default) or triangles
-  /// cut_cells() refuses (InputError, solid/memory_limit.h check_memory) when
-  /// cells_memory_bytes(n) exceeds this (the CLI's --max-memory; default 4096 MiB).
+  /// Refuse (InputError, check_memory's message) when cells_memory_bytes(n, faces of the mesh)
+  /// exceeds this many bytes (the CLI's --max-memory; default 4096 MiB); 0: no limit.
   uint64_t max_memory_bytes = kDefaultMaxMemoryBytes;
 };
 
-/// The bytes the pieces of n×n×n cells may need, from n alone (checked before any cut): every
-/// cell full, a box piece (8 vertices, 6 faces, face kinds) with its allocations, and the
-/// recursion's part of the same size; 1 KiB a cell.
-double cells_memory_bytes(int n);
+/// An upper bound on the peak bytes of cutting a mesh of `mesh_faces` faces into n×n×n cells
+/// and writing the pieces (cut_cells, its result, the glued mesh and the pieces' index, as
+/// `cover evaluate --cells` holds them): 3 KiB per cell (a full cell's box piece with its
+/// allocations, its part of the glued mesh and of the index, measured at about 1.9 KiB) plus
+/// 1 KiB per face of the mesh (its copies in the first clips and its fragments in the pieces,
+/// measured at about 0.5 KiB). With mesh_faces = 0 it is the cells' part alone, what a caller
+/// can check before evaluating. A double, so that n³ cannot wrap.
+double cells_memory_bytes(int n, double mesh_faces = 0);
 
 /// Face kinds of a piece.
 enum class CellFace : uint8_t {
@@ -104,9 +108,14 @@ struct CellsResult {
 /// 2-manifold, without self-intersections. The glued mesh is mesh ∩ cube (the same solid as
 /// `mesh` when the cube contains it), with extra vertices where the walls cross its faces.
 /// Deterministic: the same pieces for any thread count.
-/// \throws InputError for n < 1, a non-finite min or a size that is not finite and > 0,
-/// cells_memory_bytes(n) over options.max_memory_bytes, and as brep::clip; NotComputable as
-/// brep::clip; InternalError if a wall edge finds no partner.
+/// Every piece and the glued mesh are checked as written (closed, consistently oriented
+/// 2-manifold, no face with all its vertices on one line, no self-intersection by CGAL's exact
+/// test, left out when `mesh` has distinct vertices at one point, exact volume > 0).
+/// \throws InputError for n < 1, a non-finite min or a size that is not finite and > 0, a
+/// cells_memory_bytes estimate over options.max_memory_bytes, and as brep::clip; NotComputable
+/// as brep::clip, and when a piece or the glued mesh is not valid as written in doubles (a wall
+/// within rounding distance of the surface; the message names the cell); InternalError if a
+/// wall edge finds no partner.
 CellsResult cut_cells(const PolygonMesh& mesh, const CellGrid& grid,
                       const CellsOptions& options = {});
 

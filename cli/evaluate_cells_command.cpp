@@ -38,8 +38,9 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   Timing timing;
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
+  // The cells' part now, the evaluated mesh's part once it is known (CellsOptions).
   check_memory(brep::cells_memory_bytes(o.cells), common.max_memory_bytes(),
-               "--cells " + std::to_string(o.cells) + ": cutting into cells");  // before loading
+               "--cells " + std::to_string(o.cells) + ": cutting into cells");
   std::optional<VoxelBounds> bounds;
   if (!o.bounds.empty()) {
     const std::vector<double> v = parse_numbers(o.bounds, "--bounds", 4, ",");

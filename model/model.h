@@ -202,10 +202,12 @@ class Model {
   /// patcher into one closed, outward 2-manifold piece per cell it meets (a cell inside the
   /// result gives its box), over the cube `bounds` (default voxel_bounds(n), the cube voxelize
   /// uses). cells.glued is the pieces glued back: the same solid as evaluate() when the cube
-  /// contains the result (else the result ∩ cube). Cells are cut in parallel.
+  /// contains the result (else the result ∩ cube). Cells are cut in parallel. Every piece and
+  /// the glued mesh are checked exactly as written (brep::cut_cells).
   /// \throws InputError for n < 1, bad bounds, brep::cells_memory_bytes(n) over
-  /// options.max_memory_bytes (checked first, before evaluating), and as evaluate();
-  /// NotComputable as evaluate() and brep::clip.
+  /// options.max_memory_bytes (checked first, before evaluating; then with the evaluated mesh's
+  /// faces), and as evaluate(); NotComputable as evaluate() and brep::clip, and when a piece or
+  /// the glued mesh is not valid as written in doubles.
   CellsEvaluation evaluate_cells(int n, const std::optional<VoxelBounds>& bounds = std::nullopt,
                                  const brep::CellsOptions& options = {}) const;
 

@@ -13,6 +13,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "solid/predicates.h"
 #include "solid/validate.h"
 
 namespace cover {
@@ -211,6 +212,25 @@ class Collapser {
   double limit2_ = 0;
 };
 
+/// The face pairs that meet (intersecting_face_pairs), plus (f, f) for each suspect face whose
+/// vertices all lie on one line: a face of zero area that rounding made (its corners moved onto
+/// one line) tiles into nothing, and its neighbours need not meet, but as written it is a
+/// degenerate face, which a reader's self-intersection test reports.
+std::vector<std::pair<uint32_t, uint32_t>> contacts(const PolygonMesh& mesh,
+                                                    std::span<const uint8_t> suspect,
+                                                    std::span<const uint32_t> group) {
+  std::vector<std::pair<uint32_t, uint32_t>> pairs = intersecting_face_pairs(mesh, suspect, group);
+  const size_t found = pairs.size();
+  for (uint32_t f = 0; f < mesh.face_count(); ++f)
+    if ((suspect.empty() || suspect[f]) && all_collinear(mesh.vertices, mesh.face(f)))
+      pairs.push_back({f, f});
+  if (pairs.size() > found) {
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  }
+  return pairs;
+}
+
 }  // namespace
 
 RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> rounded,
@@ -222,7 +242,7 @@ RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> round
     for (uint32_t v : mesh.face(f))
       if (v < rounded.size() && rounded[v]) suspect[f] = 1, any = true;
   if (!any) return out;
-  std::vector<std::pair<uint32_t, uint32_t>> pairs = intersecting_face_pairs(mesh, suspect, group);
+  std::vector<std::pair<uint32_t, uint32_t>> pairs = contacts(mesh, suspect, group);
   if (pairs.empty()) return out;
   Collapser collapser(mesh, rounded);
   std::vector<uint32_t> origin(mesh.face_count());
@@ -238,7 +258,7 @@ RoundingRepair repair_rounding(PolygonMesh& mesh, std::span<const uint8_t> round
     std::vector<uint32_t> now_group;
     if (!group.empty())
       for (uint32_t f : origin) now_group.push_back(group[f]);
-    pairs = intersecting_face_pairs(now, collapser.suspects(origin), now_group);
+    pairs = contacts(now, collapser.suspects(origin), now_group);
   }
   out.remaining_pairs = static_cast<int64_t>(pairs.size());
   if (out.collapsed_edges > 0) collapser.finish(out);

@@ -10,11 +10,43 @@
 #include <cstdio>
 #include <string>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Surface_mesh.h>
+
 #include "brep/cells.h"
 #include "brep_checks.h"
 #include "solid/measure.h"
 
 namespace cover::test {
+
+/// CGAL's verdict on `mesh` as written (an independent oracle of Cover's own checks): a polygon
+/// mesh (each edge used once each way), closed, outward (Polygon_mesh_processing::
+/// is_outward_oriented) and, its faces triangulated by CGAL, free of self-intersections
+/// (does_self_intersect, exact predicates on the doubles). "" when valid, else what failed.
+inline std::string cgal_verdict(const PolygonMesh& mesh) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  if (mesh.face_count() == 0) return "";
+  std::vector<K::Point_3> points;
+  for (const Vec3& p : mesh.vertices) points.emplace_back(p.x, p.y, p.z);
+  std::vector<std::vector<size_t>> faces;
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto loop = mesh.face(f);
+    faces.emplace_back(loop.begin(), loop.end());
+  }
+  if (!PMP::is_polygon_soup_a_polygon_mesh(faces)) return "not a polygon mesh";
+  CGAL::Surface_mesh<K::Point_3> sm;
+  PMP::polygon_soup_to_polygon_mesh(points, faces, sm);
+  if (!CGAL::is_closed(sm)) return "open";
+  if (!PMP::triangulate_faces(sm)) return "faces CGAL cannot triangulate";
+  if (PMP::does_self_intersect(sm)) return "self-intersecting";
+  if (!PMP::is_outward_oriented(sm)) return "inside out";
+  return "";
+}
 
 /// The cube around `mesh`'s box, enlarged by `margin` of its largest extent on every side.
 inline brep::CellGrid cells_around(const PolygonMesh& mesh, int n, double margin = 0.01) {
