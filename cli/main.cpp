@@ -239,7 +239,7 @@ int main(int argc, char** argv) {
   dec_cmd->add_option("INPUT", dec.input, "Closed mesh or scene (evaluated first)")->required();
   dec_cmd->add_option("-o,--output", dec.output, "DIR: piece_NNNN.EXT and pieces.json")
       ->required();
-  dec_cmd->add_option("--ext", dec.ext, "Pieces' mesh format: .off, .obj, .stl or .ply")
+  dec_cmd->add_option("--ext", dec.ext, "Pieces' mesh format: .off, .obj or .ply (exact doubles)")
       ->capture_default_str();
   add_common(dec_cmd, common);
 
