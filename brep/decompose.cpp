@@ -17,6 +17,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <cmath>
 #include <span>
 #include <stdexcept>
@@ -46,6 +47,8 @@ using Clock = std::chrono::steady_clock;
 constexpr double kHullTolerance = 1e-10;
 /// Shells with more triangles are not given to the (slow) Nef fallback.
 constexpr size_t kMaxFallbackFaces = 20000;
+/// The fallback first tries the piece's own cut-tree node if it has at most this many faces.
+constexpr size_t kMaxLocalFallbackFaces = 200;
 /// A clip half whose rounded volume is below −kSliver × the input's is invalid.
 constexpr double kSliver = 1e-11;
 
@@ -70,6 +73,13 @@ struct PieceEdge {
 struct Piece {
   PolygonMesh mesh;
   std::vector<uint32_t> source;  ///< per face: input triangle, or kNoFace (cap)
+  uint32_t node = 0;             ///< the cut-tree node (CutNode) it was cut from
+};
+
+/// A piece that was cut (node 0: the shell itself), kept for the fallback.
+struct CutNode {
+  PolygonMesh mesh;
+  uint32_t parent;  ///< kNone for node 0
 };
 
 uint64_t key(uint32_t a, uint32_t b) { return uint64_t{a} << 32 | b; }
@@ -376,8 +386,9 @@ std::vector<PolygonMesh> roots(const PolygonMesh& tris) {
 
 /// The finished (reflex-free) pieces of one root, depth-first.
 void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_volume,
-              DecomposeResult& result, std::vector<Piece>& finished) {
-  Piece root{std::move(tris), {}};
+              DecomposeResult& result, std::vector<Piece>& finished, std::vector<CutNode>& nodes) {
+  nodes.push_back({tris, kNone});
+  Piece root{std::move(tris), {}, 0};
   root.source.resize(root.mesh.face_count());
   for (uint32_t f = 0; f < root.source.size(); ++f) root.source[f] = f;
   const Decomposer d(root.mesh, options);  // keeps its own copy of T
@@ -445,7 +456,12 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
       finished.push_back(std::move(p));
       continue;
     }
-    for (Piece& part : parts) todo.push_back(std::move(part));
+    const auto node = static_cast<uint32_t>(nodes.size());
+    nodes.push_back({std::move(p.mesh), p.node});
+    for (Piece& part : parts) {
+      part.node = node;
+      todo.push_back(std::move(part));
+    }
     if (static_cast<int64_t>(todo.size() + finished.size()) > options.max_pieces)
       throw NotComputable("decompose: more than " + std::to_string(options.max_pieces) + " pieces");
   }
@@ -462,30 +478,85 @@ double volume_of(const std::vector<PolygonMesh>& meshes) {
   return sum;
 }
 
-/// The hulls of one root's cut pieces, and how much they change each piece's volume.
-struct RootHulls {
+/// The exact convex parts of `mesh` (the Nef fallback) as hulls, and how much they change its
+/// volume; nullopt when the Nef polyhedron cannot be built.
+std::optional<std::pair<std::vector<PolygonMesh>, double>> nef_hulls(const PolygonMesh& mesh) {
   std::vector<PolygonMesh> hulls;
-  double change = 0;      ///< Σ |hull − piece| volumes
-  double max_change = 0;  ///< the largest of them
-};
+  for (const std::vector<Vec3>& part : detail::nef_convex_parts(mesh))
+    add_hull(std::span<const Vec3>(part.data(), part.size()), hulls);
+  if (hulls.empty()) return std::nullopt;
+  const double change = std::abs(volume_of(hulls) - signed_volume(mesh));
+  return std::make_pair(std::move(hulls), change);
+}
 
-RootHulls hull_pieces(const std::vector<Piece>& finished) {
-  std::vector<std::vector<PolygonMesh>> hulls(finished.size());
-  std::vector<double> change(finished.size(), 0);
-  parallel_for(finished.size(), 1, [&](size_t b, size_t e) {
+/// The hulls of one shell's finished pieces (decompose.h "rounding"). A piece whose hull changes
+/// its volume by more than `tolerance` is redone with the pieces cut from the same cut-tree node
+/// by the Nef fallback (decompose.h "fallback"), going up the tree until the fallback's change is
+/// within `tolerance`. Returns the hulls and the sum of the changes.
+std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>& finished,
+                                                     const std::vector<CutNode>& nodes,
+                                                     double tolerance, int64_t& fallbacks) {
+  const size_t n = finished.size();
+  std::vector<std::vector<PolygonMesh>> hulls(n);
+  std::vector<double> change(n, 0);
+  parallel_for(n, 1, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       const auto& v = finished[i].mesh.vertices;
       add_hull(std::span<const Vec3>(v.data(), v.size()), hulls[i]);
       change[i] = std::abs(volume_of(hulls[i]) - signed_volume(finished[i].mesh));
     }
   });
-  RootHulls out;
-  for (size_t i = 0; i < finished.size(); ++i) {
-    out.change += change[i];
-    out.max_change = std::max(out.max_change, change[i]);
-    for (PolygonMesh& h : hulls[i]) out.hulls.push_back(std::move(h));
+  // replaced[n]: the node whose fallback covers the piece (kNone: its own hull).
+  std::vector<uint32_t> replaced(n, kNone);
+  std::vector<std::pair<uint32_t, std::vector<PolygonMesh>>> redone;
+  std::vector<double> redone_change;
+  auto descends = [&](uint32_t node, uint32_t from) {
+    for (; node != kNone; node = nodes[node].parent)
+      if (node == from) return true;
+    return false;
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (change[i] <= tolerance || replaced[i] != kNone) continue;
+    // The piece's own cut-tree node if small, else the shell (exact input points).
+    const uint32_t own = finished[i].node;
+    for (const uint32_t node : {own, 0u}) {
+      if (node == own && (node == 0 || nodes[node].mesh.face_count() > kMaxLocalFallbackFaces))
+        continue;
+      if (nodes[node].mesh.face_count() > kMaxFallbackFaces) break;
+      PolygonMesh tri;
+      try {
+        tri = triangulated(nodes[node].mesh);
+      } catch (const InputError&) {
+        continue;
+      }
+      auto nef = nef_hulls(tri);
+      if (!nef || nef->second > tolerance) continue;
+      // Earlier fallbacks inside this node are superseded.
+      for (size_t k = 0; k < redone.size(); ++k)
+        if (descends(redone[k].first, node)) {
+          redone[k].second.clear();
+          redone_change[k] = 0;
+        }
+      for (size_t j = 0; j < n; ++j)
+        if (descends(finished[j].node, node)) replaced[j] = node;
+      redone.emplace_back(node, std::move(nef->first));
+      redone_change.push_back(nef->second);
+      ++fallbacks;
+      break;
+    }
   }
-  return out;
+  std::vector<PolygonMesh> out;
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (replaced[i] != kNone) continue;
+    total += change[i];
+    for (PolygonMesh& h : hulls[i]) out.push_back(std::move(h));
+  }
+  for (size_t k = 0; k < redone.size(); ++k) {
+    total += redone_change[k];
+    for (PolygonMesh& h : redone[k].second) out.push_back(std::move(h));
+  }
+  return {std::move(out), total};
 }
 
 }  // namespace
@@ -506,25 +577,14 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
     if (!(volume > 0))
       throw InputError("a shell of the mesh is inside out (volume " + std::to_string(volume) + ")");
     std::vector<Piece> finished;
-    cut_root(s, options, result.input_volume, result, finished);
+    std::vector<CutNode> nodes;
+    cut_root(s, options, result.input_volume, result, finished, nodes);
     const auto hull_start = Clock::now();
-    RootHulls h = hull_pieces(finished);
-    finished.clear();
-    if (h.max_change > kSliver * result.input_volume && s.face_count() <= kMaxFallbackFaces) {
-      // A piece that rounding left non-convex (decompose.h "fallback"): the shell is decomposed
-      // again by the exact Nef fallback, kept if its hulls change the shell's volume less.
-      RootHulls nef;
-      for (const std::vector<Vec3>& part : detail::nef_convex_parts(s))
-        add_hull(std::span<const Vec3>(part.data(), part.size()), nef.hulls);
-      nef.change = nef.max_change = std::abs(volume_of(nef.hulls) - volume);
-      if (!nef.hulls.empty() && nef.change < h.change) {
-        h = std::move(nef);
-        ++result.fallback_shells;
-      }
-    }
-    total_change += h.change;
-    result.hull_change = std::max(result.hull_change, h.max_change / result.input_volume);
-    for (PolygonMesh& hull : h.hulls) result.pieces.push_back(std::move(hull));
+    auto [hulls, change] =
+        hull_shell(finished, nodes, kSliver * result.input_volume, result.fallback_nodes);
+    total_change += change;
+    result.hull_change = std::max(result.hull_change, change / result.input_volume);
+    for (PolygonMesh& hull : hulls) result.pieces.push_back(std::move(hull));
     hull_seconds += std::chrono::duration<double>(Clock::now() - hull_start).count();
   }
   std::vector<uint8_t> convex(result.pieces.size(), 1);

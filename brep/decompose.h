@@ -70,11 +70,11 @@ struct DecomposeResult {
   int64_t failed_cuts = 0;   ///< clips discarded because they left their edge in a half
   /// Pieces finished with reflex edges that every plane failed to cut (rounding slivers).
   int64_t uncut_pieces = 0;
-  /// Shells decomposed by the exact Nef fallback instead (decompose.h "fallback").
-  int64_t fallback_shells = 0;
+  /// Cut pieces (or shells) decomposed again by the exact Nef fallback (decompose.h "fallback").
+  int64_t fallback_nodes = 0;
   double input_volume = 0;   ///< signed volume of the input
   double volume = 0;         ///< Σ piece volumes
-  /// max over pieces of |hull volume − cut piece volume| / input volume: what the hull changed
+  /// max over shells of Σ |hull volume − cut piece volume| / input volume: what the hulls changed
   double hull_change = 0;
   double cut_seconds = 0;    ///< reflex edges, ordering and clips
   double hull_seconds = 0;   ///< convex hulls of the finished pieces

@@ -70,7 +70,7 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   j["nearly_flat_edges"] = r.nearly_flat_edges;
   j["cuts"] = r.cuts;
   j["uncut_pieces"] = r.uncut_pieces;
-  j["fallback_shells"] = r.fallback_shells;
+  j["fallback_nodes"] = r.fallback_nodes;
   j["volume"] = r.volume;
   j["input_volume"] = r.input_volume;
   j["hull_change"] = r.hull_change;
