@@ -467,9 +467,12 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
   }
 }
 
-/// The exact convex hull of each point set that spans a volume, appended to `out`.
+/// The exact convex hull of `pts`, appended to `out` unless it has no volume (in doubles: a
+/// sliver whose rounded volume is ≤ 0 is dropped; the volume checks account for it).
 void add_hull(std::span<const Vec3> pts, std::vector<PolygonMesh>& out) {
-  if (spans_volume(pts)) out.push_back(detail::convex_hull(pts));
+  if (!spans_volume(pts)) return;
+  PolygonMesh hull = detail::convex_hull(pts);
+  if (signed_volume(hull) > 0) out.push_back(std::move(hull));
 }
 
 double volume_of(const std::vector<PolygonMesh>& meshes) {

@@ -31,10 +31,12 @@
 //                together with the shells whose bounding boxes meet it.
 //   fallback     a plane whose clip fails or leaves its edge in a half (rounded points of
 //                earlier cuts next to the edge) is discarded and the next candidate tried; a
-//                piece that no candidate cuts is finished as it is. If its hull would change
-//                its volume by more than 1e-11 of the input's, it is split instead by CGAL's
-//                exact convex_decomposition_3 (Nef polyhedra; pieces of at most 4000 faces),
-//                whose parts' points are rounded to doubles and hulled.
+//                piece that no candidate cuts is finished as it is. Cut pieces form a tree. A
+//                finished piece whose hull changes its volume by more than 1e-11 of the input's
+//                is redone, with every piece cut from the same node, by CGAL's exact
+//                convex_decomposition_3 (Nef polyhedra) of that node if it has at most 200
+//                faces, else of the whole shell (at most 20,000 triangles); the parts' points
+//                are rounded to doubles and hulled. Exact but slow.
 //   rounding     clip.h rounds constructed points to the nearest double, so a finished piece is
 //                convex in exact arithmetic but its written points may be very slightly
 //                non-convex. Each finished piece is therefore replaced by the exact convex hull

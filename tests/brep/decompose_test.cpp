@@ -2,8 +2,11 @@
 // box with rings), a box with a cylindrical hole (evaluated scene), mechanical parts from
 // libcgal-demo; every piece exactly convex (is_convex_exact, itself checked to fail on a
 // non-convex mesh), closed and outward (kernel validity and CGAL is_closed /
-// is_outward_oriented), volumes summing to the input's to 1e-9; the three-point clip; errors;
-// and the `cover decompose` CLI (outputs, JSON keys, open mesh → exit 2 naming the file).
+// is_outward_oriented), volumes summing to the input's to 1e-9, convex as written (OFF round
+// trip); separate solids (apart, touching along an edge or at a vertex) and cavities; scenes
+// that need the exact Nef fallback; the same pieces for any thread count; random points in
+// exactly one piece (exact classification); the three-point clip; errors; and the `cover
+// decompose` CLI (outputs, JSON keys, open mesh and .stl pieces → exit 2).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Surface_mesh.h>
@@ -296,21 +299,27 @@ TEST(Decompose, PiecesAreConvexAsWritten) {
   }
 }
 
-// Scenes whose evaluated results used to crash the cap or be refused: the README's part (a
-// piece rounding leaves non-convex, redone by the exact fallback), a box minus a cylinder
-// united with a torus.
-TEST(Decompose, EvaluatedScenes) {
+// A box minus a cylinder united with a torus (its evaluated result used to crash the cap).
+TEST(Decompose, BoxMinusCylinderUnionTorus) {
+  const Model torus = load(source_dir() / "models" / "torus.off");
+  const Model m = (box({-3, -3, -1}, {3, 3, 1}) - cylinder({0, 0, -2}, {0, 0, 2}, 1, 32)) | torus;
+  expect_valid_decomposition(m.decompose(), m.evaluate().volume, "box - cylinder | torus");
+}
+
+// The README's part: rounding leaves a piece non-convex, which the exact fallback redoes (it
+// used to be refused). Slow (Nef polyhedra): not in the checked build.
+TEST(Decompose, ReadmePartUsesTheExactFallback) {
+#ifdef COVER_SANITIZED
+  GTEST_SKIP() << "slow under sanitizers";
+#else
   const Model part = (box({0, 0, 0}, {2, 2, 2}) - sphere({2, 2, 2}, 1.2)) |
                      cylinder({0, 0, 0}, {0, 0, 3}, 0.5).transformed(
                          make_trs({1, 1, 1}, {1, 0, 0}, 10, {0, 0, 0}));
-  const Model torus = load(source_dir() / "models" / "torus.off");
-  const Model drilled = (box({-3, -3, -1}, {3, 3, 1}) - cylinder({0, 0, -2}, {0, 0, 2}, 1, 32)) | torus;
-  const Model scenes[] = {part, drilled};
-  const char* names[] = {"part", "box - cylinder | torus"};
-  for (size_t i = 0; i < std::size(scenes); ++i) {
-    const brep::DecomposeResult r = scenes[i].decompose();
-    expect_valid_decomposition(r, scenes[i].evaluate().volume, names[i]);
-  }
+  const brep::DecomposeResult r = part.decompose();
+  expect_valid_decomposition(r, part.evaluate().volume, "part");
+  EXPECT_GE(r.fallback_nodes, 1);
+  expect_convex_as_written(r, "part");
+#endif
 }
 
 // libcgal-demo meshes that used to crash (cheese: the rounded cap triangulation) or end in an
@@ -327,7 +336,9 @@ TEST(Decompose, CheeseAndFandisk) {
 #endif
 }
 
-TEST(Decompose, SameForEveryThreadCount) {
+// The same pieces (points and volumes) for any thread count; the triangulation of a hull facet
+// with four or more coplanar points may still differ.
+TEST(Decompose, SamePiecesForEveryThreadCount) {
   const PolygonMesh m = read_mesh(cgal_mesh("joint.off"));
   brep::DecomposeResult one, two;
   {
@@ -341,7 +352,7 @@ TEST(Decompose, SameForEveryThreadCount) {
   ASSERT_EQ(one.pieces.size(), two.pieces.size());
   for (size_t i = 0; i < one.pieces.size(); ++i) {
     EXPECT_EQ(one.pieces[i].vertices, two.pieces[i].vertices) << i;
-    EXPECT_EQ(one.pieces[i].face_vertices, two.pieces[i].face_vertices) << i;
+    EXPECT_EQ(signed_volume(one.pieces[i]), signed_volume(two.pieces[i])) << i;
   }
 }
 
