@@ -506,6 +506,32 @@ class CapBuilder {
   /// The constrained Delaunay triangulation of `poly` on its rounded points (its inside
   /// triangles, counter-clockwise, as node indices); false when the rounded ring is not simple
   /// with n distinct points, or when the result is not n − 2 triangles.
+  /// Is the closed polyline q simple: distinct points, consecutive sides meeting only at their
+  /// common point, other sides disjoint (exact predicates on the doubles)? Quadratic: rings
+  /// longer than kMaxSimpleRing are reported as not simple.
+  static bool simple_ring(const std::vector<KI::Point_2>& q) {
+    constexpr size_t kMaxSimpleRing = 4096;
+    const size_t n = q.size();
+    if (n < 3 || n > kMaxSimpleRing) return false;
+    std::vector<KI::Segment_2> side(n);
+    for (size_t i = 0; i < n; ++i) {
+      if (q[i] == q[(i + 1) % n]) return false;
+      side[i] = KI::Segment_2(q[i], q[(i + 1) % n]);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      // Consecutive sides i and i + 1 share q[i + 1]: they must not fold back along one line.
+      const KI::Point_2 &a = q[i], &b = q[(i + 1) % n], &c = q[(i + 2) % n];
+      if (CGAL::orientation(a, b, c) == CGAL::COLLINEAR &&
+          (side[i].has_on(c) || side[(i + 1) % n].has_on(a)))
+        return false;
+      for (size_t j = i + 2; j < n; ++j) {
+        if (i == 0 && j == n - 1) continue;  // consecutive through q[0]
+        if (CGAL::do_intersect(side[i], side[j])) return false;
+      }
+    }
+    return true;
+  }
+
   bool rounded_cdt(const std::vector<Node>& poly, std::vector<std::array<uint32_t, 3>>& out) const {
     using Vb = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, KI>;
     using Fb = CGAL::Constrained_triangulation_face_base_2<KI>;
@@ -514,12 +540,19 @@ class CapBuilder {
         KI, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
     const uint32_t n = static_cast<uint32_t>(poly.size());
     const int u = c_.axis == 2 ? 0 : c_.axis + 1, w = c_.axis == 0 ? 2 : (c_.axis == 1 ? 0 : 1);
+    // CGAL's constrained triangulation is only given a simple ring: crossing or overlapping
+    // constraints (a rounded ring that folds) are refused here, not inside the insertion.
+    std::vector<KI::Point_2> q(n);
+    for (uint32_t i = 0; i < n; ++i) {
+      const Vec3& r = rounded_[poly[i].slot];
+      q[i] = swap_ ? KI::Point_2(r[w], r[u]) : KI::Point_2(r[u], r[w]);
+    }
+    if (!simple_ring(q)) return false;
     Cdt cdt;
     std::vector<Cdt::Vertex_handle> vh(n);
     try {
       for (uint32_t i = 0; i < n; ++i) {
-        const Vec3& r = rounded_[poly[i].slot];
-        vh[i] = cdt.insert(swap_ ? KI::Point_2(r[w], r[u]) : KI::Point_2(r[u], r[w]));
+        vh[i] = cdt.insert(q[i]);
         if (cdt.number_of_vertices() != i + 1) return false;  // a repeated point
         vh[i]->info() = i;
       }

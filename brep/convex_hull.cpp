@@ -6,6 +6,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <algorithm>
+#include <array>
 #include <vector>
 
 namespace cover::brep::detail {
@@ -18,20 +20,35 @@ PolygonMesh convex_hull(std::span<const Vec3> points) {
   for (const Vec3& p : points) in.emplace_back(p.x, p.y, p.z);
   Mesh hull;
   CGAL::convex_hull_3(in.begin(), in.end(), hull);
-  PolygonMesh out;
-  std::vector<uint32_t> index(hull.number_of_vertices() + hull.number_of_removed_vertices());
-  for (Mesh::Vertex_index v : hull.vertices()) {
-    index[v] = static_cast<uint32_t>(out.vertices.size());
+  // The output in a canonical order (vertices sorted by coordinates, each triangle from its
+  // smallest vertex, triangles sorted): the mesh's own order follows handle addresses, which
+  // differ between runs and threads.
+  const uint32_t n = static_cast<uint32_t>(hull.number_of_vertices() + hull.number_of_removed_vertices());
+  std::vector<Mesh::Vertex_index> live(hull.vertices().begin(), hull.vertices().end());
+  auto at = [&](Mesh::Vertex_index v) {
     const K::Point_3& p = hull.point(v);
-    out.vertices.push_back({p.x(), p.y(), p.z()});
+    return std::array<double, 3>{p.x(), p.y(), p.z()};
+  };
+  std::sort(live.begin(), live.end(),
+            [&](Mesh::Vertex_index a, Mesh::Vertex_index b) { return at(a) < at(b); });
+  std::vector<uint32_t> index(n);
+  PolygonMesh out;
+  for (Mesh::Vertex_index v : live) {
+    index[v] = static_cast<uint32_t>(out.vertices.size());
+    const auto p = at(v);
+    out.vertices.push_back({p[0], p[1], p[2]});
   }
-  std::vector<uint32_t> loop;
+  std::vector<std::array<uint32_t, 3>> tris;
   for (Mesh::Face_index f : hull.faces()) {
-    loop.clear();
+    std::array<uint32_t, 3> t{};
+    int k = 0;
     for (Mesh::Vertex_index v : CGAL::vertices_around_face(hull.halfedge(f), hull))
-      loop.push_back(index[v]);
-    out.add_face(loop);
+      if (k < 3) t[k++] = index[v];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    tris.push_back(t);
   }
+  std::sort(tris.begin(), tris.end());
+  for (const auto& t : tris) out.add_face({t[0], t[1], t[2]});
   return out;
 }
 

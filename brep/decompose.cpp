@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
+#include <optional>
 #include <cmath>
 #include <span>
 #include <stdexcept>
@@ -26,6 +28,8 @@
 
 #include "brep/clip.h"
 #include "brep/detail/convex_hull.h"
+#include "brep/detail/nef_parts.h"
+#include "brep/detail/shells.h"
 #include "brep/halfedge.h"
 #include "solid/errors.h"
 #include "solid/measure.h"
@@ -39,8 +43,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The most (relative to the input volume) the hull of an uncut piece may add.
-constexpr double kUncutTolerance = 1e-11;
+/// The most (relative to the input volume) the hulls may change the cut pieces by, in all.
+constexpr double kHullTolerance = 1e-10;
+/// Shells with more triangles are not given to the (slow) Nef fallback.
+constexpr size_t kMaxFallbackFaces = 20000;
+/// The fallback first tries the piece's own cut-tree node if it has at most this many faces.
+constexpr size_t kMaxLocalFallbackFaces = 200;
+/// A clip half whose rounded volume is below −kSliver × the input's is invalid.
+constexpr double kSliver = 1e-11;
+
+std::string relative(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g", x);
+  return text;
+}
 
 struct ReflexEdge {
   uint32_t a, b;  ///< input vertices (a → b in triangle f)
@@ -57,6 +73,13 @@ struct PieceEdge {
 struct Piece {
   PolygonMesh mesh;
   std::vector<uint32_t> source;  ///< per face: input triangle, or kNoFace (cap)
+  uint32_t node = 0;             ///< the cut-tree node (CutNode) it was cut from
+};
+
+/// A piece that was cut (node 0: the shell itself), kept for the fallback.
+struct CutNode {
+  PolygonMesh mesh;
+  uint32_t parent;  ///< kNone for node 0
 };
 
 uint64_t key(uint32_t a, uint32_t b) { return uint64_t{a} << 32 | b; }
@@ -317,32 +340,63 @@ bool spans_volume(std::span<const Vec3> pts) {
   return false;
 }
 
-}  // namespace
-
-DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& options) {
-  const auto start = Clock::now();
-  DecomposeResult result;
-  if (mesh.face_count() == 0) return result;
-  Piece root{triangulated(mesh), {}};
-  {
-    const HalfedgeMesh h = HalfedgeMesh::from_polygon_mesh(root.mesh);
-    int64_t border = 0;
-    for (uint32_t e = 0; e < h.halfedge_slots(); ++e) border += !h.edge_deleted(e) && h.is_border(e);
-    if (border > 0) throw InputError("open mesh: " + std::to_string(border) + " boundary edges");
+/// The roots to cut: the input's shells (detail/shells.h), each on its own, except that a shell
+/// of negative volume (a cavity) and every shell whose bounding box meets a cavity's go into one
+/// root together (a cavity belongs to a shell around it, and only cuts separate them).
+std::vector<PolygonMesh> roots(const PolygonMesh& tris) {
+  std::vector<PolygonMesh> shells = detail::split_shells(tris);
+  struct Box {
+    Vec3 lo, hi;
+    bool meets(const Box& o) const {
+      return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y &&
+             lo.z <= o.hi.z && o.lo.z <= hi.z;
+    }
+  };
+  std::vector<Box> boxes;
+  std::vector<uint8_t> cavity;
+  for (const PolygonMesh& s : shells) {
+    Box b{s.vertices[0], s.vertices[0]};
+    for (const Vec3& p : s.vertices) {
+      b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
+      b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
+    }
+    boxes.push_back(b);
+    cavity.push_back(signed_volume(s) <= 0);
   }
-  result.input_volume = signed_volume(root.mesh);
-  if (!(result.input_volume > 0))
-    throw InputError("the mesh is inside out or has no volume (volume " +
-                     std::to_string(result.input_volume) + ")");
+  std::vector<PolygonMesh> out;
+  PolygonMesh joint;
+  for (size_t i = 0; i < shells.size(); ++i) {
+    bool with_cavity = cavity[i];
+    for (size_t j = 0; j < shells.size() && !with_cavity; ++j)
+      with_cavity = cavity[j] && boxes[i].meets(boxes[j]);
+    if (!with_cavity) {
+      out.push_back(std::move(shells[i]));
+      continue;
+    }
+    const auto base = static_cast<uint32_t>(joint.vertices.size());
+    joint.vertices.insert(joint.vertices.end(), shells[i].vertices.begin(), shells[i].vertices.end());
+    for (size_t f = 0; f < shells[i].face_count(); ++f) {
+      const auto v = shells[i].face(f);
+      joint.add_face({base + v[0], base + v[1], base + v[2]});
+    }
+  }
+  if (joint.face_count() > 0) out.push_back(std::move(joint));
+  return out;
+}
+
+/// The finished (reflex-free) pieces of one root, depth-first.
+void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_volume,
+              DecomposeResult& result, std::vector<Piece>& finished, std::vector<CutNode>& nodes) {
+  nodes.push_back({tris, kNone});
+  Piece root{std::move(tris), {}, 0};
   root.source.resize(root.mesh.face_count());
   for (uint32_t f = 0; f < root.source.size(); ++f) root.source[f] = f;
   const Decomposer d(root.mesh, options);  // keeps its own copy of T
-  result.reflex_edges = d.total_reflex();
-  result.nearly_flat_edges = d.nearly_flat();
+  result.reflex_edges += d.total_reflex();
+  result.nearly_flat_edges += d.nearly_flat();
 
   // Depth-first: a stack of pieces, finished pieces in the order they are found.
-  std::vector<Piece> todo, finished, parts;
-  std::vector<size_t> uncut;  // finished pieces that kept reflex edges
+  std::vector<Piece> todo, parts;
   todo.push_back(std::move(root));
   while (!todo.empty()) {
     Piece p = std::move(todo.back());
@@ -360,9 +414,9 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
       ++result.cuts;
       try {
         c = clip(p.mesh, cut.plane);
-      } catch (const std::runtime_error&) {
-        // InputError / NotComputable: the piece or its rings are degenerate through rounding
-        // (the input itself was checked above): the next plane
+      } catch (const std::exception&) {
+        // The piece or its rings are degenerate through rounding (the input itself was checked
+        // above): the next plane.
         ++result.failed_cuts;
         continue;
       }
@@ -373,13 +427,13 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
       // Rounding can leave a half that is no closed 2-manifold (a constructed point rounded
       // across a sliver): then this plane fails too.
       // Components of zero exact volume (slivers whose rounded volume is ~0 or negative) are
-      // dropped.
-      const double sliver = kUncutTolerance * result.input_volume;
+      // dropped; what they held is accounted for by the volume check of decompose().
+      const double sliver = kSliver * input_volume;
       const bool valid = std::all_of(parts.begin(), parts.end(), [&](const Piece& part) {
         try {
           const BrepReport v = validate(HalfedgeMesh::from_polygon_mesh(part.mesh));
           return v.closed && v.manifold && signed_volume(part.mesh) > -sliver;
-        } catch (const InputError&) {
+        } catch (const std::exception&) {
           return false;
         }
       });
@@ -396,44 +450,167 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
     }
     if (!done) {
       // Every plane through its reflex edges is undone by rounding (slivers of zero area next
-      // to the edge): the piece is kept as it is, and its hull must then change it by no more
-      // than rounding (checked below).
+      // to the edge): the piece is kept as it is; its hull must then change it by no more than
+      // rounding (checked by decompose()).
       ++result.uncut_pieces;
-      uncut.push_back(finished.size());
       finished.push_back(std::move(p));
       continue;
     }
-    for (Piece& part : parts) todo.push_back(std::move(part));
+    const auto node = static_cast<uint32_t>(nodes.size());
+    nodes.push_back({std::move(p.mesh), p.node});
+    for (Piece& part : parts) {
+      part.node = node;
+      todo.push_back(std::move(part));
+    }
     if (static_cast<int64_t>(todo.size() + finished.size()) > options.max_pieces)
       throw NotComputable("decompose: more than " + std::to_string(options.max_pieces) + " pieces");
   }
-  const auto hull_start = Clock::now();
-  result.cut_seconds = std::chrono::duration<double>(hull_start - start).count();
+}
 
-  // Exact hulls (decompose.h "rounding"); a piece whose points span no volume is dropped.
-  std::vector<PolygonMesh> hulls(finished.size());
-  std::vector<double> change(finished.size(), 0);
-  parallel_for(finished.size(), 1, [&](size_t b, size_t e) {
+/// The exact convex hull of `pts`, appended to `out` unless it has no volume (in doubles: a
+/// sliver whose rounded volume is ≤ 0 is dropped; the volume checks account for it).
+void add_hull(std::span<const Vec3> pts, std::vector<PolygonMesh>& out) {
+  if (!spans_volume(pts)) return;
+  PolygonMesh hull = detail::convex_hull(pts);
+  if (signed_volume(hull) > 0) out.push_back(std::move(hull));
+}
+
+double volume_of(const std::vector<PolygonMesh>& meshes) {
+  double sum = 0;
+  for (const PolygonMesh& m : meshes) sum += signed_volume(m);
+  return sum;
+}
+
+/// The exact convex parts of `mesh` (the Nef fallback) as hulls, and how much they change its
+/// volume; nullopt when the Nef polyhedron cannot be built.
+std::optional<std::pair<std::vector<PolygonMesh>, double>> nef_hulls(const PolygonMesh& mesh) {
+  std::vector<PolygonMesh> hulls;
+  for (const std::vector<Vec3>& part : detail::nef_convex_parts(mesh))
+    add_hull(std::span<const Vec3>(part.data(), part.size()), hulls);
+  if (hulls.empty()) return std::nullopt;
+  const double change = std::abs(volume_of(hulls) - signed_volume(mesh));
+  return std::make_pair(std::move(hulls), change);
+}
+
+/// The hulls of one shell's finished pieces (decompose.h "rounding"). A piece whose hull changes
+/// its volume by more than `tolerance` is redone with the pieces cut from the same cut-tree node
+/// by the Nef fallback (decompose.h "fallback"), going up the tree until the fallback's change is
+/// within `tolerance`. Returns the hulls and the sum of the changes.
+std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>& finished,
+                                                     const std::vector<CutNode>& nodes,
+                                                     double tolerance, int64_t& fallbacks) {
+  const size_t n = finished.size();
+  std::vector<std::vector<PolygonMesh>> hulls(n);
+  std::vector<double> change(n, 0);
+  parallel_for(n, 1, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       const auto& v = finished[i].mesh.vertices;
-      const std::span<const Vec3> pts(v.data(), v.size());
-      if (!spans_volume(pts)) continue;
-      hulls[i] = detail::convex_hull(pts);
-      change[i] = std::abs(signed_volume(hulls[i]) - signed_volume(finished[i].mesh));
+      add_hull(std::span<const Vec3>(v.data(), v.size()), hulls[i]);
+      change[i] = std::abs(volume_of(hulls[i]) - signed_volume(finished[i].mesh));
     }
   });
-  for (size_t i : uncut)
-    if (change[i] > kUncutTolerance * result.input_volume)
-      throw NotComputable("decompose: a piece whose reflex edges no plane could cut changes by " +
-                          std::to_string(change[i] / result.input_volume * 1e12) + "e-12" +
-                          " of the volume in its hull");
-  for (size_t i = 0; i < hulls.size(); ++i) {
-    result.hull_change = std::max(result.hull_change, change[i] / result.input_volume);
-    if (hulls[i].face_count() == 0) continue;
-    result.volume += signed_volume(hulls[i]);
-    result.pieces.push_back(std::move(hulls[i]));
+  // replaced[n]: the node whose fallback covers the piece (kNone: its own hull).
+  std::vector<uint32_t> replaced(n, kNone);
+  std::vector<std::pair<uint32_t, std::vector<PolygonMesh>>> redone;
+  std::vector<double> redone_change;
+  auto descends = [&](uint32_t node, uint32_t from) {
+    for (; node != kNone; node = nodes[node].parent)
+      if (node == from) return true;
+    return false;
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (change[i] <= tolerance || replaced[i] != kNone) continue;
+    // The piece's own cut-tree node if small, else the shell (exact input points).
+    const uint32_t own = finished[i].node;
+    for (const uint32_t node : {own, 0u}) {
+      if (node == own && (node == 0 || nodes[node].mesh.face_count() > kMaxLocalFallbackFaces))
+        continue;
+      if (nodes[node].mesh.face_count() > kMaxFallbackFaces) break;
+      PolygonMesh tri;
+      try {
+        tri = triangulated(nodes[node].mesh);
+      } catch (const InputError&) {
+        continue;
+      }
+      auto nef = nef_hulls(tri);
+      if (!nef || nef->second > tolerance) continue;
+      // Earlier fallbacks inside this node are superseded.
+      for (size_t k = 0; k < redone.size(); ++k)
+        if (descends(redone[k].first, node)) {
+          redone[k].second.clear();
+          redone_change[k] = 0;
+        }
+      for (size_t j = 0; j < n; ++j)
+        if (descends(finished[j].node, node)) replaced[j] = node;
+      redone.emplace_back(node, std::move(nef->first));
+      redone_change.push_back(nef->second);
+      ++fallbacks;
+      break;
+    }
   }
-  result.hull_seconds = std::chrono::duration<double>(Clock::now() - hull_start).count();
+  std::vector<PolygonMesh> out;
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (replaced[i] != kNone) continue;
+    total += change[i];
+    for (PolygonMesh& h : hulls[i]) out.push_back(std::move(h));
+  }
+  for (size_t k = 0; k < redone.size(); ++k) {
+    total += redone_change[k];
+    for (PolygonMesh& h : redone[k].second) out.push_back(std::move(h));
+  }
+  return {std::move(out), total};
+}
+
+}  // namespace
+
+DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& options) {
+  const auto start = Clock::now();
+  DecomposeResult result;
+  if (mesh.face_count() == 0) return result;
+  const PolygonMesh tris = triangulated(mesh);
+  const std::vector<PolygonMesh> shells = roots(tris);  // InputError: open or misoriented
+  result.input_volume = signed_volume(tris);
+  if (!(result.input_volume > 0))
+    throw InputError("the mesh is inside out or has no volume (volume " +
+                     std::to_string(result.input_volume) + ")");
+  double hull_seconds = 0, total_change = 0;
+  for (const PolygonMesh& s : shells) {
+    const double volume = signed_volume(s);
+    if (!(volume > 0))
+      throw InputError("a shell of the mesh is inside out (volume " + std::to_string(volume) + ")");
+    std::vector<Piece> finished;
+    std::vector<CutNode> nodes;
+    cut_root(s, options, result.input_volume, result, finished, nodes);
+    const auto hull_start = Clock::now();
+    auto [hulls, change] =
+        hull_shell(finished, nodes, kSliver * result.input_volume, result.fallback_nodes);
+    total_change += change;
+    result.hull_change = std::max(result.hull_change, change / result.input_volume);
+    for (PolygonMesh& hull : hulls) result.pieces.push_back(std::move(hull));
+    hull_seconds += std::chrono::duration<double>(Clock::now() - hull_start).count();
+  }
+  std::vector<uint8_t> convex(result.pieces.size(), 1);
+  parallel_for(result.pieces.size(), 1, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) convex[i] = is_convex_exact(result.pieces[i]);
+  });
+  for (size_t i = 0; i < result.pieces.size(); ++i) {
+    if (!convex[i]) throw InternalError("decompose: a piece's convex hull is not convex");
+    result.volume += signed_volume(result.pieces[i]);
+  }
+  // The hulls may differ from the cut pieces (and so overlap or leave gaps) by no more than
+  // kHullTolerance of the input in all, and their volumes must add up to the input's as closely.
+  const double missing = std::abs(result.volume - result.input_volume);
+  if (total_change > kHullTolerance * result.input_volume ||
+      missing > kHullTolerance * result.input_volume)
+    throw NotComputable(
+        "decompose: rounded cut points leave pieces that are not convex (their hulls change " +
+        relative(total_change / result.input_volume) + " of the volume, the pieces' volumes " +
+        "differ from the input's by " + relative(missing / result.input_volume) +
+        "; at most " + relative(kHullTolerance) + " is allowed)");
+  result.hull_seconds = hull_seconds;
+  result.cut_seconds =
+      std::chrono::duration<double>(Clock::now() - start).count() - hull_seconds;
   return result;
 }
 

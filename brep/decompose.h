@@ -25,15 +25,26 @@
 //                 plane is itself decided by rounding. Edges bent by at most
 //                 DecomposeOptions::flat_angle are left uncut; the hull then fills their dent
 //                 (≈ edge length × face width² × angle / 2).
-//   fallback      a plane whose clip fails or leaves its edge in a half (rounded points of
-//                 earlier cuts next to the edge) is discarded and the next candidate tried; a
-//                 piece that no candidate cuts is finished as it is, and its hull may then add
-//                 at most 1e-11 of the input volume (else NotComputable).
-//   rounding      clip.h rounds constructed points to the nearest double, so a finished piece is
-//                 convex in exact arithmetic but its written points may be very slightly
-//                 non-convex. Each finished piece is therefore replaced by the exact convex hull
-//                 of its (double) points (CGAL, exact predicates): convex by construction, equal
-//                 to the cut piece up to that rounding.
+//   shells       the input is first split into its shells (detail/shells.h): solids apart or
+//                touching only along edges or at vertices are cut (and hulled) separately, so
+//                no piece spans two of them. A shell of negative volume (a cavity) is cut
+//                together with the shells whose bounding boxes meet it.
+//   fallback     a plane whose clip fails or leaves its edge in a half (rounded points of
+//                earlier cuts next to the edge) is discarded and the next candidate tried; a
+//                piece that no candidate cuts is finished as it is. Cut pieces form a tree. A
+//                finished piece whose hull changes its volume by more than 1e-11 of the input's
+//                is redone, with every piece cut from the same node, by CGAL's exact
+//                convex_decomposition_3 (Nef polyhedra) of that node if it has at most 200
+//                faces, else of the whole shell (at most 20,000 triangles); the parts' points
+//                are rounded to doubles and hulled. Exact but slow.
+//   rounding     clip.h rounds constructed points to the nearest double, so a finished piece is
+//                convex in exact arithmetic but its written points may be very slightly
+//                non-convex. Each finished piece is therefore replaced by the exact convex hull
+//                of its (double) points (CGAL, exact predicates): convex by construction, equal
+//                to the cut piece up to that rounding. Every hull is checked exactly convex
+//                (is_convex_exact), and the hulls may change the cut pieces by at most 1e-10 of
+//                the input volume in all, and their volumes must sum to the input's as closely
+//                (else NotComputable): pieces overlap or leave gaps by no more than that.
 
 #include <cstdint>
 #include <vector>
@@ -59,12 +70,13 @@ struct DecomposeResult {
   int64_t nearly_flat_edges = 0;  ///< of those, left uncut by DecomposeOptions::flat_angle
   int64_t cuts = 0;          ///< plane clips made (failed_cuts included)
   int64_t failed_cuts = 0;   ///< clips discarded because they left their edge in a half
-  /// Pieces finished with reflex edges that every plane failed to cut (rounding slivers); their
-  /// hulls add at most 1e-11 of the input volume each (else NotComputable).
+  /// Pieces finished with reflex edges that every plane failed to cut (rounding slivers).
   int64_t uncut_pieces = 0;
+  /// Cut pieces (or shells) decomposed again by the exact Nef fallback (decompose.h "fallback").
+  int64_t fallback_nodes = 0;
   double input_volume = 0;   ///< signed volume of the input
   double volume = 0;         ///< Σ piece volumes
-  /// max over pieces of |hull volume − cut piece volume| / input volume: what the hull changed
+  /// max over shells of Σ |hull volume − cut piece volume| / input volume: what the hulls changed
   double hull_change = 0;
   double cut_seconds = 0;    ///< reflex edges, ordering and clips
   double hull_seconds = 0;   ///< convex hulls of the finished pieces
@@ -73,10 +85,11 @@ struct DecomposeResult {
 /// Decomposes a closed, outward, consistently oriented 2-manifold polygon mesh without
 /// self-intersections into convex pieces whose volumes sum to the input's (up to the rounding
 /// of constructed points). Deterministic (pieces in depth-first cut order).
-/// \throws InputError for an open or non-manifold mesh, a face that crosses itself, or an
-///   inside-out mesh (negative volume); NotComputable when the cut rings are inconsistent (a
-///   self-intersecting input) or a cut makes no progress (a guard: it cannot happen on valid
-///   input), or beyond options.max_pieces.
+/// \throws InputError for an open mesh (an edge held by different numbers of faces in its two
+///   directions), a face that crosses itself, or an inside-out mesh or shell (negative volume);
+///   NotComputable when the hulls would change the pieces by more than 1e-10 of the input
+///   volume in all (decompose.h "rounding": pieces that neither a plane nor the fallback could
+///   make convex), or beyond options.max_pieces.
 DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& options = {});
 
 /// Is every vertex of `piece` on the inner side of, or on, the plane of every triangle of it

@@ -3,6 +3,7 @@
 // first (boolean/evaluate.h, as `cover evaluate`); a single leaf is decomposed as it is.
 // DIR/piece_NNNN.EXT (closed, outward, exactly convex triangle meshes) and DIR/pieces.json
 // are written as one batch: all or nothing, DIR swapped in whole (cli/output.h pieces_folder).
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -24,7 +25,12 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   Timing timing;
   const std::string ext = o.ext.empty() || o.ext[0] == '.' ? o.ext : "." + o.ext;
   if (!is_mesh_extension("piece" + ext))
-    throw InputError("--ext " + o.ext + ": unsupported mesh format (use .off, .obj, .stl or .ply)");
+    throw InputError("--ext " + o.ext + ": unsupported mesh format (use .off, .obj or .ply)");
+  std::string lower = ext;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == ".stl")
+    throw InputError("--ext " + o.ext + ": STL stores float32 coordinates, so pieces written as " +
+                     "STL would not be exactly convex (use .off, .obj or .ply)");
   const std::filesystem::path dir = o.output;
   const auto folder = pieces_folder(o.output);
   const Model model = load_model(o.input, common.load_options(), "decompose needs closed leaves");
@@ -59,6 +65,8 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   j["reflex_edges"] = r.reflex_edges;
   j["nearly_flat_edges"] = r.nearly_flat_edges;
   j["cuts"] = r.cuts;
+  j["uncut_pieces"] = r.uncut_pieces;
+  j["fallback_nodes"] = r.fallback_nodes;
   j["volume"] = r.volume;
   j["input_volume"] = r.input_volume;
   j["hull_change"] = r.hull_change;

@@ -255,7 +255,7 @@ int main(int argc, char** argv) {
   dec_cmd->add_option("-o,--output", dec.output, "DIR: piece_NNNN.EXT and pieces.json")
       ->required()
       ->check(non_empty("a folder"));
-  dec_cmd->add_option("--ext", dec.ext, "Pieces' mesh format: .off, .obj, .stl or .ply")
+  dec_cmd->add_option("--ext", dec.ext, "Pieces' mesh format: .off, .obj or .ply (exact doubles)")
       ->capture_default_str();
   add_common(dec_cmd, common);
 
