@@ -480,7 +480,7 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
   if (n < 1) throw InputError("evaluate cells: expected at least 1 cell per axis, got " +
                               std::to_string(n));
   check_memory(brep::cells_memory_bytes(n), options.max_memory_bytes,
-               "evaluate cells: n = " + std::to_string(n) + ": the pieces");  // before evaluating
+               "evaluate cells: n = " + std::to_string(n) + ": cutting into cells");  // before evaluating
   CellsEvaluation out;
   if (!empty() && !is_bounded(solid()))
     throw NotComputable("evaluate cells: the result is unbounded (a complement at the root)");

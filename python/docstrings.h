@@ -145,7 +145,7 @@ Dict keys: cell (i, j, k), vertices float64 (n, 3), faces int64 (m, 3) (cap poly
 triangulated), volume, area, cap_area. Pieces come in (i, j, k) order, i slowest. bounds =
 (xmin, ymin, zmin, size) as in voxelize (default: the cube voxelize uses for res=n). The same
 pieces as `cover evaluate --cells n --pieces DIR`. max_memory (MiB, default 4096, the CLI's
---max-memory): n whose pieces may need more (1 KiB a cell) is refused with InputError before
+--max-memory): n whose pieces may need more (3 KiB a cell) is refused with InputError before
 anything is evaluated. Not interruptible.)";
 inline constexpr const char* kDecompose = R"(Exact convex decomposition by plane cuts through reflex edges: a list of pieces.
 

@@ -382,12 +382,13 @@ def test_evaluate_cells_refuses_n_over_max_memory_before_evaluating():
     m = cover.box([0, 0, 0], [1, 1, 1]) - cover.sphere([1, 1, 1], 0.5)
     start = time.monotonic()
     with pytest.raises(cover.InputError, match=r"evaluate_cells: n = 2000: the pieces need "
-                                               r"7812500 MiB, over max_memory = 4096 MiB"):
+                                               r"23437500 MiB, over max_memory = 4096 MiB"):
         m.evaluate_cells(2000)
     assert time.monotonic() - start < 1
-    assert len(m.evaluate_cells(10, max_memory=1)) > 0  # 10^3 cells: 1000 KiB
-    with pytest.raises(cover.InputError, match="over max_memory = 1 MiB"):
-        m.evaluate_cells(11, max_memory=1)
+    block = cover.box([0.1, 0.2, 0.3], [0.9, 0.7, 0.8])
+    assert len(block.evaluate_cells(10, max_memory=4)) > 0  # 10^3 cells: 3000 KiB
+    with pytest.raises(cover.InputError, match="over max_memory = 4 MiB"):
+        m.evaluate_cells(12, max_memory=4)  # 12^3 cells: 5184 KiB
     with pytest.raises(cover.InputError, match="max_memory: expected MiB"):
         m.evaluate_cells(2, max_memory=0)
 

@@ -323,8 +323,10 @@ TEST(Decompose, ReadmePartUsesTheExactFallback) {
 }
 
 // libcgal-demo meshes that used to crash (cheese: the rounded cap triangulation) or end in an
-// internal error (fandisk); too slow for the checked build.
-TEST(Decompose, CheeseAndFandisk) {
+// internal error (fandisk). Minutes each in Release (cheese: 9,750 pieces, 146 s on 2 cores),
+// so outside the suite: run it with --gtest_also_run_disabled_tests (ctest lists it as
+// disabled).
+TEST(Decompose, DISABLED_CheeseAndFandisk) {
 #ifdef COVER_SANITIZED
   GTEST_SKIP() << "slow under sanitizers";
 #else

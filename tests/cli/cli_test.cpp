@@ -171,7 +171,7 @@ TEST_F(Cli, EvaluatedResultThatTouchesItselfIsNotSelfIntersecting) {
     two.add_face(face);
   }
   write_mesh(dir_ / "two.off", two);
-  r = run_cover("info --json " + q(dir_ / "two.off"));
+  auto r = run_cover("info --json " + q(dir_ / "two.off"));
   ASSERT_EQ(r.status, 0) << r.err;
   const json leaf = json::parse(r.out)["leaves_info"][0];
   EXPECT_EQ(leaf["self_intersecting"], true);

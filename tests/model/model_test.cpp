@@ -369,13 +369,14 @@ TEST(Model, EvaluateCellsRefusesNOverTheMemoryLimitBeforeEvaluating) {
     ADD_FAILURE() << "not refused";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "evaluate cells: n = 2000: the pieces needs 7812500 MiB, over --max-memory 4096 MiB");
+              "evaluate cells: n = 2000: cutting into cells needs 23437500 MiB, over --max-memory "
+              "4096 MiB");
   }
   brep::CellsOptions small;
-  small.max_memory_bytes = 1 << 20;  // 1 MiB: 10³ cells need 1000 KiB, 11³ more
+  small.max_memory_bytes = 4 << 20;  // 4 MiB: 10³ cells need 3000 KiB, 12³ 5184 KiB
   EXPECT_NO_THROW((void)m.evaluate_cells(10, std::nullopt, small));
-  EXPECT_THROW((void)m.evaluate_cells(11, std::nullopt, small), InputError);
-  EXPECT_EQ(brep::cells_memory_bytes(80), 80.0 * 80 * 80 * 1024);
+  EXPECT_THROW((void)m.evaluate_cells(12, std::nullopt, small), InputError);
+  EXPECT_EQ(brep::cells_memory_bytes(80), 80.0 * 80 * 80 * 3072);
 }
 
 TEST(Model, TransformWithADeterminantBeyondTheDoublesSaysSo) {
