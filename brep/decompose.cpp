@@ -45,10 +45,10 @@ using Clock = std::chrono::steady_clock;
 
 /// The most (relative to the input volume) the hulls may change the cut pieces by, in all.
 constexpr double kHullTolerance = 1e-10;
-/// Shells with more triangles are not given to the (slow) Nef fallback.
+/// Pieces and cut-tree nodes with more triangles are not given to the (slow) Nef fallback.
 constexpr size_t kMaxFallbackFaces = 20000;
-/// The fallback first tries the piece's own cut-tree node if it has at most this many faces.
-constexpr size_t kMaxLocalFallbackFaces = 200;
+/// The fallback goes up the cut tree through nodes of at most this many faces, then to the shell.
+constexpr size_t kMaxLocalFallbackFaces = 400;
 /// A clip half whose rounded volume is below −kSliver × the input's is invalid.
 constexpr double kSliver = 1e-11;
 
@@ -493,9 +493,10 @@ std::optional<std::pair<std::vector<PolygonMesh>, double>> nef_hulls(const Polyg
 }
 
 /// The hulls of one shell's finished pieces (decompose.h "rounding"). A piece whose hull changes
-/// its volume by more than `tolerance` is redone with the pieces cut from the same cut-tree node
-/// by the Nef fallback (decompose.h "fallback"), going up the tree until the fallback's change is
-/// within `tolerance`. Returns the hulls and the sum of the changes.
+/// its volume by more than `tolerance` is redone by the Nef fallback (decompose.h "fallback"):
+/// the piece alone, else together with the other pieces cut from the same cut-tree node, going up
+/// the tree until the fallback's change is within `tolerance`. Returns the hulls and the sum of
+/// the changes.
 std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>& finished,
                                                      const std::vector<CutNode>& nodes,
                                                      double tolerance, int64_t& fallbacks) {
@@ -518,35 +519,64 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
       if (node == from) return true;
     return false;
   };
+  // The exact convex parts of a cut-tree node, if the fallback can build them and they change it
+  // by no more than `tolerance`; the pieces cut from the node are then replaced by them.
+  auto redo_node = [&](uint32_t node) {
+    if (nodes[node].mesh.face_count() > kMaxFallbackFaces) return false;
+    PolygonMesh tri;
+    try {
+      tri = triangulated(nodes[node].mesh);
+    } catch (const InputError&) {
+      return false;
+    }
+    auto nef = nef_hulls(tri);
+    if (!nef || nef->second > tolerance) return false;
+    // Earlier fallbacks inside this node are superseded.
+    for (size_t k = 0; k < redone.size(); ++k)
+      if (descends(redone[k].first, node)) {
+        redone[k].second.clear();
+        redone_change[k] = 0;
+      }
+    for (size_t j = 0; j < n; ++j)
+      if (descends(finished[j].node, node)) replaced[j] = node;
+    redone.emplace_back(node, std::move(nef->first));
+    redone_change.push_back(nef->second);
+    ++fallbacks;
+    return true;
+  };
+  // First the piece itself (its written doubles; usually tens of faces, so the Nef decomposition
+  // takes milliseconds), then the nodes up the cut tree, smallest first: the shell itself (exact
+  // input points) can take minutes on a few thousand faces.
   for (size_t i = 0; i < n; ++i) {
     if (change[i] <= tolerance || replaced[i] != kNone) continue;
-    // The piece's own cut-tree node if small, else the shell (exact input points).
-    const uint32_t own = finished[i].node;
-    for (const uint32_t node : {own, 0u}) {
-      if (node == own && (node == 0 || nodes[node].mesh.face_count() > kMaxLocalFallbackFaces))
-        continue;
-      if (nodes[node].mesh.face_count() > kMaxFallbackFaces) break;
-      PolygonMesh tri;
+    if (finished[i].mesh.face_count() <= kMaxFallbackFaces) {
+      std::optional<std::pair<std::vector<PolygonMesh>, double>> nef;
       try {
-        tri = triangulated(nodes[node].mesh);
+        nef = nef_hulls(triangulated(finished[i].mesh));
       } catch (const InputError&) {
+      }
+      if (nef && nef->second <= tolerance) {
+        hulls[i] = std::move(nef->first);
+        change[i] = nef->second;
+        ++fallbacks;
         continue;
       }
-      auto nef = nef_hulls(tri);
-      if (!nef || nef->second > tolerance) continue;
-      // Earlier fallbacks inside this node are superseded.
-      for (size_t k = 0; k < redone.size(); ++k)
-        if (descends(redone[k].first, node)) {
-          redone[k].second.clear();
-          redone_change[k] = 0;
-        }
-      for (size_t j = 0; j < n; ++j)
-        if (descends(finished[j].node, node)) replaced[j] = node;
-      redone.emplace_back(node, std::move(nef->first));
-      redone_change.push_back(nef->second);
-      ++fallbacks;
-      break;
     }
+    // A sliver that rounding folded (its points coincide or cross: no Nef polyhedron) whose
+    // volume is within `tolerance`: dropped, and its volume counted as its change.
+    const double volume = signed_volume(finished[i].mesh);
+    if (std::abs(volume) <= tolerance) {
+      hulls[i].clear();
+      change[i] = std::abs(volume);
+      continue;
+    }
+    // Up the tree through the small nodes (rounded points too: often no Nef polyhedron either),
+    // then the shell.
+    uint32_t node = finished[i].node;
+    for (; node != 0 && nodes[node].mesh.face_count() <= kMaxLocalFallbackFaces;
+         node = nodes[node].parent)
+      if (redo_node(node)) break;
+    if (node == 0 || nodes[node].mesh.face_count() > kMaxLocalFallbackFaces) redo_node(0);
   }
   std::vector<PolygonMesh> out;
   double total = 0;
