@@ -1,7 +1,6 @@
 #pragma once
-// A closed mesh cut into the cells of a cubic grid by the plane patcher (Erleben & Henriksen,
-// "The Plane Patcher", 2006, the octree-cell application of its introduction; DESIGN.md §6),
-// and the pieces glued back.
+// A closed mesh cut into the cells of a cubic grid by the plane patcher ([Erleben2006],
+// the octree-cell application of its §1), and the pieces glued back.
 //
 // Notation
 //   grid      the cube [min, min + size]³ split into n×n×n cells; wall k of axis a is the plane

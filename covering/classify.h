@@ -1,5 +1,5 @@
 #pragma once
-// Exact point classification against a CSG solid (paper Theorem 2, DESIGN.md §1–§2).
+// Exact point classification against a CSG solid ([Segura2004 §2 Theorem 2]).
 //
 // Per leaf, the covering sum at Q with the covering origin O pushed to infinity along −s·e_k
 // equals the signed count of covering triangles crossed by the half-line Q + t·s·e_k, t > 0:

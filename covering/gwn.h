@@ -7,7 +7,7 @@
 //                 (Van Oosterom & Strackee 1983); the sign of A·(B×C) is taken from the exact
 //                 orient3d whenever rounding could flip it, so the ±2π branch is right.
 //   membership    an open leaf holds q iff |w(q)| > 1/2 (the nonzero rule on the rounded w,
-//                 CONTRACT.md "Semantics"); points on the leaf's surface are left to the caller.
+//                 docs/cli.md#semantics); points on the leaf's surface are left to the caller.
 //   tree          a binary BVH over the leaf's triangles (median splits); each node keeps its
 //                 area-weighted centre p, radius r (every vertex within r of p), total area A,
 //                 dipole N = Σ area_t·n_t and first moment M = Σ area_t·n_t (c_t − p)ᵀ.

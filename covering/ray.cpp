@@ -200,7 +200,8 @@ double hit_t(const Bvh::FacePlane* plane, const Bvh::Tri& t, const Ray& r) {
 }
 
 /// Sorts result.hits and sweeps them into the CSG inside spans: the winding at the origin is the
-/// sum of the signs; per-leaf counters and the expression evaluated on each interval (paper §6).
+/// sum of the signs; per-leaf counters and the expression evaluated on each interval
+/// ([Segura2004 §6]).
 void sweep_spans(RayResult& out, const CsgTree& tree, size_t leaves) {
   std::sort(out.hits.begin(), out.hits.end(), hit_before);
   thread_local std::vector<int> winding;  // per-thread scratch: no allocation per ray

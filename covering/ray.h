@@ -1,5 +1,5 @@
 #pragma once
-// Ray casting through a non-evaluated CSG solid (paper §6 "Ray-Casting", DESIGN.md §3).
+// Ray casting through a non-evaluated CSG solid ([Segura2004 §6] "Ray-Casting").
 //
 // A ray o + t·d (t > 0) meets covering triangles; each hit carries its leaf, face and sign
 // (+1: leaving the leaf, n·d > 0 for the leaf's outward normal n; −1: entering). Crossing

@@ -375,7 +375,7 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
   g.lattice = lattice;
   g.box = box;
   // A brick is the whole-grid algorithm run on the slices of the global centre arrays
-  // (DESIGN.md §10): every decision below is taken on the same doubles by the same exact
+  // (docs/scale-out.md#bricks): every decision below is taken on the same doubles by the same exact
   // predicates as for the whole grid. centre_range finds, within the slices, exactly the rows
   // and columns whose centres the triangle's x/y range contains (the rest of the grid's columns
   // are not visited); `below` over the sliced zs is the number of the brick's centres below the

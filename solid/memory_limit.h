@@ -1,7 +1,8 @@
 #pragma once
-// The memory limit of every command (CONTRACT.md "--max-memory MiB"), and input reading that
-// honours it. Conventions: limits and estimates are in bytes; messages state them in MiB (the
-// estimate rounded up) and name the option, so that a refusal reads the same everywhere:
+// The memory limit of every command (`--max-memory`, docs/cli.md#conventions-of-every-command), and
+// input reading that honours it. Conventions: limits and estimates are in bytes; messages state
+// them in MiB (the estimate rounded up) and name the option, so that a refusal reads the same
+// everywhere:
 //   "WHAT needs N MiB, over --max-memory M MiB"
 // An estimate is checked before the allocation it predicts; inputs are read only from regular
 // files (whose size is known before reading) or from a stream cut off at the limit.

@@ -316,7 +316,7 @@ class SceneReader {
   }
 
  public:
-  /// Makes one mesh a leaf (orient.h, CONTRACT.md "Semantics"): coordinates within
+  /// Makes one mesh a leaf (orient.h, docs/cli.md#semantics): coordinates within
   /// ±kMaxCoordinate; repeated loops read once; a closed leaf re-oriented consistently; an
   /// inside-out leaf reversed. `where` names the leaf in messages.
   /// `topology`: validate_mesh of the same index lists before any transform (FileRead), or

@@ -1,6 +1,6 @@
 #pragma once
 // A Solid as bytes and back: how a Model travels to other processes (Python pickling, Dask
-// workers; DESIGN.md §10) without re-reading its files or re-applying transforms, so every
+// workers; docs/scale-out.md) without re-reading its files or re-applying transforms, so every
 // process sees the same doubles and the same expression.
 //
 // Format (little-endian, version 1):
