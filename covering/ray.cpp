@@ -66,7 +66,7 @@ using detail::v2d;
 /// with the slack factor applied once after the max (min): rounding is monotone, so
 /// max_i round(x_i·c) = round(max_i x_i · c) for c > 0, bit for bit (NaN terms are skipped by
 /// both forms). Hand-unrolled, and both children of a node at once in SSE2 lanes, because it
-/// is the hottest code of rendering (22% of render_vs_cgal's first_visible samples before).
+/// is the hottest code of rendering (about a fifth of render_vs_cgal's samples in scalar form).
 struct Slab {
   static constexpr double kShrink = 1 - 1e-12, kGrow = 1 + 1e-12;
   double o[3], inv[3];
@@ -338,11 +338,9 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
   // (hit_t clamps t into its triangle's interval, which lies in every enclosing node's), so
   // those hits are final: they are sorted and swept with per-leaf winding counters exactly as
   // in cast(), and the sweep stops at the first span that shows inside [lo, hi]. Why: the
-  // frame of bench/render_vs_cgal (1024², 606k triangles, 2 threads) spent its time in cast()
-  // collecting every hit of every ray. Measured: render instructions −24% (iso) / −16% (front)
-  // against cast() per pixel (callgrind, 296k-face 5-leaf scene, 256²; a priority queue of
-  // nodes instead of the stack saved no instructions), wall time 0.65–0.75× in paired runs on
-  // the loaded 2-core machine.
+  // frame needs only the first span in view, and collecting every hit of every ray as cast()
+  // does would cost about a fifth more instructions per frame (callgrind, 296k-face 5-leaf
+  // scene, 256²). A stack of nodes is enough: a priority queue saves no instructions.
   const Axes ax = axes_for(ray.dir);
   const Slab slab(ray.origin, ray.dir);
   const auto& nodes = bvh.nodes();

@@ -25,9 +25,9 @@ inline constexpr uint64_t kDefaultMaxMemoryBytes = kDefaultMaxMemoryMiB << 20;
 /// limit_bytes. `estimate_bytes` is a double so that products of large counts cannot wrap.
 void check_memory(double estimate_bytes, uint64_t limit_bytes, const std::string& what);
 
-/// The bytes of an input, read into a buffer on huge pages that is not zero-filled first: a
-/// std::string's zero fill of 4 KiB pages was ~40 ms of first-touch page faults for a 62 MB
-/// points file here (solid/large_vector.h "Page faults").
+/// The bytes of an input, read into a buffer on huge pages that is not zero-filled first: zero
+/// filling 4 KiB pages would cost ~40 ms of first-touch page faults for a 62 MB points file
+/// (solid/large_vector.h).
 class FileBytes {
  public:
   std::string_view view() const { return {bytes_.data(), size_}; }

@@ -72,7 +72,7 @@ class SceneReader {
     size_t read = 0;                   ///< mesh leaves: its file's entry in reads_
   };
   /// One distinct mesh file, read once however many leaves place it (instances: the 10-leaf
-  /// preview scene reads 6 files for 10 leaves, and parsing was a third of its load).
+  /// preview scene reads 6 files for 10 leaves).
   struct FileRead {
     std::filesystem::path file;
     PolygonMesh mesh;                   ///< as read; each leaf transforms a copy
