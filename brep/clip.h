@@ -19,7 +19,7 @@ namespace cover::brep {
 using cover::Plane;
 
 struct ClipOptions {
-  bool triangulate_caps = false;  ///< caps as triangles; default: convex ([Erleben2006 §4])
+  bool triangulate_caps = false;  ///< caps as triangles; default: convex polygons [Erleben2006 §4]
 };
 
 /// One half of the clip.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates the plane-patcher test models (Erleben & Henriksen 2006, Table 1 / Fig. 19) and a
+"""Regenerates the plane-patcher test models ([Erleben2006] Table 1 / Fig. 19) and a
 pinch case (deterministic text output).
 
 knot.off            (2,3) torus knot tube, 180 x 16 x 2 triangles, 2880 vertices
