@@ -337,10 +337,10 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
   // When every node not yet visited enters at τ or later, every hit with t < τ has been found
   // (hit_t clamps t into its triangle's interval, which lies in every enclosing node's), so
   // those hits are final: they are sorted and swept with per-leaf winding counters exactly as
-  // in cast(), and the sweep stops at the first span that shows inside [lo, hi]. Why: the
-  // frame needs only the first span in view, and collecting every hit of every ray as cast()
-  // does would cost about a fifth more instructions per frame (callgrind, 296k-face 5-leaf
-  // scene, 256²). A stack of nodes is enough: a priority queue saves no instructions.
+  // in cast(), and the sweep stops at the first span that shows inside [lo, hi]. Why: a frame
+  // needs only the first span in view, and this walk takes 16–24% fewer instructions per frame
+  // than collecting every hit of every ray with cast() (callgrind, 296k-face 5-leaf scene, 256²).
+  // A stack of nodes is enough: a priority queue saves no instructions.
   const Axes ax = axes_for(ray.dir);
   const Slab slab(ray.origin, ray.dir);
   const auto& nodes = bvh.nodes();

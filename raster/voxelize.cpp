@@ -124,11 +124,11 @@ int edge_sign(double det, double sum, const Vec3& p, const Vec3& q, const Vec3& 
 /// column lines of rows i0..i1 and columns j0..j1 (the triangle's bounding box, rows clipped to
 /// one band); `column` is (i − band_first_row)·N + j.
 ///
-/// Work at bunny00 512³: 95k triangle visits, 820k candidate columns, 324k crossings, so a
-/// candidate cannot afford three branching orient2d calls nor a crossing two orient3d calls.
-/// The terms are shared (below), the classification is branch-free and a crossing takes one
-/// paired side test in the common case: this function is about half of a single-thread call.
-/// Candidates are kept in per-row blocks, which stay in cache.
+/// Work at bunny00 512³: 95k triangle visits, 820k candidate columns, 324k crossings, and this
+/// function is about half of a single-thread call. So a candidate does not make three branching
+/// orient2d calls nor a crossing two orient3d calls: the terms are shared (below), the
+/// classification is branch-free and a crossing takes one paired side test in the common case.
+/// Candidates are kept in per-row blocks (one list across all rows is slower).
 ///
 /// Every decision is still the one the exact predicates take. For a column point q = (x, y) the
 /// three projected edge tests orient2d(b, c, q), orient2d(c, a, q), orient2d(a, b, q) compute
