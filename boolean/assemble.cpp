@@ -118,8 +118,8 @@ ExactCrossing exact_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const 
 /// Each coordinate's nearest double lies among the doubles of the lazy point's interval `box`
 /// (which contains the exact value); starting from the quotient of the Mpzf approximations of
 /// x and w (a few ulps off), it is found by exact comparisons with the midpoints between
-/// neighbours, sign(2·x − (x₀ + x₁)·w). Rounding through the lazy exact value was 10–20 % of
-/// an evaluation, the largest share of assembly (bench/evaluate_vs_manifold).
+/// neighbours, sign(2·x − (x₀ + x₁)·w). Rounding through the lazy exact value (GMP over the
+/// construction DAG) would be the largest share of assembly.
 bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, const Vec3& r,
                     const K::Approximate_kernel::Point_3& box, Vec3& out) {
   using F = CGAL::Mpzf;
@@ -184,7 +184,7 @@ PolygonMesh assemble(const Arrangement& arr, const std::vector<std::array<uint32
   auto from = [&](uint32_t h) { return tris[h / 3][h % 3]; };
   auto to = [&](uint32_t h) { return tris[h / 3][(h % 3 + 1) % 3]; };
   auto third = [&](uint32_t h) { return tris[h / 3][(h % 3 + 2) % 3]; };
-  std::vector<uint32_t> own, bucket;  // (without `grouped`: 1.3 of cheese ∪ fandisk's 4.5 ms)
+  std::vector<uint32_t> own, bucket;  // the grouping, when the caller has none
   if (grouped == nullptr) group_half_edges(m, arr.points.size(), from, to, own, bucket);
   const std::vector<uint32_t>& hs = grouped != nullptr ? *grouped : own;
 

@@ -1,5 +1,5 @@
 #pragma once
-// Boundary evaluation of a CSG solid (DESIGN.md §6 "evaluation to a B-rep"): the regularized
+// Boundary evaluation of a CSG solid (docs/design.md#exactness, Evaluation): the regularized
 // result of the expression as ONE closed, outward-oriented, 2-manifold triangle mesh.
 //
 // Route (boolean/detail/arrangement.h has the notation and the exactness scheme):

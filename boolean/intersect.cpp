@@ -20,8 +20,8 @@ namespace {
 // Transversal pairs (the planes of t and u cross) never go through CGAL's generic
 // intersection(Triangle_3, Triangle_3): its lazy result is a variant whose exact fallback redoes
 // the whole triangle–triangle intersection in rationals each time a later predicate (CDT
-// equality of the same point reached from two pairs) is uncertain — 80 % of evaluate's time on
-// armadillo ∩ knot1 before this scheme. Instead:
+// equality of the same point reached from two pairs) is uncertain, which would dominate
+// evaluate's time. Instead:
 //   * the configuration is decided by exact orient3d on the input doubles (solid/predicates.h);
 //   * t ∩ plane(u) is an interval of the line plane(t) ∩ plane(u) whose ends are symbolic: a
 //     corner of t lying in plane(u), or the crossing of an edge of t with plane(u) — the latter
@@ -96,10 +96,9 @@ struct CrossKey {
 /// The lazy crossing point of line a–b with the plane of p, q, r (input doubles; the line crosses
 /// it) as ONE node of CGAL's lazy kernel: its interval approximation computed at once from the
 /// doubles, its exact value on demand from the homogeneous Mpzf coordinates (exact_crossing).
-/// The same point through the lazy kernel's operators was a DAG of about a dozen nodes, each
-/// allocated, evaluated in rationals when a predicate needed the exact value, and freed node by
-/// node: freeing the arrangement alone took 7–13 ms of armadillo ∩ knot1's and cheese ∪
-/// fandisk's 0.08–0.09 s evaluations (1 ms now).
+/// The same point through the lazy kernel's operators would be a DAG of about a dozen nodes,
+/// each allocated, evaluated in rationals when a predicate needs the exact value, and freed node
+/// by node (about a tenth of an evaluation for freeing alone).
 class CrossingRep final : public CGAL::Lazy_rep<K::Approximate_kernel::Point_3,
                                                 K::Exact_kernel::Point_3, K::E2A> {
   using Base = CGAL::Lazy_rep<K::Approximate_kernel::Point_3, K::Exact_kernel::Point_3, K::E2A>;
@@ -216,9 +215,8 @@ Hit coplanar_hit(const Tri& a, const Tri& b, const std::vector<Point>& pts) {
 }  // namespace
 
 /// Tri pairs of different leaves whose closed double boxes meet, sorted: one grid pass over all
-/// tris coloured by leaf (solid/box_pairs.h), cells of one leaf skipped. It replaced CGAL's
-/// box intersection of each leaf against the later ones in x-slabs, which took 20 % of the
-/// 10-leaf preview scene's evaluation (12 % now, of a smaller total: docs/benchmarks.md).
+/// tris coloured by leaf (solid/box_pairs.h), cells of one leaf skipped: one pass for all leaves,
+/// where CGAL's box intersection would sweep each leaf against the later ones in x-slabs.
 namespace {
 /// Each tri's double box and its leaf (the colour for box_pairs_between).
 void boxes_and_leaves(const std::vector<Tri>& tris, const std::vector<Vec3>& pos,
@@ -247,7 +245,7 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
   std::vector<uint32_t> leaf;
   boxes_and_leaves(tris, pos, boxes, leaf);
   // Each tri's normal axis once, for tiles_meet's projection filters (a tri is in about seven
-  // of the check's pairs: computed per pair, it took 2 % of cheese ∪ fandisk's evaluation).
+  // of the check's pairs, so computing it per pair would repeat the work).
   std::vector<uint8_t> axis(tris.size());
   parallel_for(tris.size(), 4096, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i)
@@ -255,8 +253,7 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
           normal_axis(pos[tris[i].v[0]], pos[tris[i].v[1]], pos[tris[i].v[2]]));
   });
   // Vertices whose fan within their leaf is a flat star: tris sharing one never meet (the scan
-  // drops those pairs itself: reading the tris and flags of each pair here was 2 of cheese ∪
-  // fandisk's 14 ms).
+  // drops those pairs itself, so their tris and flags are not read here per pair).
   std::vector<std::array<uint32_t, 3>> corners(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) corners[i] = tris[i].v;
   const std::vector<BoxCorners> marked =
@@ -304,7 +301,7 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
     }
   });
   // The crossings needed, each constructed once (key order: deterministic ids). Each half sorted
-  // on its own thread, then merged: the serial sort was a quarter of this step on cheese ∪
+  // on its own thread, then merged: a serial sort would be a quarter of this step on cheese ∪
   // fandisk.
   std::vector<CrossKey> all;
   for (const auto& c : chunk_keys) all.insert(all.end(), c.begin(), c.end());

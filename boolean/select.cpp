@@ -28,9 +28,9 @@
 //     segment lying in a triangle's plane — re-shoot with the next direction; c on the edge of a
 //     containing triangle (possible only where a coplanar face of another leaf is non-convex and
 //     its tiling differs) retries with another interior point of the piece.
-// Membership is the nonzero rule on these windings (CONTRACT.md), so a self-intersecting leaf
-// (winding 2 where two of its sheets overlap, 0 inside a hole of a figure-eight) is its
-// nonzero-winding set, as in `cover classify`.
+// Membership is the nonzero rule on these windings (docs/cli.md#semantics), so a
+// self-intersecting leaf (winding 2 where two of its sheets overlap, 0 inside a hole of a
+// figure-eight) is its nonzero-winding set, as in `cover classify`.
 // Keep rule (regularized): keep the piece iff E(−) ≠ E(+); oriented as t when E(−) is inside,
 // reversed otherwise. Coincident pieces: when a leaf with a lower index, or a tri of t's own leaf
 // with a lower index than t, also contains c, those pieces represent the region and this patch

@@ -401,7 +401,7 @@ class CapBuilder {
 
   std::vector<Node> bridge(const Ring& outer, std::vector<const Ring*> holes) {
     std::vector<Node> poly = outer.nodes;
-    // Leftmost vertex of each hole; holes are merged left to right (paper §6).
+    // Leftmost vertex of each hole; holes are merged left to right ([Erleben2006 §6]).
     std::vector<std::pair<size_t, const Ring*>> order;
     for (const Ring* h : holes) {
       size_t best = 0;

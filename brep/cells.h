@@ -1,11 +1,11 @@
 #pragma once
-// A closed mesh cut into the cells of a cubic grid by the plane patcher (Erleben & Henriksen,
-// "The Plane Patcher", 2006, the octree-cell application of its introduction; DESIGN.md §6),
-// and the pieces glued back.
+// A closed mesh cut into the cells of a cubic grid by the plane patcher ([Erleben2006],
+// the octree-cell application of its §1), and the pieces glued back.
 //
 // Notation
 //   grid      the cube [min, min + size]³ split into n×n×n cells; wall k of axis a is the plane
-//             x_a = c_k with c_k = min_a + k·(size/n) for 0 < k < n, c_0 = min_a, c_n = min_a + size.
+//             x_a = c_k with c_k = min_a + k·(size/n) for 0 < k < n, c_0 = min_a,
+//             c_n = min_a + size.
 //   cell      (i, j, k) = [c_i, c_i+1] × [c_j, c_j+1] × [c_k, c_k+1].
 //   piece     mesh ∩ cell, closed by caps on the cell's walls (brep::clip): a closed, outward,
 //             2-manifold mesh; a cell the mesh misses has no piece, a cell wholly inside it is

@@ -1,4 +1,4 @@
-// Plane clip on the HalfedgeMesh (paper §3 "open cutting boundaries", DESIGN.md §6).
+// Plane clip on the HalfedgeMesh ([Erleben2006 §3] "Determining Open Boundaries").
 //
 // Steps, all with the kernel's operators:
 //   1. exact side s(v) ∈ {−1, 0, +1} of every input vertex (plane_side, no tolerance);

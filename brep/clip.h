@@ -1,6 +1,6 @@
 #pragma once
-// Exact plane clip and patch of a closed mesh (Erleben & Henriksen, "The Plane Patcher", 2006;
-// DESIGN.md §6). Both halves are kept and closed by cap faces on the plane.
+// Exact plane clip and patch of a closed mesh ([Erleben2006 §3–§6]).
+// Both halves are kept and closed by cap faces on the plane.
 //   above = solid ∩ {x : n·x ≥ d}   (cap faces have outward normal −n)
 //   below = solid ∩ {x : n·x ≤ d}   (cap faces have outward normal +n)
 // Vertex sides are exact (no tolerance); points constructed on crossing edges are computed once,
@@ -19,7 +19,7 @@ namespace cover::brep {
 using cover::Plane;
 
 struct ClipOptions {
-  bool triangulate_caps = false;  ///< caps as triangles; default: convex polygons (paper §4)
+  bool triangulate_caps = false;  ///< caps as triangles; default: convex polygons [Erleben2006 §4]
 };
 
 /// One half of the clip.

@@ -1,4 +1,4 @@
-// Convex decomposition by reflex-edge plane cuts (decompose.h; paper §7 Fig. 20).
+// Convex decomposition by reflex-edge plane cuts (decompose.h; [Erleben2006 §7 Fig. 20]).
 //
 // Notation
 //   T        the input triangles (faces triangulated exactly, solid/triangulate.h)

@@ -1,6 +1,6 @@
 #pragma once
-// Exact convex decomposition by plane cuts through reflex edges (Erleben & Henriksen, "The Plane
-// Patcher", 2006, §7 Fig. 20; DESIGN.md §11). Each cut is the exact plane clip and patch of
+// Exact convex decomposition by plane cuts through reflex edges ([Erleben2006 §7
+// Fig. 20]; docs/design.md#convex-decomposition). Each cut is the exact plane clip and patch of
 // clip.h applied to the piece that holds the edge; a piece without reflex edges is convex.
 //
 // Conventions

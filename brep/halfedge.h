@@ -1,6 +1,6 @@
 #pragma once
-// HalfedgeMesh: the B-rep kernel (DESIGN.md §6). An orientable surface stored as half-edges
-// (the DLFL of Akleman–Chen–Srinivasan, with a `face` link per half-edge).
+// HalfedgeMesh: the B-rep kernel (docs/design.md#exactness). An orientable surface stored as
+// half-edges (the DLFL of [Akleman2002], with a `face` link per half-edge).
 //
 // Notation
 //   half-edge h     directed edge origin(h) → head(h); its twin is h ^ 1 (edges are the pairs

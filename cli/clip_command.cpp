@@ -1,4 +1,4 @@
-// `cover clip` (CONTRACT.md): the exact plane clip and patch of brep/clip.h.
+// `cover clip` (docs/cli.md): the exact plane clip and patch of brep/clip.h.
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -128,7 +128,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
   HalfSummary above, below;
   OutputBatch outputs;
   if (!scene_out) {
-    // CONTRACT.md: a scene of several leaves is evaluated first (boolean/evaluate.h: one closed
+    // A scene of several leaves is evaluated first (boolean/evaluate.h: one closed
     // 2-manifold of the CSG result), then that mesh is clipped; a single leaf is clipped directly
     // (Model::clip).
     const brep::ClipResult r = clip_named([&] { return model.clip(plane, co); }, o.input);

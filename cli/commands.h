@@ -1,5 +1,5 @@
 #pragma once
-// The `cover` subcommands (CONTRACT.md "Commands"). Each returns the process exit status and
+// The `cover` subcommands (docs/cli.md#commands). Each returns the process exit status and
 // throws InputError / NotComputable for bad input (exit 2, handled in main.cpp). Conventions:
 // a command estimates what it allocates and refuses estimates over --max-memory first
 // (solid/memory_limit.h); one OutputBatch (solid/atomic_file.h) holds all of its output files,

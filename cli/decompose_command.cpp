@@ -1,4 +1,4 @@
-// `cover decompose INPUT -o DIR [--ext .off] [--json]` (CONTRACT.md "More inputs and outputs"):
+// `cover decompose INPUT -o DIR [--ext .off] [--json]` (docs/cli.md):
 // exact convex decomposition by reflex-edge plane cuts (brep/decompose.h). A scene is evaluated
 // first (boolean/evaluate.h, as `cover evaluate`); a single leaf is decomposed as it is.
 // DIR/piece_NNNN.EXT (closed, outward, exactly convex triangle meshes) and DIR/pieces.json

@@ -1,5 +1,5 @@
 // `cover evaluate INPUT -o OUT.ext --cells N [--pieces DIR] [--bounds xmin,ymin,zmin,size]`
-// (CONTRACT.md "More inputs and outputs"): the result evaluated, cut into N×N×N cells by the
+// (docs/cli.md): the result evaluated, cut into N×N×N cells by the
 // plane patcher (brep/cells.h) and glued back into OUT; with --pieces, DIR/cell_I_J_K.ext (one
 // closed piece per non-empty cell, I, J, K without padding) and DIR/pieces.json. OUT and every
 // file of DIR are committed together (one OutputBatch; DIR swapped in whole, cli/output.h

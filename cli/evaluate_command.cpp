@@ -1,4 +1,4 @@
-// `cover evaluate INPUT -o OUT.(off|obj|stl|ply) [--leaf-ids] [--json]` (CONTRACT.md): the CSG
+// `cover evaluate INPUT -o OUT.(off|obj|stl|ply) [--leaf-ids] [--json]` (docs/cli.md): the CSG
 // result as one closed, outward-oriented 2-manifold B-rep (boolean/evaluate.h). An empty result
 // (e.g. disjoint operands intersected) is not an error: an empty mesh (0 vertices, 0 faces) is
 // written, exit 0, with a warning on stderr. --leaf-ids adds each face's source leaf (index into

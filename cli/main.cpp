@@ -1,4 +1,4 @@
-// `cover`: command-line front end (CONTRACT.md). Exit status: 0 success, 2 bad input or usage
+// `cover`: command-line front end (docs/cli.md). Exit status: 0 success, 2 bad input or usage
 // (one line "cover: error: ..." on stderr), 1 internal failure.
 #include <CLI/CLI.hpp>
 #include <charconv>

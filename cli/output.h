@@ -51,10 +51,10 @@ void check_bounds_range(const Vec3& min, double size);
 /// Seconds since `start` as a double.
 double seconds_since(std::chrono::steady_clock::time_point start);
 
-/// The timing keys of every --json output (CONTRACT.md "Timing keys"): `seconds`, the whole
-/// command from its start, and `seconds_detail` {load, kernel, write}: reading and validating the
-/// input, the command's own work, and writing its files and building its stdout. Each phase ends
-/// with lap(); time between laps goes to the phase named there.
+/// The timing keys of every --json output (docs/cli.md#conventions-of-every-command):
+/// `seconds`, the whole command from its start, and `seconds_detail` {load, kernel, write}: reading
+/// and validating the input, the command's own work, and writing its files and building its stdout.
+/// Each phase ends with lap(); time between laps goes to the phase named there.
 class Timing {
  public:
   enum Phase { kLoad, kKernel, kWrite };

@@ -1,6 +1,6 @@
 #pragma once
-// Query points and classes of `cover classify` (CONTRACT.md "cover classify", "More inputs and
-// outputs").
+// Query points and classes of `cover classify` (docs/cli.md,
+// `cover classify`).
 // Points, text: one point per line, "x y z" separated by spaces, tabs or commas; '#' starts a
 // comment; blank lines are skipped; "-" is stdin. Numbers, the byte order mark and errors follow
 // the mesh readers' rule (solid/detail/mesh_io_detail.h). The text is parsed in parallel, in

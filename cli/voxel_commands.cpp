@@ -1,4 +1,4 @@
-// `cover voxelize` and `cover octree` (CONTRACT.md).
+// `cover voxelize` and `cover octree` (docs/cli.md).
 #include <algorithm>
 #include <array>
 #include <cctype>

@@ -2,7 +2,7 @@
 // Cover's umbrella header: every public module header (installed under include/cover/).
 // Link cover::cover (find_package(Cover)). Start with cover::Model (model/model.h): load a file
 // or build primitives, combine with | & - ~, and call a method per kernel. Underneath, the
-// kernels are free functions on a Solid (DESIGN.md: the simplicial-coverings engine), by module:
+// kernels are free functions on a Solid ([Segura2004]; docs/design.md), by module:
 //   model/     the cover::Model facade
 //   solid/     the non-evaluated solid, CSG operators, primitives, transforms, mesh and scene I/O,
 //              exact predicates, face triangulation

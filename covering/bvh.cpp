@@ -306,8 +306,8 @@ bool non_degenerate(const Bvh::Tri& t) {
 
 Bvh::Bvh(const Solid& solid, const BvhOptions& options) {
   // The triangles are read from the faces several times (plane/keep/bounds, refs, leaf blocks)
-  // instead of being copied into an intermediate array: at 606k triangles that copy was 48 MB
-  // of fresh memory, ~0.13 s of page faults on the benchmark machine (solid/large_vector.h).
+  // instead of being copied into an intermediate array, which at 606k triangles would be 48 MB
+  // of fresh memory to fault in (solid/large_vector.h).
   const size_t faces = solid.face_count();
   const size_t leaves = solid.leaves.size();
   const FanTriangles fan(solid);

@@ -1,5 +1,5 @@
 #pragma once
-// Bounding volume hierarchy over the covering triangles of every leaf (DESIGN.md §2).
+// Bounding volume hierarchy over the covering triangles of every leaf (docs/design.md#exactness).
 //
 // Why hand-written: queries need exact culling on double boxes for an axis-aligned half-line
 // (classification) and for general rays, plus the triangle's leaf and face; CGAL's AABB_tree

@@ -1,5 +1,5 @@
 #pragma once
-// Exact point classification against a CSG solid (paper Theorem 2, DESIGN.md §1–§2).
+// Exact point classification against a CSG solid ([Segura2004 §2 Theorem 2]).
 //
 // Per leaf, the covering sum at Q with the covering origin O pushed to infinity along −s·e_k
 // equals the signed count of covering triangles crossed by the half-line Q + t·s·e_k, t > 0:
@@ -14,8 +14,9 @@
 // buried in B for A∪B is inside), otherwise face / edge / vertex of the result's boundary.
 // classify() walks a BVH (covering/bvh.h): only boxes that the half-line can meet are visited,
 // O(log n) per query; for many points it first labels the grid cells no surface touches
-// (covering/detail/cell_grid.h, exact) and visits the remaining points in spatial order. classify_brute_force() visits every covering triangle: the independent
-// O(faces) path that tests compare against. Both use the same exact per-triangle decision.
+// (covering/detail/cell_grid.h, exact) and visits the remaining points in spatial order.
+// classify_brute_force() visits every covering triangle: the independent O(faces) path that tests
+// compare against. Both use the same exact per-triangle decision.
 
 #include <cstdint>
 #include <span>

@@ -7,16 +7,17 @@
 //                 (Van Oosterom & Strackee 1983); the sign of A·(B×C) is taken from the exact
 //                 orient3d whenever rounding could flip it, so the ±2π branch is right.
 //   membership    an open leaf holds q iff |w(q)| > 1/2 (the nonzero rule on the rounded w,
-//                 CONTRACT.md "Semantics"); points on the leaf's surface are left to the caller.
+//                 docs/cli.md#semantics); points on the leaf's surface are left to the caller.
 //   tree          a binary BVH over the leaf's triangles (median splits); each node keeps its
 //                 area-weighted centre p, radius r (every vertex within r of p), total area A,
 //                 dipole N = Σ area_t·n_t and first moment M = Σ area_t·n_t (c_t − p)ᵀ.
 //   far field     a node with |p − q| = d > β·r is replaced by its first-order Taylor expansion
 //                 (Barill et al. "order 1"): N·K(y) + J(y):M, K(y) = y/|y|³, J = ∂K/∂y, y = p − q.
 //   error bound   the Taylor remainder of n·K(x − q) over the node is at most
-//                 ½·sup|D²(n·K)|·|x − p|² ≤ 3·r²/(d − r)⁴ per unit area (|Dᵏ(1/|y|)| ≤ k!/|y|^{k+1},
-//                 Legendre bound), so a far node adds at most 3·A·r²/((d − r)⁴·4π) to |error|;
-//                 every term (far or exact) adds a rounding allowance of kRoundingPerTerm.
+//                 ½·sup|D²(n·K)|·|x − p|² ≤ 3·r²/(d − r)⁴ per unit area
+//                 (|Dᵏ(1/|y|)| ≤ k!/|y|^{k+1}, Legendre bound), so a far node adds at most
+//                 3·A·r²/((d − r)⁴·4π) to |error|; every term (far or exact) adds a rounding
+//                 allowance of kRoundingPerTerm.
 //   decision      ||w| − 1/2| > error decides at once; otherwise the evaluation is repeated with
 //                 the larger refine_beta, then by the direct sum over every triangle (error: the
 //                 rounding allowance only). A direct-sum value within that allowance of ±1/2 is

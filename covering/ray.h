@@ -1,5 +1,5 @@
 #pragma once
-// Ray casting through a non-evaluated CSG solid (paper §6 "Ray-Casting", DESIGN.md §3).
+// Ray casting through a non-evaluated CSG solid ([Segura2004 §6] "Ray-Casting").
 //
 // A ray o + t·d (t > 0) meets covering triangles; each hit carries its leaf, face and sign
 // (+1: leaving the leaf, n·d > 0 for the leaf's outward normal n; −1: entering). Crossing
@@ -66,9 +66,8 @@ struct VisibleHit {
 };
 
 /// All hits and the CSG inside spans of one ray. It walks the BVH level by level (walk_batch
-/// with one ray), so the node loads of a level (and of a treelet) overlap: per ray 1.6 → 1.3 µs
-/// at 10k triangles and 4.6 → 2.2 µs at 1M against the depth-first walk (bench_queries
-/// BM_CastRay, docs/benchmarks.md).
+/// with one ray), so the node loads of a level (and of a treelet) overlap: about twice as fast
+/// as the depth-first walk at 1M triangles (bench_queries BM_CastRay, docs/benchmarks.md).
 RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray);
 
 /// The same result through the depth-first walk() of the BVH: the independent path that tests

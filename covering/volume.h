@@ -1,5 +1,5 @@
 #pragma once
-// Volume and area of a CSG solid from its simplicial covering (paper §5, DESIGN.md §3).
+// Volume and area of a CSG solid from its simplicial covering ([Segura2004 §5]).
 //
 // The covering volume Σ_f Σ [O, v0, vi, vi+1] over the stored (combined-orientation) faces equals
 // ∫ Σ_L c_L·w_L. It is the volume of the result only where Σ_L c_L·w_L equals the result's

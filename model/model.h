@@ -1,8 +1,8 @@
 #pragma once
-// cover::Model — the one object a user needs (CONTRACT.md "C++ library"): a non-evaluated CSG
+// cover::Model — the one object a user needs (docs/library.md): a non-evaluated CSG
 // solid with a method per kernel. Built from a mesh or scene file (load), primitives (box,
 // sphere, cylinder), a triangle mesh from arrays (mesh), and combined with | & - ~ and
-// transformed(); none of these evaluates anything (paper §4: faces are concatenated, signs
+// transformed(); none of these evaluates anything ([Segura2004 §4]: faces are concatenated, signs
 // flipped). Every query reuses one BVH over the covering triangles (covering/bvh.h), built on
 // the first query that needs it.
 //
@@ -74,11 +74,11 @@ class Model {
   /// The BVH of every covering triangle, built on first use (thread-safe) and shared by copies.
   const Bvh& bvh() const;
   /// The open leaves' generalized-winding-number trees (covering/gwn.h), built on first use;
-  /// nullptr when every leaf is closed. Open leaves: CONTRACT.md "Semantics" — inside where
+  /// nullptr when every leaf is closed. Open leaves (docs/cli.md#semantics): inside where
   /// |w| > 1/2; classify, windings-free kernels (cast, render, voxelize, octree, volume) use it.
   const GwnForest* gwn() const;
 
-  /// Union, intersection, difference and complement (concatenation, paper §4).
+  /// Union, intersection, difference and complement (concatenation, [Segura2004 §4]).
   friend Model operator|(const Model& a, const Model& b);
   friend Model operator&(const Model& a, const Model& b);
   friend Model operator-(const Model& a, const Model& b);
@@ -146,11 +146,11 @@ class Model {
   /// as voxel_lattice(), and for a cubic resolution above 4096 (use voxelize_to_zarr or bricks).
   VoxelGrid voxelize(const VoxelizeOptions& options = {}) const;
 
-  /// Brick API (DESIGN.md §10): the voxels of the index box [box.lo, box.hi) of `lattice`,
-  /// bit-identical to the same region of voxelize() over that lattice (global centres, the same
-  /// exact predicates and tie rule), at a cost ∝ the covering triangles whose x/y range reaches
-  /// the brick's columns (found through the BVH) and the brick's voxels. grid.lattice = lattice,
-  /// grid.box = box; local voxel (i, j, k) is global box.lo + (i, j, k). Thread-safe.
+  /// Brick API (docs/scale-out.md#bricks): the voxels of the index box [box.lo, box.hi) of
+  /// `lattice`, bit-identical to the same region of voxelize() over that lattice (global centres,
+  /// the same exact predicates and tie rule), at a cost ∝ the covering triangles whose x/y range
+  /// reaches the brick's columns (found through the BVH) and the brick's voxels. grid.lattice =
+  /// lattice, grid.box = box; local voxel (i, j, k) is global box.lo + (i, j, k). Thread-safe.
   /// \throws InputError for an empty box or one outside [0, lattice.dims), dims out of
   /// 1..16384, a non-finite origin or a spacing that is not finite and > 0.
   VoxelGrid voxelize_brick(const VoxelLattice& lattice, const IndexBox& box) const;
@@ -229,7 +229,7 @@ class Model {
   std::shared_ptr<const State> state_;
 };
 
-/// Loads a mesh (one leaf) or a JSON scene (CONTRACT.md "Input"), repaired as the CLI does.
+/// Loads a mesh (one leaf) or a JSON scene (docs/cli.md#input), repaired as the CLI does.
 /// \throws InputError naming the file and the place (solid/scene.h load_input).
 Model load(const std::filesystem::path& path, const LoadOptions& options = {});
 

@@ -3,7 +3,7 @@
 
 torus.off  quad torus, major radius 2, minor 0.6, 32 x 16 (genus 1)
 frame.off  box [0,4]^3 with a 2x2 square through-hole along z; the top and bottom faces
-           hold the hole loop joined by false edges (paper Fig. 1)
+           hold the hole loop joined by false edges ([Segura2004 §3 Fig. 1])
 """
 import math
 import pathlib

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates the plane-patcher test models (Erleben & Henriksen 2006, Table 1 / Fig. 19) and a
+"""Regenerates the plane-patcher test models ([Erleben2006] Table 1 / Fig. 19) and a
 pinch case (deterministic text output).
 
 knot.off            (2,3) torus knot tube, 180 x 16 x 2 triangles, 2880 vertices
@@ -12,7 +12,7 @@ box_with_rings.off  a hollow box (cavity reversed) holding three nested square r
 pinch.off           a slab with two tapered towers whose footprints touch at one corner (0, 0, 0):
                     the cut z = 0 walks two rings through one vertex (a pinched vertex)
 Faces with holes (top and bottom of frames and the slab) are single faces whose hole loops are
-joined by false edges (paper §3 Fig. 1).
+joined by false edges ([Segura2004 §3 Fig. 1]).
 """
 import math
 

@@ -66,9 +66,9 @@ std::atomic<int> g_simd{-1};  ///< the level in use; −1: not chosen yet (best_
 // The sign masks of the plane's values f = (fx[i] + fy[j]) + fz[k] (PlaneSide::sign()'s sum, in
 // its order) against ±bound, several points per instruction: bit (k·n + j)·n + i set in `pos`
 // where f > bound, in `neg` where f < −bound (ordered comparisons, as C's > and <). Hand-
-// written (no library offers a sign mask of a separable sum): on bunny00 at depth 10, with
-// 7.1 M grid_masks and 3 M lattice_masks calls per build, AVX-512 instead of SSE2 and scalar
-// took the octree's CPU time from 2.10–2.15 to 1.91–2.01 s.
+// written (no library offers a sign mask of a separable sum): a bunny00 octree at depth 10
+// makes 7.1 M grid_masks and 3 M lattice_masks calls, and the widest instruction set saves about
+// 8 % of its CPU time.
 /// n = 4 with the baseline instructions: SSE2 (part of x86-64), two points per instruction,
 /// the signs gathered by movemask; scalar elsewhere.
 void masks4_baseline(const double* fx, const double* fy, const double* fz, double b, uint64_t& pos,
@@ -519,8 +519,8 @@ uint8_t edge_axis(const Vec3& p, const Vec3& q, int axis, int t, const double (&
 /// The 9 edge axes, one coordinate axis at a time with the 3 edges in the lanes of one AVX2
 /// register (lane 3 unused): edge_axis's sums at all 9 lattice points, the quadrants' sides
 /// by lane masks. A lane whose magnitude is outside the filter's range or with a point the
-/// filter leaves undecided goes through edge_axis (orient2d). Hand-written: the scalar loop,
-/// an edge and axis at a time, was about 30% of an octree build's CPU time (bunny00, depth 10).
+/// filter leaves undecided goes through edge_axis (orient2d). Hand-written: the scalar loop, an
+/// edge and axis at a time, would be about 30% of an octree build's CPU time (bunny00, depth 10).
 __attribute__((target("avx2"))) uint8_t edge_axes_avx2(const Vec3 (&v)[3],
                                                        const double (&planes)[3][3],
                                                        uint8_t alive) {

@@ -352,9 +352,8 @@ class Builder {
     const double weight_total = (std::ldexp(1.0, 2 * depth_ + 2) - 1) / 3;
     double weight_done = 0;
     // The node array at its expected size at once (within a few percent; it grows past that if
-    // need be), on huge pages: with 4 KiB pages each level's resize faulted in the new nodes
-    // one page at a time and copied the old ones (bunny00 at depth 10, 9.5M nodes, measured when
-    // a node took 40 bytes: 3.5 → 2.3 s).
+    // need be), on huge pages, so that no level's resize copies the old nodes or faults in the
+    // new ones a 4 KiB page at a time (bunny00 at depth 10 has 9.5M nodes).
     tree.nodes.reserve(static_cast<size_t>(
         std::min(1.05 * expected_nodes(covering_area(solid_), bounds_.size, depth_),
                  static_cast<double>(UINT32_MAX))));
@@ -368,9 +367,9 @@ class Builder {
       tree.nodes.resize(level_start + n);
       // At most every cell is crossed: reserved (address space; pages are touched as used)
       // so that growing never copies, and on huge pages like every per-level array here.
-      // Fresh pages are dear on this kind of machine: on 4 KiB pages, these arrays took about
-      // 10,000 page faults per bunny00 depth-10 build (0.14–0.5 s of system time, most of it
-      // in the serial pass), against about 200 now.
+      // Fresh pages are dear on virtual machines: on 4 KiB pages these arrays would take about
+      // 10,000 page faults per bunny00 depth-10 build, most of them in the serial pass; on huge
+      // pages about 200.
       LargeVector<Coord> next;
       Lists next_lists;
       if (d < depth_) {

@@ -1,5 +1,5 @@
 #pragma once
-// Direct octree generation from a non-evaluated CSG solid (paper §7, DESIGN.md §5), exact and
+// Direct octree generation from a non-evaluated CSG solid ([Segura2004 §7]), exact and
 // conservative: a cell is kFull / kEmpty only if truly so — no leaf surface meets the cell's
 // INTERIOR (exact triangle–open-box overlap against every covering triangle that may meet the
 // cell, found through the BVH or the parent cell's list) and its centre classifies inside /

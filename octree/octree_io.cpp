@@ -50,8 +50,8 @@ std::string number(T value) {
 
 /// Writes, in base64, the stream of an 8-byte UInt64 `size` (the machine's byte order) followed
 /// by `size` bytes that fill(offset, count, dst) produces, a chunk at a time: nothing of the
-/// size of the array is allocated (bunny00's depth-10 tree: 48 MB of cell data, written in
-/// 0.66 s through whole-array copies and a per-character append, 0.2 s this way).
+/// size of the array is allocated and nothing is appended a character at a time (bunny00's
+/// depth-10 tree has 48 MB of cell data).
 void base64_payload(std::ostream& out, uint64_t size,
                     const std::function<void(size_t, size_t, uint8_t*)>& fill) {
   static constexpr char kDigits[] =
@@ -385,10 +385,10 @@ void write_json(std::ostream& out, const Octree& tree, double threshold) {
          " state 0 empty, 1 full, 2 partial\",\n"
       << "  \"cells\": [";
   // One short array per leaf cell, in node order (about 25 bytes a cell: the integer corner at
-  // its depth instead of 17-digit coordinates; armadillo at depth 10 took 844 MB as objects with
-  // coordinates). Streamed: nothing but the current line is held.
-  // Formatted with to_chars into 1 MiB chunks (snprintf and a stream write per cell took
-  // 1.2 s for bunny00's 7.1 M leaves at depth 10).
+  // its depth instead of 17-digit coordinates, which would take 844 MB for armadillo at depth
+  // 10). Streamed: nothing but the current line is held.
+  // Formatted with to_chars into 1 MiB chunks, not with snprintf and a stream write per cell
+  // (bunny00 at depth 10 has 7.1 M leaves).
   bool first = true;
   std::string chunk;
   chunk.reserve(size_t{1} << 20);

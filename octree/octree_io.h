@@ -1,5 +1,5 @@
 #pragma once
-// Octree export (CONTRACT.md `cover octree`), by extension, written atomically (temporary file,
+// Octree export (docs/cli.md, `cover octree`), by extension, written atomically (temporary file,
 // then rename):
 //   .htg   VTK XML HyperTreeGrid, file version 1.0 (opens in ParaView; read back by VTK 9.1's
 //          vtkXMLHyperTreeGridReader): one tree over the cube, cell arrays "state" (UInt8:

@@ -1,5 +1,5 @@
 #pragma once
-// Cameras for ray-cast previews (CONTRACT.md `cover render`).
+// Cameras for ray-cast previews (docs/cli.md, `cover render`).
 // Conventions: pixel (px, py) has its centre at (px + ½, py + ½); row 0 is the TOP row. `forward`
 // points from the eye into the scene, `right` × `up` = −forward (right-handed screen frame).
 // Ray directions are unit vectors, so a hit's t is a distance: from the eye (perspective) or from

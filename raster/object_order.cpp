@@ -93,8 +93,8 @@ struct SmallRect {
 };
 
 /// The expression's value for every inside-leaf mask (bit l: leaf l inside), for up to
-/// kTableLeaves leaves: one lookup per interval instead of a walk of the tree (which took 9% of
-/// a frame's samples).
+/// kTableLeaves leaves: one lookup per interval instead of a walk of the tree (which would be
+/// about 9% of a frame's samples).
 constexpr size_t kTableLeaves = 16;
 
 /// first_visible(r, lo, hi) of r = the hits swept as detail::sweep_spans() does (windings from

@@ -5,8 +5,8 @@
 //
 // Why: most triangles cover a pixel or less, so the work is about one exact crossing test per
 // (triangle, nearby pixel) instead of a BVH walk per ray — and no BVH is built for the first frame
-// (on the 606k-triangle preview scene the BVH build was 0.22 s of a 0.60 s first frame, the
-// per-ray walk 0.29 s; bench/render_vs_embree). Orthographic rays are parallel, which also allows
+// (on the 606k-triangle preview scene a BVH build would be over a third of a ray-cast first
+// frame; bench/render_vs_embree). Orthographic rays are parallel, which also allows
 // a 2D prefilter and a shortcut for pixels certainly inside a triangle's projection; perspective
 // rays get the exact test on every candidate.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Ray-cast preview of a NON-evaluated CSG solid (paper §6 "Ray-Casting", DESIGN.md §3): each
+// Ray-cast preview of a NON-evaluated CSG solid ([Segura2004 §6] "Ray-Casting"): each
 // pixel's ray gets the result's inside spans from covering/ray.h; the first span start in view
 // is the visible surface, shaded with its leaf's colour. A section half-space n·x > d is removed
 // by clipping the spans: where the plane cuts a span, the pixel shows the exact cut face (cap).

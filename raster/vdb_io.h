@@ -1,5 +1,5 @@
 #pragma once
-// OpenVDB export (CONTRACT.md "More inputs and outputs"): OUT.vdb holds one openvdb::BoolGrid
+// OpenVDB export (docs/cli.md, `cover voxelize`): OUT.vdb holds one openvdb::BoolGrid
 // named "occupancy". Index space = voxel (i, j, k) of the grid (global indices, 0 ≤ i < NX, ...);
 // a set voxel is an active voxel of value true, every other voxel is the background (false,
 // inactive); 8³ leaves that are all set become tiles (tree().prune()). World transform: a linear

@@ -2,10 +2,10 @@
 // The C interface between raster/vdb_io.cpp and the OpenVDB plugin cover_vdb.so
 // (raster/vdb_plugin.cpp), loaded with dlopen on the first .vdb write.
 //
-// Why a plugin: linking libopenvdb into a program costs every start of it ~35 ms of dynamic
-// symbol lookups (62k relocations; `cover --version` took 38 ms with it and 2 ms without, perf
-// stat -r 20), a third of a small `cover evaluate`. Only .vdb output needs OpenVDB, so only it
-// pays. Plain C types, so the plugin and its loader need no common C++ ABI beyond the C one.
+// Why a plugin: linking libopenvdb into a program costs every start of it ~35 ms of dynamic symbol
+// lookups (62k relocations), a third of a small `cover evaluate`. Only .vdb output needs OpenVDB,
+// so only it pays. Plain C types, so the plugin and its loader need no common C++ ABI beyond the C
+// one.
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,6 +1,6 @@
 #pragma once
-// Voxel lattices, index boxes (bricks) and bit-packed voxel grids (CONTRACT.md `cover voxelize`,
-// DESIGN.md §10).
+// Voxel lattices, index boxes (bricks) and bit-packed voxel grids (docs/cli.md,
+// `cover voxelize`; docs/scale-out.md#bricks).
 //
 // A lattice is the global grid: origin o (the min corner), one spacing h for all three axes, and
 // dims (NX, NY, NZ). Voxel (i, j, k) has centre o + (i+½, j+½, k+½)·h, computed in doubles exactly

@@ -1,5 +1,5 @@
 #pragma once
-// Voxel grid export (CONTRACT.md `cover voxelize`), chosen by extension; written atomically
+// Voxel grid export (docs/cli.md, `cover voxelize`), chosen by extension; written atomically
 // (solid/atomic_file.h: temporary file, then rename, or with an open OutputBatch) and streamed
 // from the bit grid (no N³-byte buffer):
 //   .binvox  binvox 1: "#binvox 1", "dim N N N", "translate x y z", "scale s", "data", then RLE

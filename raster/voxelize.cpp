@@ -124,14 +124,11 @@ int edge_sign(double det, double sum, const Vec3& p, const Vec3& q, const Vec3& 
 /// column lines of rows i0..i1 and columns j0..j1 (the triangle's bounding box, rows clipped to
 /// one band); `column` is (i − band_first_row)·N + j.
 ///
-/// Work at bunny00 512³: 95k triangle visits, 820k candidate columns, 324k crossings. Each
-/// candidate used to call orient2d three times (branching after each) and each crossing
-/// orient3d at least twice: the crossing pass was ~17 ms of a 35 ms call on 2 threads. Sharing
-/// the terms (below), a branch-free classification and one paired side test per crossing in
-/// the common case bring this function to ~10 ms of CPU time (about half of a 21 ms
-/// single-thread call). Tried and left out: two centres per SSE2 operation in the
-/// classification (no gain); one candidate list across all rows instead of per-row blocks
-/// (~10% slower).
+/// Work at bunny00 512³: 95k triangle visits, 820k candidate columns, 324k crossings, and this
+/// function is about half of a single-thread call. So a candidate does not make three branching
+/// orient2d calls nor a crossing two orient3d calls: the terms are shared (below), the
+/// classification is branch-free and a crossing takes one paired side test in the common case.
+/// Candidates are kept in per-row blocks (one list across all rows is slower).
 ///
 /// Every decision is still the one the exact predicates take. For a column point q = (x, y) the
 /// three projected edge tests orient2d(b, c, q), orient2d(c, a, q), orient2d(a, b, q) compute
@@ -375,7 +372,7 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
   g.lattice = lattice;
   g.box = box;
   // A brick is the whole-grid algorithm run on the slices of the global centre arrays
-  // (DESIGN.md §10): every decision below is taken on the same doubles by the same exact
+  // (docs/scale-out.md#bricks): every decision below is taken on the same doubles by the same exact
   // predicates as for the whole grid. centre_range finds, within the slices, exactly the rows
   // and columns whose centres the triangle's x/y range contains (the rest of the grid's columns
   // are not visited); `below` over the sliced zs is the number of the brick's centres below the
@@ -390,7 +387,7 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
                             zs = centres(lattice.origin.z, h, box.lo[2], nk);
   const double inv_hx = nx > 1 ? 1 / (xs[1] - xs[0]) : 1, inv_hy = ny > 1 ? 1 / (ys[1] - ys[0]) : 1;
   // Whether all centres, and all vertices (one pass here instead of nine tests per triangle:
-  // those were ~4% of the call at 512³), are moderate().
+  // those would be ~4% of the call at 512³), are moderate().
   bool moderate_centres = true, moderate_vertices = true;
   for (const double x : xs) moderate_centres &= moderate(x);
   for (const double y : ys) moderate_centres &= moderate(y);
@@ -407,8 +404,8 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
 
   // The covering triangles are the fan triangles (v0, v_k, v_k+1) of each face in its leaf's own
   // orientation, numbered face by face (those a Bvh is built over; degenerate ones have n_z = 0
-  // and cross no column). They are read straight from the faces: materializing
-  // them cost 3–5 ms at 512³ (a 6 MB copy, a serial compaction, page faults). Faces are taken
+  // and cross no column). They are read straight from the faces, not materialized (a copy, a
+  // serial compaction and fresh pages for a few MB at 512³). Faces are taken
   // in list order (face_of(p): the p-th face of face_list, or face p); a triangle's position in
   // that order does not change the grid (a column's crossings are sorted by their keys).
   const size_t faces = face_list ? face_list->size() : solid.face_count();
@@ -420,9 +417,8 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
   }
   // Rows (x index i) are processed in bands of `band_rows`; a band's crossings are found,
   // grouped by column and swept by one task in cache-sized scratch, and its columns (contiguous
-  // in the grid) written once. This replaced a global pass (all crossings into per-chunk
-  // vectors, then a counting sort over all N² columns into a fresh array: 7 ms serial at 512³,
-  // still ~7 ms with atomic counts and an atomic scatter on 2 threads, cache misses throughout).
+  // in the grid) written once, so no pass sorts all crossings over all N² columns (cache misses
+  // throughout, and it does not scale with threads).
   const int band_rows = std::max(1, nx / 64);
   const size_t bands = (static_cast<size_t>(nx) + band_rows - 1) / band_rows;
 
@@ -430,7 +426,7 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
   //    triangles of each band: counted per (chunk of faces, band), then listed in (band, chunk,
   //    triangle) order. A listed triangle carries its vertex indices, leaf and ranges: reaching
   //    them through the faces from the band pass (face_start, face_vertices, face_sign,
-  //    face_leaf: scattered loads) cost ~4 ms CPU at 512³ in cache misses.
+  //    face_leaf: scattered loads) would cost cache misses.
   std::vector<BandTriangle> tris(first_tri[faces]);
   constexpr size_t kChunk = 4096;  // faces
   const size_t chunks = (faces + kChunk - 1) / kChunk;
@@ -493,8 +489,7 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
   std::vector<uint8_t> none(leaves, 0);
   const bool outside_value = solid.tree.evaluate(none);  // membership with every winding 0
   // Up to kTableLeaves leaves, the tree's value for every set of inside leaves, tabulated once:
-  // the sweep then looks runs up instead of evaluating the tree (per-run evaluate() calls were
-  // ~1.5 ms CPU at 512³ for a single mesh).
+  // the sweep then looks runs up instead of evaluating the tree once per run.
   constexpr size_t kTableLeaves = 10;
   const bool use_table = leaves <= kTableLeaves;
   const std::vector<uint8_t> table = use_table ? solid.tree.truth_table(leaves)
@@ -530,8 +525,7 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
     // start[col] is now the end of column col; its first slot is start[col − 1] (0 for col 0).
     winding.assign(leaves, 0);
     inside.assign(leaves, 0);
-    // The band's words, zeroed with one memset (a std::fill per column: ~1–2% slower at
-    // 512³), then the inside runs set column by column.
+    // The band's words, zeroed with one memset, then the inside runs set column by column.
     uint64_t* band_bits = g.bits.data() + static_cast<size_t>(row0) * ny * words;
     std::memset(band_bits, 0, band_columns * words * sizeof(uint64_t));
     for (size_t col = 0; col < band_columns; ++col) {
@@ -590,9 +584,9 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
       for (; c != last; ++c) winding[key_leaf(*c)] -= key_sign(*c);  // back to all zeros
     }
   };
-  // One parallel loop over all bands (dynamic load balancing; batches of bands with a barrier
-  // after each, for the progress callback, cost up to ~10% at 512³). Progress is reported from
-  // the calling thread, which takes part in the loop, after each band it finishes.
+  // One parallel loop over all bands (dynamic load balancing, no barrier for the progress
+  // callback). Progress is reported from the calling thread, which takes part in the loop, after
+  // each band it finishes.
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<size_t> bands_done{0};
   parallel_for(bands, 1, [&](size_t begin, size_t end) {

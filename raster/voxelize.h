@@ -1,5 +1,5 @@
 #pragma once
-// Presence-buffer voxelization of a non-evaluated CSG solid (paper §7, DESIGN.md §4).
+// Presence-buffer voxelization of a non-evaluated CSG solid ([Segura2004 §7]).
 //
 // With the covering origin at −∞ along z, each covering tetrahedron becomes the column below its
 // triangle: a voxel centre c is covered by triangle T iff the upward half-line from c crosses T.
@@ -32,7 +32,7 @@ inline constexpr int kMaxVoxelDims = 16384;
 /// Largest N of a whole cubic grid voxelized in memory (--res).
 inline constexpr int kMaxVoxelResolution = 4096;
 
-/// The grid, in one of three ways (CONTRACT.md `cover voxelize`):
+/// The grid, in one of three ways (docs/cli.md, `cover voxelize`):
 ///   cubic     (default) N = resolution voxels per axis over the cube `bounds` (default:
 ///             default_voxel_bounds(result box, N)); spacing = size / N.
 ///   voxel_size > 0: spacing h over the box B (the cube `bounds` when given, else the result's
@@ -71,13 +71,13 @@ VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options);
 /// The same into `grid`, reusing its memory (repeated voxelizations, benchmarks).
 void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& grid);
 
-/// Voxelizes the brick `box` of `lattice` into `grid` (grid.lattice = lattice, grid.box = box,
-/// its memory reused): bit-identical to the same region of the whole lattice's grid (the same
-/// centre doubles, the same exact predicates, the same tie rule; DESIGN.md §10). Cost ∝ the
-/// triangles whose x/y ranges reach the brick's columns plus its voxels: `faces`, when given,
-/// lists the faces to consider (any superset of those whose fan triangles' x/y boxes contain a
-/// column centre of the brick, in any order, e.g. from a BVH query; Model::voxelize_brick);
-/// nullptr scans every face. `progress` as VoxelizeOptions::progress (may be empty).
+/// Voxelizes the brick `box` of `lattice` into `grid` (grid.lattice = lattice, grid.box = box, its
+/// memory reused): bit-identical to the same region of the whole lattice's grid (the same centre
+/// doubles, the same exact predicates, the same tie rule; docs/scale-out.md#bricks). Cost ∝ the
+/// triangles whose x/y ranges reach the brick's columns plus its voxels: `faces`, when given, lists
+/// the faces to consider (any superset of those whose fan triangles' x/y boxes contain a column
+/// centre of the brick, in any order, e.g. from a BVH query; Model::voxelize_brick); nullptr scans
+/// every face. `progress` as VoxelizeOptions::progress (may be empty).
 /// \pre closed leaves; box inside [0, lattice.dims) and not empty; lattice dims ≤ kMaxVoxelDims;
 /// spacing finite and > 0.
 void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const IndexBox& box,

@@ -1,6 +1,6 @@
 #pragma once
-// Out-of-core voxel export to a Zarr v2 directory store (CONTRACT.md "More inputs and outputs",
-// DESIGN.md §10), written by Cover itself:
+// Out-of-core voxel export to a Zarr v2 directory store (docs/scale-out.md),
+// written by Cover itself:
 //   OUT.zarr/.zarray   {"zarr_format": 2, "shape": [NX, NY, NZ], "chunks": [C, C, C],
 //                      "dtype": "|u1", "compressor": {"id": "zlib", "level": L},
 //                      "fill_value": 0, "order": "C", "filters": null,

@@ -1,6 +1,6 @@
 #pragma once
-// Atomic, transactional output files (CONTRACT.md "Output conventions"): nothing the user had is
-// lost when a write fails, and the outputs of one command appear together or not at all.
+// Atomic, transactional output files (docs/cli.md#conventions-of-every-command): nothing the user
+// had is lost when a write fails, and the outputs of one command appear together or not at all.
 //   target     the file a path finally names: symbolic links are followed, so writing through a
 //              link replaces the file it points to and the link survives.
 //   temporary  TARGET.tmp-PID-K in the target's folder (K counts the process's temporaries), so

@@ -177,8 +177,8 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
   parallel_for(groups.size() - 1, kGroupGrain, [&](size_t g0, size_t g1) {
     const size_t chunk = g0 / kGroupGrain;
     // The cell's boxes copied side by side, so that the quadratic pair loop reads one small
-    // array instead of scattered boxes (the loop was 8 % of an evaluation's profile, most of it
-    // waiting on those loads).
+    // array instead of scattered boxes (this loop is a hot spot of evaluation, and scattered
+    // loads would dominate it).
     std::vector<M> cell_boxes;
     for (size_t g = g0; g < g1 && !stop.load(std::memory_order_relaxed); ++g) {
       const uint64_t cell = entries[groups[g]] >> bits;

@@ -4,10 +4,9 @@
 // guards each node's exact evaluation with std::call_once, which libstdc++ implements with
 // pthread_once. glibc 2.36's pthread_once ends every first call with an unconditional
 // futex_wake system call, waiters or not. An exact evaluation visits about ten lazy nodes, so
-// `cover evaluate` of cheese ∪ fandisk made 62k such calls, and on this project's virtual
-// machines (paravirtualized, a system call costs microseconds) they were 30 % of evaluate()'s
-// time: kernel 0.160 → 0.108 s with this function, armadillo ∩ knot1 0.160 → 0.124 s, the
-// 10-leaf preview scene 2.37 → 1.82 s (bench/evaluate_vs_manifold, 2 threads).
+// `cover evaluate` of cheese ∪ fandisk makes 62k such calls; on paravirtualized machines, where a
+// system call costs microseconds, glibc's version spends about 30 % of evaluate()'s time in them
+// (bench/evaluate_vs_manifold). This one wakes only when a thread waits.
 //
 // This definition has hidden visibility: it binds only the calls made from Cover's own objects
 // (the inline std::call_once of CGAL's and our headers, linked statically into the CLI, the

@@ -1,5 +1,5 @@
 #pragma once
-// The cover:: exception family (STYLE.md §5), after pmp-library's exceptions.h: a few types, each
+// The cover:: exception family, after pmp-library's exceptions.h: a few types, each
 // derived from the std exception that names its kind, and each kind of error always thrown as
 // the same type. Public functions document what they throw with \throws.
 //   InputError         (std::runtime_error) bad input: file contents, scene, arrays, options.

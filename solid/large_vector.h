@@ -2,9 +2,9 @@
 // Large arrays on transparent huge pages.
 //
 // Why: on the 2-core VMs this project is built and benchmarked on, the first touch of a 4 KiB page
-// costs ~11 µs (2.8 ms per MiB; 256 MiB malloc + memset: 720 ms), so page faults, not arithmetic,
-// dominated every step that fills a fresh array: a 606k-triangle BVH spent ~0.45 s of its 0.58 s
-// build faulting in 170 MB. A 2 MiB page faults once for 512 small ones (same test: 0.08 ms per
+// costs ~11 µs (2.8 ms per MiB; 256 MiB malloc + memset: 720 ms), so on 4 KiB pages page faults,
+// not arithmetic, dominate every step that fills a fresh array (about three quarters of a
+// 606k-triangle BVH build). A 2 MiB page faults once for 512 small ones (same test: 0.08 ms per
 // MiB once the host has backed the memory) and needs one TLB entry instead of 512, which also
 // shortens random queries on structures larger than the TLB reach.
 //

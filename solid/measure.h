@@ -1,10 +1,10 @@
 #pragma once
-// Covering measures of a polygon mesh (paper §5 "Area and Volume"). Each face is covered by the
-// fan triangles (v0, vi, vi+1) — any vertex of the face may serve as the covering point — and
+// Covering measures of a polygon mesh ([Segura2004 §5] "Area and Volume"). Each face is covered by
+// the fan triangles (v0, vi, vi+1) — any vertex of the face may serve as the covering point — and
 // the solid by the tetrahedra (O, triangle). False edges contribute opposite triangles that cancel.
-// O is the centre of the bounding box (any point gives the same exact value; a central point
-// keeps the rounding error small). Sums are compensated (Neumaier) over fixed-size chunks, so
-// the result does not depend on the thread count.
+// O is the centre of the bounding box (any point gives the same exact value; a central point keeps
+// the rounding error small). Sums are compensated (Neumaier) over fixed-size chunks, so the result
+// does not depend on the thread count.
 
 #include "solid/polygon_mesh.h"
 

@@ -1,7 +1,8 @@
 #pragma once
-// The memory limit of every command (CONTRACT.md "--max-memory MiB"), and input reading that
-// honours it. Conventions: limits and estimates are in bytes; messages state them in MiB (the
-// estimate rounded up) and name the option, so that a refusal reads the same everywhere:
+// The memory limit of every command (`--max-memory`, docs/cli.md#conventions-of-every-command), and
+// input reading that honours it. Conventions: limits and estimates are in bytes; messages state
+// them in MiB (the estimate rounded up) and name the option, so that a refusal reads the same
+// everywhere:
 //   "WHAT needs N MiB, over --max-memory M MiB"
 // An estimate is checked before the allocation it predicts; inputs are read only from regular
 // files (whose size is known before reading) or from a stream cut off at the limit.
@@ -24,9 +25,9 @@ inline constexpr uint64_t kDefaultMaxMemoryBytes = kDefaultMaxMemoryMiB << 20;
 /// limit_bytes. `estimate_bytes` is a double so that products of large counts cannot wrap.
 void check_memory(double estimate_bytes, uint64_t limit_bytes, const std::string& what);
 
-/// The bytes of an input, read into a buffer on huge pages that is not zero-filled first: a
-/// std::string's zero fill of 4 KiB pages was ~40 ms of first-touch page faults for a 62 MB
-/// points file here (solid/large_vector.h "Page faults").
+/// The bytes of an input, read into a buffer on huge pages that is not zero-filled first: zero
+/// filling 4 KiB pages would cost ~40 ms of first-touch page faults for a 62 MB points file
+/// (solid/large_vector.h).
 class FileBytes {
  public:
   std::string_view view() const { return {bytes_.data(), size_}; }

@@ -8,11 +8,8 @@
 //     reserved, so a 40-byte file claiming 10^9 faces is refused instead of allocating gigabytes;
 //   * speed: the file is read whole and parsed in place with std::from_chars (only a regular
 //     file, no larger than the memory limit: solid/memory_limit.h).
-// Measured (median of 21 reads, file in the page cache, g++ 12 -O3, CGAL 5.5.1, 2-core AMD EPYC
-// VM), cover::read_mesh vs CGAL::IO::read_polygon_soup into Epick points + vector<vector<size_t>>:
-//   bunny00.off   (2.6 MB, 37706 V, 75408 F)   5.1 ms vs 55.4 ms  (11x)
-//   armadillo.off (1.6 MB, 26002 V, 52000 F)   3.3 ms vs 37.5 ms  (11x)
-// (throwaway benchmark, not in the repository).
+// Parsing in place reads an OFF about 11× faster than CGAL::IO::read_polygon_soup (median of 21
+// reads from the page cache; docs/benchmarks.md#mesh-readers).
 
 #include "solid/mesh_io.h"
 

@@ -1,7 +1,7 @@
 #pragma once
-// Repairs of a closed leaf's face structure before it becomes a solid (CONTRACT.md "Semantics").
+// Repairs of a closed leaf's face structure before it becomes a solid (docs/cli.md#semantics).
 //
-// The covering theorem (paper §3, Theorem 2) needs the faces to form a closed 2-cycle: every
+// The covering theorem ([Segura2004 §2 Theorem 2]) needs the faces to form a closed 2-cycle: every
 // undirected edge {u, v} must be traversed as often from u to v as from v to u, counting every
 // face side (false edges inside one face cancel by themselves). Then the winding number is an
 // integer independent of the covering origin, and every kernel (volume, classification, rays,

@@ -1,5 +1,6 @@
 #pragma once
-// The one parallelism wrapper (STYLE.md §8). TBB stays behind this header.
+// The one parallelism wrapper; results are identical for any thread count. TBB stays behind
+// this header.
 // parallel_for splits [0, n) into fixed chunks of `grain` items (the chunking does not depend on
 // the thread count), so any per-chunk reduction combined in chunk order is deterministic.
 

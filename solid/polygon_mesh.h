@@ -6,7 +6,7 @@
 //   face_start[f+1])
 // A face is a closed polygon, counter-clockwise seen from outside. A face may hold several loops
 // joined by false edges (an index pair that appears once in each direction inside the face,
-// paper §3 Fig. 1); such faces are kept as one index list.
+// [Segura2004 §3 Fig. 1]); such faces are kept as one index list.
 
 #include <cstdint>
 #include <span>

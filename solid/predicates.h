@@ -1,6 +1,7 @@
 #pragma once
 // Exact geometric predicates on double coordinates, shared by every module. Each returns the
-// exact sign −1, 0 or +1 of a polynomial in the input doubles. No epsilons anywhere (DESIGN.md §2).
+// exact sign −1, 0 or +1 of a polynomial in the input doubles. No epsilons anywhere
+// (docs/design.md#exactness).
 //
 // Filter scheme: the polynomial is evaluated in doubles next to the sum M of the magnitudes of
 // its terms; an a-priori forward error bound err·M (the error factors below) decides the sign

@@ -1,5 +1,5 @@
 #pragma once
-// Primitive leaves as closed, outward-oriented polygon meshes (CONTRACT.md scene leaves).
+// Primitive leaves as closed, outward-oriented polygon meshes (docs/cli.md#scenes).
 
 #include "solid/polygon_mesh.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Defect repair of an OPEN leaf on load (solid/scene.h prepare_leaf; CONTRACT.md "Semantics").
+// Defect repair of an OPEN leaf on load (solid/scene.h prepare_leaf; docs/cli.md#semantics).
 // Only meshes with boundary edges are repaired (a closed leaf is kept exactly as read, so its
 // results do not change):
 //   welding            vertices with exactly equal coordinates (−0 == +0) become one index, the

@@ -72,7 +72,7 @@ class SceneReader {
     size_t read = 0;                   ///< mesh leaves: its file's entry in reads_
   };
   /// One distinct mesh file, read once however many leaves place it (instances: the 10-leaf
-  /// preview scene reads 6 files for 10 leaves, and parsing was a third of its load).
+  /// preview scene reads 6 files for 10 leaves).
   struct FileRead {
     std::filesystem::path file;
     PolygonMesh mesh;                   ///< as read; each leaf transforms a copy
@@ -316,7 +316,7 @@ class SceneReader {
   }
 
  public:
-  /// Makes one mesh a leaf (orient.h, CONTRACT.md "Semantics"): coordinates within
+  /// Makes one mesh a leaf (orient.h, docs/cli.md#semantics): coordinates within
   /// ±kMaxCoordinate; repeated loops read once; a closed leaf re-oriented consistently; an
   /// inside-out leaf reversed. `where` names the leaf in messages.
   /// `topology`: validate_mesh of the same index lists before any transform (FileRead), or

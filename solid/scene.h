@@ -1,5 +1,5 @@
 #pragma once
-// Loading an INPUT (CONTRACT.md "Input"): a mesh file (one leaf) or a JSON scene (a CSG
+// Loading an INPUT (docs/cli.md#input): a mesh file (one leaf) or a JSON scene (a CSG
 // expression of mesh / box / sphere / cylinder leaves with transforms).
 
 #include <filesystem>

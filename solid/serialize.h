@@ -1,6 +1,6 @@
 #pragma once
 // A Solid as bytes and back: how a Model travels to other processes (Python pickling, Dask
-// workers; DESIGN.md §10) without re-reading its files or re-applying transforms, so every
+// workers; docs/scale-out.md) without re-reading its files or re-applying transforms, so every
 // process sees the same doubles and the same expression.
 //
 // Format (little-endian, version 1):
@@ -9,7 +9,8 @@
 //   f64[3·vertices]  u32[faces + 1] face_start  u32[face_vertices]  u32[faces] face_leaf
 //   i8[faces] face_sign
 //   per leaf: u32 name bytes, name, u32 origin bytes, origin, u32 first_face, face_count,
-//             first_vertex, vertex_count, u8 flags (1: flipped, 2: open; boxes are recomputed on reading)
+//             first_vertex, vertex_count, u8 flags (1: flipped, 2: open; boxes are recomputed
+//             on reading)
 //   per node: u8 op, u32 leaf, u32 children, u32[children]
 // Reading checks everything a kernel relies on (solid.h notation), as loading checks a file:
 //   layout     counts against the byte length before anything is allocated; offsets

@@ -92,10 +92,10 @@ Solid complement(Solid a) {
 
 namespace {
 
-/// Concatenates parts (paper §4 union) and roots them under a new node of kind `op`.
+/// Concatenates parts ([Segura2004 §4] union) and roots them under a new node of kind `op`.
 /// Reverses the faces of parts[1..] when `flip_rest` (difference). The arrays are reserved once
-/// for all parts (growing them part by part reallocated and copied them again, into fresh
-/// memory) and filled in parallel chunks (each element on its own: the same for any threads).
+/// for all parts (so no part is copied twice or into fresh memory again) and filled in parallel
+/// chunks (each element on its own: the same for any threads).
 Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
   if (parts.empty()) throw PreconditionError("CSG operation without operands");
   Solid out = std::move(parts[0]);

@@ -1,5 +1,5 @@
 #pragma once
-// The non-evaluated solid (paper §3–§4, DESIGN.md §1).
+// The non-evaluated solid ([Segura2004 §3–§4]; docs/design.md#data-flow).
 //
 // Notation
 //   V        vertex array shared by every leaf (doubles, transforms already applied)
@@ -93,7 +93,7 @@ Solid make_leaf(PolygonMesh mesh, std::string name, std::string origin = {});
 /// The leaf's faces in the leaf's OWN orientation, with its own vertex numbering (0-based).
 PolygonMesh leaf_mesh(const Solid& solid, uint32_t leaf);
 
-/// Complement (paper §4): every face reversed, every sign negated.
+/// Complement ([Segura2004 §4]): every face reversed, every sign negated.
 Solid complement(Solid a);
 /// Union of one or more solids (concatenation).
 /// \throws PreconditionError for no operands (also intersect(), subtract()).

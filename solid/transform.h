@@ -1,6 +1,6 @@
 #pragma once
-// Affine transforms of leaves (CONTRACT.md "transform"). Applied once to the vertices, rounded
-// to doubles; everything after that is exact on those doubles (DESIGN.md §2).
+// Affine transforms of leaves (docs/cli.md#scenes). Applied once to the vertices, rounded
+// to doubles; everything after that is exact on those doubles (docs/design.md#exactness).
 
 #include <Eigen/Core>
 

@@ -3,8 +3,8 @@
 //   half-edge h  a position in face_vertices: (from, to) = (loop[i], loop[i+1]) of face f's loop,
 //                wrapping; h is present when from != to (a repeated index is not an edge).
 //                next(h) / prev(h) are the neighbouring present half-edges of the same face.
-//   false pair   (u,v) and (v,u) in the same face (paper §3 Fig. 1): an edge of its own, glued
-//                only to itself, never a side of a surface edge.
+//   false pair   (u,v) and (v,u) in the same face ([Segura2004 §3 Fig. 1]): an edge of its
+//                own, glued only to itself, never a side of a surface edge.
 //   real edge    the other present half-edges, grouped by undirected vertex pair: its sides.
 //   mate[h]      the two halves of a false pair are mates; the sides of a real edge are linked in
 //                a cycle (a manifold edge: the other side); a boundary side has none (kNone).

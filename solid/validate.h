@@ -1,8 +1,8 @@
 #pragma once
 // Topological and geometric validation of one leaf mesh (what `cover info` reports per leaf).
 // Edges are undirected vertex-index pairs of the faces' loops; a repeated consecutive index is not
-// an edge. False edges (a pair used once in each direction inside the SAME face, paper §3 Fig. 1)
-// are not edges of the surface: they are never a side of an edge below. Conventions:
+// an edge. False edges (a pair used once in each direction inside the SAME face, [Segura2004 §3
+// Fig. 1]) are not edges of the surface: they are never a side of an edge below. Conventions:
 //   boundary edge      used by exactly one face side
 //   non-manifold edge  used by more than two face sides
 //   manifold           no non-manifold edge and no pinched vertex (a vertex whose faces form more

@@ -93,7 +93,8 @@ inline PolygonMesh triangulate(const PolygonMesh& m) {
 }
 
 /// A box [lo, hi]³ with a square through-hole [hlo, hhi]² along z ("picture frame"): the top
-/// and bottom faces are single faces whose hole loop is joined by false edges (paper Fig. 1).
+/// and bottom faces are single faces whose hole loop is joined by false edges
+/// ([Segura2004 §3 Fig. 1]).
 inline PolygonMesh frame_box(double lo, double hi, double hlo, double hhi) {
   PolygonMesh m;
   // Outer corners 0..7 (bit0 x, bit1 y, bit2 z), inner corners 8..15 likewise.

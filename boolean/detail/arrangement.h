@@ -68,13 +68,11 @@ inline uint64_t edge_key(uint32_t a, uint32_t b) {
 /// Used by select_pieces (patches) and assemble (pairing): one counting pass by p
 /// (stable, so each bucket is in increasing h), then each bucket sorted by q, stably. A vertex
 /// is the smaller end of about three edges, six half-edges: those buckets take an insertion
-/// sort; a large one (a pole of many fans) std::stable_sort. (Two counting passes over
-/// (key, h) pairs, one by q and one by p, wrote and read 16-byte items twice over arrays of
-/// 3·m, fresh pages mostly; this pass moves 4-byte ids once: bunny00 − elephant's assembly,
-/// 240k half-edges, first in its process, 0.048–0.050 → 0.021–0.022 s.) The counting runs over
-/// kParts fixed parts of the half-edges in parallel (each part's counts per bucket, placed
-/// after the earlier parts' in the bucket: the serial order), and the buckets sort in parallel
-/// ranges: cheese ∪ fandisk's pieces, 100k half-edges, 2 → 1 ms on two threads.
+/// sort; a large one (a pole of many fans) std::stable_sort. One pass moves 4-byte ids once,
+/// where sorting (key, h) pairs by q and then by p would write and read 16-byte items twice over
+/// arrays of 3·m, mostly fresh pages. The counting runs over kParts fixed parts of the half-edges
+/// in parallel (each part's counts per bucket, placed after the earlier parts' in the bucket: the
+/// serial order), and the buckets sort in parallel ranges.
 template <class From, class To>
 void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t>& order,
                       std::vector<uint32_t>& start) {

@@ -34,9 +34,9 @@ struct CapStats {
   int64_t forced_ears = 0;                 ///< ear_clip fallbacks (0 on valid input)
 };
 
-/// Walks the border half-edges of each side into rings, nests them, bridges holes, decomposes
-/// and inserts the cap faces (paper §3, §4, §6); sets every constructed vertex's position to its
-/// exact point rounded to the nearest double. Throws NotComputable on inconsistent rings.
+/// Walks the border half-edges of each side into rings, nests them, bridges holes, decomposes and
+/// inserts the cap faces ([Erleben2006 §3, §4, §6]); sets every constructed vertex's position to
+/// its exact point rounded to the nearest double. Throws NotComputable on inconsistent rings.
 CapStats add_caps(HalfedgeMesh& mesh, CapContext& context);
 
 }  // namespace cover::brep::detail

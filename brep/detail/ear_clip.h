@@ -1,18 +1,19 @@
 #pragma once
-// Ear-clipping triangulation of one weakly simple polygon (O'Rourke 1998 §1.6; paper §4 uses the
-// same ear search). Shared by the cap (exact constructed points, cap.cpp) and by the splitting of
-// non-convex input faces (input doubles, clip.cpp); only the geometry callbacks differ.
+// Ear-clipping triangulation of one weakly simple polygon (O'Rourke 1998 §1.6; [Erleben2006 §4]
+// uses the same ear search). Shared by the cap (exact constructed points, cap.cpp) and by the
+// splitting of non-convex input faces (input doubles, clip.cpp); only the geometry callbacks
+// differ.
 //
 // Nodes 0..n−1 are the polygon's corners in counter-clockwise order. Nodes with equal id() are the
-// same point (a pinched vertex or both ends of a bridge, paper §6). An ear (a, b, c) is cut when b
-// is strictly convex and no other node blocks it: a reflex (or flat) node inside or on the closed
-// triangle, or a node at a corner's point whose edge leaves that corner into the triangle (or
-// along the diagonal a–c). Only reflex nodes and nodes sharing an id are tested (a convex node
-// inside an ear implies a reflex one inside). Valid ears whose tip is nearly flat
-// (Geometry::thin, a quality hint that never decides validity) are cut only when a full turn
-// finds no other: a near-collinear chain is then fanned from a far node instead of getting
-// slivers whose diagonals pass within rounding distance of the tip. No ear in a full turn only
-// happens on degenerate input: the first convex node (else any node) is cut and `forced` counts it.
+// same point (a pinched vertex or both ends of a bridge, [Erleben2006 §6]). An ear (a, b, c) is cut
+// when b is strictly convex and no other node blocks it: a reflex (or flat) node inside or on the
+// closed triangle, or a node at a corner's point whose edge leaves that corner into the triangle
+// (or along the diagonal a–c). Only reflex nodes and nodes sharing an id are tested (a convex node
+// inside an ear implies a reflex one inside). Valid ears whose tip is nearly flat (Geometry::thin,
+// a quality hint that never decides validity) are cut only when a full turn finds no other: a
+// near-collinear chain is then fanned from a far node instead of getting slivers whose diagonals
+// pass within rounding distance of the tip. No ear in a full turn only happens on degenerate input:
+// the first convex node (else any node) is cut and `forced` counts it.
 
 #include <algorithm>
 #include <array>

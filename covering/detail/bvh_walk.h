@@ -56,8 +56,8 @@ void walk(const Bvh& bvh, Meets&& meets, Visit&& visit) {
 /// misses overlap. Each level (and the leaf pass) first prefetches its first few entries, so a
 /// small batch gets its loads overlapped too: cast() of one ray is this walk with n = 1 (a level
 /// of one ray holds a few nodes). A small level also fetches whole treelets at their top (one
-/// wait for memory per kTreeletLevels levels; fetching its leaves' blocks as soon as they meet
-/// too made one ray 9–11% slower at 10k and 100k triangles and no faster at 1M). A
+/// wait for memory per kTreeletLevels levels; its leaves' blocks are not fetched as soon as they
+/// meet, which would slow a single ray down by about a tenth at 10k–100k triangles). A
 /// leaf's first and count are copied when its node is tested, so the leaf pass reads blocks
 /// only, no node lines. Measured in bench/bench_queries
 /// (BM_ClassifyPoint, batches of 1000 random points; BM_CastRay, one ray per call; 1 thread): see

@@ -5,7 +5,7 @@
 // box (exact comparisons), and an unmarked closed cell meets no leaf surface, so every leaf's
 // winding — hence the result's membership — is constant on it. Face-adjacent unmarked cells share
 // a face no surface touches, so a flood fill labels whole components from ONE exact
-// classification each (DESIGN.md §5 uses the same argument for octree cells).
+// classification each (octree/octree.h uses the same argument for its cells).
 // Used by classify() when many points are queried: most random points then cost one lookup.
 
 #include <array>

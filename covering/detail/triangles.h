@@ -1,10 +1,10 @@
 #pragma once
 // Covering triangles of every leaf, in the leaf's OWN orientation (internal to covering/).
-// Face f = (v0, v1, ..., vk) is covered by the fan (v0, vi, vi+1), i = 1..k−1 (paper Def. 5 with
-// the face's first vertex as the covering point). Fan triangles of a non-convex face or of a face
-// with false edges overlap with opposite signs, exactly as in the paper's covering. Triangles
-// whose three points are collinear (exactly) are dropped: they bound no volume and no point is
-// strictly inside their projection.
+// Face f = (v0, v1, ..., vk) is covered by the fan (v0, vi, vi+1), i = 1..k−1 ([Segura2004 §2 Def.
+// 5] with the face's first vertex as the covering point). Fan triangles of a non-convex face or of
+// a face with false edges overlap with opposite signs, exactly as in the paper's covering.
+// Triangles whose three points are collinear (exactly) are dropped: they bound no volume and no
+// point is strictly inside their projection.
 
 #include <cstdint>
 #include <vector>

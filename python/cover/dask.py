@@ -1,4 +1,4 @@
-"""Cover on a Dask cluster: lazily voxelized grids and classified point clouds (DESIGN.md §10).
+"""Cover on a Dask cluster: lazily voxelized grids and classified point clouds (docs/scale-out.md).
 
 ``cover.dask.voxelize(source, res)`` is a lazy ``dask.array`` of bool whose every chunk is one
 brick of the global grid, computed by a worker with ``Model.voxelize_brick``: the same centres and

@@ -1,12 +1,12 @@
-// brep::decompose (paper Fig. 20): the plane patcher report's cases (torus, knot, box with holes,
-// box with rings), a box with a cylindrical hole (evaluated scene), mechanical parts from
-// libcgal-demo; every piece exactly convex (is_convex_exact, itself checked to fail on a
-// non-convex mesh), closed and outward (kernel validity and CGAL is_closed /
-// is_outward_oriented), volumes summing to the input's to 1e-9, convex as written (OFF round
-// trip); separate solids (apart, touching along an edge or at a vertex) and cavities; scenes
-// that need the exact Nef fallback; the same pieces for any thread count; random points in
-// exactly one piece (exact classification); the three-point clip; errors; and the `cover
-// decompose` CLI (outputs, JSON keys, open mesh and .stl pieces → exit 2).
+// brep::decompose ([Erleben2006 §7 Fig. 20]): the plane patcher report's cases (torus, knot, box
+// with holes, box with rings), a box with a cylindrical hole (evaluated scene), mechanical parts
+// from libcgal-demo; every piece exactly convex (is_convex_exact, itself checked to fail on a
+// non-convex mesh), closed and outward (kernel validity and CGAL is_closed / is_outward_oriented),
+// volumes summing to the input's to 1e-9, convex as written (OFF round trip); separate solids
+// (apart, touching along an edge or at a vertex) and cavities; scenes that need the exact Nef
+// fallback; the same pieces for any thread count; random points in exactly one piece (exact
+// classification); the three-point clip; errors; and the `cover decompose` CLI (outputs, JSON keys,
+// open mesh and .stl pieces → exit 2).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Surface_mesh.h>

@@ -1,4 +1,4 @@
-// The `cover` program end to end (CONTRACT.md): commands, JSON keys, exit codes, errors.
+// The `cover` program end to end (docs/cli.md): commands, JSON keys, exit codes, errors.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// `cover clip` end to end (CONTRACT.md): outputs, JSON keys, scenes, exit status 2 on bad input.
+// `cover clip` end to end (docs/cli.md): outputs, JSON keys, scenes, exit status 2 on bad input.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

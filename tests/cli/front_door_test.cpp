@@ -1,4 +1,4 @@
-// The CLI's front-door contract (CONTRACT.md "Timing keys", `cover volume --exact`): every
+// The CLI's front-door contract (docs/cli.md: timing keys, `cover volume --exact`): every
 // command's --json output carries `seconds_detail` {load, kernel, write}, and `volume --exact`
 // equals `evaluate`'s volume on nested scenes.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Open meshes end to end (CONTRACT.md "Semantics"): every kernel command accepts the open
+// Open meshes end to end (docs/cli.md#semantics): every kernel command accepts the open
 // assimp-testmodels samples and open libcgal-demo meshes (exit 0, one warning naming the file,
 // its boundary edges and the rule); --closed-only refuses them (exit 2); evaluate and clip
 // refuse them (exit 2, naming the file); info reports the repair and the rule.

@@ -1,5 +1,5 @@
-// Output files and resource limits of every command (CONTRACT.md "Output conventions",
-// "--max-memory"), issue 17 groups 6 and 7: all outputs of a command are committed together or
+// Output files and resource limits of every command (docs/cli.md#conventions-of-every-command,
+// `--max-memory`), issue 17 groups 6 and 7: all outputs of a command are committed together or
 // not at all, links and modes survive, signals leave no temporary; estimates over --max-memory,
 // inputs that are not regular files and inputs over the limit are refused with exit 2.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// `cover classify --points FILE.npy` and `--output CLASSES.npy` end to end (CONTRACT.md "More
-// inputs and outputs"): .npy points written by numpy (float64, float32, big-endian, Fortran
+// `cover classify --points FILE.npy` and `--output CLASSES.npy` end to end (docs/cli.md,
+// `cover classify`): .npy points written by numpy (float64, float32, big-endian, Fortran
 // order) classify exactly as the same points in text; the classes file reads back through
 // numpy as uint8 codes of the words; malformed .npy files and other output names exit 2 with
 // one line naming the file, leaving no output behind.

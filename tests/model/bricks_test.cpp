@@ -1,7 +1,7 @@
 // The brick API of the facade (model/model.h voxel_lattice, voxelize_brick, classify_brick;
-// DESIGN.md §10): every brick equals the same region of the whole grid, brick classification
-// equals Model::classify of the centres and agrees with the voxels away from the boundary, the
-// tie rule holds in bricks, and non-cubic lattices follow their documented rule.
+// docs/scale-out.md#bricks): every brick equals the same region of the whole grid, brick
+// classification equals Model::classify of the centres and agrees with the voxels away from the
+// boundary, the tie rule holds in bricks, and non-cubic lattices follow their documented rule.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -29,7 +29,7 @@ TEST(Solid, DifferenceFlipsTheSubtrahend) {
   const Solid d = subtract({box({0, 0, 0}, {2, 2, 2}), box({0.5, 0.5, 0.5}, {1, 1, 1})});
   for (size_t f = 0; f < 6; ++f) EXPECT_EQ(d.face_sign[f], 1);
   for (size_t f = 6; f < 12; ++f) EXPECT_EQ(d.face_sign[f], -1);
-  // The summed covering is vol(A) − vol(B) (paper §4); each leaf keeps its own orientation.
+  // The summed covering is vol(A) − vol(B) ([Segura2004 §4]); each leaf keeps its own orientation.
   PolygonMesh all;
   all.vertices = d.vertices;
   for (size_t f = 0; f < d.face_count(); ++f) all.add_face(d.face(f));

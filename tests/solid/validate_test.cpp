@@ -93,7 +93,7 @@ PolygonMesh torus(uint32_t n, uint32_t k, double R = 3, double r = 1) {
 }
 
 /// Square frame [0,3]² minus the hole [1,2]², z in [0,1] (genus 1). Top and bottom are single
-/// faces whose outer loop and hole loop are joined by a false edge (paper §3 Fig. 1).
+/// faces whose outer loop and hole loop are joined by a false edge ([Segura2004 §3 Fig. 1]).
 PolygonMesh picture_frame() {
   PolygonMesh m;
   const double outer[4][2] = {{0, 0}, {3, 0}, {3, 3}, {0, 3}};
