@@ -273,7 +273,7 @@ void write_atomically(const fs::path& path, const std::function<bool(const fs::p
   if (const std::error_code error = copy_mode(target, temporary.path()))
     throw InputError(message + " (" + error.message() + ")");
   if (t_batch_open) {
-    t_pending.push_back({std::move(temporary), target, message});
+    t_pending.push_back({std::move(temporary), target, message, {}});
     return;
   }
   if (const std::error_code error = temporary.rename_to(target))

@@ -1,6 +1,7 @@
 #include <cover/cover.h>
 
 #include <iostream>
+#include <mutex>
 #include <vector>
 
 int main(int argc, char** argv) {  // argv[1]: a scene (default: Cover's models/default.json)
@@ -13,4 +14,6 @@ int main(int argc, char** argv) {  // argv[1]: a scene (default: Cover's models/
   const cover::EvaluateResult brep = half.evaluate();  // one closed, outward 2-manifold
   cover::write_mesh("half.off", brep.mesh);
   std::cout << brep.mesh.face_count() << " faces, volume " << brep.volume << '\n';
+  static std::once_flag once;  // the consumer's own std::call_once: the C library's pthread_once
+  std::call_once(once, [] {});
 }

@@ -158,7 +158,9 @@ TEST(Model, WindingOfAnOpenLeafIsItsRoundedGeneralizedWindingNumber) {
       above_one += std::abs(w.winding[2 * i]) > 1;
       // The closed box's column: its exact winding number.
       leaf_windings(m.solid(), points[i], crossing, on);
-      if (!on[1]) EXPECT_EQ(w.winding[2 * i + 1], crossing[1]) << i;
+      if (!on[1]) {
+        EXPECT_EQ(w.winding[2 * i + 1], crossing[1]) << i;
+      }
     }
     EXPECT_GT(checked, 2000) << copies;
     EXPECT_EQ(wrong_membership, 0) << copies;
