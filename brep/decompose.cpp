@@ -521,16 +521,20 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
   };
   // The exact convex parts of a cut-tree node, if the fallback can build them and they change it
   // by no more than `tolerance`; the pieces cut from the node are then replaced by them.
-  auto redo_node = [&](uint32_t node) {
-    if (nodes[node].mesh.face_count() > kMaxFallbackFaces) return false;
-    PolygonMesh tri;
+  // The Nef fallback's hulls of `mesh` if it can build them within `tolerance`.
+  auto nef_within = [&](const PolygonMesh& mesh) {
+    std::optional<std::pair<std::vector<PolygonMesh>, double>> nef;
+    if (mesh.face_count() > kMaxFallbackFaces) return nef;
     try {
-      tri = triangulated(nodes[node].mesh);
+      nef = nef_hulls(triangulated(mesh));
     } catch (const InputError&) {
-      return false;
     }
-    auto nef = nef_hulls(tri);
-    if (!nef || nef->second > tolerance) return false;
+    if (nef && nef->second > tolerance) nef.reset();
+    return nef;
+  };
+  auto redo_node = [&](uint32_t node) {
+    auto nef = nef_within(nodes[node].mesh);
+    if (!nef) return false;
     // Earlier fallbacks inside this node are superseded.
     for (size_t k = 0; k < redone.size(); ++k)
       if (descends(redone[k].first, node)) {
@@ -549,18 +553,11 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
   // input points) can take minutes on a few thousand faces.
   for (size_t i = 0; i < n; ++i) {
     if (change[i] <= tolerance || replaced[i] != kNone) continue;
-    if (finished[i].mesh.face_count() <= kMaxFallbackFaces) {
-      std::optional<std::pair<std::vector<PolygonMesh>, double>> nef;
-      try {
-        nef = nef_hulls(triangulated(finished[i].mesh));
-      } catch (const InputError&) {
-      }
-      if (nef && nef->second <= tolerance) {
-        hulls[i] = std::move(nef->first);
-        change[i] = nef->second;
-        ++fallbacks;
-        continue;
-      }
+    if (auto nef = nef_within(finished[i].mesh)) {
+      hulls[i] = std::move(nef->first);
+      change[i] = nef->second;
+      ++fallbacks;
+      continue;
     }
     // A sliver that rounding folded (its points coincide or cross: no Nef polyhedron) whose
     // volume is within `tolerance`: dropped, and its volume counted as its change.
@@ -572,11 +569,12 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
     }
     // Up the tree through the small nodes (rounded points too: often no Nef polyhedron either),
     // then the shell.
-    uint32_t node = finished[i].node;
-    for (; node != 0 && nodes[node].mesh.face_count() <= kMaxLocalFallbackFaces;
+    bool done = false;
+    for (uint32_t node = finished[i].node;
+         !done && node != 0 && nodes[node].mesh.face_count() <= kMaxLocalFallbackFaces;
          node = nodes[node].parent)
-      if (redo_node(node)) break;
-    if (node == 0 || nodes[node].mesh.face_count() > kMaxLocalFallbackFaces) redo_node(0);
+      done = redo_node(node);
+    if (!done) redo_node(0);
   }
   std::vector<PolygonMesh> out;
   double total = 0;
