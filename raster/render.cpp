@@ -130,8 +130,7 @@ double render_bytes(int width, int height) {
   return static_cast<double>(width) * height * kPerPixel;
 }
 
-bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/,
-                             const RenderOptions& o) {
+bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/, const RenderOptions& o) {
   const bool applies = !solid.has_open_leaf();
   if (o.method == RenderMethod::kObjectOrder && !applies)
     throw InputError("render: the object-order method needs closed leaves");
