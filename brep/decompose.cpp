@@ -16,9 +16,10 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstdio>
-#include <optional>
 #include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -37,6 +38,7 @@
 #include "solid/predicates.h"
 #include "solid/triangulate.h"
 #include "solid/union_find.h"
+#include "solid/validate.h"
 
 namespace cover::brep {
 namespace {
@@ -74,12 +76,16 @@ struct Piece {
   PolygonMesh mesh;
   std::vector<uint32_t> source;  ///< per face: input triangle, or kNoFace (cap)
   uint32_t node = 0;             ///< the cut-tree node (CutNode) it was cut from
+  detail::HalfSpace cut{};       ///< the half of that node's cut it is a component of
+  bool from_cut = false;         ///< false for a shell that was never cut (no `cut`)
 };
 
 /// A piece that was cut (node 0: the shell itself), kept for the fallback.
 struct CutNode {
   PolygonMesh mesh;
-  uint32_t parent;  ///< kNone for node 0
+  uint32_t parent;          ///< kNone for node 0
+  detail::HalfSpace cut{};  ///< the half of the parent's cut it is a component of
+  bool from_cut = false;    ///< false for node 0 and the shell's own node (no `cut`)
 };
 
 uint64_t key(uint32_t a, uint32_t b) { return uint64_t{a} << 32 | b; }
@@ -422,7 +428,12 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
       }
       parts.clear();
       components(c.below, p.source, parts);
+      const size_t below = parts.size();
       components(c.above, p.source, parts);
+      for (size_t k = 0; k < parts.size(); ++k) {
+        parts[k].cut = {cut.plane, k >= below};
+        parts[k].from_cut = true;
+      }
       const Vec3 a = p.mesh.vertices[cut.edge.u], b = p.mesh.vertices[cut.edge.v];
       // Rounding can leave a half that is no closed 2-manifold (a constructed point rounded
       // across a sliver): then this plane fails too.
@@ -457,7 +468,7 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
       continue;
     }
     const auto node = static_cast<uint32_t>(nodes.size());
-    nodes.push_back({std::move(p.mesh), p.node});
+    nodes.push_back({std::move(p.mesh), p.node, p.cut, p.from_cut});
     for (Piece& part : parts) {
       part.node = node;
       todo.push_back(std::move(part));
@@ -475,10 +486,43 @@ void add_hull(std::span<const Vec3> pts, std::vector<PolygonMesh>& out) {
   if (signed_volume(hull) > 0) out.push_back(std::move(hull));
 }
 
+/// The winding number of `mesh` around q (Σ of its fan triangles' solid angles / 4π; doubles):
+/// about 1 deep inside a closed outward mesh, 0 outside, even where rounding folded a few faces.
+double winding(const PolygonMesh& mesh, const Vec3& q) {
+  double sum = 0;
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto v = mesh.face(f);
+    for (size_t k = 1; k + 1 < v.size(); ++k) {
+      const Vec3 a = mesh.vertices[v[0]] - q, b = mesh.vertices[v[k]] - q,
+                 c = mesh.vertices[v[k + 1]] - q;
+      const double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b)), lc = std::sqrt(dot(c, c));
+      const double det = dot(a, cross(b, c));
+      const double denom = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+      sum += 2 * std::atan2(det, denom);
+    }
+  }
+  return sum / (4 * 3.14159265358979323846);
+}
+
 double volume_of(const std::vector<PolygonMesh>& meshes) {
   double sum = 0;
   for (const PolygonMesh& m : meshes) sum += signed_volume(m);
   return sum;
+}
+
+/// Whether CGAL's Nef polyhedron of the triangle mesh `tris` can be built safely: no triangle of
+/// zero area, no two vertices at one point, no self-intersection (all exact). Rounding can fold a
+/// cut piece so; Nef's convex decomposition of such a mesh may crash rather than fail.
+bool nef_safe(const PolygonMesh& tris) {
+  std::vector<Vec3> points(tris.vertices.begin(), tris.vertices.end());
+  std::sort(points.begin(), points.end(), [](const Vec3& a, const Vec3& b) {
+    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  });
+  if (std::adjacent_find(points.begin(), points.end()) != points.end()) return false;
+  const std::span<const Vec3> all(tris.vertices.data(), tris.vertices.size());
+  for (size_t f = 0; f < tris.face_count(); ++f)
+    if (all_collinear(all, tris.face(f))) return false;
+  return !self_intersects(tris);
 }
 
 /// The exact convex parts of `mesh` (the Nef fallback) as hulls, and how much they change its
@@ -519,21 +563,82 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
       if (node == from) return true;
     return false;
   };
-  // The exact convex parts of a cut-tree node, if the fallback can build them and they change it
-  // by no more than `tolerance`; the pieces cut from the node are then replaced by them.
-  // The Nef fallback's hulls of `mesh` if it can build them within `tolerance`.
-  auto nef_within = [&](const PolygonMesh& mesh) {
+  // The Nef fallback's hulls of `mesh` if it can build them within `tolerance`; `input`: the
+  // shell itself (exact input points, no safety test needed).
+  auto nef_within = [&](const PolygonMesh& mesh, bool input = false) {
     std::optional<std::pair<std::vector<PolygonMesh>, double>> nef;
     if (mesh.face_count() > kMaxFallbackFaces) return nef;
     try {
-      nef = nef_hulls(triangulated(mesh));
+      const PolygonMesh tris = triangulated(mesh);
+      if (input || nef_safe(tris)) nef = nef_hulls(tris);
     } catch (const InputError&) {
     }
     if (nef && nef->second > tolerance) nef.reset();
     return nef;
   };
+  // The exact region of a piece or node (`mesh`, the last cut on its path `last` or none, its
+  // parent node `node`): the shell's Nef polyhedron within the mesh's box and the half-spaces of
+  // the cuts on its path (decompose.h "fallback"); its convex parts are those whose centres the
+  // rounded mesh winds around. Their hulls, and how much they change the mesh's volume, if Nef can
+  // build the region and the change is within `tolerance`.
+  std::unique_ptr<detail::ShellRegions> regions;  // built for the first piece that needs it
+  auto region_within = [&](const PolygonMesh& mesh, const detail::HalfSpace* last, uint32_t node) {
+    std::optional<std::pair<std::vector<PolygonMesh>, double>> out;
+    std::vector<detail::HalfSpace> cuts;
+    if (last) cuts.push_back(*last);
+    for (; node != 0; node = nodes[node].parent)
+      if (nodes[node].from_cut) cuts.push_back(nodes[node].cut);
+    std::reverse(cuts.begin(), cuts.end());
+    Bbox near, all;
+    for (const Vec3& p : mesh.vertices) near.add(p);
+    for (const Vec3& p : nodes[0].mesh.vertices) all.add(p);
+    // Rounded points lie within rounding of the exact region; the margin keeps all of it in the
+    // box (a part lost outside would show in the change).
+    const Vec3 d = all.max - all.min,
+               margin = 1e-6 * Vec3{d.x + d.y + d.z, d.x + d.y + d.z, d.x + d.y + d.z};
+    near.min = near.min - margin;
+    near.max = near.max + margin;
+    // Cuts with the whole box on their kept side change nothing there (most of a deep path).
+    std::erase_if(cuts, [&](const detail::HalfSpace& h) {
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 corner{k & 1 ? near.max.x : near.min.x, k & 2 ? near.max.y : near.min.y,
+                          k & 4 ? near.max.z : near.min.z};
+        const int side = orient3d(h.plane[0], h.plane[1], h.plane[2], corner);
+        if (h.above ? side < 0 : side > 0) return false;
+      }
+      return true;
+    });
+    if (!regions) regions = std::make_unique<detail::ShellRegions>(nodes[0].mesh);
+    const auto parts = regions->convex_parts(cuts, near);
+    if (!parts) return out;
+    std::vector<PolygonMesh> mine;
+    for (const std::vector<Vec3>& part : *parts) {
+      if (part.empty()) continue;
+      Vec3 centre{0, 0, 0};
+      for (const Vec3& p : part) centre = centre + p;
+      centre = (1.0 / static_cast<double>(part.size())) * centre;
+      if (winding(mesh, centre) > 0.5)
+        add_hull(std::span<const Vec3>(part.data(), part.size()), mine);
+    }
+    // What the exact parts differ from the rounded mesh by is rounding the other pieces' hulls
+    // share (a rounded sliver whose exact region is empty leaves a gap as large as itself).
+    const double moved = std::abs(volume_of(mine) - signed_volume(mesh));
+    if (moved <= tolerance) out.emplace(std::move(mine), moved);
+    return out;
+  };
+  // A node's fallback: its Nef parts when Nef can safely take its rounded mesh, else those of its
+  // exact region.
+  auto nef_or_region = [&](uint32_t node) {
+    auto nef = nef_within(nodes[node].mesh, node == 0);
+    if (!nef && node != 0)
+      nef = region_within(nodes[node].mesh, nodes[node].from_cut ? &nodes[node].cut : nullptr,
+                          nodes[node].parent);
+    return nef;
+  };
+  // The exact convex parts of a cut-tree node, if the fallback can build them within
+  // `tolerance`; the pieces cut from the node are then replaced by them.
   auto redo_node = [&](uint32_t node) {
-    auto nef = nef_within(nodes[node].mesh);
+    auto nef = nef_or_region(node);
     if (!nef) return false;
     // Earlier fallbacks inside this node are superseded.
     for (size_t k = 0; k < redone.size(); ++k)
@@ -549,8 +654,8 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
     return true;
   };
   // First the piece itself (its written doubles; usually tens of faces, so the Nef decomposition
-  // takes milliseconds), then the nodes up the cut tree, smallest first: the shell itself (exact
-  // input points) can take minutes on a few thousand faces.
+  // takes milliseconds), then its exact region, then the nodes up the cut tree, smallest first:
+  // the shell itself (exact input points) can take minutes on a few thousand faces.
   for (size_t i = 0; i < n; ++i) {
     if (change[i] <= tolerance || replaced[i] != kNone) continue;
     if (auto nef = nef_within(finished[i].mesh)) {
@@ -565,6 +670,13 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
     if (std::abs(volume) <= tolerance) {
       hulls[i].clear();
       change[i] = std::abs(volume);
+      continue;
+    }
+    const Piece& piece = finished[i];
+    if (auto exact = region_within(piece.mesh, piece.from_cut ? &piece.cut : nullptr, piece.node)) {
+      hulls[i] = std::move(exact->first);
+      change[i] = exact->second;
+      ++fallbacks;
       continue;
     }
     // Up the tree through the small nodes (rounded points too: often no Nef polyhedron either),

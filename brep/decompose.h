@@ -34,12 +34,16 @@
 //                piece that no candidate cuts is finished as it is. Cut pieces form a tree. A
 //                finished piece whose hull changes its volume by more than 1e-11 of the input's
 //                is redone by CGAL's exact convex_decomposition_3 (Nef polyhedra): of the piece
-//                itself (its written doubles); else, for a sliver (volume at most 1e-11 of the
-//                input's), the piece is dropped; else of the nearest node up the cut tree (nodes
-//                of at most 400 faces, then the shell, node 0, which has the exact input points)
-//                whose parts change it by no more than that (every piece cut from the node is
-//                then replaced), at most 20,000 triangles; the parts' points are rounded to
-//                doubles and hulled. Exact but slow on the shell.
+//                itself (its written doubles) when no two of its points coincide, no triangle has
+//                zero area and it does not intersect itself; else, for a sliver (volume at most
+//                1e-11 of the input's), the piece is dropped; else of its exact region (the
+//                shell's Nef polyhedron ∩ the piece's widened bounding box ∩ the closed half-space
+//                of every cut on its path; the parts the rounded piece winds around); else of the
+//                nearest node up the cut tree (nodes of at most 400 faces, each by its rounded
+//                mesh or its exact region, then the shell, node 0) whose parts change it by no
+//                more than that (every piece cut from the node is then replaced), at most 20,000
+//                triangles; the parts' points are rounded to doubles and hulled. Exact but slow
+//                on the shell.
 //   rounding     clip.h rounds constructed points to the nearest double, so a finished piece is
 //                convex in exact arithmetic but its written points may be very slightly
 //                non-convex. Each finished piece is therefore replaced by the exact convex hull
