@@ -10,10 +10,11 @@
 //
 // This definition has hidden visibility: it binds only the calls made from Cover's own objects
 // (the inline std::call_once of CGAL's and our headers, linked statically into the CLI, the
-// Python module and the tests); libc, libstdc++ and TBB keep glibc's. The linker pulls it from
-// libcover_solid.a through `--undefined=pthread_once` (solid/CMakeLists.txt), since libstdc++
-// refers to pthread_once only weakly; that option is set in Cover's build tree only, so a
-// program built against the installed package keeps glibc's pthread_once everywhere.
+// Python module and the tests); libc, libstdc++ and TBB keep glibc's. It is its own library,
+// cover_call_once, linked into Cover's build tree only and never installed; the linker pulls it
+// through `--undefined=pthread_once` (solid/CMakeLists.txt), since libstdc++ refers to
+// pthread_once only weakly. A program built against the installed package keeps glibc's
+// pthread_once everywhere.
 //
 // Semantics are pthread_once's: the routine runs once; concurrent callers wait until it has
 // returned; if it exits by an exception (std::call_once's callable threw) the flag is reset,
