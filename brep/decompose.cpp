@@ -488,6 +488,7 @@ void add_hull(std::span<const Vec3> pts, std::vector<PolygonMesh>& out) {
 
 /// The winding number of `mesh` around q (Σ of its fan triangles' solid angles / 4π; doubles):
 /// about 1 deep inside a closed outward mesh, 0 outside, even where rounding folded a few faces.
+/// (covering/gwn.h's triangle_winding is the same formula; brep does not depend on covering.)
 double winding(const PolygonMesh& mesh, const Vec3& q) {
   double sum = 0;
   for (size_t f = 0; f < mesh.face_count(); ++f) {
@@ -582,6 +583,12 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
   // rounded mesh winds around. Their hulls, and how much they change the mesh's volume, if Nef can
   // build the region and the change is within `tolerance`.
   std::unique_ptr<detail::ShellRegions> regions;  // built for the first piece that needs it
+  // Rounded points lie within rounding of the exact region; this margin around a rounded mesh's
+  // box keeps all of the region in it (a part lost outside would show in the change).
+  Bbox all;
+  for (const Vec3& p : nodes[0].mesh.vertices) all.add(p);
+  const double size = (all.max.x - all.min.x) + (all.max.y - all.min.y) + (all.max.z - all.min.z);
+  const Vec3 margin{1e-6 * size, 1e-6 * size, 1e-6 * size};
   auto region_within = [&](const PolygonMesh& mesh, const detail::HalfSpace* last, uint32_t node) {
     std::optional<std::pair<std::vector<PolygonMesh>, double>> out;
     std::vector<detail::HalfSpace> cuts;
@@ -589,13 +596,8 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
     for (; node != 0; node = nodes[node].parent)
       if (nodes[node].from_cut) cuts.push_back(nodes[node].cut);
     std::reverse(cuts.begin(), cuts.end());
-    Bbox near, all;
+    Bbox near;
     for (const Vec3& p : mesh.vertices) near.add(p);
-    for (const Vec3& p : nodes[0].mesh.vertices) all.add(p);
-    // Rounded points lie within rounding of the exact region; the margin keeps all of it in the
-    // box (a part lost outside would show in the change).
-    const Vec3 d = all.max - all.min,
-               margin = 1e-6 * Vec3{d.x + d.y + d.z, d.x + d.y + d.z, d.x + d.y + d.z};
     near.min = near.min - margin;
     near.max = near.max + margin;
     // Cuts with the whole box on their kept side change nothing there (most of a deep path).
