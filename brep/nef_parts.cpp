@@ -30,16 +30,50 @@ double nearest(const K::FT& x) {
 
 K::Point_3 point(const Vec3& p) { return {p.x, p.y, p.z}; }
 
-/// The Surface_mesh of `piece` (exact points); false when it is no closed 2-manifold.
-bool to_mesh(const PolygonMesh& piece, Mesh& mesh) {
-  std::vector<Mesh::Vertex_index> vs;
-  for (const Vec3& p : piece.vertices) vs.push_back(mesh.add_vertex(point(p)));
-  for (size_t f = 0; f < piece.face_count(); ++f) {
-    std::vector<Mesh::Vertex_index> loop;
-    for (uint32_t v : piece.face(f)) loop.push_back(vs[v]);
-    if (mesh.add_face(loop) == Mesh::null_face()) return false;
+/// The Nef polyhedron bounded by the closed, outward mesh `solid`, which may have several
+/// components (cavities: inward shells inside outer ones); nullopt when a component is no closed
+/// 2-manifold. Nef_polyhedron_3's constructor marks the inside of every closed surface whatever
+/// its orientation, so one mesh holding a shell and its cavity would come out filled; each
+/// component is built alone and they are combined by symmetric difference (a point is inside
+/// when an odd number of the nested shells enclose it).
+std::optional<Nef> nef_of(const PolygonMesh& solid) {
+  const size_t nv = solid.vertices.size();
+  std::vector<uint32_t> root(nv);
+  for (uint32_t v = 0; v < nv; ++v) root[v] = v;
+  auto find = [&](uint32_t x) {
+    while (root[x] != x) x = root[x] = root[root[x]];
+    return x;
+  };
+  for (size_t f = 0; f < solid.face_count(); ++f) {
+    const auto v = solid.face(f);
+    for (size_t k = 1; k < v.size(); ++k) {
+      const uint32_t a = find(v[0]), b = find(v[k]);
+      if (a != b) root[std::max(a, b)] = std::min(a, b);
+    }
   }
-  return CGAL::is_closed(mesh);
+  std::vector<std::vector<uint32_t>> faces_of(nv);  // per component root: its faces
+  for (uint32_t f = 0; f < solid.face_count(); ++f) faces_of[find(solid.face(f)[0])].push_back(f);
+  std::optional<Nef> out;
+  for (const std::vector<uint32_t>& faces : faces_of) {
+    if (faces.empty()) continue;
+    Mesh mesh;
+    std::vector<Mesh::Vertex_index> vs(nv, Mesh::null_vertex());
+    for (uint32_t f : faces) {
+      std::vector<Mesh::Vertex_index> loop;
+      for (uint32_t v : solid.face(f)) {
+        if (vs[v] == Mesh::null_vertex()) vs[v] = mesh.add_vertex(point(solid.vertices[v]));
+        loop.push_back(vs[v]);
+      }
+      if (mesh.add_face(loop) == Mesh::null_face()) return std::nullopt;
+    }
+    if (!CGAL::is_closed(mesh)) return std::nullopt;
+    Nef component(mesh);
+    if (out)
+      *out = *out ^ component;
+    else
+      out.emplace(std::move(component));
+  }
+  return out;
 }
 
 /// The convex parts of `nef` (exact points), rounded.
@@ -62,11 +96,9 @@ std::vector<std::vector<Vec3>> parts_of(Nef& nef) {
 
 std::vector<std::vector<Vec3>> nef_convex_parts(const PolygonMesh& piece) {
   try {
-    Mesh mesh;
-    if (!to_mesh(piece, mesh)) return {};
-    Nef nef(mesh);
-    if (!nef.is_simple()) return {};
-    return parts_of(nef);
+    std::optional<Nef> nef = nef_of(piece);
+    if (!nef || !nef->is_simple()) return {};
+    return parts_of(*nef);
   } catch (const std::exception&) {
     return {};
   }
@@ -78,8 +110,7 @@ struct ShellRegions::Impl {
 
 ShellRegions::ShellRegions(const PolygonMesh& shell) : impl_(std::make_unique<Impl>()) {
   try {
-    Mesh mesh;
-    if (to_mesh(shell, mesh)) impl_->shell.emplace(mesh);
+    impl_->shell = nef_of(shell);
   } catch (const std::exception&) {
   }
 }

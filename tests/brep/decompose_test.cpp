@@ -7,6 +7,8 @@
 // fallback; the same pieces for any thread count; random points in exactly one piece (exact
 // classification); the three-point clip; errors; and the `cover decompose` CLI (outputs, JSON keys,
 // open mesh and .stl pieces → exit 2).
+#include "brep/decompose.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Surface_mesh.h>
@@ -18,7 +20,8 @@
 #include <random>
 
 #include "brep/clip.h"
-#include "brep/decompose.h"
+#include "brep/detail/convex_hull.h"
+#include "brep/detail/nef_parts.h"
 #include "brep/halfedge.h"
 #include "helpers.h"
 #include "model/model.h"
@@ -281,6 +284,37 @@ TEST(Decompose, BoxWithACavity) {
   const brep::DecomposeResult r = brep::decompose(m);
   expect_valid_decomposition(r, 27.0 - 1.0 + 1.0, "box with a cavity");
   for (const PolygonMesh& p : r.pieces) EXPECT_FALSE(strictly_inside(p, {1.5, 1.5, 1.5}));
+}
+
+// The exact fallback's Nef polyhedra of a shell with a cavity: CGAL's Nef constructor marks the
+// inside of every closed surface whatever its orientation, so one mesh holding both would come
+// out filled (27, not 26), and every fallback of such a shell would miss the cavity's volume.
+TEST(DecomposeFallback, NefOfAShellWithACavityLeavesTheCavityOut) {
+  PolygonMesh m, inner;
+  add_box(m, {0, 0, 0}, {3, 3, 3});
+  add_box(inner, {1, 1, 1}, {2, 2, 2});
+  const auto b = static_cast<uint32_t>(m.vertices.size());
+  m.vertices.insert(m.vertices.end(), inner.vertices.begin(), inner.vertices.end());
+  for (size_t f = 0; f < inner.face_count(); ++f) {
+    const auto v = inner.face(f);
+    m.add_face({b + v[0], b + v[2], b + v[1]});
+  }
+  auto volume = [](const std::vector<std::vector<Vec3>>& parts) {
+    double sum = 0;
+    for (const std::vector<Vec3>& part : parts)
+      sum += signed_volume(brep::detail::convex_hull(std::span<const Vec3>(part)));
+    return sum;
+  };
+  EXPECT_DOUBLE_EQ(volume(brep::detail::nef_convex_parts(m)), 26.0);
+  const brep::detail::ShellRegions regions(m);
+  const auto whole = regions.convex_parts({}, Bbox{{-1, -1, -1}, {4, 4, 4}});
+  ASSERT_TRUE(whole.has_value());
+  EXPECT_DOUBLE_EQ(volume(*whole), 26.0);
+  // Above the plane z = 1.5 (through the cavity): 3 × 3 × 1.5 − 0.5.
+  const brep::detail::HalfSpace top{{Vec3{0, 0, 1.5}, Vec3{1, 0, 1.5}, Vec3{0, 1, 1.5}}, true};
+  const auto upper = regions.convex_parts(std::span(&top, 1), Bbox{{-1, -1, -1}, {4, 4, 4}});
+  ASSERT_TRUE(upper.has_value());
+  EXPECT_DOUBLE_EQ(volume(*upper), 13.0);
 }
 
 // Pieces as written (shortest round-trip doubles) are exactly convex, on a part whose cuts
