@@ -78,6 +78,7 @@ struct Piece {
   uint32_t node = 0;             ///< the cut-tree node (CutNode) it was cut from
   detail::HalfSpace cut{};       ///< the half of that node's cut it is a component of
   bool from_cut = false;         ///< false for a shell that was never cut (no `cut`)
+  bool uncut = false;            ///< finished with reflex edges: no plane through them worked
 };
 
 /// A piece that was cut (node 0: the shell itself), kept for the fallback.
@@ -331,6 +332,55 @@ void components(const ClipHalf& half, const std::vector<uint32_t>& parent_source
   }
 }
 
+/// Puts every cavity among the components out[first..] (volume below −`sliver`: an inward shell
+/// the cut did not cross) into one piece with the components whose bounding boxes meet its box,
+/// as roots() does for the input's shells: a cavity belongs to a shell around it, and only a
+/// later cut separates them. Cavities that meet no other component are left alone (the cut is
+/// then invalid).
+void join_cavities(std::vector<Piece>& out, size_t first, double sliver) {
+  const size_t n = out.size() - first;
+  if (n < 2) return;
+  std::vector<Bbox> boxes(n);
+  std::vector<uint8_t> cavity(n);
+  for (size_t i = 0; i < n; ++i) {
+    for (const Vec3& p : out[first + i].mesh.vertices) boxes[i].add(p);
+    cavity[i] = signed_volume(out[first + i].mesh) < -sliver;
+  }
+  if (std::none_of(cavity.begin(), cavity.end(), [](uint8_t c) { return c; })) return;
+  auto meets = [](const Bbox& a, const Bbox& b) {
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
+           a.min.z <= b.max.z && b.min.z <= a.max.z;
+  };
+  UnionFind groups(n);
+  for (size_t i = 0; i < n; ++i)
+    if (cavity[i])
+      for (size_t j = 0; j < n; ++j)
+        if (j != i && meets(boxes[i], boxes[j]))
+          groups.unite(static_cast<uint32_t>(i), static_cast<uint32_t>(j));
+  std::vector<Piece> joined;
+  std::vector<uint32_t> slot(n, kNone);
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t g = groups.find(static_cast<uint32_t>(i));
+    if (slot[g] == kNone) {
+      slot[g] = static_cast<uint32_t>(joined.size());
+      joined.emplace_back();
+    }
+    Piece& to = joined[slot[g]];
+    Piece& from = out[first + i];
+    const auto base = static_cast<uint32_t>(to.mesh.vertices.size());
+    to.mesh.vertices.insert(to.mesh.vertices.end(), from.mesh.vertices.begin(),
+                            from.mesh.vertices.end());
+    for (size_t f = 0; f < from.mesh.face_count(); ++f) {
+      std::vector<uint32_t> ids;
+      for (uint32_t v : from.mesh.face(f)) ids.push_back(base + v);
+      to.mesh.add_face(ids);
+    }
+    to.source.insert(to.source.end(), from.source.begin(), from.source.end());
+  }
+  out.resize(first);
+  for (Piece& p : joined) out.push_back(std::move(p));
+}
+
 /// Four points of `pts` not on one plane exist.
 bool spans_volume(std::span<const Vec3> pts) {
   size_t i1 = 1;
@@ -427,9 +477,12 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
         continue;
       }
       parts.clear();
+      const double sliver = kSliver * input_volume;
       components(c.below, p.source, parts);
+      join_cavities(parts, 0, sliver);
       const size_t below = parts.size();
       components(c.above, p.source, parts);
+      join_cavities(parts, below, sliver);
       for (size_t k = 0; k < parts.size(); ++k) {
         parts[k].cut = {cut.plane, k >= below};
         parts[k].from_cut = true;
@@ -439,7 +492,6 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
       // across a sliver): then this plane fails too.
       // Components of zero exact volume (slivers whose rounded volume is ~0 or negative) are
       // dropped; what they held is accounted for by the volume check of decompose().
-      const double sliver = kSliver * input_volume;
       const bool valid = std::all_of(parts.begin(), parts.end(), [&](const Piece& part) {
         try {
           const BrepReport v = validate(HalfedgeMesh::from_polygon_mesh(part.mesh));
@@ -464,6 +516,7 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
       // to the edge): the piece is kept as it is; its hull must then change it by no more than
       // rounding (checked by decompose()).
       ++result.uncut_pieces;
+      p.uncut = true;
       finished.push_back(std::move(p));
       continue;
     }
@@ -655,27 +708,35 @@ std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>&
     ++fallbacks;
     return true;
   };
-  // First the piece itself (its written doubles; usually tens of faces, so the Nef decomposition
-  // takes milliseconds), then its exact region, then the nodes up the cut tree, smallest first:
-  // the shell itself (exact input points) can take minutes on a few thousand faces.
+  // A piece finished because it had no reflex edge is convex in exact arithmetic, so its exact
+  // region is one part (or a few, with its siblings' parts within its box) and comes first:
+  // Nef's decomposition of its rounded points splits at every edge that rounding bent inwards
+  // (a tessellated 127-face piece: 71 s and about a thousand parts). A piece that no plane could
+  // cut has reflex edges: first the piece itself (its written doubles; usually tens of faces, so
+  // the Nef decomposition takes milliseconds), then its exact region. Then the nodes up the cut
+  // tree, smallest first: the shell itself (exact input points) can take minutes on a few
+  // thousand faces.
   for (size_t i = 0; i < n; ++i) {
     if (change[i] <= tolerance || replaced[i] != kNone) continue;
-    if (auto nef = nef_within(finished[i].mesh)) {
-      hulls[i] = std::move(nef->first);
-      change[i] = nef->second;
-      ++fallbacks;
-      continue;
-    }
-    // A sliver that rounding folded (its points coincide or cross: no Nef polyhedron) whose
-    // volume is within `tolerance`: dropped, and its volume counted as its change.
-    const double volume = signed_volume(finished[i].mesh);
-    if (std::abs(volume) <= tolerance) {
-      hulls[i].clear();
-      change[i] = std::abs(volume);
-      continue;
-    }
     const Piece& piece = finished[i];
-    if (auto exact = region_within(piece.mesh, piece.from_cut ? &piece.cut : nullptr, piece.node)) {
+    auto exact_region = [&] {
+      return region_within(piece.mesh, piece.from_cut ? &piece.cut : nullptr, piece.node);
+    };
+    std::optional<std::pair<std::vector<PolygonMesh>, double>> exact;
+    if (!piece.uncut) exact = exact_region();
+    if (!exact) exact = nef_within(piece.mesh);
+    if (!exact) {
+      // A sliver that rounding folded (its points coincide or cross: no Nef polyhedron) whose
+      // volume is within `tolerance`: dropped, and its volume counted as its change.
+      const double volume = signed_volume(piece.mesh);
+      if (std::abs(volume) <= tolerance) {
+        hulls[i].clear();
+        change[i] = std::abs(volume);
+        continue;
+      }
+      if (piece.uncut) exact = exact_region();
+    }
+    if (exact) {
       hulls[i] = std::move(exact->first);
       change[i] = exact->second;
       ++fallbacks;

@@ -28,17 +28,21 @@
 //   shells       the input is first split into its shells (detail/shells.h): solids apart or
 //                touching only along edges or at vertices are cut (and hulled) separately, so
 //                no piece spans two of them. A shell of negative volume (a cavity) is cut
-//                together with the shells whose bounding boxes meet it.
+//                together with the shells whose bounding boxes meet it; a cut that misses a
+//                cavity leaves it with the components of its half whose boxes meet it.
 //   fallback     a plane whose clip fails or leaves its edge in a half (rounded points of
 //                earlier cuts next to the edge) is discarded and the next candidate tried; a
 //                piece that no candidate cuts is finished as it is. Cut pieces form a tree. A
 //                finished piece whose hull changes its volume by more than 1e-11 of the input's
-//                is redone by CGAL's exact convex_decomposition_3 (Nef polyhedra): of the piece
+//                is redone by CGAL's exact convex_decomposition_3 (Nef polyhedra; a mesh's Nef
+//                is built per connected component, combined by symmetric difference, so cavities
+//                stay empty): a piece finished without reflex edges first by its exact region
+//                (the shell's Nef polyhedron ∩ the piece's widened bounding box ∩ the closed
+//                half-space of every cut on its path; the parts the rounded piece winds around),
+//                which is convex; then (first for a piece no plane could cut) of the piece
 //                itself (its written doubles) when no two of its points coincide, no triangle has
 //                zero area and it does not intersect itself; else, for a sliver (volume at most
-//                1e-11 of the input's), the piece is dropped; else of its exact region (the
-//                shell's Nef polyhedron ∩ the piece's widened bounding box ∩ the closed half-space
-//                of every cut on its path; the parts the rounded piece winds around); else of the
+//                1e-11 of the input's), the piece is dropped; else of its exact region; else of the
 //                nearest node up the cut tree (nodes of at most 400 faces, each by its rounded
 //                mesh or its exact region, then the shell, node 0) whose parts change it by no
 //                more than that (every piece cut from the node is then replaced), at most 20,000

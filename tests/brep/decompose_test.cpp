@@ -286,6 +286,20 @@ TEST(Decompose, BoxWithACavity) {
   for (const PolygonMesh& p : r.pieces) EXPECT_FALSE(strictly_inside(p, {1.5, 1.5, 1.5}));
 }
 
+// An L-shaped block with a spherical cavity away from its notch. With one candidate edge per cut,
+// the planes through the notch (the most reflex edge) miss the cavity, which is then a separate
+// inward component of one half: it stays with the component around it (such a cut used to be
+// invalid, leaving the block uncut for the slow whole-shell fallback).
+TEST(Decompose, ACavityStaysWithItsShellWhenACutMissesIt) {
+  const Model m =
+      (box({0, 0, 0}, {4, 1, 1}) | box({0, 0, 0}, {1, 4, 1})) - sphere({3.25, 0.5, 0.5}, 0.3, 12);
+  brep::DecomposeOptions o;
+  o.candidates = 1;
+  const brep::DecomposeResult r = brep::decompose(m.evaluate().mesh, o);
+  expect_valid_decomposition(r, m.evaluate().volume, "L with a cavity");
+  EXPECT_GT(r.cuts, r.failed_cuts);  // the block was cut (without the cavity kept: 3 of 3 failed)
+}
+
 // The exact fallback's Nef polyhedra of a shell with a cavity: CGAL's Nef constructor marks the
 // inside of every closed surface whatever its orientation, so one mesh holding both would come
 // out filled (27, not 26), and every fallback of such a shell would miss the cavity's volume.
