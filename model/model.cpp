@@ -1,6 +1,7 @@
 #include "model/model.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <chrono>
 #include <cmath>
@@ -11,30 +12,140 @@
 #include "covering/bounds.h"
 #include "covering/detail/bvh_walk.h"
 #include "solid/parallel.h"
-#include "solid/serialize.h"
 #include "solid/primitives.h"
+#include "solid/serialize.h"
 
 namespace cover {
 
-// The shared, immutable state of a Model and its copies. The BVH is built on first use under
-// std::call_once (a throwing build leaves the flag unset, so a later call retries).
+// The shared, immutable state of a Model and its copies: a node of a lazy CSG tree (Manifold's
+// csg_tree does the same). A leaf state holds its solid; an operator state holds its operation
+// and operands, O(1) to build, and builds its solid on first use: a chain of one operator
+// (m = m | part in a loop) is collected into one n-ary operation over the operands' solids, so it
+// costs O(total size), where building each intermediate solid would copy O(n²). The solid, the
+// BVH and the open-leaf trees are built once under std::call_once (a throwing build leaves the
+// flag unset, so a later call retries).
 struct Model::State {
-  Solid solid;
-  std::vector<std::string> warnings;
+  CsgOp op = CsgOp::kLeaf;                ///< kLeaf: `solid` is set at construction
+  std::shared_ptr<const State> lhs, rhs;  ///< operands (rhs null for kComplement)
+  size_t leaves = 0;                      ///< leaf count, known without building
+  mutable std::once_flag solid_once;
+  mutable std::atomic<bool> built{false};
+  mutable Solid solid;
+  mutable std::vector<std::string> warnings;
   mutable std::once_flag bvh_once;
   mutable std::optional<Bvh> bvh;
   mutable std::once_flag gwn_once;
   mutable std::optional<GwnForest> gwn;  ///< open leaves' winding-number trees (covering/gwn.h)
+
+  State() = default;
+  State(const State&) = delete;
+  State& operator=(const State&) = delete;
+  ~State();
+
+  const Solid& get() const;
+  /// The operands of this node's operation once chains of it are collected (left to right):
+  /// unbuilt operands of the same union or intersection are opened, as is the unbuilt left
+  /// operand of a difference ((a − b) − c = a − b − c). Iterative: chains may be long.
+  std::vector<const State*> operands() const;
 };
 
-namespace {
+// Iterative teardown: destroying the last owner of a long chain would otherwise recurse once per
+// node (100,000 chained unions overflow the call stack). Operands this state alone owns are
+// emptied of their own operands before they die.
+Model::State::~State() {
+  std::vector<std::shared_ptr<const State>> pending;
+  auto take = [&](std::shared_ptr<const State>& p) {
+    if (p && p.use_count() == 1) pending.push_back(std::move(p));
+  };
+  take(lhs);
+  take(rhs);
+  while (!pending.empty()) {
+    std::shared_ptr<const State> s = std::move(pending.back());
+    pending.pop_back();
+    auto* last = const_cast<State*>(s.get());  // the only owner: nothing else sees it
+    take(last->lhs);
+    take(last->rhs);
+  }
+}
 
-std::vector<std::string> joined(const std::vector<std::string>& a,
-                                const std::vector<std::string>& b) {
-  std::vector<std::string> out = a;
-  out.insert(out.end(), b.begin(), b.end());
+std::vector<const Model::State*> Model::State::operands() const {
+  std::vector<const State*> out;
+  if (op == CsgOp::kComplement) return {lhs.get()};
+  if (op == CsgOp::kDifference) {
+    std::vector<const State*> right;  // subtrahends, last first
+    const State* s = this;
+    for (; s->op == CsgOp::kDifference && (s == this || !s->built.load(std::memory_order_acquire));
+         s = s->lhs.get())
+      right.push_back(s->rhs.get());
+    out.push_back(s);
+    out.insert(out.end(), right.rbegin(), right.rend());
+    return out;
+  }
+  std::vector<const State*> stack{rhs.get(), lhs.get()};
+  while (!stack.empty()) {
+    const State* s = stack.back();
+    stack.pop_back();
+    if (s->op == op && !s->built.load(std::memory_order_acquire)) {
+      stack.push_back(s->rhs.get());
+      stack.push_back(s->lhs.get());
+    } else {
+      out.push_back(s);
+    }
+  }
   return out;
 }
+
+const Solid& Model::State::get() const {
+  if (built.load(std::memory_order_acquire)) return solid;
+  // The unbuilt nodes under this one that its build needs, children before parents (an
+  // explicit stack: a deep tree of alternating operators must not overflow the call stack).
+  std::vector<const State*> order;
+  std::vector<std::pair<const State*, bool>> stack{{this, false}};
+  while (!stack.empty()) {
+    auto [s, expanded] = stack.back();
+    stack.pop_back();
+    if (s->built.load(std::memory_order_acquire)) continue;
+    if (expanded) {
+      order.push_back(s);
+      continue;
+    }
+    stack.emplace_back(s, true);
+    for (const State* c : s->operands())
+      if (!c->built.load(std::memory_order_acquire)) stack.emplace_back(c, false);
+  }
+  for (const State* s : order)
+    std::call_once(s->solid_once, [s] {
+      const std::vector<const State*> ops = s->operands();
+      std::vector<Solid> parts;
+      parts.reserve(ops.size());
+      std::vector<std::string> warnings;
+      for (const State* c : ops) {
+        parts.push_back(c->solid);  // built: children come first in `order`
+        warnings.insert(warnings.end(), c->warnings.begin(), c->warnings.end());
+      }
+      switch (s->op) {
+        case CsgOp::kUnion:
+          s->solid = unite(std::move(parts));
+          break;
+        case CsgOp::kIntersection:
+          s->solid = intersect(std::move(parts));
+          break;
+        case CsgOp::kDifference:
+          s->solid = subtract(std::move(parts));
+          break;
+        case CsgOp::kComplement:
+          s->solid = complement(std::move(parts[0]));
+          break;
+        case CsgOp::kLeaf:
+          break;
+      }
+      s->warnings = std::move(warnings);
+      s->built.store(true, std::memory_order_release);
+    });
+  return solid;
+}
+
+namespace {
 
 bool finite(Vec3 p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -71,9 +182,23 @@ void check_vec(Vec3 v, const std::string& what) {
 std::shared_ptr<const Model::State> Model::make_state(Solid solid,
                                                      std::vector<std::string> warnings) {
   auto state = std::make_shared<State>();
+  state->leaves = solid.leaves.size();
   state->solid = std::move(solid);
   state->warnings = std::move(warnings);
+  state->built.store(true, std::memory_order_release);
   return state;
+}
+
+Model Model::operation(CsgOp op, const Model& a, const Model* b) {
+  auto state = std::make_shared<State>();
+  state->op = op;
+  state->lhs = a.state_;
+  state->leaves = a.leaf_count();
+  if (b) {
+    state->rhs = b->state_;
+    state->leaves += b->leaf_count();
+  }
+  return Model(std::shared_ptr<const State>(std::move(state)));
 }
 
 Model::Model() : state_(make_state(Solid{}, {})) {}
@@ -81,18 +206,23 @@ Model::Model() : state_(make_state(Solid{}, {})) {}
 Model::Model(Solid solid, std::vector<std::string> warnings)
     : state_(make_state(std::move(solid), std::move(warnings))) {}
 
-const Solid& Model::solid() const { return state_->solid; }
+const Solid& Model::solid() const { return state_->get(); }
 
-const std::vector<std::string>& Model::warnings() const { return state_->warnings; }
+size_t Model::leaf_count() const { return state_->leaves; }
+
+const std::vector<std::string>& Model::warnings() const {
+  state_->get();
+  return state_->warnings;
+}
 
 const Bvh& Model::bvh() const {
-  std::call_once(state_->bvh_once, [this] { state_->bvh.emplace(state_->solid); });
+  std::call_once(state_->bvh_once, [this] { state_->bvh.emplace(solid()); });
   return *state_->bvh;
 }
 
 const GwnForest* Model::gwn() const {
   if (!solid().has_open_leaf()) return nullptr;
-  std::call_once(state_->gwn_once, [this] { state_->gwn.emplace(build_gwn(state_->solid)); });
+  std::call_once(state_->gwn_once, [this] { state_->gwn.emplace(build_gwn(solid())); });
   return &*state_->gwn;
 }
 
@@ -113,23 +243,66 @@ std::string open_leaf_message(const Solid& s) {
 Model operator|(const Model& a, const Model& b) {
   if (a.empty()) return b;
   if (b.empty()) return a;
-  return Model(unite({a.solid(), b.solid()}), joined(a.warnings(), b.warnings()));
+  return Model::operation(CsgOp::kUnion, a, &b);
 }
 
 Model operator&(const Model& a, const Model& b) {
   if (a.empty()) return a;
   if (b.empty()) return b;
-  return Model(intersect({a.solid(), b.solid()}), joined(a.warnings(), b.warnings()));
+  return Model::operation(CsgOp::kIntersection, a, &b);
 }
 
 Model operator-(const Model& a, const Model& b) {
   if (a.empty() || b.empty()) return a;
-  return Model(subtract({a.solid(), b.solid()}), joined(a.warnings(), b.warnings()));
+  return Model::operation(CsgOp::kDifference, a, &b);
 }
 
 Model Model::operator~() const {
   if (empty()) throw PreconditionError("complement of the empty Model (all of space has no leaf)");
-  return Model(complement(solid()), warnings());
+  return operation(CsgOp::kComplement, *this, nullptr);
+}
+
+Model union_all(std::span<const Model> models) {
+  Model out;
+  for (const Model& m : models) out = out | m;
+  return out;
+}
+
+Model intersection_all(std::span<const Model> models) {
+  if (models.empty())
+    throw PreconditionError("intersection_all of no Models (all of space has no leaf)");
+  Model out = models[0];
+  for (size_t i = 1; i < models.size(); ++i) out = out & models[i];
+  return out;
+}
+
+Model Model::translated(Vec3 offset) const {
+  check_vec(offset, "translate");
+  return transformed(make_trs({1, 1, 1}, {0, 0, 1}, 0, {offset.x, offset.y, offset.z}));
+}
+
+Model Model::scaled(Vec3 factors) const {
+  check_vec(factors, "scale");
+  if (factors.x == 0 || factors.y == 0 || factors.z == 0)
+    throw InputError("scale: every factor must be non-zero");
+  return transformed(make_trs({factors.x, factors.y, factors.z}, {0, 0, 1}, 0, {0, 0, 0}));
+}
+
+Model Model::rotated(Vec3 axis, double degrees) const {
+  check_vec(axis, "rotate");
+  if (axis == Vec3{}) throw InputError("rotate: the axis must be non-zero");
+  if (!std::isfinite(degrees)) throw InputError("rotate: the angle must be finite");
+  return transformed(make_trs({1, 1, 1}, {axis.x, axis.y, axis.z}, degrees, {0, 0, 0}));
+}
+
+Model Model::mirrored(Vec3 normal) const {
+  check_vec(normal, "mirror");
+  if (normal == Vec3{}) throw InputError("mirror: the normal must be non-zero");
+  // Householder reflection I − 2·n·nᵀ/|n|² through the plane through the origin.
+  const Eigen::Vector3d n(normal.x, normal.y, normal.z);
+  Affine m = Affine::Identity();
+  m.topLeftCorner<3, 3>() -= 2 * n * n.transpose() / n.squaredNorm();
+  return transformed(m);
 }
 
 Model Model::transformed(const Affine& m) const {

@@ -67,9 +67,9 @@ class Model {
   const Solid& solid() const;
   /// One line each, from loading and repairs (a leaf re-oriented, an open leaf, ...).
   const std::vector<std::string>& warnings() const;
-  size_t leaf_count() const { return solid().leaves.size(); }
+  size_t leaf_count() const;
   /// True for the empty Model (no leaf): the empty set.
-  bool empty() const { return solid().leaves.empty(); }
+  bool empty() const { return leaf_count() == 0; }
 
   /// The BVH of every covering triangle, built on first use (thread-safe) and shared by copies.
   const Bvh& bvh() const;
@@ -78,7 +78,9 @@ class Model {
   /// |w| > 1/2; classify, windings-free kernels (cast, render, voxelize, octree, volume) use it.
   const GwnForest* gwn() const;
 
-  /// Union, intersection, difference and complement (concatenation, [Segura2004 §4]).
+  /// Union, intersection, difference and complement (concatenation, [Segura2004 §4]). Lazy:
+  /// each builds a node in O(1); the solid is built on first use, a chain of one operator
+  /// (m = m | part in a loop) as one n-ary operation, O(total size).
   friend Model operator|(const Model& a, const Model& b);
   friend Model operator&(const Model& a, const Model& b);
   friend Model operator-(const Model& a, const Model& b);
@@ -88,6 +90,15 @@ class Model {
   /// mirror keeps leaves outward. \throws InputError when m is not affine (last row 0 0 0 1),
   /// not finite, singular, or maps a vertex outside ±kMaxCoordinate.
   Model transformed(const Affine& m) const;
+  /// transformed() by a translation, scale (non-zero factors per axis), rotation (about a
+  /// non-zero axis through the origin, right-handed, degrees) or mirror (through the plane
+  /// through the origin with a non-zero normal). \throws InputError as transformed(), and for a
+  /// zero factor, axis or normal, or a non-finite value.
+  Model translated(Vec3 offset) const;
+  Model scaled(Vec3 factors) const;
+  Model scaled(double factor) const { return scaled(Vec3{factor, factor, factor}); }
+  Model rotated(Vec3 axis, double degrees) const;
+  Model mirrored(Vec3 normal) const;
 
   /// The solid as bytes (solid/serialize.h): how a Model travels to another process (pickling,
   /// Dask workers) with the same doubles and expression; load warnings are not kept.
@@ -226,8 +237,16 @@ class Model {
 
   struct State;
   static std::shared_ptr<const State> make_state(Solid solid, std::vector<std::string> warnings);
+  /// The lazy node `op` over a (and b; nullptr for a complement).
+  static Model operation(CsgOp op, const Model& a, const Model* b);
+  explicit Model(std::shared_ptr<const State> state) : state_(std::move(state)) {}
   std::shared_ptr<const State> state_;
 };
+
+/// The union of all `models` (the empty Model for none), and the intersection of all (at least
+/// one; PreconditionError for none): O(total size), as one n-ary operation.
+Model union_all(std::span<const Model> models);
+Model intersection_all(std::span<const Model> models);
 
 /// Loads a mesh (one leaf) or a JSON scene (docs/cli.md#input), repaired as the CLI does.
 /// \throws InputError naming the file and the place (solid/scene.h load_input).

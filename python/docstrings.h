@@ -51,6 +51,18 @@ inline constexpr const char* kScale = R"(A new Model scaled about the origin by 
 inline constexpr const char* kRotate = R"(A new Model rotated about the line through the origin along `axis` (3 numbers,
 non-zero) by `degrees` (right-hand rule).)";
 
+inline constexpr const char* kMirror =
+    R"(A new Model reflected through the plane through the origin with normal `normal`
+(3 numbers, non-zero). Solids stay solid.)";
+inline constexpr const char* kUnionAll =
+    R"(The union of all Models in `models` (an iterable; the empty Model for none).
+
+Like a | b | ..., whose chains Cover also collects: one n-ary union, built in time linear in the
+total size.)";
+inline constexpr const char* kIntersectionAll =
+    R"(The intersection of all Models in `models` (at least one;
+PreconditionError for none).)";
+
 inline constexpr const char* kClassify = R"(Exact class of each point: uint8 (n,), codes indexing CLASS_NAMES.
 
 points: array-like (n, 3), converted once to float64 (no copy for a float64 C-contiguous

@@ -507,97 +507,120 @@ PYBIND11_MODULE(_cover, m) {
              return "<cover.Model: " + std::to_string(a.leaf_count()) + " leaves, " +
                     std::to_string(a.solid().face_count()) + " faces>";
            })
-      .def("__or__", [](const Model& a, const Model& b) { return a | b; }, py::is_operator(), doc::kOr)
-      .def("__and__", [](const Model& a, const Model& b) { return a & b; }, py::is_operator(), doc::kAnd)
-      .def("__sub__", [](const Model& a, const Model& b) { return a - b; }, py::is_operator(), doc::kSub)
-      .def("__invert__", [](const Model& a) { return ~a; }, doc::kInvert)
-      .def("transform", [](const Model& a, py::handle mat) { return a.transformed(matrix_arg(mat)); },
-           py::arg("M"), doc::kTransform)
-      .def("translate",
-           [](const Model& a, py::handle v) {
-             const Vec3 t = vec3_arg(v, "v");
-             return a.transformed(make_trs({1, 1, 1}, {0, 0, 1}, 0, {t.x, t.y, t.z}));
-           },
-           py::arg("v"), doc::kTranslate)
-      .def("scale",
-           [](const Model& a, py::handle s) {
-             Vec3 f;
-             py::array scalar = py::array::ensure(s);
-             if (!scalar) PyErr_Clear();
-             if (scalar && scalar.ndim() == 0) {
-               const double k = DoubleArray::ensure(scalar.reshape({1})).data()[0];
-               f = {k, k, k};
-             } else {
-               f = vec3_arg(s, "s");
-             }
-             check_scale(f);
-             return a.transformed(make_trs({f.x, f.y, f.z}, {0, 0, 1}, 0, {0, 0, 0}));
-           },
-           py::arg("s"), doc::kScale)
-      .def("rotate",
-           [](const Model& a, py::handle axis, double degrees) {
-             const Vec3 ax = vec3_arg(axis, "axis");
-             if (ax == Vec3{}) throw InputError("rotate: the axis must be non-zero");
-             return a.transformed(make_trs({1, 1, 1}, {ax.x, ax.y, ax.z}, degrees, {0, 0, 0}));
-           },
-           py::arg("axis"), py::arg("degrees"), doc::kRotate)
+      .def(
+          "__or__", [](const Model& a, const Model& b) { return a | b; }, py::is_operator(),
+          doc::kOr)
+      .def(
+          "__and__", [](const Model& a, const Model& b) { return a & b; }, py::is_operator(),
+          doc::kAnd)
+      .def(
+          "__sub__", [](const Model& a, const Model& b) { return a - b; }, py::is_operator(),
+          doc::kSub)
+      .def(
+          "__invert__", [](const Model& a) { return ~a; }, doc::kInvert)
+      .def(
+          "transform",
+          [](const Model& a, py::handle mat) { return a.transformed(matrix_arg(mat)); },
+          py::arg("M"), doc::kTransform)
+      .def(
+          "translate",
+          [](const Model& a, py::handle v) {
+            const Vec3 t = vec3_arg(v, "v");
+            return a.transformed(make_trs({1, 1, 1}, {0, 0, 1}, 0, {t.x, t.y, t.z}));
+          },
+          py::arg("v"), doc::kTranslate)
+      .def(
+          "scale",
+          [](const Model& a, py::handle s) {
+            Vec3 f;
+            py::array scalar = py::array::ensure(s);
+            if (!scalar) PyErr_Clear();
+            if (scalar && scalar.ndim() == 0) {
+              const double k = DoubleArray::ensure(scalar.reshape({1})).data()[0];
+              f = {k, k, k};
+            } else {
+              f = vec3_arg(s, "s");
+            }
+            check_scale(f);
+            return a.transformed(make_trs({f.x, f.y, f.z}, {0, 0, 1}, 0, {0, 0, 0}));
+          },
+          py::arg("s"), doc::kScale)
+      .def(
+          "rotate",
+          [](const Model& a, py::handle axis, double degrees) {
+            const Vec3 ax = vec3_arg(axis, "axis");
+            if (ax == Vec3{}) throw InputError("rotate: the axis must be non-zero");
+            return a.transformed(make_trs({1, 1, 1}, {ax.x, ax.y, ax.z}, degrees, {0, 0, 0}));
+          },
+          py::arg("axis"), py::arg("degrees"), doc::kRotate)
+      .def(
+          "mirror", [](const Model& a, py::handle n) { return a.mirrored(vec3_arg(n, "normal")); },
+          py::arg("normal"), doc::kMirror)
       .def("classify", &classify_points, py::arg("points"), py::kw_only(), threads, doc::kClassify)
       .def("winding", &winding_numbers, py::arg("points"), py::kw_only(), threads, doc::kWinding)
       .def("cast", &cast_rays, py::arg("origins"), py::arg("directions"), py::kw_only(), threads,
            doc::kCast)
-      .def("volume",
-           [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
-             return volume_result(a, exact, rays, t).volume;
-           },
-           py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
-           doc::kVolume)
-      .def("volume_info",
-           [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
-             const VolumeResult r = volume_result(a, exact, rays, t);
-             py::dict d("volume"_a = r.volume, "area"_a = r.area ? py::object(py::float_(*r.area)) : py::none(),
-                        "method"_a = r.method, "error_bound"_a = r.error_bound);
-             if (r.method == "rays") {
-               d["rays"] = r.rays;
-               d["target_met"] = r.target_met;
-             }
-             return d;
-           },
-           py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
-           doc::kVolumeInfo)
-      .def("bounds",
-           [](const Model& a) {
-             const std::optional<Bbox> b = a.bounds();
-             if (!b) throw NotComputable("bounds: the result is unbounded (a complement at the root)");
-             const double v[6] = {b->min.x, b->min.y, b->min.z, b->max.x, b->max.y, b->max.z};
-             return copy_array<double>(v, {2, 3});
-           },
-           doc::kBounds)
-      .def("voxel_bounds",
-           [](const Model& a, int res) {
-             if (res < 1 || res > kMaxVoxelDims)
-               throw InputError("res: expected a whole number from 1 to " +
-                                std::to_string(kMaxVoxelDims) + ", got " + std::to_string(res));
-             const VoxelBounds b = a.voxel_bounds(res);
-             return py::make_tuple(b.min.x, b.min.y, b.min.z, b.size);
-           },
-           py::arg("res"), doc::kVoxelBounds)
+      .def(
+          "volume",
+          [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
+            return volume_result(a, exact, rays, t).volume;
+          },
+          py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
+          doc::kVolume)
+      .def(
+          "volume_info",
+          [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
+            const VolumeResult r = volume_result(a, exact, rays, t);
+            py::dict d("volume"_a = r.volume,
+                       "area"_a = r.area ? py::object(py::float_(*r.area)) : py::none(),
+                       "method"_a = r.method, "error_bound"_a = r.error_bound);
+            if (r.method == "rays") {
+              d["rays"] = r.rays;
+              d["target_met"] = r.target_met;
+            }
+            return d;
+          },
+          py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
+          doc::kVolumeInfo)
+      .def(
+          "bounds",
+          [](const Model& a) {
+            const std::optional<Bbox> b = a.bounds();
+            if (!b)
+              throw NotComputable("bounds: the result is unbounded (a complement at the root)");
+            const double v[6] = {b->min.x, b->min.y, b->min.z, b->max.x, b->max.y, b->max.z};
+            return copy_array<double>(v, {2, 3});
+          },
+          doc::kBounds)
+      .def(
+          "voxel_bounds",
+          [](const Model& a, int res) {
+            if (res < 1 || res > kMaxVoxelDims)
+              throw InputError("res: expected a whole number from 1 to " +
+                               std::to_string(kMaxVoxelDims) + ", got " + std::to_string(res));
+            const VoxelBounds b = a.voxel_bounds(res);
+            return py::make_tuple(b.min.x, b.min.y, b.min.z, b.size);
+          },
+          py::arg("res"), doc::kVoxelBounds)
       .def("voxelize", &voxel_grid, py::arg("res"), py::arg("bounds") = py::none(), py::kw_only(),
            threads, doc::kVoxelize)
       .def("voxelize_brick", &voxel_brick, py::arg("res"), py::arg("box"),
            py::arg("bounds") = py::none(), py::kw_only(), threads, doc::kVoxelizeBrick)
-      .def("to_bytes",
-           [](const Model& a) {
-             const std::string bytes = a.to_bytes();
-             return py::bytes(bytes.data(), bytes.size());
-           },
-           doc::kToBytes)
-      .def_static("from_bytes",
-                  [](const py::bytes& bytes) {
-                    const std::string_view view = bytes;
-                    py::gil_scoped_release release;
-                    return Model::from_bytes(view);
-                  },
-                  py::arg("data"), doc::kFromBytes)
+      .def(
+          "to_bytes",
+          [](const Model& a) {
+            const std::string bytes = a.to_bytes();
+            return py::bytes(bytes.data(), bytes.size());
+          },
+          doc::kToBytes)
+      .def_static(
+          "from_bytes",
+          [](const py::bytes& bytes) {
+            const std::string_view view = bytes;
+            py::gil_scoped_release release;
+            return Model::from_bytes(view);
+          },
+          py::arg("data"), doc::kFromBytes)
       .def(py::pickle(
           [](const Model& a) {
             const std::string bytes = a.to_bytes();
@@ -630,6 +653,20 @@ PYBIND11_MODULE(_cover, m) {
           return warned(std::move(model));
         },
         py::arg("path"), py::kw_only(), py::arg("closed_only") = false, doc::kLoad);
+  // Any iterable of Models (a list, a generator), as Python's sum() takes.
+  auto models_arg = [](const py::iterable& models) {
+    std::vector<Model> out;
+    for (py::handle h : models) out.push_back(h.cast<Model>());
+    return out;
+  };
+  m.def(
+      "union_all",
+      [models_arg](const py::iterable& models) { return union_all(models_arg(models)); },
+      py::arg("models"), doc::kUnionAll);
+  m.def(
+      "intersection_all",
+      [models_arg](const py::iterable& models) { return intersection_all(models_arg(models)); },
+      py::arg("models"), doc::kIntersectionAll);
   m.def("box", [](py::handle lo, py::handle hi) { return box(vec3_arg(lo, "min"), vec3_arg(hi, "max")); },
         py::arg("min"), py::arg("max"), doc::kBox);
   m.def("sphere",

@@ -1,7 +1,9 @@
 """Cover: CSG solids without boundary evaluation (simplicial coverings).
 
 numpy in, numpy out. Build a Model with load(), box(), sphere(), cylinder() or mesh(), combine
-Models with | (union), & (intersection), - (difference) and ~ (complement), and query it:
+Models with | (union), & (intersection), - (difference) and ~ (complement) or union_all() and
+intersection_all(), move them with translate(), scale(), rotate(), mirror() and transform(),
+and query it:
 classify(), winding(), volume(), bounds(), voxelize(), cast(), render(), evaluate(), clip(),
 info(). See docs/python.md.
 """
@@ -16,9 +18,11 @@ from ._cover import (
     __version__,
     box,
     cylinder,
+    intersection_all,
     load,
     mesh,
     sphere,
+    union_all,
 )
 
 __all__ = [
@@ -31,7 +35,9 @@ __all__ = [
     "__version__",
     "box",
     "cylinder",
+    "intersection_all",
     "load",
     "mesh",
     "sphere",
+    "union_all",
 ]

@@ -85,6 +85,33 @@ def test_transforms_return_new_models():
         b.transform(np.eye(3))
 
 
+def test_mirror_union_all_and_intersection_all():
+    b = cover.box([0, 0, 0], [1, 2, 3])
+    m = b.mirror([1, 0, 0])
+    assert np.array_equal(m.bounds(), [[-1, 0, 0], [0, 2, 3]])
+    assert m.volume(exact=True) == 6.0  # a mirror keeps the solid solid
+    with pytest.raises(cover.InputError, match="normal"):
+        b.mirror([0, 0, 0])
+    # union_all equals the chained operator and numpy's "inside any box" on random points.
+    rng = np.random.default_rng(11)
+    lows = rng.uniform(0, 4, size=(60, 3))
+    boxes = [cover.box(lo, lo + 0.7) for lo in lows]
+    chained = boxes[0]
+    for part in boxes[1:]:
+        chained = chained | part
+    P = rng.uniform(-0.5, 5, size=(5000, 3))
+    inside_any = ((P[:, None, :] > lows[None]) & (P[:, None, :] < lows[None] + 0.7)).all(2).any(1)
+    for model in (cover.union_all(boxes), cover.union_all(iter(boxes)), chained):
+        assert model.leaves == 60
+        codes = model.classify(P)
+        assert np.array_equal(codes[np.isin(codes, [0, 1])] == 1, inside_any[np.isin(codes, [0, 1])])
+    assert cover.union_all([]).empty
+    both = cover.intersection_all([cover.box([0, 0, 0], [2, 2, 2]), cover.box([1, 1, 1], [3, 3, 3])])
+    assert both.volume(exact=True) == 1.0
+    with pytest.raises(cover.PreconditionError):
+        cover.intersection_all([])
+
+
 def test_mesh_classification_equals_numpy_ray_parity():
     V, F = octahedron()
     V = V * [1.3, 0.9, 1.1] + [0.1, -0.2, 0.05]

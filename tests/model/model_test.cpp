@@ -52,6 +52,116 @@ TEST(Model, OperatorsBuildTheConcatenatedSolid) {
   EXPECT_EQ(a.solid().tree.nodes.size(), 1u);
 }
 
+// The lazy tree against the eager concatenation: 300 seeded random expressions (unions,
+// intersections, differences, complements over boxes and spheres, chains included) classify a
+// point set exactly as the solid built operator by operator with solid/solid.h, and as it does
+// on its leaves' memberships (brute force).
+TEST(Model, LazyTreesEqualTheEagerSolidOnRandomExpressions) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(0, 3);
+  std::uniform_int_distribution<int> pick(0, 9);
+  const std::vector<Vec3> points = random_points(400, -0.5, 4, 7);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<std::pair<Model, Solid>> pool;
+    auto leaf = [&] {
+      const Vec3 c{u(rng), u(rng), u(rng)};
+      if (pick(rng) < 5) {
+        const Vec3 lo = c - Vec3{0.6, 0.5, 0.4}, hi = c + Vec3{0.5, 0.6, 0.7};
+        return std::pair{box(lo, hi), make_leaf(make_box(lo, hi), "box")};
+      }
+      return std::pair{sphere(c, 0.8, 8), make_leaf(make_sphere(c, 0.8, 8), "sphere")};
+    };
+    for (int i = 0; i < 4; ++i) pool.push_back(leaf());
+    const int steps = 2 + trial % 12;
+    for (int step = 0; step < steps; ++step) {
+      // Mostly chains onto the last result (the loop a CAD script writes), sometimes any two.
+      const size_t a = pick(rng) < 7 ? pool.size() - 1 : rng() % pool.size();
+      const auto [bm, bs] = pick(rng) < 6 ? leaf() : pool[rng() % pool.size()];
+      const auto& [am, as] = pool[a];
+      switch (pick(rng) % 5) {
+        case 0:
+        case 1:
+          pool.emplace_back(am | bm, unite({as, bs}));
+          break;
+        case 2:
+          pool.emplace_back(am & bm, intersect({as, bs}));
+          break;
+        case 3:
+          pool.emplace_back(am - bm, subtract({as, bs}));
+          break;
+        default:
+          pool.emplace_back(~am, complement(as));
+          break;
+      }
+    }
+    const auto& [model, solid] = pool.back();
+    ASSERT_EQ(model.leaf_count(), solid.leaves.size()) << "trial " << trial;
+    const std::vector<PointClass> got = model.classify(points);
+    ASSERT_EQ(got, classify(solid, points)) << "trial " << trial;
+    ASSERT_EQ(got, classify_brute_force(model.solid(), points)) << "trial " << trial;
+  }
+}
+
+// A chain of one operator is one n-ary node over its operands, built once; intermediate Models
+// of the chain stay usable and answer for their own prefix.
+TEST(Model, ChainedOperatorsBuildOneNaryNode) {
+  std::vector<Model> spheres;
+  std::vector<Solid> solids;
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 c{0.3 * i, 0.1 * (i % 7), 0};
+    spheres.push_back(sphere(c, 0.25, 8));
+    solids.push_back(make_leaf(make_sphere(c, 0.25, 8), "sphere"));
+  }
+  Model m, half;
+  for (int i = 0; i < 200; ++i) {
+    m = m | spheres[i];
+    if (i == 99) half = m;
+  }
+  EXPECT_EQ(m.leaf_count(), 200u);
+  EXPECT_EQ(m.solid().tree.nodes.size(), 201u);  // one union over 200 leaves
+  const std::vector<Vec3> points = random_points(3000, -0.5, 60, 8);
+  EXPECT_EQ(m.classify(points), classify(unite(solids), points));
+  EXPECT_EQ(half.leaf_count(), 100u);
+  EXPECT_EQ(half.classify(points),
+            classify(unite(std::vector<Solid>(solids.begin(), solids.begin() + 100)), points));
+  EXPECT_EQ(union_all(spheres).classify(points), m.classify(points));
+  // Differences chain on their left operand: a − s1 − s2 − ... is one difference node.
+  Model d = box({-1, -1, -1}, {61, 1, 1});
+  for (const Model& s : spheres) d = d - s;
+  EXPECT_EQ(d.solid().tree.nodes.size(), 202u);
+  std::vector<Solid> minus{make_leaf(make_box({-1, -1, -1}, {61, 1, 1}), "box")};
+  minus.insert(minus.end(), solids.begin(), solids.end());
+  EXPECT_EQ(d.classify(points), classify(subtract(minus), points));
+  EXPECT_EQ(intersection_all(std::vector<Model>{box({0, 0, 0}, {2, 2, 2}), sphere({2, 2, 2}, 1)})
+                .leaf_count(),
+            2u);
+  EXPECT_TRUE(union_all({}).empty());
+  EXPECT_THROW(intersection_all({}), PreconditionError);
+}
+
+// Long chains neither recurse when built nor when destroyed (20,000 and 100,000 nodes; one leaf
+// shared by every node), and a lazy Model
+// queried from several threads at once is built once.
+TEST(Model, LongChainsAndConcurrentFirstUse) {
+  const Model b = box({0, 0, 0}, {1, 1, 1});
+  {
+    Model m = b;
+    for (int i = 0; i < 100000; ++i) m = (i % 2) ? (m | b) : (m & b);
+  }  // destroyed without being built
+  Model m = b;
+  for (int i = 0; i < 20000; ++i) m = m | b;
+  EXPECT_EQ(m.leaf_count(), 20001u);
+  const Model lazy = m - sphere({0.5, 0.5, 0.5}, 0.25, 8);
+  const std::vector<Vec3> points{{0.5, 0.5, 0.5}, {0.9, 0.9, 0.9}, {2, 2, 2}};
+  std::vector<std::vector<PointClass>> got(4);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) threads.emplace_back([&, t] { got[t] = lazy.classify(points); });
+  for (std::thread& t : threads) t.join();
+  const std::vector<PointClass> expected{PointClass::kOutside, PointClass::kInside,
+                                         PointClass::kOutside};
+  for (const auto& g : got) EXPECT_EQ(g, expected);
+}
+
 TEST(Model, ClassifyEqualsBruteForceOnRandomAndLatticePoints) {
   const Model m = part();
   std::vector<Vec3> points = random_points(20000, -0.5, 4, 2);
@@ -216,6 +326,30 @@ TEST(Model, TransformedEqualsTransformingEveryLeaf) {
   bad(3, 0) = 1;
   EXPECT_THROW(part().transformed(bad), InputError);
   EXPECT_THROW(part().transformed(Affine::Zero()), InputError);
+}
+
+// translated / scaled / rotated / mirrored are transformed() by the matching matrices.
+TEST(Model, TranslateScaleRotateMirror) {
+  const Model m = part();
+  const std::vector<Vec3> points = random_points(3000, -8, 8, 9);
+  auto same = [&](const Model& a, const Affine& t) {
+    EXPECT_EQ(a.classify(points), m.transformed(t).classify(points));
+  };
+  same(m.translated({1, -2, 0.5}), make_trs({1, 1, 1}, {0, 0, 1}, 0, {1, -2, 0.5}));
+  same(m.scaled({2, 0.5, -1}), make_trs({2, 0.5, -1}, {0, 0, 1}, 0, {0, 0, 0}));
+  same(m.scaled(1.5), make_trs({1.5, 1.5, 1.5}, {0, 0, 1}, 0, {0, 0, 0}));
+  same(m.rotated({1, 1, 0}, 30), make_trs({1, 1, 1}, {1, 1, 0}, 30, {0, 0, 0}));
+  Affine flip = Affine::Identity();
+  flip(1, 1) = -1;
+  same(m.mirrored({0, 3, 0}), flip);
+  // A mirror keeps the solid solid.
+  EXPECT_DOUBLE_EQ(
+      box({0, 0, 0}, {1, 2, 3}).mirrored({1, 1, 1}).volume(VolumeOptions{.exact = true}).volume,
+      6.0);
+  EXPECT_THROW(m.scaled({1, 0, 1}), InputError);
+  EXPECT_THROW(m.rotated({0, 0, 0}, 10), InputError);
+  EXPECT_THROW(m.mirrored({0, 0, 0}), InputError);
+  EXPECT_THROW(m.translated({NAN, 0, 0}), InputError);
 }
 
 TEST(Model, CastAndFirstHitsEqualTheKernel) {
