@@ -411,7 +411,7 @@ def test_evaluate_cells_refuses_n_over_max_memory_before_evaluating():
     with pytest.raises(cover.InputError, match=r"evaluate_cells: n = 2000: the pieces need "
                                                r"23437500 MiB, over max_memory = 4096 MiB"):
         m.evaluate_cells(2000)
-    assert time.monotonic() - start < 1
+    assert time.monotonic() - start < 5  # refused up front: evaluating would take minutes
     block = cover.box([0.1, 0.2, 0.3], [0.9, 0.7, 0.8])
     assert len(block.evaluate_cells(10, max_memory=4)) > 0  # 10^3 cells: 3000 KiB
     with pytest.raises(cover.InputError, match="over max_memory = 4 MiB"):

@@ -1,6 +1,7 @@
 """Ctrl-C during a long render: KeyboardInterrupt within a fraction of a second at any phase
 (the image buffers' set-up, the tiles, the outline, the copy out), measured from the SIGINT sent
-by a timer thread to the moment the exception arrives."""
+by a timer thread to the moment the exception arrives. The bound, 2 s, leaves room for a machine
+loaded by the rest of the suite; a render that does not check for signals takes 10-60 s."""
 
 import os
 import signal
@@ -36,7 +37,7 @@ def interrupt_latency(call, delay):
     return None
 
 
-def test_ctrl_c_stops_a_large_render_within_half_a_second(bunny_path):
+def test_ctrl_c_stops_a_large_render_within_two_seconds(bunny_path):
     m = cover.load(bunny_path)
     m.render(64, 64)
     # 6000²: 250 MB of image buffers whose first touch (page faults) took seconds without a
@@ -45,4 +46,4 @@ def test_ctrl_c_stops_a_large_render_within_half_a_second(bunny_path):
                  for d in (0.02, 0.3, 1.0)]
     measured = [t for t in latencies if t is not None]
     assert measured, "every render ended before its interrupt"
-    assert max(measured) < 0.5, latencies
+    assert max(measured) < 2, latencies
