@@ -363,7 +363,7 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
 }
 
 // Issue 17, group 8: long renders showed no progress bar; the callback drives it.
-TEST(SmallDefects, RenderReportsProgressWithoutChangingTheImage) {
+TEST(Render, ReportsProgressWithoutChangingTheImage) {
   const Solid s =
       subtract({box_solid({-1, -1, -1}, {1, 1, 1}), make_leaf(make_sphere({1, 1, 1}, 1, 16), "s")});
   const Camera cam = front(unit_frame(), 100, 70);

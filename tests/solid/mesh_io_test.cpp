@@ -801,7 +801,7 @@ void expect_tetrahedron(const PolygonMesh& mesh) {
   EXPECT_EQ(mesh.face_count(), 4u);
 }
 
-TEST(SmallDefects, BomInEveryTextFormat) {
+TEST(MeshIoTest, BomInEveryTextFormat) {
   // A UTF-8 byte order mark was refused in PLY and misread as binary in ASCII STL.
   expect_tetrahedron(cover::read_mesh(data_file("bom_ascii.stl")));
   expect_tetrahedron(cover::read_mesh(data_file("bom_ascii.ply")));
@@ -829,7 +829,7 @@ TEST(SmallDefects, BomInEveryTextFormat) {
   fs::remove_all(dir);
 }
 
-TEST(SmallDefects, BinaryStlTrailingBytesWarns) {
+TEST(MeshIoTest, BinaryStlTrailingBytesWarns) {
   // Refused before; now read, with one warning naming the file and the byte count.
   std::vector<std::string> warnings;
   const fs::path file = data_file("trailing_bytes.stl");
@@ -850,7 +850,7 @@ TEST(SmallDefects, BinaryStlTrailingBytesWarns) {
   fs::remove_all(dir);
 }
 
-TEST(SmallDefects, NumberRuleSameInEveryReader) {
+TEST(MeshIoTest, NumberRuleSameInEveryReader) {
   // A leading '+' and an underflowing literal (→ 0) are accepted everywhere; 1e-400 used to be
   // refused as out of range. Overflow is "out-of-range <axis> coordinate" in every format.
   const PolygonMesh off = cover::read_mesh(data_file("plus_and_underflow.off"));

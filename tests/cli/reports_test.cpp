@@ -1,4 +1,4 @@
-// The CLI's front-door contract (docs/cli.md: timing keys, `cover volume --exact`): every
+// What the CLI reports (docs/cli.md: timing keys, `cover volume --exact`): every
 // command's --json output carries `seconds_detail` {load, kernel, write}, and `volume --exact`
 // equals `evaluate`'s volume on nested scenes.
 #include <gtest/gtest.h>
@@ -24,9 +24,9 @@ std::string q(const std::filesystem::path& p) {
   return quoted;
 }
 
-class FrontDoor : public ::testing::Test {
+class CliReports : public ::testing::Test {
  protected:
-  void SetUp() override { dir_ = test::temp_dir("front_door"); }
+  void SetUp() override { dir_ = test::temp_dir("reports"); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
   json run_json(const std::string& args, const std::string& stdin_text = "") {
@@ -44,7 +44,7 @@ class FrontDoor : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-TEST_F(FrontDoor, SecondsDetailInEveryCommand) {
+TEST_F(CliReports, SecondsDetailInEveryCommand) {
   const std::string in = q(scene("part.json", R"({"union": [
     {"difference": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
                     {"sphere": {"center": [2,2,2], "radius": 1, "segments": 16}}]},
@@ -58,7 +58,8 @@ TEST_F(FrontDoor, SecondsDetailInEveryCommand) {
       {"render " + in + " --size 64x48 -o " + q(d + "a.png"), ""},
       {"voxelize " + in + " --res 16 -o " + q(d + "a.npy"), ""},
       {"octree " + in + " --depth 3 -o " + q(d + "a.htg"), ""},
-      {"clip " + in + " --plane 0,0,1,1 -o " + q(d + "top.off") + " --below " + q(d + "bottom.off"), ""},
+      {"clip " + in + " --plane 0,0,1,1 -o " + q(d + "top.off") + " --below " + q(d + "bottom.off"),
+       ""},
       {"evaluate " + in + " -o " + q(d + "a.off"), ""},
   };
   for (const auto& [args, input] : commands) {
@@ -77,7 +78,7 @@ TEST_F(FrontDoor, SecondsDetailInEveryCommand) {
   }
 }
 
-TEST_F(FrontDoor, VolumeExactEqualsEvaluateOnNestedScenes) {
+TEST_F(CliReports, VolumeExactEqualsEvaluateOnNestedScenes) {
   const std::vector<std::string> scenes = {
       // (A − B) ∪ C, the expression the paper's single threshold gets wrong
       R"({"union": [{"difference": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
@@ -108,7 +109,8 @@ TEST_F(FrontDoor, VolumeExactEqualsEvaluateOnNestedScenes) {
     EXPECT_GT(exact["volume"].get<double>(), 0) << i;
     // The exact result's volume against the written (rounded) mesh's, summed in doubles.
     EXPECT_NEAR(exact["volume"].get<double>(), evaluated["volume"].get<double>(),
-                1e-12 * exact["volume"].get<double>()) << i;
+                1e-12 * exact["volume"].get<double>())
+        << i;
     EXPECT_EQ(exact["area"].get<double>(), evaluated["area"].get<double>()) << i;
     // The default (rays, or the B-rep where their bound misses) agrees within its bound.
     const json v = run_json("volume " + in);
@@ -118,7 +120,7 @@ TEST_F(FrontDoor, VolumeExactEqualsEvaluateOnNestedScenes) {
   }
 }
 
-TEST_F(FrontDoor, SeveralViewsFromOneLoadEqualSingleRenders) {
+TEST_F(CliReports, SeveralViewsFromOneLoadEqualSingleRenders) {
   const std::string in = q(test::source_dir() / "models" / "default.json");
   const std::string d = dir_.string() + "/";
   const json views = run_json("render " + in + " --size 96x64 --views iso,front,top -o " +
@@ -129,7 +131,8 @@ TEST_F(FrontDoor, SeveralViewsFromOneLoadEqualSingleRenders) {
     run_json("render " + in + " --size 96x64 --view " + view + " -o " + q(d + "one.png") +
              " --depth " + q(d + "one_depth.png"));
     EXPECT_EQ(test::read_file(d + "v_" + view + ".png"), test::read_file(d + "one.png")) << view;
-    EXPECT_EQ(test::read_file(d + "d_" + view + ".png"), test::read_file(d + "one_depth.png")) << view;
+    EXPECT_EQ(test::read_file(d + "d_" + view + ".png"), test::read_file(d + "one_depth.png"))
+        << view;
   }
   // Turntable frame k is the view turned by 360·k/N about the vertical axis.
   const json turn = run_json("render " + in + " --size 96x64 --turntable 4 -o " + q(d + "t.png"));
@@ -144,9 +147,10 @@ TEST_F(FrontDoor, SeveralViewsFromOneLoadEqualSingleRenders) {
   }
   EXPECT_EQ(distinct.size(), 4u);  // the scene is not symmetric under quarter turns
   // Bad lists are one-line errors, and nothing is written.
-  for (const std::string bad : {"--views iso,sideways", "--views iso,iso", "--views iso --turntable 2",
-                                "--turntable 0"}) {
-    const test::RunResult r = run_cover("render " + in + " --size 8x8 " + bad + " -o " + q(d + "bad.png"));
+  for (const std::string bad :
+       {"--views iso,sideways", "--views iso,iso", "--views iso --turntable 2", "--turntable 0"}) {
+    const test::RunResult r =
+        run_cover("render " + in + " --size 8x8 " + bad + " -o " + q(d + "bad.png"));
     EXPECT_EQ(r.status, 2) << bad;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << r.err;
     EXPECT_FALSE(std::filesystem::exists(d + "bad_iso.png")) << bad;

@@ -1,6 +1,6 @@
-// Issue 17, group 8 ("smaller defects"), end to end: each test is named after its defect and
-// failed before the fix. Inputs that reproduce a defect live in tests/data/ (and tests/data/fuzz/
-// as fuzz seeds).
+// The `cover` program's messages and small input rules, end to end: one-line errors naming the
+// file and place, option messages, warnings, byte-order marks, number rules, output failures.
+// Inputs that reproduce a case live in tests/data/ (and tests/data/fuzz/ as fuzz seeds).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,7 +38,7 @@ void expect_error_with(const test::RunResult& r, const std::vector<std::string>&
   for (const std::string& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << r.err;
 }
 
-class SmallDefects : public ::testing::Test {
+class CliMessages : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = test::temp_dir("small");
@@ -49,7 +49,7 @@ class SmallDefects : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
-TEST_F(SmallDefects, RenderRefusesUnknownExtension) {
+TEST_F(CliMessages, RenderRefusesUnknownExtension) {
   // PNG bytes used to be written to any name.
   for (const std::string name : {"pic.jpg", "pic"}) {
     const auto r = run_cover("render " + box() + " --size 16x12 -o " + q(dir_ / name));
@@ -65,13 +65,13 @@ TEST_F(SmallDefects, RenderRefusesUnknownExtension) {
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
-TEST_F(SmallDefects, DuplicateJsonKey) {
+TEST_F(CliMessages, DuplicateJsonKey) {
   // nlohmann kept the last "min" silently.
   const auto file = data_file("duplicate_key.json");
   expect_error(run_cover("info " + q(file)), file.string() + ": /union/0/box: duplicate key 'min'");
 }
 
-TEST_F(SmallDefects, PointsDirectory) {
+TEST_F(CliMessages, PointsDirectory) {
   // A folder given to --points exited 0 with no output.
   std::filesystem::create_directories(dir_ / "pts");
   const auto r = run_cover("classify " + box() + " --points " + q(dir_ / "pts"));
@@ -79,7 +79,7 @@ TEST_F(SmallDefects, PointsDirectory) {
   EXPECT_EQ(r.out, "");
 }
 
-TEST_F(SmallDefects, ClassifyStdinAsFastAsFile) {
+TEST_F(CliMessages, ClassifyStdinAsFastAsFile) {
   // `--points -` went through an istream iterator, ~3.5× slower than a file. The points lie
   // outside the box's bounds, so reading dominates the command's own "seconds" (reading +
   // classification); from stdin it must stay within 2× of the file's, with the same answers.
@@ -106,7 +106,7 @@ TEST_F(SmallDefects, ClassifyStdinAsFastAsFile) {
   EXPECT_LT(stdin_seconds, 2 * file_seconds + 0.02) << stdin_seconds << " s vs " << file_seconds;
 }
 
-TEST_F(SmallDefects, BomInPointsFilesAndScenes) {
+TEST_F(CliMessages, BomInPointsFilesAndScenes) {
   // A UTF-8 byte order mark was refused in points files (OFF, OBJ and JSON accepted it).
   auto r = run_cover("classify " + q(data_file("bom_ascii.stl")) + " --points " +
                      q(data_file("bom_points.txt")));
@@ -120,7 +120,7 @@ TEST_F(SmallDefects, BomInPointsFilesAndScenes) {
   EXPECT_EQ(run_cover("info " + q(data_file("bom_ascii.ply"))).status, 0);
 }
 
-TEST_F(SmallDefects, BinaryStlTrailingBytesWarnOnStderr) {
+TEST_F(CliMessages, BinaryStlTrailingBytesWarnOnStderr) {
   // Refused before; the other readers' way is to go on with a warning.
   const auto file = data_file("trailing_bytes.stl");
   const auto r = run_cover("volume " + q(file));
@@ -133,7 +133,7 @@ TEST_F(SmallDefects, BinaryStlTrailingBytesWarnOnStderr) {
             std::string::npos);
 }
 
-TEST_F(SmallDefects, NumberRuleSameInPointsAndScenes) {
+TEST_F(CliMessages, NumberRuleSameInPointsAndScenes) {
   // Points refused '+1' and called 1e400 "not a number"; scenes reported 1e400 as invalid JSON
   // on line 1. Now: '+' accepted, underflow is 0, overflow is "out-of-range" with the place.
   auto r = run_cover("classify " + box() + " --points -", "+0.5 +5e-1 0.5\n1e-400 0.5 0.5\n");
@@ -148,7 +148,7 @@ TEST_F(SmallDefects, NumberRuleSameInPointsAndScenes) {
                (dir_ / "big.json").string() + ": /box/max/0: out-of-range number '1e400'");
 }
 
-TEST_F(SmallDefects, ErrorsNameTheFile) {
+TEST_F(CliMessages, ErrorsNameTheFile) {
   test::write_file(dir_ / "comp.json",
                    R"({"complement": {"box": {"min": [0,0,0], "max": [1,1,1]}}})");
   const std::string comp = (dir_ / "comp.json").string();
@@ -194,7 +194,7 @@ TEST_F(SmallDefects, ErrorsNameTheFile) {
   EXPECT_EQ(r2.err.find("invalid JSON"), std::string::npos) << r2.err;
 }
 
-TEST_F(SmallDefects, OptionMessages) {
+TEST_F(CliMessages, OptionMessages) {
   // CLI11's own: a 300-digit range, "Value abc not in range", "A subcommand is required".
   expect_error(run_cover("volume --rays 0 " + box()),
                "--rays: expected a whole number from 1 to 2048, got '0'");
@@ -220,7 +220,7 @@ TEST_F(SmallDefects, OptionMessages) {
   EXPECT_EQ(json::parse(r.out)["res"], 10);
 }
 
-TEST_F(SmallDefects, OctreeTouchingCellsEmpty) {
+TEST_F(CliMessages, OctreeTouchingCellsEmpty) {
   // Cells beside a box face used to be partial (occupancy 0 or 1) down to the maximum depth.
   const auto r = run_cover("octree " + box() + " --depth 4 --bounds -1,-1,-1,4 --json -o " +
                            q(dir_ / "o.json"));
@@ -232,7 +232,7 @@ TEST_F(SmallDefects, OctreeTouchingCellsEmpty) {
   EXPECT_EQ(j["nodes"], 17);
 }
 
-TEST_F(SmallDefects, OpenMeshRefusedOnceWithoutAWarningFirst) {
+TEST_F(CliMessages, OpenMeshRefusedOnceWithoutAWarningFirst) {
   // evaluate, clip, decompose and volume --exact need closed leaves: one error line naming the
   // file once (clip named it twice), no open-mesh warning printed just before the refusal.
   test::write_file(dir_ / "open.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
@@ -251,7 +251,7 @@ TEST_F(SmallDefects, OpenMeshRefusedOnceWithoutAWarningFirst) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "d"));
 }
 
-TEST_F(SmallDefects, LeafIdsHelpNamesTheObjGroupsWritten) {
+TEST_F(CliMessages, LeafIdsHelpNamesTheObjGroupsWritten) {
   const auto help = run_cover("evaluate --help");
   EXPECT_NE(help.out.find("OBJ groups 'g leaf_<i>'"), std::string::npos) << help.out;
   EXPECT_EQ(help.out.find("leaf_<i>_<name>"), std::string::npos) << help.out;
@@ -259,18 +259,18 @@ TEST_F(SmallDefects, LeafIdsHelpNamesTheObjGroupsWritten) {
   EXPECT_NE(test::read_file(dir_ / "e.obj").find("\ng leaf_0\n"), std::string::npos);
 }
 
-TEST_F(SmallDefects, CellsMemoryRefusalReadsAsASentence) {
-  expect_error_with(run_cover("evaluate " + box() + " -o " + q(dir_ / "e.off") +
-                              " --cells 100 --max-memory 1"),
-                    {"--cells 100: cutting into cells needs ", " MiB, over --max-memory 1 MiB"});
+TEST_F(CliMessages, CellsMemoryRefusalReadsAsASentence) {
+  expect_error_with(
+      run_cover("evaluate " + box() + " -o " + q(dir_ / "e.off") + " --cells 100 --max-memory 1"),
+      {"--cells 100: cutting into cells needs ", " MiB, over --max-memory 1 MiB"});
 }
 
-TEST_F(SmallDefects, VoxelSizeTooSmallShowsItsValue) {
+TEST_F(CliMessages, VoxelSizeTooSmallShowsItsValue) {
   expect_error(run_cover("voxelize " + box() + " --voxel-size 1e-10 -o " + q(dir_ / "v.npy")),
                "--voxel-size: 1e-10 gives more than 16384 voxels on an axis");
 }
 
-TEST_F(SmallDefects, EmptyPathOrListValueIsAnError) {
+TEST_F(CliMessages, EmptyPathOrListValueIsAnError) {
   const std::string e = "evaluate " + box() + " -o " + q(dir_ / "e.off");
   expect_error(run_cover(e + " --cells 2 --pieces ''"), "--pieces: expected a folder, got ''");
   expect_error(run_cover("render " + box() + " -o " + q(dir_ / "r.png") + " --views ''"),
@@ -280,32 +280,32 @@ TEST_F(SmallDefects, EmptyPathOrListValueIsAnError) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "r.png"));
 }
 
-TEST_F(SmallDefects, BoundsBeyondTheCoordinateRangeRefused) {
+TEST_F(CliMessages, BoundsBeyondTheCoordinateRangeRefused) {
   // size 1e308 would overflow the cells' corners; the cube must stay within ±2^64.
   const std::string message =
       "--bounds: the cube reaches beyond the supported coordinate range ±2^64 (about ±1.8e19) on x";
-  expect_error(run_cover("voxelize " + box() + " --res 8 --bounds 0,0,0,1e308 -o " +
-                         q(dir_ / "v.npy")),
-               message);
-  expect_error(run_cover("octree " + box() + " --depth 2 --bounds 0,0,0,1e308 -o " +
-                         q(dir_ / "o.json")),
-               message);
+  expect_error(
+      run_cover("voxelize " + box() + " --res 8 --bounds 0,0,0,1e308 -o " + q(dir_ / "v.npy")),
+      message);
+  expect_error(
+      run_cover("octree " + box() + " --depth 2 --bounds 0,0,0,1e308 -o " + q(dir_ / "o.json")),
+      message);
   expect_error(run_cover("evaluate " + box() + " -o " + q(dir_ / "e.off") +
                          " --cells 2 --bounds 0,0,0,1e308"),
                message);
-  expect_error(run_cover("voxelize " + box() + " --res 8 --bounds -2e19,0,0,1 -o " +
-                         q(dir_ / "v.npy")),
-               message);
+  expect_error(
+      run_cover("voxelize " + box() + " --res 8 --bounds -2e19,0,0,1 -o " + q(dir_ / "v.npy")),
+      message);
   // Up to the range itself is accepted.
-  EXPECT_EQ(run_cover("voxelize " + box() + " --res 8 --bounds 0,0,0,1e19 -o " +
-                      q(dir_ / "v.npy")).status,
+  EXPECT_EQ(run_cover("voxelize " + box() + " --res 8 --bounds 0,0,0,1e19 -o " + q(dir_ / "v.npy"))
+                .status,
             0);
 }
 
-TEST_F(SmallDefects, PngWriteFailureGivesTheReason) {
-  expect_error(run_cover("render " + box() + " --size 8x8 -o " + q(dir_ / "missing" / "r.png")),
-               (dir_ / "missing" / "r.png").string() +
-                   ": cannot write PNG (No such file or directory)");
+TEST_F(CliMessages, PngWriteFailureGivesTheReason) {
+  expect_error(
+      run_cover("render " + box() + " --size 8x8 -o " + q(dir_ / "missing" / "r.png")),
+      (dir_ / "missing" / "r.png").string() + ": cannot write PNG (No such file or directory)");
 }
 
 }  // namespace
