@@ -82,17 +82,21 @@ TEST_F(CliReports, VolumeExactEqualsEvaluateOnNestedScenes) {
   const std::vector<std::string> scenes = {
       // (A − B) ∪ C, the expression the paper's single threshold gets wrong
       R"({"union": [{"difference": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
-                                    {"sphere": {"center": [1,1,1], "radius": 0.8, "segments": 12}}]},
+                                    {"sphere": {"center": [1,1,1], "radius": 0.8,
+                                                "segments": 12}}]},
                     {"box": {"min": [0.5,0.5,0.5], "max": [1.5,1.5,2.5]}}]})",
       // intersection of unions, with a rotated operand
       R"({"intersection": [
-          {"union": [{"box": {"min": [0,0,0], "max": [2,1,1]}}, {"box": {"min": [0,0,0], "max": [1,2,1]}}]},
+          {"union": [{"box": {"min": [0,0,0], "max": [2,1,1]}},
+                     {"box": {"min": [0,0,0], "max": [1,2,1]}}]},
           {"union": [{"sphere": {"center": [1,0.5,0.5], "radius": 0.9, "segments": 10}},
-                     {"cylinder": {"base": [0,0,0.5], "top": [2,2,0.5], "radius": 0.4, "segments": 9},
+                     {"cylinder": {"base": [0,0,0.5], "top": [2,2,0.5], "radius": 0.4,
+                                   "segments": 9},
                       "transform": {"rotate": {"axis": [0,0,1], "degrees": 7}}}]}]})",
       // a difference whose subtrahend is a complement (a double complement in effect)
       R"({"difference": [{"box": {"min": [0,0,0], "max": [3,3,3]}},
-                         {"complement": {"sphere": {"center": [1.5,1.5,1.5], "radius": 1.4, "segments": 14}}}]})",
+                         {"complement": {"sphere": {"center": [1.5,1.5,1.5], "radius": 1.4,
+                                                    "segments": 14}}}]})",
       // a mesh leaf in a nested expression
       R"({"difference": [{"union": [{"mesh": )" + std::string("\"") +
           (test::source_dir() / "models" / "torus.off").string() + R"("},
