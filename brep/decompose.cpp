@@ -332,6 +332,19 @@ void components(const ClipHalf& half, const std::vector<uint32_t>& parent_source
   }
 }
 
+/// The bounding box of a mesh's vertices, and whether two closed boxes share a point: a cavity
+/// belongs to the shells whose boxes meet its own (roots(), join_cavities()).
+Bbox box_of(const PolygonMesh& mesh) {
+  Bbox b;
+  for (const Vec3& p : mesh.vertices) b.add(p);
+  return b;
+}
+
+bool meets(const Bbox& a, const Bbox& b) {
+  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
+         a.min.z <= b.max.z && b.min.z <= a.max.z;
+}
+
 /// Puts every cavity among the components out[first..] (volume below −`sliver`: an inward shell
 /// the cut did not cross) into one piece with the components whose bounding boxes meet its box,
 /// as roots() does for the input's shells: a cavity belongs to a shell around it, and only a
@@ -343,14 +356,10 @@ void join_cavities(std::vector<Piece>& out, size_t first, double sliver) {
   std::vector<Bbox> boxes(n);
   std::vector<uint8_t> cavity(n);
   for (size_t i = 0; i < n; ++i) {
-    for (const Vec3& p : out[first + i].mesh.vertices) boxes[i].add(p);
+    boxes[i] = box_of(out[first + i].mesh);
     cavity[i] = signed_volume(out[first + i].mesh) < -sliver;
   }
   if (std::none_of(cavity.begin(), cavity.end(), [](uint8_t c) { return c; })) return;
-  auto meets = [](const Bbox& a, const Bbox& b) {
-    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
-           a.min.z <= b.max.z && b.min.z <= a.max.z;
-  };
   UnionFind groups(n);
   for (size_t i = 0; i < n; ++i)
     if (cavity[i])
@@ -401,22 +410,10 @@ bool spans_volume(std::span<const Vec3> pts) {
 /// root together (a cavity belongs to a shell around it, and only cuts separate them).
 std::vector<PolygonMesh> roots(const PolygonMesh& tris) {
   std::vector<PolygonMesh> shells = detail::split_shells(tris);
-  struct Box {
-    Vec3 lo, hi;
-    bool meets(const Box& o) const {
-      return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y &&
-             lo.z <= o.hi.z && o.lo.z <= hi.z;
-    }
-  };
-  std::vector<Box> boxes;
+  std::vector<Bbox> boxes;
   std::vector<uint8_t> cavity;
   for (const PolygonMesh& s : shells) {
-    Box b{s.vertices[0], s.vertices[0]};
-    for (const Vec3& p : s.vertices) {
-      b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
-      b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
-    }
-    boxes.push_back(b);
+    boxes.push_back(box_of(s));
     cavity.push_back(signed_volume(s) <= 0);
   }
   std::vector<PolygonMesh> out;
@@ -424,7 +421,7 @@ std::vector<PolygonMesh> roots(const PolygonMesh& tris) {
   for (size_t i = 0; i < shells.size(); ++i) {
     bool with_cavity = cavity[i];
     for (size_t j = 0; j < shells.size() && !with_cavity; ++j)
-      with_cavity = cavity[j] && boxes[i].meets(boxes[j]);
+      with_cavity = cavity[j] && meets(boxes[i], boxes[j]);
     if (!with_cavity) {
       out.push_back(std::move(shells[i]));
       continue;

@@ -15,6 +15,8 @@
 #include <exception>
 #include <optional>
 
+#include "solid/union_find.h"
+
 namespace cover::brep::detail {
 namespace {
 
@@ -38,21 +40,14 @@ K::Point_3 point(const Vec3& p) { return {p.x, p.y, p.z}; }
 /// when an odd number of the nested shells enclose it).
 std::optional<Nef> nef_of(const PolygonMesh& solid) {
   const size_t nv = solid.vertices.size();
-  std::vector<uint32_t> root(nv);
-  for (uint32_t v = 0; v < nv; ++v) root[v] = v;
-  auto find = [&](uint32_t x) {
-    while (root[x] != x) x = root[x] = root[root[x]];
-    return x;
-  };
+  UnionFind components(nv);
   for (size_t f = 0; f < solid.face_count(); ++f) {
     const auto v = solid.face(f);
-    for (size_t k = 1; k < v.size(); ++k) {
-      const uint32_t a = find(v[0]), b = find(v[k]);
-      if (a != b) root[std::max(a, b)] = std::min(a, b);
-    }
+    for (size_t k = 1; k < v.size(); ++k) components.unite(v[0], v[k]);
   }
   std::vector<std::vector<uint32_t>> faces_of(nv);  // per component root: its faces
-  for (uint32_t f = 0; f < solid.face_count(); ++f) faces_of[find(solid.face(f)[0])].push_back(f);
+  for (uint32_t f = 0; f < solid.face_count(); ++f)
+    faces_of[components.find(solid.face(f)[0])].push_back(f);
   std::optional<Nef> out;
   for (const std::vector<uint32_t>& faces : faces_of) {
     if (faces.empty()) continue;

@@ -268,9 +268,8 @@ TEST(Decompose, BoxesTouchingAlongAnEdgeOrAtAVertexAreNotMerged) {
   }
 }
 
-// A cavity (an inner, inside-out shell) is cut away from the box around it; a box beside them
-// is decomposed on its own.
-TEST(Decompose, BoxWithACavity) {
+/// The box [0, 3]³ with the cavity [1, 2]³ (an inner, inside-out shell): volume 26.
+PolygonMesh box_with_cavity() {
   PolygonMesh m, inner;
   add_box(m, {0, 0, 0}, {3, 3, 3});
   add_box(inner, {1, 1, 1}, {2, 2, 2});
@@ -280,6 +279,13 @@ TEST(Decompose, BoxWithACavity) {
     const auto v = inner.face(f);
     m.add_face({b + v[0], b + v[2], b + v[1]});
   }
+  return m;
+}
+
+// A cavity (an inner, inside-out shell) is cut away from the box around it; a box beside them
+// is decomposed on its own.
+TEST(Decompose, BoxWithACavity) {
+  PolygonMesh m = box_with_cavity();
   add_box(m, {5, 0, 0}, {6, 1, 1});
   const brep::DecomposeResult r = brep::decompose(m);
   expect_valid_decomposition(r, 27.0 - 1.0 + 1.0, "box with a cavity");
@@ -304,15 +310,7 @@ TEST(Decompose, ACavityStaysWithItsShellWhenACutMissesIt) {
 // inside of every closed surface whatever its orientation, so one mesh holding both would come
 // out filled (27, not 26), and every fallback of such a shell would miss the cavity's volume.
 TEST(DecomposeFallback, NefOfAShellWithACavityLeavesTheCavityOut) {
-  PolygonMesh m, inner;
-  add_box(m, {0, 0, 0}, {3, 3, 3});
-  add_box(inner, {1, 1, 1}, {2, 2, 2});
-  const auto b = static_cast<uint32_t>(m.vertices.size());
-  m.vertices.insert(m.vertices.end(), inner.vertices.begin(), inner.vertices.end());
-  for (size_t f = 0; f < inner.face_count(); ++f) {
-    const auto v = inner.face(f);
-    m.add_face({b + v[0], b + v[2], b + v[1]});
-  }
+  PolygonMesh m = box_with_cavity();
   auto volume = [](const std::vector<std::vector<Vec3>>& parts) {
     double sum = 0;
     for (const std::vector<Vec3>& part : parts)
