@@ -7,9 +7,9 @@
 #include <random>
 #include <vector>
 
-#include "covering/ray.h"
-#include "solid/primitives.h"
-#include "solid/solid.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/solid.h"
 
 namespace bench {
 

@@ -27,10 +27,10 @@
 #include <vector>
 
 #include "bench_models.h"
-#include "covering/bvh.h"
-#include "covering/classify.h"
-#include "covering/ray.h"
-#include "solid/parallel.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/parallel.h"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "model/model.h"
+#include "cover/model/model.h"
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "model/model.h"
+#include "cover/model/model.h"
 
 namespace {
 

@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "bench_cli.h"
-#include "brep/clip.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
+#include "cover/brep/clip.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
 
 namespace {
 

@@ -19,10 +19,10 @@
 
 #include "bench_cli.h"
 #include "cgal_query_types.h"
-#include "covering/classify.h"
-#include "covering/ray.h"
-#include "solid/parallel.h"
-#include "solid/scene.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/scene.h"
 
 namespace {
 

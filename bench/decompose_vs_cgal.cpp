@@ -18,11 +18,11 @@
 #include <map>
 #include <vector>
 
-#include "brep/decompose.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/triangulate.h"
-#include "solid/union_find.h"
+#include "cover/brep/decompose.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/triangulate.h"
+#include "cover/solid/union_find.h"
 
 namespace {
 

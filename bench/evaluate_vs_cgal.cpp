@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "boolean/evaluate.h"
-#include "solid/mesh_io.h"
-#include "solid/transform.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/transform.h"
 
 namespace {
 
@@ -46,9 +46,9 @@ Operand operand(const std::string& file, cover::Vec3 centre, double size, double
   const cover::Vec3 c = 0.5 * (b.min + b.max);
   const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
   cover::apply_transform(
-      cover::make_trs(Eigen::Vector3d::Constant(2 * size / ext), {0.3, 1, 0.2}, degrees,
-                      {centre.x, centre.y, centre.z}) *
-          cover::make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
+      cover::Transform::trs(cover::Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext},
+                            {0.3, 1, 0.2}, degrees, {centre.x, centre.y, centre.z}) *
+          cover::Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
       m);
   Operand o{cover::make_leaf(m, file), {}};
   std::vector<Mesh::Vertex_index> vs;

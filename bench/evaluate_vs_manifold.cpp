@@ -16,6 +16,7 @@
 // the whole process and of the kernel, their ratios Cover / Manifold, and both volumes.
 // Usage: evaluate_vs_manifold MESH_FOLDER [--runs N] [--scratch DIR] [CASE...]
 //        (libcgal-demo data/meshes; CASE: 1-based indices of the cases, all by default)
+#include <manifold/manifold.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -26,15 +27,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <manifold/manifold.h>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "boolean/evaluate.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
-#include "solid/transform.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/transform.h"
 
 namespace {
 
@@ -124,11 +124,12 @@ cover::PolygonMesh placed(const fs::path& folder, const LeafSpec& s) {
   const cover::Bbox b = cover::face_bbox(m);
   const cover::Vec3 c = 0.5 * (b.min + b.max);
   const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  cover::apply_transform(cover::make_trs(Eigen::Vector3d::Constant(2 * s.half_size / ext),
-                                         {s.axis.x, s.axis.y, s.axis.z}, s.degrees,
-                                         {s.centre.x, s.centre.y, s.centre.z}) *
-                             cover::make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-                         m);
+  cover::apply_transform(
+      cover::Transform::trs(
+          cover::Vec3{2 * s.half_size / ext, 2 * s.half_size / ext, 2 * s.half_size / ext},
+          {s.axis.x, s.axis.y, s.axis.z}, s.degrees, {s.centre.x, s.centre.y, s.centre.z}) *
+          cover::Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
+      m);
   return m;
 }
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "bench_cli.h"
-#include "solid/large_vector.h"
+#include "cover/solid/large_vector.h"
 
 namespace {
 

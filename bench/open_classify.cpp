@@ -7,6 +7,8 @@
 // Usage: open_classify [BUNNY.off] [--threads N] (default: 2). Wall-clock seconds, median of 5
 // interleaved rounds; the open mesh is also classified with the grid off (the per-point path,
 // checked to give the same classes).
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -14,13 +16,11 @@
 #include <string>
 #include <vector>
 
-#include <tbb/global_control.h>
-
 #include "bench_models.h"
-#include "covering/classify.h"
-#include "covering/gwn.h"
-#include "model/model.h"
-#include "solid/scene.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/gwn.h"
+#include "cover/model/model.h"
+#include "cover/solid/scene.h"
 
 namespace {
 

@@ -17,13 +17,13 @@
 
 #include "bench_cli.h"
 #include "bench_models.h"
-#include "cli/points.h"
-#include "covering/bvh.h"
-#include "covering/classify.h"
-#include "solid/memory_limit.h"
-#include "solid/npy.h"
-#include "solid/parallel.h"
-#include "solid/scene.h"
+#include "cover/cli/points.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/classify.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/npy.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/scene.h"
 
 namespace {
 

@@ -24,20 +24,20 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench_cli.h"
-#include "covering/bounds.h"
-#include "covering/volume.h"
-#include "raster/png.h"
-#include "raster/render.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
-#include "solid/transform.h"
+#include "cover/covering/bounds.h"
+#include "cover/covering/volume.h"
+#include "cover/raster/png.h"
+#include "cover/raster/render.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/transform.h"
 
 namespace {
 
@@ -93,11 +93,12 @@ cover::PolygonMesh load_leaf(const std::filesystem::path& folder, const LeafSpec
   const cover::Bbox b = cover::face_bbox(m);
   const cover::Vec3 c = 0.5 * (b.min + b.max);
   const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  cover::apply_transform(cover::make_trs(Eigen::Vector3d::Constant(2 * s.half_size / ext),
-                                         {s.axis.x, s.axis.y, s.axis.z}, s.degrees,
-                                         {s.centre.x, s.centre.y, s.centre.z}) *
-                             cover::make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-                         m);
+  cover::apply_transform(
+      cover::Transform::trs(
+          cover::Vec3{2 * s.half_size / ext, 2 * s.half_size / ext, 2 * s.half_size / ext},
+          {s.axis.x, s.axis.y, s.axis.z}, s.degrees, {s.centre.x, s.centre.y, s.centre.z}) *
+          cover::Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
+      m);
   return m;
 }
 

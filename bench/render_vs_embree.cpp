@@ -31,6 +31,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -39,19 +40,17 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-#include <nlohmann/json.hpp>
-
 #include "bench_cli.h"
-#include "model/model.h"
-#include "raster/png.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
-#include "solid/transform.h"
+#include "cover/model/model.h"
+#include "cover/raster/png.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/transform.h"
 
 namespace {
 
@@ -62,20 +61,19 @@ using nlohmann::json;
 /// A mesh leaf of the input: its file and the product of the transforms above it.
 struct LeafFile {
   std::filesystem::path file;
-  cover::Affine world = cover::Affine::Identity();
+  cover::Transform world;
 };
 
 /// The mesh leaves of a scene (matrix transforms only: what preview_scene.py writes).
-void collect_leaves(const json& j, const std::filesystem::path& scene, const cover::Affine& parent,
-                    std::vector<LeafFile>& out) {
-  cover::Affine world = parent;
+void collect_leaves(const json& j, const std::filesystem::path& scene,
+                    const cover::Transform& parent, std::vector<LeafFile>& out) {
+  cover::Transform world = parent;
   if (j.contains("transform")) {
     const json& t = j.at("transform");
     if (!t.contains("matrix")) throw std::runtime_error("render_vs_embree: matrix transforms only");
-    cover::Affine m = cover::Affine::Identity();
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) m(r, c) = t.at("matrix").at(4 * r + c).get<double>();
-    world = parent * m;
+    std::array<double, 16> rows{};
+    for (int i = 0; i < 16; ++i) rows[i] = t.at("matrix").at(i).get<double>();
+    world = parent * cover::Transform::from_matrix(rows);
   }
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (it.key() == "transform") continue;
@@ -94,10 +92,10 @@ void collect_leaves(const json& j, const std::filesystem::path& scene, const cov
 }
 
 std::vector<LeafFile> input_leaves(const std::filesystem::path& input) {
-  if (input.extension() != ".json") return {{input, cover::Affine::Identity()}};
+  if (input.extension() != ".json") return {{input, cover::Transform{}}};
   std::ifstream f(input);
   std::vector<LeafFile> out;
-  collect_leaves(json::parse(f), input, cover::Affine::Identity(), out);
+  collect_leaves(json::parse(f), input, cover::Transform{}, out);
   return out;
 }
 

@@ -26,10 +26,10 @@
 #include "bench_cli.h"
 #include "bench_models.h"
 #include "cgal_query_types.h"
-#include "covering/bvh.h"
-#include "covering/classify.h"
-#include "covering/ray.h"
-#include "solid/parallel.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/parallel.h"
 
 namespace {
 

@@ -30,10 +30,10 @@
 #include <vector>
 
 #include "bench_cli.h"
-#include "octree/octree.h"
-#include "raster/voxelize.h"
-#include "solid/parallel.h"
-#include "solid/scene.h"
+#include "cover/octree/octree.h"
+#include "cover/raster/voxelize.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/scene.h"
 
 namespace {
 

@@ -3,17 +3,16 @@
 // intersect.cpp, step 3 in split.cpp. The exactness scheme is described in
 // boolean/detail/arrangement.h, the notation in boolean/detail/arrangement_steps.h.
 #include <algorithm>
+#include <boost/sort/spreadsort/integer_sort.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <span>
 
-#include <boost/sort/spreadsort/integer_sort.hpp>
-
-#include "boolean/detail/arrangement_steps.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
-#include "solid/triangulate.h"
+#include "cover/boolean/detail/arrangement_steps.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/triangulate.h"
 
 namespace cover::boolean_detail {
 namespace {

@@ -18,7 +18,6 @@
 // copies are then split at their midpoint (a new vertex per copy, at one position, its two
 // faces halved), so that no two edges join the same vertices.
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-
 #include <CGAL/Mpzf.h>
 
 #include <algorithm>
@@ -29,9 +28,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "boolean/detail/arrangement.h"
-#include "solid/parallel.h"
-#include "solid/errors.h"
+#include "cover/boolean/detail/arrangement.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 
 namespace cover::boolean_detail {
 namespace {

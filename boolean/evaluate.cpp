@@ -1,17 +1,17 @@
 // evaluate(): the driver of boolean/evaluate.h (no CGAL here; the exact steps live in
 // arrangement.cpp, select.cpp and assemble.cpp).
-#include "boolean/evaluate.h"
+#include "cover/boolean/evaluate.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
 
-#include "boolean/detail/arrangement.h"
-#include "covering/bounds.h"
-#include "solid/errors.h"
-#include "solid/rounding_repair.h"
-#include "solid/union_find.h"
+#include "cover/boolean/detail/arrangement.h"
+#include "cover/covering/bounds.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/rounding_repair.h"
+#include "cover/solid/union_find.h"
 
 namespace cover {
 

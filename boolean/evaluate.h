@@ -25,8 +25,8 @@
 #include <optional>
 #include <vector>
 
-#include "solid/polygon_mesh.h"
-#include "solid/solid.h"
+#include "cover/solid/polygon_mesh.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

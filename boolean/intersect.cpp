@@ -8,11 +8,11 @@
 #include <cmath>
 #include <compare>
 
-#include "boolean/detail/arrangement_steps.h"
-#include "solid/box_pairs.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
-#include "solid/validate.h"
+#include "cover/boolean/detail/arrangement_steps.h"
+#include "cover/solid/box_pairs.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/validate.h"
 
 namespace cover::boolean_detail {
 namespace {

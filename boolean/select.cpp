@@ -42,9 +42,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "boolean/detail/arrangement.h"
-#include "solid/parallel.h"
-#include "solid/errors.h"
+#include "cover/boolean/detail/arrangement.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 
 namespace cover::boolean_detail {
 namespace {

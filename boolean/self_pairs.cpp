@@ -21,8 +21,8 @@
 
 #include <algorithm>
 
-#include "boolean/detail/arrangement_steps.h"
-#include "solid/predicates.h"
+#include "cover/boolean/detail/arrangement_steps.h"
+#include "cover/solid/predicates.h"
 
 namespace cover::boolean_detail {
 

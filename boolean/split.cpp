@@ -9,9 +9,9 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "boolean/detail/arrangement_steps.h"
-#include "solid/predicates.h"
-#include "solid/triangulate.h"
+#include "cover/boolean/detail/arrangement_steps.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/triangulate.h"
 
 namespace cover::boolean_detail {
 namespace {

@@ -26,8 +26,8 @@
 // Notation: a ring is a cycle of border half-edges of one side, oriented like the cap face that
 // will close it (each is the twin of a face side on the cut). A node is one corner of a ring or
 // of a merged polygon: its point slot, its vertex id and the half-edge leaving it.
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -40,9 +40,9 @@
 #include <optional>
 #include <unordered_map>
 
-#include "brep/detail/clip_internal.h"
-#include "brep/detail/ear_clip.h"
-#include "solid/errors.h"
+#include "cover/brep/detail/clip_internal.h"
+#include "cover/brep/detail/ear_clip.h"
+#include "cover/solid/errors.h"
 
 namespace cover::brep::detail {
 namespace {

@@ -20,7 +20,7 @@
 // (exact coordinate equality; −0 and +0 are one value), and paired ends become one vertex
 // (union–find). Vertices are identified only through paired edges, never by coordinates alone,
 // so distinct vertices at equal coordinates (pinched fans of the input) stay distinct.
-#include "brep/cells.h"
+#include "cover/brep/cells.h"
 
 #include <algorithm>
 #include <atomic>
@@ -32,12 +32,12 @@
 #include <tuple>
 #include <utility>
 
-#include "brep/detail/cells_check.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/memory_limit.h"
-#include "solid/parallel.h"
-#include "solid/rounding_repair.h"
+#include "cover/brep/detail/cells_check.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/rounding_repair.h"
 
 namespace cover::brep {
 namespace {

@@ -33,9 +33,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "brep/clip.h"
-#include "solid/memory_limit.h"
-#include "solid/polygon_mesh.h"
+#include "cover/brep/clip.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::brep {
 

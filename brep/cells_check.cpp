@@ -1,5 +1,5 @@
 // The exact check of cell pieces as written (brep/detail/cells_check.h).
-#include "brep/detail/cells_check.h"
+#include "cover/brep/detail/cells_check.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
@@ -10,10 +10,10 @@
 #include <cmath>
 #include <cstdint>
 
-#include "brep/cells.h"
-#include "solid/predicates.h"
-#include "solid/triangulate.h"
-#include "solid/validate.h"
+#include "cover/brep/cells.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/triangulate.h"
+#include "cover/solid/validate.h"
 
 namespace cover::brep::detail {
 namespace {

@@ -14,7 +14,7 @@
 //   6. detach_edge on every edge between faces of different halves (both ends are on the plane);
 //   7. caps on the border rings (cap.cpp), then split_nonmanifold_vertices separates the halves'
 //      shared plane vertices and the fans of pinched vertices.
-#include "brep/clip.h"
+#include "cover/brep/clip.h"
 
 #include <algorithm>
 #include <chrono>
@@ -23,11 +23,11 @@
 #include <optional>
 #include <string>
 
-#include "brep/detail/clip_internal.h"
-#include "brep/detail/ear_clip.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
-#include "solid/triangulate.h"
+#include "cover/brep/detail/clip_internal.h"
+#include "cover/brep/detail/ear_clip.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/triangulate.h"
 
 namespace cover::brep {
 namespace {

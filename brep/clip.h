@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::brep {
 

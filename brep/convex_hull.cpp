@@ -1,6 +1,6 @@
 // CGAL convex_hull_3 on the doubles (Epick: exact predicates; the hull's points are input points,
 // nothing is constructed). The one translation unit of decompose that includes CGAL.
-#include "brep/detail/convex_hull.h"
+#include "cover/brep/detail/convex_hull.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>

@@ -11,7 +11,7 @@
 // half is split into connected components, each a new piece. A cut creates no reflex edge and
 // removes its own, so R(component) ⊆ R(piece) in exact terms; the loop checks that the cut's mesh
 // edge is gone from every half (else the next plane is tried) and bounds the piece count.
-#include "brep/decompose.h"
+#include "cover/brep/decompose.h"
 
 #include <algorithm>
 #include <array>
@@ -27,18 +27,18 @@
 #include <unordered_map>
 #include <utility>
 
-#include "brep/clip.h"
-#include "brep/detail/convex_hull.h"
-#include "brep/detail/nef_parts.h"
-#include "brep/detail/shells.h"
-#include "brep/halfedge.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
-#include "solid/triangulate.h"
-#include "solid/union_find.h"
-#include "solid/validate.h"
+#include "cover/brep/clip.h"
+#include "cover/brep/detail/convex_hull.h"
+#include "cover/brep/detail/nef_parts.h"
+#include "cover/brep/detail/shells.h"
+#include "cover/brep/halfedge.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/triangulate.h"
+#include "cover/solid/union_find.h"
+#include "cover/solid/validate.h"
 
 namespace cover::brep {
 namespace {

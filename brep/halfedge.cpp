@@ -1,10 +1,10 @@
 // HalfedgeMesh construction, conversion and operators (see halfedge.h for the notation).
-#include "brep/halfedge.h"
+#include "cover/brep/halfedge.h"
 
 #include <stdexcept>
 #include <string>
 
-#include "solid/errors.h"
+#include "cover/solid/errors.h"
 
 namespace cover::brep {
 

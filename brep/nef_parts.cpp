@@ -3,7 +3,7 @@
 // cut from the shell's by Nef intersections (a box, closed half-spaces); convex_decomposition_3
 // splits the interior into convex volumes (exact constructions); each marked volume's vertices
 // are rounded to the nearest doubles. The one translation unit of decompose that includes Nef_3.
-#include "brep/detail/nef_parts.h"
+#include "cover/brep/detail/nef_parts.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
@@ -15,7 +15,7 @@
 #include <exception>
 #include <optional>
 
-#include "solid/union_find.h"
+#include "cover/solid/union_find.h"
 
 namespace cover::brep::detail {
 namespace {

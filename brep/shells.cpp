@@ -6,17 +6,17 @@
 // lies towards decreasing θ (clockwise), and the first triangle met clockwise from w bounds the
 // same solid: a backward one on a valid input. orient3d(a, b, x, y) > 0 iff y is less than half
 // a turn counter-clockwise from x.
-#include "brep/detail/shells.h"
+#include "cover/brep/detail/shells.h"
 
 #include <algorithm>
 #include <array>
 #include <string>
 #include <tuple>
 
-#include "brep/halfedge.h"
-#include "solid/errors.h"
-#include "solid/predicates.h"
-#include "solid/union_find.h"
+#include "cover/brep/halfedge.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/union_find.h"
 
 namespace cover::brep::detail {
 namespace {

@@ -1,7 +1,7 @@
 // validate(HalfedgeMesh): link invariants, closedness, fans per vertex, Euler characteristic,
 // components, boundary loops and genus (χ = 2C − 2g − B for an orientable surface).
-#include "brep/halfedge.h"
-#include "solid/union_find.h"
+#include "cover/brep/halfedge.h"
+#include "cover/solid/union_find.h"
 
 namespace cover::brep {
 

@@ -8,16 +8,16 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "brep/clip.h"
-#include "covering/bounds.h"
-#include "brep/halfedge.h"
-#include "cli/commands.h"
-#include "cli/output.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/scene.h"
+#include "cover/brep/clip.h"
+#include "cover/brep/halfedge.h"
+#include "cover/cli/commands.h"
+#include "cover/cli/output.h"
+#include "cover/covering/bounds.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/scene.h"
 
 namespace cover::cli {
 namespace {

@@ -1,26 +1,26 @@
-#include "cli/commands.h"
+#include "cover/cli/commands.h"
 
 #include <algorithm>
 #include <array>
-#include <cmath>
-#include <cstdlib>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "brep/halfedge.h"
-#include "cli/output.h"
-#include "cli/points.h"
-#include "covering/bounds.h"
-#include "raster/png.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/memory_limit.h"
-#include "solid/repair.h"
-#include "solid/scene.h"
-#include "solid/validate.h"
+#include "cover/brep/halfedge.h"
+#include "cover/cli/output.h"
+#include "cover/cli/points.h"
+#include "cover/covering/bounds.h"
+#include "cover/raster/png.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/repair.h"
+#include "cover/solid/scene.h"
+#include "cover/solid/validate.h"
 
 namespace cover::cli {
 namespace {

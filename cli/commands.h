@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <string>
 
-#include "model/model.h"
-#include "solid/memory_limit.h"
-#include "solid/scene.h"
+#include "cover/model/model.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/scene.h"
 
 namespace cover::cli {
 

@@ -11,16 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "brep/cells.h"
-#include "brep/halfedge.h"
-#include "cli/commands.h"
-#include "cli/output.h"
-#include "covering/bounds.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/memory_limit.h"
-#include "solid/mesh_io.h"
+#include "cover/brep/cells.h"
+#include "cover/brep/halfedge.h"
+#include "cover/cli/commands.h"
+#include "cover/cli/output.h"
+#include "cover/covering/bounds.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/mesh_io.h"
 
 namespace cover::cli {
 namespace {

@@ -6,17 +6,17 @@
 // JSON then lists the leaf names under `leaf_names`.
 #include <cstdio>
 #include <iostream>
-#include <string>
 #include <nlohmann/json.hpp>
+#include <string>
 
-#include "boolean/evaluate.h"
-#include "cli/commands.h"
-#include "cli/output.h"
-#include "covering/bounds.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/scene.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/cli/commands.h"
+#include "cover/cli/output.h"
+#include "cover/covering/bounds.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/scene.h"
 
 namespace cover::cli {
 

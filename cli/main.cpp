@@ -11,10 +11,10 @@
 #include <string>
 #include <string_view>
 
-#include "cli/commands.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
+#include "cover/cli/commands.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 
 namespace {
 

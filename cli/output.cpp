@@ -1,12 +1,13 @@
-#include "cli/output.h"
+#include "cover/cli/output.h"
+
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <unistd.h>
 
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
 
 namespace cover::cli {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "solid/atomic_file.h"
-#include "solid/types.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/types.h"
 
 namespace cover::cli {
 

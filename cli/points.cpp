@@ -9,7 +9,7 @@
 // The first chunk with an error (in file order) rethrows it; otherwise the chunks' points are
 // moved down over the slots of blank and comment lines, in order.
 
-#include "cli/points.h"
+#include "cover/cli/points.h"
 
 #include <algorithm>
 #include <array>
@@ -23,13 +23,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "solid/atomic_file.h"
-#include "solid/detail/mesh_io_detail.h"
-#include "solid/errors.h"
-#include "solid/memory_limit.h"
-#include "solid/mesh_io.h"
-#include "solid/npy.h"
-#include "solid/parallel.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/npy.h"
+#include "cover/solid/parallel.h"
 
 namespace cover::cli {
 namespace {

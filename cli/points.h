@@ -20,8 +20,8 @@
 #include <string_view>
 #include <vector>
 
-#include "covering/classify.h"
-#include "solid/types.h"
+#include "cover/covering/classify.h"
+#include "cover/solid/types.h"
 
 namespace cover::cli {
 

@@ -3,26 +3,26 @@
 #include <array>
 #include <cctype>
 #include <chrono>
-#include <filesystem>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "cli/commands.h"
-#include "cli/output.h"
-#include "covering/bounds.h"
-#include "octree/octree.h"
-#include "octree/octree_io.h"
-#include "raster/voxel_io.h"
-#include "raster/vdb_io.h"
-#include "raster/voxel_surface.h"
-#include "raster/zarr_io.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/memory_limit.h"
-#include "solid/mesh_io.h"
-#include "solid/scene.h"
+#include "cover/cli/commands.h"
+#include "cover/cli/output.h"
+#include "cover/covering/bounds.h"
+#include "cover/octree/octree.h"
+#include "cover/octree/octree_io.h"
+#include "cover/raster/vdb_io.h"
+#include "cover/raster/voxel_io.h"
+#include "cover/raster/voxel_surface.h"
+#include "cover/raster/zarr_io.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/scene.h"
 
 namespace cover::cli {
 namespace {

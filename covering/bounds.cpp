@@ -1,4 +1,4 @@
-#include "covering/bounds.h"
+#include "cover/covering/bounds.h"
 
 #include <algorithm>
 

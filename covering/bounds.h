@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "solid/solid.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

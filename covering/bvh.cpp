@@ -1,4 +1,4 @@
-#include "covering/bvh.h"
+#include "cover/covering/bvh.h"
 
 #include <algorithm>
 #include <array>
@@ -7,10 +7,10 @@
 #include <memory>
 #include <stdexcept>
 
-#include "covering/detail/float_bounds.h"
-#include "solid/parallel.h"
-#include "solid/errors.h"
-#include "solid/predicates.h"
+#include "cover/covering/detail/float_bounds.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
 
 namespace cover {
 namespace {

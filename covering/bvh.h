@@ -20,8 +20,8 @@
 #include <cstring>
 #include <vector>
 
-#include "solid/large_vector.h"
-#include "solid/solid.h"
+#include "cover/solid/large_vector.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

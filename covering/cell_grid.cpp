@@ -1,8 +1,8 @@
-#include "covering/detail/cell_grid.h"
+#include "cover/covering/detail/cell_grid.h"
 
 #include <algorithm>
 
-#include "solid/parallel.h"
+#include "cover/solid/parallel.h"
 
 namespace cover::detail {
 namespace {

@@ -1,4 +1,4 @@
-#include "covering/classify.h"
+#include "cover/covering/classify.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,14 +8,14 @@
 #include <mutex>
 #include <optional>
 
-#include "covering/detail/bvh_walk.h"
-#include "covering/detail/cell_grid.h"
-#include "covering/detail/float_bounds.h"
-#include "covering/detail/local.h"
-#include "covering/detail/simd.h"
-#include "covering/detail/triangles.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
+#include "cover/covering/detail/bvh_walk.h"
+#include "cover/covering/detail/cell_grid.h"
+#include "cover/covering/detail/float_bounds.h"
+#include "cover/covering/detail/local.h"
+#include "cover/covering/detail/simd.h"
+#include "cover/covering/detail/triangles.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
 
 namespace cover {
 namespace {

@@ -23,9 +23,9 @@
 #include <string_view>
 #include <vector>
 
-#include "covering/bvh.h"
-#include "covering/gwn.h"
-#include "solid/solid.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/gwn.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

@@ -1,4 +1,4 @@
-#include "covering/gwn.h"
+#include "cover/covering/gwn.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <numbers>
 #include <optional>
 
-#include "covering/classify.h"
-#include "covering/detail/triangles.h"
-#include "solid/union_find.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/detail/triangles.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/union_find.h"
 
 namespace cover {
 namespace {

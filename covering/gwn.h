@@ -30,8 +30,8 @@
 #include <span>
 #include <vector>
 
-#include "covering/bvh.h"
-#include "solid/solid.h"
+#include "cover/covering/bvh.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

@@ -1,7 +1,7 @@
 // Result-level classification of points on a leaf surface (see covering/detail/local.h for the
 // notation and the argument). Exact: rationals (CGAL::Exact_rational) for directions, with an
 // interval filter (CGAL::Interval_nt) in front of the per-triangle ray tests.
-#include "covering/detail/local.h"
+#include "cover/covering/detail/local.h"
 
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Interval_nt.h>
@@ -10,8 +10,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "solid/errors.h"
-#include "solid/predicates.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/predicates.h"
 
 namespace cover::detail {
 namespace {

@@ -1,17 +1,16 @@
-#include "covering/detail/bvh_walk.h"
-#include "covering/detail/ray_detail.h"
-#include "covering/ray.h"
-
-#include <optional>
+#include "cover/covering/ray.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <optional>
 
-#include "covering/detail/simd.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
+#include "cover/covering/detail/bvh_walk.h"
+#include "cover/covering/detail/ray_detail.h"
+#include "cover/covering/detail/simd.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
 
 namespace cover {
 namespace detail {

@@ -11,13 +11,13 @@
 // Hit parameters t are floating point (for ordering and lengths only, never for decisions).
 
 #include <cstdint>
-#include <span>
 #include <optional>
+#include <span>
 #include <vector>
 
-#include "covering/bvh.h"
-#include "covering/gwn.h"
-#include "solid/solid.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/gwn.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

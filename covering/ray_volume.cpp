@@ -1,15 +1,15 @@
 // Ray-integrated volume with a proven error bound (detail/ray_volume.h has the notation).
 
-#include "covering/detail/ray_volume.h"
+#include "cover/covering/detail/ray_volume.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "covering/ray.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/parallel.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/parallel.h"
 
 namespace cover::detail {
 namespace {

@@ -1,6 +1,6 @@
-#include "covering/detail/triangles.h"
+#include "cover/covering/detail/triangles.h"
 
-#include "solid/predicates.h"
+#include "cover/solid/predicates.h"
 
 namespace cover::detail {
 

@@ -1,16 +1,16 @@
-#include "covering/volume.h"
+#include "cover/covering/volume.h"
 
 #include <cmath>
 #include <numeric>
 #include <optional>
 
-#include "covering/bounds.h"
-#include "covering/detail/ray_volume.h"
-#include "covering/ray.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/parallel.h"
-#include "solid/validate.h"
+#include "cover/covering/bounds.h"
+#include "cover/covering/detail/ray_volume.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {

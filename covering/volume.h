@@ -23,8 +23,8 @@
 #include <optional>
 #include <string>
 
-#include "covering/bvh.h"
-#include "solid/solid.h"
+#include "cover/covering/bvh.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

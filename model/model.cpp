@@ -1,4 +1,4 @@
-#include "model/model.h"
+#include "cover/model/model.h"
 
 #include <algorithm>
 #include <atomic>
@@ -9,11 +9,11 @@
 #include <string>
 #include <utility>
 
-#include "covering/bounds.h"
-#include "covering/detail/bvh_walk.h"
-#include "solid/parallel.h"
-#include "solid/primitives.h"
-#include "solid/serialize.h"
+#include "cover/covering/bounds.h"
+#include "cover/covering/detail/bvh_walk.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/serialize.h"
 
 namespace cover {
 
@@ -278,34 +278,30 @@ Model intersection_all(std::span<const Model> models) {
 
 Model Model::translated(Vec3 offset) const {
   check_vec(offset, "translate");
-  return transformed(make_trs({1, 1, 1}, {0, 0, 1}, 0, {offset.x, offset.y, offset.z}));
+  return transformed(Transform::translation(offset));
 }
 
 Model Model::scaled(Vec3 factors) const {
   check_vec(factors, "scale");
   if (factors.x == 0 || factors.y == 0 || factors.z == 0)
     throw InputError("scale: every factor must be non-zero");
-  return transformed(make_trs({factors.x, factors.y, factors.z}, {0, 0, 1}, 0, {0, 0, 0}));
+  return transformed(Transform::scaling(factors));
 }
 
 Model Model::rotated(Vec3 axis, double degrees) const {
   check_vec(axis, "rotate");
   if (axis == Vec3{}) throw InputError("rotate: the axis must be non-zero");
   if (!std::isfinite(degrees)) throw InputError("rotate: the angle must be finite");
-  return transformed(make_trs({1, 1, 1}, {axis.x, axis.y, axis.z}, degrees, {0, 0, 0}));
+  return transformed(Transform::rotation(axis, degrees));
 }
 
 Model Model::mirrored(Vec3 normal) const {
   check_vec(normal, "mirror");
   if (normal == Vec3{}) throw InputError("mirror: the normal must be non-zero");
-  // Householder reflection I − 2·n·nᵀ/|n|² through the plane through the origin.
-  const Eigen::Vector3d n(normal.x, normal.y, normal.z);
-  Affine m = Affine::Identity();
-  m.topLeftCorner<3, 3>() -= 2 * n * n.transpose() / n.squaredNorm();
-  return transformed(m);
+  return transformed(Transform::reflection(normal));
 }
 
-Model Model::transformed(const Affine& m) const {
+Model Model::transformed(const Transform& m) const {
   Solid s = transform_solid(m, solid());
   return Model(std::move(s), warnings());
 }

@@ -19,8 +19,8 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -28,23 +28,23 @@
 #include <string_view>
 #include <vector>
 
-#include "boolean/evaluate.h"
-#include "brep/cells.h"
-#include "brep/clip.h"
-#include "brep/decompose.h"
-#include "covering/bvh.h"
-#include "covering/classify.h"
-#include "covering/ray.h"
-#include "covering/volume.h"
-#include "octree/octree.h"
-#include "raster/camera.h"
-#include "raster/render.h"
-#include "raster/voxelize.h"
-#include "raster/zarr_io.h"
-#include "solid/errors.h"
-#include "solid/scene.h"
-#include "solid/solid.h"
-#include "solid/transform.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/brep/cells.h"
+#include "cover/brep/clip.h"
+#include "cover/brep/decompose.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/ray.h"
+#include "cover/covering/volume.h"
+#include "cover/octree/octree.h"
+#include "cover/raster/camera.h"
+#include "cover/raster/render.h"
+#include "cover/raster/voxelize.h"
+#include "cover/raster/zarr_io.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/scene.h"
+#include "cover/solid/solid.h"
+#include "cover/solid/transform.h"
 
 namespace cover {
 
@@ -86,10 +86,10 @@ class Model {
   friend Model operator-(const Model& a, const Model& b);
   Model operator~() const;
 
-  /// The solid mapped by the affine `m` (p' = M·[p;1]; solid/transform.h transform_solid); a
-  /// mirror keeps leaves outward. \throws InputError when m is not affine (last row 0 0 0 1),
-  /// not finite, singular, or maps a vertex outside ±kMaxCoordinate.
-  Model transformed(const Affine& m) const;
+  /// The solid mapped by the affine `m` (solid/transform.h transform_solid); a mirror keeps
+  /// leaves outward. \throws InputError when m is not finite, singular, or maps a vertex outside
+  /// ±kMaxCoordinate.
+  Model transformed(const Transform& m) const;
   /// transformed() by a translation, scale (non-zero factors per axis), rotation (about a
   /// non-zero axis through the origin, right-handed, degrees) or mirror (through the plane
   /// through the origin with a non-zero normal). \throws InputError as transformed(), and for a

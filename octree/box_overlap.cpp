@@ -1,4 +1,4 @@
-#include "octree/detail/box_overlap.h"
+#include "cover/octree/detail/box_overlap.h"
 
 #include <algorithm>
 #include <atomic>
@@ -16,7 +16,7 @@
 #define COVER_X86_DISPATCH 1
 #endif
 
-#include "solid/predicates.h"
+#include "cover/solid/predicates.h"
 
 namespace cover::detail {
 namespace {

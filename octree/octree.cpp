@@ -1,4 +1,4 @@
-#include "octree/octree.h"
+#include "cover/octree/octree.h"
 
 #include <algorithm>
 #include <array>
@@ -10,13 +10,14 @@
 #include <span>
 #include <string>
 
-#include "covering/bvh.h"
-#include "covering/classify.h"
-#include "covering/detail/bvh_walk.h"
-#include "octree/detail/box_overlap.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/detail/bvh_walk.h"
+#include "cover/octree/detail/box_overlap.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/large_vector.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
 
 // Notation
 //   D        maximum depth; h = size/2^D the finest cell size. Grid plane m (0 ≤ m ≤ 2^D) of axis a
@@ -354,9 +355,9 @@ class Builder {
     // The node array at its expected size at once (within a few percent; it grows past that if
     // need be), on huge pages, so that no level's resize copies the old nodes or faults in the
     // new ones a 4 KiB page at a time (bunny00 at depth 10 has 9.5M nodes).
-    tree.nodes.reserve(static_cast<size_t>(
-        std::min(1.05 * expected_nodes(covering_area(solid_), bounds_.size, depth_),
-                 static_cast<double>(UINT32_MAX))));
+    reserve_huge(tree.nodes, static_cast<size_t>(std::min(
+                                 1.05 * expected_nodes(covering_area(solid_), bounds_.size, depth_),
+                                 static_cast<double>(UINT32_MAX))));
     for (int d = 0; d <= depth_; ++d) {
       const size_t n = d == 0 ? 1 : 8 * parents_.size();
       if (n == 0) break;

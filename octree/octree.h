@@ -13,12 +13,11 @@
 #include <functional>
 #include <vector>
 
-#include "covering/bvh.h"
-#include "covering/gwn.h"
-#include "solid/large_vector.h"
-#include "solid/memory_limit.h"
-#include "solid/solid.h"
-#include "solid/voxel_bounds.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/gwn.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/solid.h"
+#include "cover/solid/voxel_bounds.h"
 
 namespace cover {
 
@@ -59,7 +58,7 @@ struct Octree {
   };
   VoxelBounds bounds;
   int depth = 0;
-  LargeVector<Node> nodes;  ///< on huge pages (solid/large_vector.h)
+  std::vector<Node> nodes;
 
   /// Side of the cells at depth d: bounds.size / 2^d.
   double cell_size(int d) const;

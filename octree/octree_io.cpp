@@ -1,4 +1,4 @@
-#include "octree/octree_io.h"
+#include "cover/octree/octree_io.h"
 
 #include <algorithm>
 #include <bit>
@@ -13,9 +13,9 @@
 #include <system_error>
 #include <vector>
 
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
 
 namespace cover {
 namespace {

@@ -18,7 +18,7 @@
 
 #include <filesystem>
 
-#include "octree/octree.h"
+#include "cover/octree/octree.h"
 
 namespace cover {
 

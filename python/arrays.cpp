@@ -1,10 +1,10 @@
-#include "python/arrays.h"
+#include "arrays.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "solid/errors.h"
-#include "solid/triangulate.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/triangulate.h"
 
 namespace cover::python {
 
@@ -98,7 +98,7 @@ void Interrupt::poll(bool force) {
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
 }
 
-py::array_t<double> vertices_array(const LargeVector<Vec3>& vertices) {
+py::array_t<double> vertices_array(const std::vector<Vec3>& vertices) {
   py::array_t<double> out({static_cast<py::ssize_t>(vertices.size()), py::ssize_t{3}});
   std::copy(vertices.begin(), vertices.end(), reinterpret_cast<Vec3*>(out.mutable_data()));
   return out;

@@ -22,9 +22,9 @@
 #include <thread>
 #include <vector>
 
-#include "solid/parallel.h"
-#include "solid/polygon_mesh.h"
-#include "solid/types.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/polygon_mesh.h"
+#include "cover/solid/types.h"
 
 namespace cover::python {
 
@@ -86,7 +86,7 @@ class Interrupt {
 };
 
 /// Vertices as float64 (n, 3).
-py::array_t<double> vertices_array(const LargeVector<Vec3>& vertices);
+py::array_t<double> vertices_array(const std::vector<Vec3>& vertices);
 
 /// Faces as int64 (m, 3) triangles: a triangle as it is, any other face by triangulate_face
 /// (solid/triangulate.h: exact; a convex face as a fan from its first vertex; orientation kept,

@@ -13,11 +13,11 @@
 #include <cstdio>
 #include <cstring>
 
-#include "brep/halfedge.h"
-#include "model/model.h"
-#include "python/arrays.h"
-#include "solid/repair.h"
-#include "solid/validate.h"
+#include "arrays.h"
+#include "cover/brep/halfedge.h"
+#include "cover/model/model.h"
+#include "cover/solid/repair.h"
+#include "cover/solid/validate.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -50,17 +50,16 @@ std::optional<VoxelBounds> bounds_arg(const py::object& bounds) {
   return VoxelBounds{{b[0], b[1], b[2]}, b[3]};
 }
 
-Affine matrix_arg(py::handle obj) {
+Transform matrix_arg(py::handle obj) {
   const py::array a = py::array::ensure(obj);
   if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4) {
     PyErr_Clear();
     throw py::value_error("M: expected a 4x4 matrix");
   }
   const auto d = DoubleArray::ensure(a);
-  Affine m;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m(r, c) = d.data()[4 * r + c];
-  return m;
+  std::array<double, 16> rows{};
+  std::copy(d.data(), d.data() + 16, rows.begin());
+  return Transform::from_matrix(rows);
 }
 
 /// Model.scale's factors: finite, non-zero, and a product (the factor of every volume) within
@@ -461,7 +460,7 @@ Model warned(Model model) {
 }  // namespace
 }  // namespace cover::python
 
-#include "python/docstrings.h"
+#include "docstrings.h"
 
 PYBIND11_MODULE(_cover, m) {
   using namespace cover;
@@ -526,7 +525,7 @@ PYBIND11_MODULE(_cover, m) {
           "translate",
           [](const Model& a, py::handle v) {
             const Vec3 t = vec3_arg(v, "v");
-            return a.transformed(make_trs({1, 1, 1}, {0, 0, 1}, 0, {t.x, t.y, t.z}));
+            return a.transformed(Transform::translation(t));
           },
           py::arg("v"), doc::kTranslate)
       .def(
@@ -542,7 +541,7 @@ PYBIND11_MODULE(_cover, m) {
               f = vec3_arg(s, "s");
             }
             check_scale(f);
-            return a.transformed(make_trs({f.x, f.y, f.z}, {0, 0, 1}, 0, {0, 0, 0}));
+            return a.transformed(Transform::scaling(f));
           },
           py::arg("s"), doc::kScale)
       .def(
@@ -550,7 +549,7 @@ PYBIND11_MODULE(_cover, m) {
           [](const Model& a, py::handle axis, double degrees) {
             const Vec3 ax = vec3_arg(axis, "axis");
             if (ax == Vec3{}) throw InputError("rotate: the axis must be non-zero");
-            return a.transformed(make_trs({1, 1, 1}, {ax.x, ax.y, ax.z}, degrees, {0, 0, 0}));
+            return a.transformed(Transform::rotation(ax, degrees));
           },
           py::arg("axis"), py::arg("degrees"), doc::kRotate)
       .def(

@@ -1,9 +1,9 @@
-#include "raster/camera.h"
+#include "cover/raster/camera.h"
 
 #include <cmath>
 #include <numbers>
 
-#include "solid/errors.h"
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "covering/ray.h"
+#include "cover/covering/ray.h"
 
 namespace cover {
 

@@ -9,7 +9,7 @@
 //   candidates       the pixels whose (sx, sy) lie in a triangle's projected box widened by the
 //                    margin m below; tiles hold the triangles whose candidates meet them
 
-#include "raster/object_order.h"
+#include "cover/raster/object_order.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,9 +17,9 @@
 #include <span>
 #include <vector>
 
-#include "covering/detail/ray_detail.h"
-#include "solid/large_vector.h"
-#include "solid/parallel.h"
+#include "cover/covering/detail/ray_detail.h"
+#include "cover/solid/large_vector.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 namespace {

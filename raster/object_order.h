@@ -23,10 +23,10 @@
 #include <optional>
 #include <utility>
 
-#include "covering/bvh.h"
-#include "covering/ray.h"
-#include "raster/camera.h"
-#include "solid/solid.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/ray.h"
+#include "cover/raster/camera.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

@@ -1,4 +1,4 @@
-#include "raster/png.h"
+#include "cover/raster/png.h"
 
 #include <png.h>
 
@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

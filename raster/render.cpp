@@ -1,8 +1,4 @@
-#include "raster/render.h"
-
-#include "covering/ray.h"
-#include "raster/object_order.h"
-#include "solid/errors.h"
+#include "cover/raster/render.h"
 
 #include <algorithm>
 #include <atomic>
@@ -11,7 +7,11 @@
 #include <limits>
 #include <thread>
 
-#include "solid/parallel.h"
+#include "cover/covering/ray.h"
+#include "cover/raster/object_order.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/large_vector.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 namespace {
@@ -79,7 +79,7 @@ void fill_in_steps(Vector& v, size_t n, typename Vector::value_type value,
   constexpr size_t kStepBytes = size_t{16} << 20;
   const size_t per_step = std::max<size_t>(1, kStepBytes / sizeof(value));
   v.clear();
-  v.reserve(n);
+  reserve_huge(v, n);
   while (v.size() < n) {
     v.resize(std::min(n, v.size() + per_step), value);
     step();

@@ -11,10 +11,9 @@
 #include <optional>
 #include <vector>
 
-#include "covering/bvh.h"
-#include "covering/gwn.h"
-#include "raster/camera.h"
-#include "solid/large_vector.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/gwn.h"
+#include "cover/raster/camera.h"
 
 namespace cover {
 
@@ -49,10 +48,10 @@ struct Image {
   static constexpr uint16_t kCapId = 65535;     ///< ids: section cap (else leaf index + 1)
   static constexpr uint16_t kFarDepth = 65535;  ///< depth: no surface
   int width = 0, height = 0;
-  // On huge pages (solid/large_vector.h): at 1024² these 7 MiB cost ~20 ms of 4 KiB page faults.
-  LargeVector<uint8_t> rgb;     ///< 3 bytes per pixel
-  LargeVector<uint16_t> depth;  ///< (t − near)/(far − near) · 65534, rounded; kFarDepth: none
-  LargeVector<uint16_t> ids;    ///< leaf index + 1, kCapId, or kBackgroundId
+  // Renderers size them with resize_huge (solid/large_vector.h).
+  std::vector<uint8_t> rgb;     ///< 3 bytes per pixel
+  std::vector<uint16_t> depth;  ///< (t − near)/(far − near) · 65534, rounded; kFarDepth: none
+  std::vector<uint16_t> ids;    ///< leaf index + 1, kCapId, or kBackgroundId
 };
 
 /// The RGB colour of leaf `leaf` (distinct hues) and of section caps.

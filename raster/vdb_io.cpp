@@ -7,7 +7,7 @@
 //   <folder of the binary holding this code>/COVER_PLUGIN_RELDIR   the same for a shared object
 //   COVER_PLUGIN_INSTALL_DIR                  the configured install folder (consumers' programs)
 
-#include "raster/vdb_io.h"
+#include "cover/raster/vdb_io.h"
 
 #include <dlfcn.h>
 
@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "raster/vdb_plugin.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
+#include "cover/raster/vdb_plugin.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
 
 namespace cover {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <filesystem>
 
-#include "raster/voxel_grid.h"
+#include "cover/raster/voxel_grid.h"
 
 namespace cover {
 

@@ -6,7 +6,7 @@
 // 64 byte reads, a full one becomes a leaf filled at once (a tile after prune()), and a mixed one
 // sets its voxels one by one.
 
-#include "raster/vdb_plugin.h"
+#include "cover/raster/vdb_plugin.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>

@@ -1,6 +1,8 @@
-#include "raster/voxel_grid.h"
+#include "cover/raster/voxel_grid.h"
 
 #include <bit>
+
+#include "cover/solid/large_vector.h"
 
 namespace cover {
 
@@ -23,7 +25,7 @@ VoxelGrid empty_voxel_grid(const VoxelLattice& lattice, const IndexBox& box) {
   VoxelGrid grid;
   grid.lattice = lattice;
   grid.box = box;
-  grid.bits.assign(grid.word_count(), 0);
+  resize_huge(grid.bits, grid.word_count());
   return grid;
 }
 

@@ -21,8 +21,7 @@
 #include <optional>
 #include <vector>
 
-#include "solid/large_vector.h"
-#include "solid/voxel_bounds.h"
+#include "cover/solid/voxel_bounds.h"
 
 namespace cover {
 
@@ -72,7 +71,7 @@ inline IndexBox whole_box(const VoxelLattice& lattice) { return {{0, 0, 0}, latt
 struct VoxelGrid {
   VoxelLattice lattice;  ///< the global grid this one is (a region of)
   IndexBox box;          ///< the region held: local voxel (i, j, k) is global box.lo + (i, j, k)
-  LargeVector<uint64_t> bits;
+  std::vector<uint64_t> bits;
 
   /// Local dims (box.hi − box.lo).
   int nx() const { return box.hi[0] - box.lo[0]; }

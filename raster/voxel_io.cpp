@@ -16,7 +16,7 @@
 // over it once complete (or with the command's other outputs); on any failure the temporary is
 // removed and InputError names FILE.
 
-#include "raster/voxel_io.h"
+#include "cover/raster/voxel_io.h"
 
 #include <algorithm>
 #include <array>
@@ -32,11 +32,11 @@
 #include <utility>
 #include <vector>
 
-#include "raster/detail/bit_expand.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/npy.h"
+#include "cover/raster/detail/bit_expand.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/npy.h"
 
 namespace cover {
 namespace {

@@ -20,8 +20,7 @@
 // the x-faces of plane i are emitted. Per-corner data is kept for two planes and written only at
 // boundary corners (the only ones faces read), so nothing O(N²) is cleared per plane.
 
-#include "raster/voxel_surface.h"
-#include "solid/errors.h"
+#include "cover/raster/voxel_surface.h"
 
 #include <algorithm>
 #include <array>
@@ -33,6 +32,8 @@
 #include <unordered_map>
 #include <utility>
 #include <vector>
+
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

@@ -1,8 +1,8 @@
 #pragma once
 // The blocky boundary surface of a voxel grid as a closed, outward-oriented 2-manifold mesh.
 
-#include "raster/voxel_grid.h"
-#include "solid/polygon_mesh.h"
+#include "cover/raster/voxel_grid.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 

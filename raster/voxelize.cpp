@@ -1,4 +1,4 @@
-#include "raster/voxelize.h"
+#include "cover/raster/voxelize.h"
 
 #include <algorithm>
 #include <array>
@@ -10,11 +10,12 @@
 #include <thread>
 #include <vector>
 
-#include "covering/bounds.h"
-#include "covering/detail/simd.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
+#include "cover/covering/bounds.h"
+#include "cover/covering/detail/simd.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/large_vector.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
 
 namespace cover {
 namespace {
@@ -400,7 +401,7 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
     for (const Vec3& v : solid.vertices) moderate_vertices &= moderate(v);
   const size_t words = g.words_per_column();
   // No zeroing pass here: step 2 writes every word of every band (a reused grid keeps its memory).
-  g.bits.resize(g.word_count());
+  resize_huge(g.bits, g.word_count());
 
   // The covering triangles are the fan triangles (v0, v_k, v_k+1) of each face in its leaf's own
   // orientation, numbered face by face (those a Bvh is built over; degenerate ones have n_z = 0

@@ -21,8 +21,8 @@
 #include <optional>
 #include <vector>
 
-#include "raster/voxel_grid.h"
-#include "solid/solid.h"
+#include "cover/raster/voxel_grid.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

@@ -5,7 +5,7 @@
 // expanded to C³ bytes (x slowest, z fastest; padding 0), compressed by zlib's compress2 (the
 // zlib format numcodecs' Zlib codec reads).
 
-#include "raster/zarr_io.h"
+#include "cover/raster/zarr_io.h"
 
 #include <zlib.h>
 
@@ -23,12 +23,12 @@
 #include <thread>
 #include <vector>
 
-#include "raster/detail/bit_expand.h"
-#include "solid/atomic_file.h"
-#include "solid/errors.h"
-#include "solid/memory_limit.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
+#include "cover/raster/detail/bit_expand.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 namespace {

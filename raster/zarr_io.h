@@ -27,7 +27,7 @@
 #include <filesystem>
 #include <functional>
 
-#include "raster/voxel_grid.h"
+#include "cover/raster/voxel_grid.h"
 
 namespace cover {
 

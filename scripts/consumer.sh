@@ -24,12 +24,25 @@ fi
 scene=$(pwd)/models/default.json
 out=$(cd "$work" && ./consumer "$scene")
 echo "$out"
-expected=$'volume 7.10966\ninside\noutside\nface\nvertex\n3206 faces, volume 22.1265'
+expected=$'volume 7.10966\ninside\noutside\nface\nvertex\n3206 faces, volume 22.1265\ntetrahedron 1\nown 6\ncall_once'
 [ "$out" = "$expected" ] || { echo "consumer: unexpected output"; exit 1; }
 [ -s "$work/half.off" ] || { echo "consumer: half.off not written"; exit 1; }
-# Cover's own pthread_once (solid/call_once.cpp) stays in Cover's programs: the consumer's
-# std::call_once binds to the C library's.
-if nm "$work/consumer" | grep -qE ' [TtWw] pthread_once$'; then
-  echo "consumer: defines pthread_once (Cover's override reached the consumer)"; exit 1
+# Cover's headers are included as "cover/<module>/..." and ignore the consumer's own
+# own/solid/types.h (its build above would fail otherwise): check the installed layout too.
+[ -f "$prefix/include/cover/solid/types.h" ] || { echo "consumer: no include/cover/solid/types.h"; exit 1; }
+if grep -rqE '#include "(solid|covering|boolean|brep|raster|octree|model)/' "$prefix/include/cover"; then
+  echo "consumer: an installed header includes another without the cover/ prefix"; exit 1
+fi
+# No Cover definition of a C library or C++ runtime symbol reaches the consumer: Cover's own
+# pthread_once (solid/call_once.cpp) stays in Cover's programs, so the consumer's std::call_once
+# binds to the C library's, and the consumer defines no pthread_, malloc/free or operator new.
+defined=$(nm -C "$work/consumer" | awk '$2 ~ /^[TtWw]$/ {print $3}')
+if grep -qE '^(pthread_|malloc$|free$|calloc$|realloc$|memcpy$|memset$|operator new|operator delete)' <<<"$defined"; then
+  echo "consumer: defines a C library or C++ runtime symbol:"
+  grep -E '^(pthread_|malloc$|free$|calloc$|realloc$|memcpy$|memset$|operator new|operator delete)' <<<"$defined"
+  exit 1
+fi
+if objdump -d "$work/consumer" | grep -qE '<pthread_once>:'; then
+  echo "consumer: objdump finds a pthread_once body in the consumer"; exit 1
 fi
 echo "consumer: OK"

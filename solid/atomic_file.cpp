@@ -1,4 +1,4 @@
-#include "solid/atomic_file.h"
+#include "cover/solid/atomic_file.h"
 
 #include <fcntl.h>
 #include <pthread.h>
@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "solid/errors.h"
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

@@ -4,7 +4,7 @@
 //   cell(v, a)    min(n_a − 1, floor((v − lo_a) · (1/h))): monotone in v, so a box [p, q] covers
 //                 exactly the cells cell(p, a) … cell(q, a) on each axis a
 //   entry         (cell index << bits) | box, sorted: the boxes of each cell are contiguous
-#include "solid/box_pairs.h"
+#include "cover/solid/box_pairs.h"
 
 #include <algorithm>
 #include <atomic>
@@ -13,7 +13,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "solid/parallel.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 namespace {

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "solid/types.h"
+#include "cover/solid/types.h"
 
 namespace cover {
 

@@ -1,4 +1,4 @@
-#include "solid/large_vector.h"
+#include "cover/solid/large_vector.h"
 
 #include <cstdint>
 #include <cstdlib>
@@ -32,6 +32,13 @@ void* map_large(size_t bytes) {
   return p;
 }
 void unmap_large(void* p, size_t bytes) noexcept { munmap(p, round_up(bytes)); }
+void advise_huge(void* p, size_t bytes) noexcept {
+  if (bytes < kLargeBytes) return;
+  const auto begin = reinterpret_cast<uintptr_t>(p);
+  const uintptr_t first = (begin + kHugePage - 1) / kHugePage * kHugePage;
+  const uintptr_t last = (begin + bytes) / kHugePage * kHugePage;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
 #else
 void* map_large(size_t bytes) {
   void* p = std::aligned_alloc(kHugePage, round_up(bytes));
@@ -39,6 +46,7 @@ void* map_large(size_t bytes) {
   return p;
 }
 void unmap_large(void* p, size_t) noexcept { std::free(p); }
+void advise_huge(void*, size_t) noexcept {}
 #endif
 
 }  // namespace cover::detail

@@ -1,4 +1,4 @@
-#include "solid/measure.h"
+#include "cover/solid/measure.h"
 
 #include <cmath>
 

@@ -6,7 +6,7 @@
 // the rounding error small). Sums are compensated (Neumaier) over fixed-size chunks, so the result
 // does not depend on the thread count.
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 

@@ -1,4 +1,4 @@
-#include "solid/memory_limit.h"
+#include "cover/solid/memory_limit.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "solid/errors.h"
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-#include "solid/large_vector.h"
+#include "cover/solid/large_vector.h"
 
 namespace cover {
 

@@ -11,13 +11,13 @@
 // Parsing in place reads an OFF about 11× faster than CGAL::IO::read_polygon_soup (median of 21
 // reads from the page cache; docs/benchmarks.md#mesh-readers).
 
-#include "solid/mesh_io.h"
+#include "cover/solid/mesh_io.h"
 
 #include <string>
 
-#include "solid/detail/mesh_io_detail.h"
-#include "solid/errors.h"
-#include "solid/memory_limit.h"
+#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/memory_limit.h"
 
 namespace cover {
 namespace detail {

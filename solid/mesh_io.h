@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "solid/memory_limit.h"
-#include "solid/polygon_mesh.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 

@@ -1,9 +1,9 @@
-#include "solid/npy.h"
+#include "cover/solid/npy.h"
 
 #include <charconv>
 
-#include "solid/detail/mesh_io_detail.h"
-#include "solid/errors.h"
+#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

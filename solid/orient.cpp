@@ -3,15 +3,15 @@
 // edge is key(u, v) = min·2³² + max and its direction +1 when u < v, else −1. An edge is
 // balanced when its sides' directions sum to 0.
 
-#include "solid/orient.h"
+#include "cover/solid/orient.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "solid/errors.h"
-#include "solid/parallel.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 namespace {

@@ -25,7 +25,7 @@
 #include <cstddef>
 #include <string>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 

@@ -1,6 +1,5 @@
-#include "solid/parallel.h"
+#include "cover/solid/parallel.h"
 
-#include <boost/sort/spreadsort/integer_sort.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -9,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <boost/sort/spreadsort/integer_sort.hpp>
 
 namespace cover {
 

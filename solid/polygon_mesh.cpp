@@ -1,4 +1,4 @@
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 

@@ -12,15 +12,14 @@
 #include <span>
 #include <vector>
 
-#include "solid/large_vector.h"
-#include "solid/types.h"
+#include "cover/solid/types.h"
 
 namespace cover {
 
 struct PolygonMesh {
-  LargeVector<Vec3> vertices;
-  LargeVector<uint32_t> face_start{0};
-  LargeVector<uint32_t> face_vertices;
+  std::vector<Vec3> vertices;
+  std::vector<uint32_t> face_start{0};
+  std::vector<uint32_t> face_vertices;
 
   size_t face_count() const { return face_start.size() - 1; }
   std::span<const uint32_t> face(size_t f) const {

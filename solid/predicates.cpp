@@ -2,7 +2,7 @@
 // every step of the double evaluation is (error-free transformations: a difference whose TwoSum
 // error is 0, a product whose FMA residual is 0), then CGAL's Epick predicates (interval
 // filter, then exact arithmetic); exact rationals for the other polynomials.
-#include "solid/predicates.h"
+#include "cover/solid/predicates.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>

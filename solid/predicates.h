@@ -27,7 +27,7 @@
 #include <cstdint>
 #include <span>
 
-#include "solid/types.h"
+#include "cover/solid/types.h"
 
 namespace cover {
 

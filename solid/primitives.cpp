@@ -1,4 +1,4 @@
-#include "solid/primitives.h"
+#include "cover/solid/primitives.h"
 
 #include <algorithm>
 #include <cmath>

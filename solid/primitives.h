@@ -1,7 +1,7 @@
 #pragma once
 // Primitive leaves as closed, outward-oriented polygon meshes (docs/cli.md#scenes).
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "solid/detail/mesh_io_detail.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
+#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 
 namespace cover::detail {
 namespace {

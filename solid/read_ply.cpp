@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "solid/detail/mesh_io_detail.h"
+#include "cover/solid/detail/mesh_io_detail.h"
 
 namespace cover::detail {
 namespace {

@@ -20,7 +20,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "solid/detail/mesh_io_detail.h"
+#include "cover/solid/detail/mesh_io_detail.h"
 
 namespace cover::detail {
 namespace {

@@ -1,10 +1,10 @@
-#include "solid/repair.h"
+#include "cover/solid/repair.h"
 
 #include <unordered_map>
 #include <vector>
 
-#include "solid/detail/mesh_io_detail.h"
-#include "solid/predicates.h"
+#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/solid/predicates.h"
 
 namespace cover {
 

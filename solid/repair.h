@@ -10,8 +10,8 @@
 
 #include <cstddef>
 
-#include "solid/polygon_mesh.h"
-#include "solid/validate.h"
+#include "cover/solid/polygon_mesh.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 

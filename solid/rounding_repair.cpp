@@ -5,7 +5,7 @@
 // around b enters b from in(F) (the corner before b) and leaves it to out(F) (the corner after):
 // the faces around b form one fan exactly when each in and each out occurs once and stepping
 // from F to the face G with in(G) == out(F) (the face across the edge b → out(F)) visits them all.
-#include "solid/rounding_repair.h"
+#include "cover/solid/rounding_repair.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +13,8 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "solid/predicates.h"
-#include "solid/validate.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {
@@ -107,7 +107,7 @@ class Collapser {
     std::vector<uint8_t> gone(mesh_.vertices.size(), 0);
     for (uint32_t v : removed_) gone[v] = 1;
     std::vector<uint32_t> index(mesh_.vertices.size());
-    LargeVector<Vec3> vertices;
+    std::vector<Vec3> vertices;
     for (uint32_t v = 0; v < mesh_.vertices.size(); ++v) {
       index[v] = static_cast<uint32_t>(vertices.size());
       if (!gone[v]) vertices.push_back(mesh_.vertices[v]);

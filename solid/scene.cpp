@@ -1,24 +1,23 @@
-#include "solid/scene.h"
+#include "cover/solid/scene.h"
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <Eigen/LU>
-#include <nlohmann/json.hpp>
 #include <exception>
+#include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 
-#include "solid/detail/mesh_io_detail.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/orient.h"
-#include "solid/parallel.h"
-#include "solid/primitives.h"
-#include "solid/transform.h"
-#include "solid/repair.h"
-#include "solid/validate.h"
+#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/orient.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/repair.h"
+#include "cover/solid/transform.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {
@@ -40,7 +39,7 @@ class SceneReader {
 
   /// The solid of the scene rooted at `j`.
   Solid read(const json& j) {
-    const Plan plan = this->plan(j, "", Affine::Identity(), 0);
+    const Plan plan = this->plan(j, "", Transform{}, 0);
     read_files();
     std::vector<Solid> solids(tasks_.size());
     std::vector<std::vector<std::string>> warnings(tasks_.size());
@@ -68,7 +67,7 @@ class SceneReader {
     std::filesystem::path file;        ///< mesh leaves: the file; empty for primitives
     std::string kind;                  ///< primitives: box, sphere or cylinder
     PolygonMesh mesh;                  ///< primitives: the mesh (transformed)
-    Affine world = Affine::Identity(); ///< mesh leaves: the transform to apply
+    Transform world;                   ///< mesh leaves: the transform to apply
     size_t read = 0;                   ///< mesh leaves: its file's entry in reads_
   };
   /// One distinct mesh file, read once however many leaves place it (instances: the 10-leaf
@@ -106,10 +105,10 @@ class SceneReader {
     std::vector<Plan> children;
   };
 
-  Plan plan(const json& j, const std::string& path, const Affine& parent, int depth) {
+  Plan plan(const json& j, const std::string& path, const Transform& parent, int depth) {
     if (depth > kMaxDepth) fail(path, "scene nested deeper than " + std::to_string(kMaxDepth));
     if (!j.is_object()) fail(path, "expected an object (a leaf or an operation)");
-    Affine world = parent;
+    Transform world = parent;
     std::string kind;
     for (auto it = j.begin(); it != j.end(); ++it) {
       if (it.key() == "transform") {
@@ -139,7 +138,7 @@ class SceneReader {
     if (kind == "box" || kind == "sphere" || kind == "cylinder") {
       PolygonMesh m = primitive(kind, v, sub);
       apply_transform(world, m);
-      tasks_.push_back({sub, {}, kind, std::move(m), Affine::Identity()});
+      tasks_.push_back({sub, {}, kind, std::move(m), Transform{}});
       return {CsgOp::kLeaf, tasks_.size() - 1, {}};
     }
     if (kind == "complement") return {CsgOp::kComplement, 0, {plan(v, sub, world, depth + 1)}};
@@ -254,27 +253,29 @@ class SceneReader {
     return make_cylinder(b, t, r, segments(v, path, kMaxCylinderSegments));
   }
 
-  Affine transform(const json& t, const std::string& path) const {
+  Transform transform(const json& t, const std::string& path) const {
     if (!t.is_object()) fail(path, "expected an object");
-    Affine m;
+    Transform m;
     if (t.contains("matrix")) {
       keys(t, path, {"matrix"});
       const json& a = t.at("matrix");
       if (!a.is_array() || a.size() != 16) fail(path + "/matrix", "expected 16 numbers (row-major)");
-      for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = number(a[i], path + "/matrix/" + std::to_string(i));
-      if (m(3, 0) != 0 || m(3, 1) != 0 || m(3, 2) != 0 || m(3, 3) != 1)
+      std::array<double, 16> rows{};
+      for (int i = 0; i < 16; ++i) rows[i] = number(a[i], path + "/matrix/" + std::to_string(i));
+      if (rows[12] != 0 || rows[13] != 0 || rows[14] != 0 || rows[15] != 1)
         fail(path + "/matrix", "last row must be 0 0 0 1");
+      m = Transform::from_matrix(rows);
     } else {
       keys(t, path, {"scale", "rotate", "translate"});
-      Eigen::Vector3d scale(1, 1, 1), axis(0, 0, 1), translate(0, 0, 0);
+      Vec3 scale{1, 1, 1}, axis{0, 0, 1}, translate{0, 0, 0};
       double degrees = 0;
       if (t.contains("scale")) {
         const json& s = t.at("scale");
         if (s.is_number()) {
-          scale.setConstant(number(s, path + "/scale"));
+          const double f = number(s, path + "/scale");
+          scale = {f, f, f};
         } else if (s.is_array() && s.size() == 3) {
-          const Vec3 v = vec3(s, path + "/scale");
-          scale = {v.x, v.y, v.z};
+          scale = vec3(s, path + "/scale");
         } else {
           fail(path + "/scale", "expected a number or 3 numbers");
         }
@@ -285,16 +286,15 @@ class SceneReader {
         keys(r, rp, {"axis", "degrees"});
         const Vec3 a = vec3(required(r, rp, "axis"), rp + "/axis");
         if (a == Vec3{}) fail(rp + "/axis", "axis must be non-zero");
-        axis = {a.x, a.y, a.z};
+        axis = a;
         degrees = number(required(r, rp, "degrees"), rp + "/degrees");
       }
       if (t.contains("translate")) {
-        const Vec3 v = vec3(t.at("translate"), path + "/translate");
-        translate = {v.x, v.y, v.z};
+        translate = vec3(t.at("translate"), path + "/translate");
       }
-      m = make_trs(scale, axis, degrees, translate);
+      m = Transform::trs(scale, axis, degrees, translate);
     }
-    const double det = m.topLeftCorner<3, 3>().determinant();
+    const double det = m.determinant();
     if (!(std::abs(det) > 0) || !std::isfinite(det)) fail(path, "transform is singular");
     return m;
   }

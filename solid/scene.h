@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "solid/memory_limit.h"
-#include "solid/solid.h"
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

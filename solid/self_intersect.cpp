@@ -16,17 +16,17 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <mutex>
 #include <vector>
 
-#include "solid/box_pairs.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
-#include "solid/triangulate.h"
-#include "solid/validate.h"
+#include "cover/solid/box_pairs.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/triangulate.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {

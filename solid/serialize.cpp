@@ -1,4 +1,4 @@
-#include "solid/serialize.h"
+#include "cover/solid/serialize.h"
 
 #include <algorithm>
 #include <bit>
@@ -9,8 +9,8 @@
 #include <tuple>
 #include <utility>
 
-#include "solid/errors.h"
-#include "solid/validate.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {

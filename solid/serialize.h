@@ -31,7 +31,7 @@
 #include <string>
 #include <string_view>
 
-#include "solid/solid.h"
+#include "cover/solid/solid.h"
 
 namespace cover {
 

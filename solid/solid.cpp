@@ -1,9 +1,10 @@
-#include "solid/solid.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
+#include "cover/solid/solid.h"
 
 #include <algorithm>
 #include <stdexcept>
+
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 
@@ -66,11 +66,11 @@ struct Leaf {
 /// A CSG solid with linear storage: vertices + signed faces tagged by leaf, and the tree.
 /// A value type, cheap to move.
 struct Solid {
-  LargeVector<Vec3> vertices;
-  LargeVector<uint32_t> face_start{0};  ///< #F+1 offsets into face_vertices
-  LargeVector<uint32_t> face_vertices;  ///< concatenated index lists (combined orientation)
-  LargeVector<uint32_t> face_leaf;      ///< #F leaf id per face
-  LargeVector<int8_t> face_sign;        ///< #F ±1 (see notation above)
+  std::vector<Vec3> vertices;
+  std::vector<uint32_t> face_start{0};  ///< #F+1 offsets into face_vertices
+  std::vector<uint32_t> face_vertices;  ///< concatenated index lists (combined orientation)
+  std::vector<uint32_t> face_leaf;      ///< #F leaf id per face
+  std::vector<int8_t> face_sign;        ///< #F ±1 (see notation above)
   std::vector<Leaf> leaves;
   CsgTree tree;
 

@@ -1,4 +1,4 @@
-#include "solid/transform.h"
+#include "cover/solid/transform.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -8,28 +8,79 @@
 #include <numbers>
 #include <string>
 
-#include "solid/errors.h"
-#include "solid/parallel.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 
-Affine make_trs(Eigen::Vector3d scale, Eigen::Vector3d axis, double degrees,
-                Eigen::Vector3d translate) {
-  Affine s = Affine::Identity();
-  s.diagonal().head<3>() = scale;
-  Affine r = Affine::Identity();
-  if (degrees != 0) {
-    r.topLeftCorner<3, 3>() =
-        Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, axis.normalized()).toRotationMatrix();
-  }
-  Affine t = Affine::Identity();
-  t.topRightCorner<3, 1>() = translate;
-  return t * r * s;
+namespace {
+// The arithmetic is Eigen's 4×4 double product, as it always was: the doubles a scene's
+// transforms produce do not change with the type that carries them.
+using Matrix4 = Eigen::Matrix4d;
+
+Matrix4 to_eigen(const Transform& t) {
+  Matrix4 m = Matrix4::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) m(r, c) = t.rows[r][c];
+  return m;
 }
 
-void apply_transform(const Affine& m, PolygonMesh& mesh) {
+Transform from_eigen(const Matrix4& m) {
+  Transform t;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) t.rows[r][c] = m(r, c);
+  return t;
+}
+}  // namespace
+
+Transform Transform::trs(Vec3 scale, Vec3 axis, double degrees, Vec3 translate) {
+  Matrix4 s = Matrix4::Identity();
+  s.diagonal().head<3>() = Eigen::Vector3d(scale.x, scale.y, scale.z);
+  Matrix4 r = Matrix4::Identity();
+  if (degrees != 0) {
+    r.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0,
+                          Eigen::Vector3d(axis.x, axis.y, axis.z).normalized())
+            .toRotationMatrix();
+  }
+  Matrix4 t = Matrix4::Identity();
+  t.topRightCorner<3, 1>() = Eigen::Vector3d(translate.x, translate.y, translate.z);
+  return from_eigen(t * r * s);
+}
+
+Transform Transform::reflection(Vec3 normal) {
+  const Eigen::Vector3d n(normal.x, normal.y, normal.z);
+  Matrix4 m = Matrix4::Identity();
+  m.topLeftCorner<3, 3>() -= 2 * n * n.transpose() / n.squaredNorm();
+  return from_eigen(m);
+}
+
+Transform Transform::from_matrix(std::span<const double, 16> row_major) {
+  if (row_major[12] != 0 || row_major[13] != 0 || row_major[14] != 0 || row_major[15] != 1)
+    throw InputError("transform: the last row must be 0 0 0 1");
+  Transform t;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) t.rows[r][c] = row_major[4 * r + c];
+  return t;
+}
+
+Transform Transform::operator*(const Transform& first) const {
+  return from_eigen(to_eigen(*this) * to_eigen(first));
+}
+
+Vec3 Transform::operator()(Vec3 p) const {
+  const Eigen::Vector4d q = to_eigen(*this) * Eigen::Vector4d(p.x, p.y, p.z, 1.0);
+  return {q.x(), q.y(), q.z()};
+}
+
+double Transform::determinant() const {
+  return to_eigen(*this).topLeftCorner<3, 3>().determinant();
+}
+
+void apply_transform(const Transform& t, PolygonMesh& mesh) {
   // Each vertex and each face on its own: chunks in parallel give the same doubles.
   constexpr size_t kGrain = 1 << 15;
+  const Matrix4 m = to_eigen(t);
   parallel_for(mesh.vertices.size(), kGrain, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
       Vec3& p = mesh.vertices[v];
@@ -46,10 +97,9 @@ void apply_transform(const Affine& m, PolygonMesh& mesh) {
   }
 }
 
-Solid transform_solid(const Affine& m, Solid solid) {
+Solid transform_solid(const Transform& t, Solid solid) {
+  const Matrix4 m = to_eigen(t);
   if (!m.allFinite()) throw InputError("transform: expected finite numbers");
-  if (m(3, 0) != 0 || m(3, 1) != 0 || m(3, 2) != 0 || m(3, 3) != 1)
-    throw InputError("transform: the last row must be 0 0 0 1");
   const Eigen::Matrix3d linear = m.topLeftCorner<3, 3>();
   const double det = linear.determinant();
   if (!(std::abs(det) >= std::numeric_limits<double>::min()) || !std::isfinite(det)) {

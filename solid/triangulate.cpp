@@ -1,6 +1,6 @@
 // triangulate_face (triangulate.h): the fan test and the constrained Delaunay triangulation in
 // the face's projection (CGAL Epick, constraints that would cross are refused, not constructed).
-#include "solid/triangulate.h"
+#include "cover/solid/triangulate.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -22,7 +22,7 @@
 #include <span>
 #include <vector>
 
-#include "solid/types.h"
+#include "cover/solid/types.h"
 
 namespace cover {
 

@@ -16,16 +16,16 @@
 // and to other faces along real edges. Hence χ = V − E + F counts each false pair in E, which
 // equals V − E_real + Σ_f (2 − L_f).
 
-#include "solid/validate.h"
+#include "cover/solid/validate.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "solid/measure.h"
-#include "solid/predicates.h"
-#include "solid/repair.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/repair.h"
 
 namespace cover {
 namespace {
@@ -81,8 +81,8 @@ class HalfEdges {
     return h > start_[face_of_[h]] ? h - 1 : start_[face_of_[h] + 1] - 1;
   }
 
-  const LargeVector<uint32_t>& fv_;
-  const LargeVector<uint32_t>& start_;
+  const std::vector<uint32_t>& fv_;
+  const std::vector<uint32_t>& start_;
   std::vector<uint32_t> face_of_;
 };
 

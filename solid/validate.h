@@ -26,7 +26,7 @@
 #include <utility>
 #include <vector>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover {
 

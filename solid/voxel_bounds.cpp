@@ -1,11 +1,11 @@
-#include "solid/voxel_bounds.h"
-
-#include "solid/errors.h"
+#include "cover/solid/voxel_bounds.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "cover/solid/errors.h"
 
 namespace cover {
 

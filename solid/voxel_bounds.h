@@ -1,7 +1,7 @@
 #pragma once
 // The cube a voxel grid (raster/voxel_grid.h) or an octree (octree/octree.h) subdivides.
 
-#include "solid/types.h"
+#include "cover/solid/types.h"
 
 namespace cover {
 

@@ -21,11 +21,11 @@
 #include <cstdio>
 #include <string>
 
-#include "solid/atomic_file.h"
-#include "solid/detail/mesh_io_detail.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
+#include "cover/solid/atomic_file.h"
+#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
 
 namespace cover {
 namespace {

@@ -66,7 +66,7 @@ inline RunResult run_cover(const std::string& args, const std::string& stdin_tex
 
 }  // namespace cover::test
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::test {
 

@@ -46,10 +46,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "boolean/evaluate.h"
-#include "solid/parallel.h"
-#include "solid/solid.h"
-#include "solid/union_find.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/solid.h"
+#include "cover/solid/union_find.h"
 
 namespace cover::boolean_detail {
 

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "boolean/detail/arrangement.h"
+#include "cover/boolean/detail/arrangement.h"
 
 namespace cover::boolean_detail {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::brep::detail {
 

@@ -8,9 +8,9 @@
 #include <optional>
 #include <vector>
 
-#include "brep/clip.h"
-#include "brep/halfedge.h"
-#include "solid/predicates.h"  // plane_side, polygon_orientation, orient2d, orient3d
+#include "cover/brep/clip.h"
+#include "cover/brep/halfedge.h"
+#include "cover/solid/predicates.h"  // plane_side, polygon_orientation, orient2d, orient3d
 
 namespace cover::brep::detail {
 

@@ -4,7 +4,7 @@
 
 #include <span>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::brep::detail {
 

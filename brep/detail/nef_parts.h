@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::brep::detail {
 

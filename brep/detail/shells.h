@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::brep::detail {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "covering/bvh.h"
+#include "cover/covering/bvh.h"
 
 namespace cover {
 

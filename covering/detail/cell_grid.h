@@ -13,7 +13,7 @@
 #include <functional>
 #include <vector>
 
-#include "covering/bvh.h"
+#include "cover/covering/bvh.h"
 
 namespace cover::detail {
 

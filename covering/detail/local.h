@@ -17,8 +17,8 @@
 #include <span>
 #include <vector>
 
-#include "covering/classify.h"
-#include "covering/detail/triangles.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/detail/triangles.h"
 
 namespace cover::detail {
 

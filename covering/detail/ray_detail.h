@@ -5,9 +5,9 @@
 
 #include <cstddef>
 
-#include "covering/bvh.h"
-#include "covering/ray.h"
-#include "solid/solid.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/solid.h"
 
 namespace cover::detail {
 

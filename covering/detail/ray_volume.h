@@ -24,8 +24,8 @@
 #include <cstddef>
 #include <functional>
 
-#include "covering/bvh.h"
-#include "solid/solid.h"
+#include "cover/covering/bvh.h"
+#include "cover/solid/solid.h"
 
 namespace cover::detail {
 

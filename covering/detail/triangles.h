@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "solid/solid.h"
+#include "cover/solid/solid.h"
 
 namespace cover::detail {
 

@@ -31,7 +31,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "solid/types.h"
+#include "cover/solid/types.h"
 
 namespace cover::detail {
 

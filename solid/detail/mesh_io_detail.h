@@ -32,7 +32,7 @@
 #include <system_error>
 #include <vector>
 
-#include "solid/polygon_mesh.h"
+#include "cover/solid/polygon_mesh.h"
 
 namespace cover::detail {
 

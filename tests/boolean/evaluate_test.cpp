@@ -3,8 +3,10 @@
 // self-intersections (brep validate + CGAL does_self_intersect) whose volume matches CGAL's to
 // 1e-9 relative and Cover's own ray-integrated volume within its error bound — plus the
 // coplanar / touching cases (regularized results) and the `cover evaluate` CLI.
-#include <CGAL/Gmpq.h>
+#include "cover/boolean/evaluate.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Gmpq.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -13,21 +15,20 @@
 
 #include <cstdio>
 #include <cstring>
-#include <sstream>
 #include <random>
+#include <sstream>
 
-#include "boolean/evaluate.h"
-#include "brep/halfedge.h"
 #include "brep/cells_checks.h"
-#include "covering/volume.h"
+#include "cover/brep/halfedge.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
+#include "cover/solid/transform.h"
+#include "cover/solid/validate.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
-#include "solid/transform.h"
-#include "solid/validate.h"
 
 namespace cover {
 namespace {
@@ -66,10 +67,11 @@ Operand operand(const std::string& name, Vec3 centre, double size, Vec3 axis, do
   const Bbox b = face_bbox(m);
   const Vec3 c = 0.5 * (b.min + b.max);
   const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  apply_transform(make_trs(Eigen::Vector3d::Constant(2 * size / ext), {axis.x, axis.y, axis.z},
-                           degrees, {centre.x, centre.y, centre.z}) *
-                      make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-                  m);
+  apply_transform(
+      Transform::trs(Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext}, {axis.x, axis.y, axis.z},
+                     degrees, {centre.x, centre.y, centre.z}) *
+          Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
+      m);
   return {make_leaf(m, name), to_cgal(m)};
 }
 
@@ -349,7 +351,7 @@ TEST(Evaluate, UnionOfBoxesOfSide1em200IsTheUnitResultScaled) {
     if (turn) {  // transversal crossings of tiny triangles
       const double c = 0.75 * a;
       PolygonMesh unit = make_box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5});
-      apply_transform(make_trs({1, 1, 1}, {1, 2, 3}, 31, {0, 0, 0}), unit);
+      apply_transform(Transform::trs({1, 1, 1}, {1, 2, 3}, 31, {0, 0, 0}), unit);
       second = unit;
       for (Vec3& p : second.vertices) p = {c + a * p.x, c + a * p.y, c + a * p.z};
     }

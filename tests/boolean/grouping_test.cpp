@@ -11,10 +11,10 @@
 #include <numeric>
 #include <vector>
 
-#include "boolean/detail/arrangement.h"
-#include "boolean/evaluate.h"
-#include "solid/primitives.h"
-#include "solid/solid.h"
+#include "cover/boolean/detail/arrangement.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/solid.h"
 
 namespace cover::boolean_detail {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <random>
 
-#include "boolean/detail/arrangement.h"
+#include "cover/boolean/detail/arrangement.h"
 
 namespace cover::boolean_detail {
 namespace {

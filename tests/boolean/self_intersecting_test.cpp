@@ -13,16 +13,16 @@
 #include <cmath>
 #include <random>
 
-#include "boolean/evaluate.h"
-#include "brep/halfedge.h"
-#include "covering/classify.h"
-#include "covering/volume.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/brep/halfedge.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/repair.h"
+#include "cover/solid/transform.h"
+#include "cover/solid/validate.h"
 #include "helpers.h"
-#include "solid/mesh_io.h"
-#include "solid/primitives.h"
-#include "solid/repair.h"
-#include "solid/transform.h"
-#include "solid/validate.h"
 
 namespace cover {
 namespace {
@@ -56,9 +56,9 @@ PolygonMesh model(const std::string& name, Vec3 centre, double size, double degr
   const Bbox b = face_bbox(m);
   const Vec3 c = 0.5 * (b.min + b.max);
   const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  apply_transform(make_trs(Eigen::Vector3d::Constant(2 * size / ext), {0, 0, 1}, degrees,
-                           {centre.x, centre.y, centre.z}) *
-                      make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
+  apply_transform(Transform::trs(Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext}, {0, 0, 1},
+                                 degrees, {centre.x, centre.y, centre.z}) *
+                      Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
                   m);
   return m;
 }

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <random>
 
-#include "boolean/evaluate.h"
-#include "covering/volume.h"
-#include "solid/measure.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
 
 namespace cover {
 namespace {

@@ -5,15 +5,15 @@
 // counted separately and welded for the self-intersection test.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
-#include "brep/clip.h"
-#include "brep/halfedge.h"
-#include "solid/measure.h"
-#include "solid/validate.h"
+#include "cover/brep/clip.h"
+#include "cover/brep/halfedge.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/validate.h"
 
 namespace cover::test {
 

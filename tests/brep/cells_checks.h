@@ -3,6 +3,12 @@
 // closed, outward 2-manifold without self-intersections (kernel validity + CGAL's exact test,
 // check_half), the pieces' volumes summing to the mesh's, and the glued pieces the same solid as
 // the mesh (volume to 1e-12 relative, valid, same genus).
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,16 +16,9 @@
 #include <cstdio>
 #include <string>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/orientation.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
-#include <CGAL/Surface_mesh.h>
-
-#include "brep/cells.h"
 #include "brep_checks.h"
-#include "solid/measure.h"
+#include "cover/brep/cells.h"
+#include "cover/solid/measure.h"
 
 namespace cover::test {
 

@@ -7,17 +7,17 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "boolean/evaluate.h"
-#include "model/model.h"
 #include "cells_checks.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/model/model.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {
@@ -122,10 +122,11 @@ Solid random_leaf(std::mt19937_64& rng, const std::string& name, double size) {
   const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
   Vec3 axis{u(rng), u(rng), u(rng)};
   if (dot(axis, axis) < 1e-3) axis = {0, 0, 1};
-  apply_transform(make_trs(Eigen::Vector3d::Constant(2 * size / ext), {axis.x, axis.y, axis.z},
-                           180 * u(rng), {0.25 * u(rng), 0.25 * u(rng), 0.25 * u(rng)}) *
-                      make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-                  m);
+  const double k = 2 * size / ext;
+  apply_transform(
+      Transform::trs({k, k, k}, axis, 180 * u(rng), {0.25 * u(rng), 0.25 * u(rng), 0.25 * u(rng)}) *
+          Transform::translation({-c.x, -c.y, -c.z}),
+      m);
   return make_leaf(m, name);
 }
 

@@ -12,10 +12,10 @@
 
 #include <random>
 
-#include "brep/clip.h"
 #include "brep_checks.h"
+#include "cover/brep/clip.h"
+#include "cover/solid/mesh_io.h"
 #include "helpers.h"
-#include "solid/mesh_io.h"
 
 namespace cover::brep {
 namespace {

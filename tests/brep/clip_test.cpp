@@ -1,17 +1,17 @@
 // Plane clip and patch (brep/clip.h) on constructed cases: CGAL's classic clip cases reproduced
 // independently (hollow box, nine concentric cubes of alternating orientation, planes through
 // vertices and along faces), faces with false edges, and the cap modes.
-#include "brep/clip.h"
+#include "cover/brep/clip.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "brep_checks.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/predicates.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/predicates.h"
 
 namespace cover::brep {
 namespace {

@@ -7,7 +7,7 @@
 // fallback; the same pieces for any thread count; random points in exactly one piece (exact
 // classification); the three-point clip; errors; and the `cover decompose` CLI (outputs, JSON keys,
 // open mesh and .stl pieces → exit 2).
-#include "brep/decompose.h"
+#include "cover/brep/decompose.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -19,18 +19,18 @@
 #include <numbers>
 #include <random>
 
-#include "brep/clip.h"
-#include "brep/detail/convex_hull.h"
-#include "brep/detail/nef_parts.h"
-#include "brep/halfedge.h"
+#include "cover/brep/clip.h"
+#include "cover/brep/detail/convex_hull.h"
+#include "cover/brep/detail/nef_parts.h"
+#include "cover/brep/halfedge.h"
+#include "cover/model/model.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "model/model.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
-#include "solid/transform.h"
 
 namespace cover::test {
 namespace {
@@ -359,8 +359,8 @@ TEST(Decompose, ReadmePartUsesTheExactFallback) {
   GTEST_SKIP() << "slow under sanitizers";
 #else
   const Model part = (box({0, 0, 0}, {2, 2, 2}) - sphere({2, 2, 2}, 1.2)) |
-                     cylinder({0, 0, 0}, {0, 0, 3}, 0.5).transformed(
-                         make_trs({1, 1, 1}, {1, 0, 0}, 10, {0, 0, 0}));
+                     cylinder({0, 0, 0}, {0, 0, 3}, 0.5)
+                         .transformed(Transform::trs({1, 1, 1}, {1, 0, 0}, 10, {0, 0, 0}));
   const brep::DecomposeResult r = part.decompose();
   expect_valid_decomposition(r, part.evaluate().volume, "part");
   EXPECT_GE(r.fallback_nodes, 1);
@@ -377,15 +377,16 @@ TEST(Decompose, ANonConvexPieceIsRedoneAloneNotWithItsShell) {
   GTEST_SKIP() << "slow under sanitizers";
 #else
   const Model c = load(cgal_mesh("couplingdown.off"));
-  Affine a, b;
-  a << 0.80601186454012641, 1.2174827190834066, -0.18185958227939872, 0.094012323870378611,
+  const Transform a = Transform::from_matrix(std::array<double, 16>{
+      0.80601186454012641, 1.2174827190834066, -0.18185958227939872, 0.094012323870378611,
       -1.1284324294652501, 0.64388837712216351, -0.69068097892670643, -0.03242253176177945,
       -0.49191191392841482, 0.51781829945771007, 1.2864210362066621, 0.35642708359188047, 0, 0, 0,
-      1;
-  b << 0.78842507075773149, 1.1861733593896737, 1.0910138560638083, 0.35468440002866919,
+      1});
+  const Transform b = Transform::from_matrix(std::array<double, 16>{
+      0.78842507075773149, 1.1861733593896737, 1.0910138560638083, 0.35468440002866919,
       -1.6385487887558328, 0.28602865859990773, 0.80965210627314133, 0.36227396930485423,
       0.37767562034391466, -1.2352846664674109, 1.2351122928133886, -0.26375990912892844, 0, 0, 0,
-      1;
+      1});
   const Model m = c.transformed(a) & c.transformed(b);
   const brep::DecomposeResult r = m.decompose();
   expect_valid_decomposition(r, m.evaluate().volume, "couplingdown & couplingdown");

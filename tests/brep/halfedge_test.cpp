@@ -1,12 +1,12 @@
 // HalfedgeMesh operators and validate() (brep/halfedge.h).
-#include "brep/halfedge.h"
+#include "cover/brep/halfedge.h"
 
 #include <gtest/gtest.h>
 
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
 
 namespace cover::brep {
 namespace {

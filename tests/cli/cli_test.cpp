@@ -1,14 +1,14 @@
 // The `cover` program end to end (docs/cli.md): commands, JSON keys, exit codes, errors.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
 #include <array>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <random>
 
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/primitives.h"
 #include "helpers.h"
-#include "solid/mesh_io.h"
-#include "solid/primitives.h"
 
 namespace cover {
 namespace {

@@ -3,9 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
 #include "helpers.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
 
 namespace cover {
 namespace {

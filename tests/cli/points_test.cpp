@@ -2,6 +2,8 @@
 // plain line-by-line reading, for any thread count; .npy points (every supported dtype, byte
 // order, layout and format version) equal the same points as text; malformed .npy data is
 // refused with one line naming the file, before any allocation the header asks for.
+#include "cover/cli/points.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,10 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/points.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
 
 namespace cover {
 namespace {

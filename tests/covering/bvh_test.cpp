@@ -1,7 +1,7 @@
 // The BVH's storage (covering/bvh.h): the leaf blocks hold exactly the solid's non-degenerate
 // covering triangles, each once, bit for bit, inside its leaf node's box, for every leaf size;
 // the children pairs form one tree in treelet order.
-#include "covering/bvh.h"
+#include "cover/covering/bvh.h"
 
 #include <gtest/gtest.h>
 
@@ -10,13 +10,13 @@
 #include <cstring>
 #include <tuple>
 
-#include "covering/detail/bvh_walk.h"
-#include "covering/detail/triangles.h"
+#include "cover/covering/detail/bvh_walk.h"
+#include "cover/covering/detail/triangles.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "solid/mesh_io.h"
-#include "solid/predicates.h"
-#include "solid/primitives.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {

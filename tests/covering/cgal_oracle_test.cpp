@@ -8,10 +8,10 @@
 
 #include <random>
 
-#include "covering/classify.h"
-#include "covering/volume.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/scene.h"
 #include "helpers.h"
-#include "solid/scene.h"
 
 namespace cover {
 namespace {

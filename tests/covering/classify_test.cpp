@@ -1,17 +1,17 @@
 // Exact classification (covering/classify.h): boxes' corners, edges, faces; triangulated faces;
 // false-edge holes; non-convex faces; result-level rules; nested expressions vs a truth table; a
 // solid whose whole BVH is one leaf.
-#include "covering/classify.h"
+#include "cover/covering/classify.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "covering/ray.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "solid/parallel.h"
-#include "solid/primitives.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {
@@ -157,7 +157,7 @@ TEST(Classify, NestedExpressionTruthTable) {
 
 TEST(Classify, MirroredSolidKeepsClasses) {
   PolygonMesh m = make_box({0, 0, 0}, {1, 1, 1});
-  apply_transform(make_trs({-1, 2, 1}, {0, 0, 1}, 0, {0, 0, 0}), m);  // det < 0
+  apply_transform(Transform::trs({-1, 2, 1}, {0, 0, 1}, 0, {0, 0, 0}), m);  // det < 0
   const Solid s = make_leaf(m, "mirrored");
   expect_box_classes(s, {-1, 0, 0}, {0, 2, 1});
 }

@@ -12,11 +12,11 @@
 #include <functional>
 #include <random>
 
-#include "covering/classify.h"
-#include "covering/volume.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "solid/mesh_io.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {
@@ -37,9 +37,9 @@ Operand operand(const std::string& name, Vec3 centre, double size, double degree
   const Bbox b = face_bbox(m);
   const Vec3 c = 0.5 * (b.min + b.max);
   const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  apply_transform(make_trs(Eigen::Vector3d::Constant(2 * size / ext), {0.3, 1, 0.2}, degrees,
-                           {centre.x, centre.y, centre.z}) *
-                      make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
+  apply_transform(Transform::trs(Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext},
+                                 {0.3, 1, 0.2}, degrees, {centre.x, centre.y, centre.z}) *
+                      Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
                   m);
   Operand o{make_leaf(m, name), {}};
   std::vector<Mesh::Vertex_index> vs;

@@ -6,12 +6,12 @@
 
 #include <random>
 
-#include "covering/classify.h"
-#include "covering/ray.h"
-#include "covering/volume.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/ray.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
 #include "helpers.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
 
 namespace cover {
 namespace {

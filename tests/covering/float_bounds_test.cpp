@@ -1,6 +1,6 @@
 // The outward float rounding that lets classification compare a double point with float node
 // bounds in single precision (covering/detail/float_bounds.h).
-#include "covering/detail/float_bounds.h"
+#include "cover/covering/detail/float_bounds.h"
 
 #include <gtest/gtest.h>
 

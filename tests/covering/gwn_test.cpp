@@ -1,20 +1,21 @@
 // Open leaves by the generalized winding number (covering/gwn.h): classify() and the fast
 // evaluation against an independent brute-force solid-angle sum (long double, every triangle)
 // on open libcgal-demo and assimp models, closed meshes with holes punched, and triangle soups.
+#include "cover/covering/gwn.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <random>
 
-#include "covering/classify.h"
-#include "covering/gwn.h"
-#include "covering/detail/triangles.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/detail/triangles.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
 
 namespace cover {
 namespace {

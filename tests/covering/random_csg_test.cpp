@@ -11,17 +11,17 @@
 #include <limits>
 #include <random>
 
-#include "covering/bounds.h"
-#include "covering/bvh.h"
-#include "covering/classify.h"
-#include "covering/ray.h"
-#include "covering/volume.h"
+#include "cover/covering/bounds.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/ray.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {
@@ -43,8 +43,8 @@ Solid random_leaf(std::mt19937_64& rng, const PolygonMesh& knot) {
       break;
     default:
       m = knot;
-      apply_transform(make_trs(Eigen::Vector3d::Constant(0.02), {u(rng), u(rng), 1}, 90 * u(rng),
-                               {u(rng), u(rng), u(rng)}),
+      apply_transform(Transform::trs(Vec3{0.02, 0.02, 0.02}, {u(rng), u(rng), 1}, 90 * u(rng),
+                                     {u(rng), u(rng), u(rng)}),
                       m);
   }
   return make_leaf(std::move(m), "leaf");

@@ -1,14 +1,14 @@
 // Ray casting through the non-evaluated solid (covering/ray.h): hits, signs and spans against
 // analytic answers, the tie rule on edges and faces, unbounded spans, and the batch, single and
 // depth-first casts against each other.
-#include "covering/ray.h"
+#include "cover/covering/ray.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "cover/solid/primitives.h"
 #include "helpers.h"
-#include "solid/primitives.h"
 
 namespace cover {
 namespace {

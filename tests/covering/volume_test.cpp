@@ -1,16 +1,16 @@
 // Covering volume (covering/volume.h): analytic volumes, transforms, exactness decisions.
-#include "covering/volume.h"
+#include "cover/covering/volume.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
-#include "solid/primitives.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {
@@ -43,10 +43,10 @@ TEST(Volume, TransformsScaleByDeterminantAndMirrorsStaySolid) {
   const double base = volume(leaf(m)).volume;
   ASSERT_GT(base, 0);
   PolygonMesh scaled = m;
-  apply_transform(make_trs({2, 3, 0.5}, {1, 1, 0}, 33, {5, 6, 7}), scaled);
+  apply_transform(Transform::trs({2, 3, 0.5}, {1, 1, 0}, 33, {5, 6, 7}), scaled);
   EXPECT_NEAR(volume(leaf(scaled)).volume, 3.0 * base, 1e-12 * base);
   PolygonMesh mirrored = m;
-  apply_transform(make_trs({-1, 1, 1}, {0, 0, 1}, 0, {0, 0, 0}), mirrored);
+  apply_transform(Transform::trs({-1, 1, 1}, {0, 0, 1}, 0, {0, 0, 0}), mirrored);
   EXPECT_NEAR(volume(leaf(mirrored)).volume, base, 1e-13 * base);
 }
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
+#include "cover/model/model.h"
 #include "helpers.h"
-#include "model/model.h"
 
 namespace cover {
 namespace {

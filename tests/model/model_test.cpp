@@ -2,21 +2,22 @@
 // answers: operators build the same solid as solid/solid.h's concatenation; every query equals
 // the free function on the same solid; the BVH is built once and shared by copies and threads;
 // errors are the documented types with one-line messages.
+#include "cover/model/model.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
 #include <random>
 #include <thread>
 
-#include "covering/bounds.h"
-#include "covering/classify.h"
-#include "covering/ray.h"
-#include "solid/measure.h"
+#include "cover/covering/bounds.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/ray.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "model/model.h"
-#include "solid/errors.h"
-#include "solid/primitives.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {
@@ -309,7 +310,7 @@ TEST(Model, VolumeExactCoveringRaysAndBrep) {
 }
 
 TEST(Model, TransformedEqualsTransformingEveryLeaf) {
-  const Affine t = make_trs({2, 2, 2}, {0, 0, 1}, 90, {1, -3, 0.5});
+  const Transform t = Transform::trs({2, 2, 2}, {0, 0, 1}, 90, {1, -3, 0.5});
   const Model m = part().transformed(t);
   PolygonMesh b = make_box({0, 0, 0}, {2, 2, 2}), s = make_sphere({2, 2, 2}, 1, 32),
               bar = make_box({1.5, 0.5, 0.5}, {3.5, 1, 1});
@@ -319,28 +320,29 @@ TEST(Model, TransformedEqualsTransformingEveryLeaf) {
   const std::vector<Vec3> points = random_points(5000, -8, 8, 4);
   EXPECT_EQ(m.classify(points), classify(expected, points));
   // A mirror keeps the solid solid (faces re-oriented): the volume keeps its sign.
-  Affine mirror = Affine::Identity();
-  mirror(0, 0) = -1;
+  Transform mirror;
+  mirror.rows[0][0] = -1;
   EXPECT_DOUBLE_EQ(box({0, 0, 0}, {1, 2, 3}).transformed(mirror).volume().volume, 6.0);
-  Affine bad = Affine::Identity();
-  bad(3, 0) = 1;
-  EXPECT_THROW(part().transformed(bad), InputError);
-  EXPECT_THROW(part().transformed(Affine::Zero()), InputError);
+  std::array<double, 16> bad{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1};
+  EXPECT_THROW((void)Transform::from_matrix(bad), InputError);
+  Transform zero;
+  for (auto& row : zero.rows) row = {0, 0, 0, 0};
+  EXPECT_THROW(part().transformed(zero), InputError);
 }
 
 // translated / scaled / rotated / mirrored are transformed() by the matching matrices.
 TEST(Model, TranslateScaleRotateMirror) {
   const Model m = part();
   const std::vector<Vec3> points = random_points(3000, -8, 8, 9);
-  auto same = [&](const Model& a, const Affine& t) {
+  auto same = [&](const Model& a, const Transform& t) {
     EXPECT_EQ(a.classify(points), m.transformed(t).classify(points));
   };
-  same(m.translated({1, -2, 0.5}), make_trs({1, 1, 1}, {0, 0, 1}, 0, {1, -2, 0.5}));
-  same(m.scaled({2, 0.5, -1}), make_trs({2, 0.5, -1}, {0, 0, 1}, 0, {0, 0, 0}));
-  same(m.scaled(1.5), make_trs({1.5, 1.5, 1.5}, {0, 0, 1}, 0, {0, 0, 0}));
-  same(m.rotated({1, 1, 0}, 30), make_trs({1, 1, 1}, {1, 1, 0}, 30, {0, 0, 0}));
-  Affine flip = Affine::Identity();
-  flip(1, 1) = -1;
+  same(m.translated({1, -2, 0.5}), Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {1, -2, 0.5}));
+  same(m.scaled({2, 0.5, -1}), Transform::trs({2, 0.5, -1}, {0, 0, 1}, 0, {0, 0, 0}));
+  same(m.scaled(1.5), Transform::trs({1.5, 1.5, 1.5}, {0, 0, 1}, 0, {0, 0, 0}));
+  same(m.rotated({1, 1, 0}, 30), Transform::trs({1, 1, 1}, {1, 1, 0}, 30, {0, 0, 0}));
+  Transform flip;
+  flip.rows[1][1] = -1;
   same(m.mirrored({0, 3, 0}), flip);
   // A mirror keeps the solid solid.
   EXPECT_DOUBLE_EQ(
@@ -429,7 +431,7 @@ TEST(Model, BvhBuiltOnceSharedByCopiesAndThreads) {
 }
 
 TEST(Model, BytesRoundTripAnswersTheSame) {
-  const Model m = part().transformed(make_trs({1, 2, 1}, {1, 1, 0}, 33, {0.5, 0, 0}));
+  const Model m = part().transformed(Transform::trs({1, 2, 1}, {1, 1, 0}, 33, {0.5, 0, 0}));
   const Model back = Model::from_bytes(m.to_bytes());
   const std::vector<Vec3> points = random_points(5000, -2, 6, 9);
   EXPECT_EQ(back.classify(points), m.classify(points));
@@ -445,8 +447,12 @@ TEST(Model, FromBytesRefusesDamageOrReadsASolidEveryKernelAnswers) {
   // crashed classify / volume / voxelize, and one flagged closed with a face missing answered.
   std::vector<std::array<Vec3, 3>> tris;
   const Model open = mesh(open_cube(1, tris), "open");
-  const Model scene = (box({0, 0, 0}, {1, 1, 1}) - open.transformed(make_trs({0.5, 0.5, 0.5}, {0, 0, 1}, 0, {0.25, 0.25, 0.25}))) |
-                      (sphere({1, 1, 1}, 0.5, 6) & ~box({0.5, 0, 0}, {2, 1, 1}).transformed(make_trs({-1, 1, 1}, {0, 0, 1}, 0, {2.5, 0, 0})));
+  const Model scene =
+      (box({0, 0, 0}, {1, 1, 1}) -
+       open.transformed(Transform::trs({0.5, 0.5, 0.5}, {0, 0, 1}, 0, {0.25, 0.25, 0.25}))) |
+      (sphere({1, 1, 1}, 0.5, 6) &
+       ~box({0.5, 0, 0}, {2, 1, 1})
+            .transformed(Transform::trs({-1, 1, 1}, {0, 0, 1}, 0, {2.5, 0, 0})));
   const std::string bytes = scene.to_bytes();
   const std::vector<Vec3> points = random_points(64, -0.5, 1.5, 12);
   std::mt19937_64 rng(40);
@@ -517,7 +523,7 @@ TEST(Model, EvaluateCellsRefusesNOverTheMemoryLimitBeforeEvaluating) {
 
 TEST(Model, TransformWithADeterminantBeyondTheDoublesSaysSo) {
   const Model b = box({0, 0, 0}, {1, 1, 1});
-  auto message = [&](const Affine& m) {
+  auto message = [&](const Transform& m) {
     try {
       (void)b.transformed(m);
     } catch (const InputError& e) {
@@ -525,16 +531,18 @@ TEST(Model, TransformWithADeterminantBeyondTheDoublesSaysSo) {
     }
     return std::string();
   };
-  EXPECT_EQ(message(make_trs({1e-200, 1e-200, 1e-200}, {0, 0, 1}, 0, {0, 0, 0})),
+  EXPECT_EQ(message(Transform::trs({1e-200, 1e-200, 1e-200}, {0, 0, 1}, 0, {0, 0, 0})),
             "transform: the determinant, about 1e-600, is beyond the range of normal doubles: "
             "volumes would underflow");
-  EXPECT_EQ(message(make_trs({1e200, 1e200, 1e-10}, {0, 0, 1}, 0, {0, 0, 0})),
+  EXPECT_EQ(message(Transform::trs({1e200, 1e200, 1e-10}, {0, 0, 1}, 0, {0, 0, 0})),
             "transform: the determinant, about 1e390, is beyond the range of normal doubles: "
             "volumes would overflow");
-  EXPECT_EQ(message(make_trs({1, 0, 1}, {0, 0, 1}, 0, {0, 0, 0})),
+  EXPECT_EQ(message(Transform::trs({1, 0, 1}, {0, 0, 1}, 0, {0, 0, 0})),
             "transform: singular matrix (it flattens the solid)");
   // Small but representable: accepted, and the volume is exact.
-  EXPECT_EQ(b.transformed(make_trs({1e-100, 1e-100, 1e-100}, {0, 0, 1}, 0, {0, 0, 0})).volume().volume,
+  EXPECT_EQ(b.transformed(Transform::trs({1e-100, 1e-100, 1e-100}, {0, 0, 1}, 0, {0, 0, 0}))
+                .volume()
+                .volume,
             1e-100 * 1e-100 * 1e-100);
 }
 

@@ -2,7 +2,7 @@
 // brute-force classification, partial leaves crossed by a surface (CGAL's exact overlap test as
 // the oracle), volume bounds, occupancy re-derived point by point, thread independence, and the
 // .htg / .bt / .json files read back independently (XML scan, liboctomap, nlohmann_json).
-#include "octree/octree.h"
+#include "cover/octree/octree.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Gmpq.h>
@@ -22,17 +22,17 @@
 #include <string>
 #include <vector>
 
-#include "covering/bvh.h"
-#include "covering/classify.h"
-#include "covering/volume.h"
+#include "cover/covering/bvh.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/volume.h"
+#include "cover/octree/detail/box_overlap.h"
+#include "cover/octree/octree_io.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
 #include "helpers.h"
-#include "octree/detail/box_overlap.h"
-#include "octree/octree_io.h"
-#include "solid/errors.h"
-#include "solid/parallel.h"
-#include "solid/predicates.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
 
 namespace cover {
 namespace {

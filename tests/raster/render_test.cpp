@@ -1,23 +1,22 @@
 // Ray-cast rendering (raster/render.h): invariants against analytic geometry, not golden images.
-#include "raster/render.h"
+#include "cover/raster/render.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <utility>
 #include <vector>
 
-#include "covering/ray.h"
+#include "cover/covering/ray.h"
+#include "cover/raster/png.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
 #include "helpers.h"
-#include "raster/png.h"
-#include "solid/parallel.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
-
-#include <tuple>
 
 namespace cover {
 namespace {

@@ -9,8 +9,8 @@
 #include <random>
 #include <string>
 
+#include "cover/raster/voxel_grid.h"
 #include "helpers.h"
-#include "raster/voxel_grid.h"
 
 namespace cover::test {
 

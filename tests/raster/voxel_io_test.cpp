@@ -4,7 +4,7 @@
 // here from the binvox 1 specification, and nlohmann::json for the .raw sidecar. Each check
 // compares every voxel against VoxelGrid::get.
 
-#include "raster/voxel_io.h"
+#include "cover/raster/voxel_io.h"
 
 #include <gtest/gtest.h>
 
@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "cover/raster/voxel_grid.h"
+#include "cover/solid/errors.h"
 #include "helpers.h"
 #include "voxel_grids.h"
-#include "raster/voxel_grid.h"
-#include "solid/errors.h"
 
 namespace cover {
 namespace {

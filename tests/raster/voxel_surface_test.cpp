@@ -11,7 +11,7 @@
 // sides, occupied and empty, and empty voxels touching along an edge stay joined: empty space is
 // 18-connected, not 26-connected.
 
-#include "raster/voxel_surface.h"
+#include "cover/raster/voxel_surface.h"
 
 #include <gtest/gtest.h>
 
@@ -22,12 +22,12 @@
 #include <string>
 #include <vector>
 
+#include "cover/raster/voxel_grid.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/validate.h"
 #include "helpers.h"
 #include "voxel_grids.h"
-#include "raster/voxel_grid.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/validate.h"
 
 namespace cover {
 namespace {

@@ -1,18 +1,18 @@
 // Presence-buffer voxelization (raster/voxelize.h) against the independent point classifier on
 // every voxel centre, the documented tie rule, and convergence to the exact volume.
-#include "raster/voxelize.h"
+#include "cover/raster/voxelize.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "covering/classify.h"
-#include "covering/volume.h"
+#include "cover/covering/classify.h"
+#include "cover/covering/volume.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
+#include "cover/solid/transform.h"
 #include "helpers.h"
-#include "solid/parallel.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
-#include "solid/transform.h"
 
 namespace cover {
 namespace {

@@ -1,22 +1,22 @@
 // Zarr v2 stores (raster/zarr_io.h) and OpenVDB files (raster/vdb_io.h), read back by the zarr and
 // pyopenvdb Python packages through tests/raster/read_voxels.py (not by Cover), equal the .npy of
 // the same grid; a Zarr store is atomic: bad targets and failing bricks leave what was there.
-#include "raster/zarr_io.h"
+#include "cover/raster/zarr_io.h"
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "cover/covering/bounds.h"
+#include "cover/raster/vdb_io.h"
+#include "cover/raster/voxel_io.h"
+#include "cover/raster/voxelize.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
 #include "helpers.h"
 #include "voxel_grids.h"
-#include "raster/vdb_io.h"
-#include "raster/voxel_io.h"
-#include "raster/voxelize.h"
-#include "solid/errors.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
-#include "covering/bounds.h"
 
 namespace cover {
 namespace {

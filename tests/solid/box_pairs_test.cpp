@@ -1,7 +1,7 @@
 // Grid broad phase (solid/box_pairs.h) against all pairs: random boxes of mixed sizes, boxes that
 // only touch (closed boxes meet), flat and point boxes, empty boxes, colours; each pair reported
 // once.
-#include "solid/box_pairs.h"
+#include "cover/solid/box_pairs.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Tests for solid/mesh_io.h: round trips, real models (libcgal-demo, assimp-testmodels), and a
 // corpus of malformed files that must raise a one-line InputError naming the file.
 
-#include "solid/mesh_io.h"
+#include "cover/solid/mesh_io.h"
 
 #include <gtest/gtest.h>
 
@@ -19,8 +19,8 @@
 #include <utility>
 #include <vector>
 
-#include "solid/errors.h"
-#include "tests/helpers.h"
+#include "cover/solid/errors.h"
+#include "helpers.h"
 
 namespace {
 

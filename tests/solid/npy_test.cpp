@@ -2,13 +2,14 @@
 // multiple of 64 bytes, and spell the shape as Python does; parse_npy_header() reads what numpy
 // itself writes (versions 1.0, 2.0 and 3.0: recorded bytes below) and refuses what is not a
 // header, naming the file. (tests/cli/points_test.cpp covers the malformed headers in detail.)
+#include "cover/solid/npy.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
-#include "solid/errors.h"
-#include "solid/npy.h"
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

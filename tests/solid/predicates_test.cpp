@@ -1,5 +1,5 @@
 // Exact predicates (solid/predicates.h): sign conventions and exactness where doubles fail.
-#include "solid/predicates.h"
+#include "cover/solid/predicates.h"
 
 #include <CGAL/Exact_rational.h>
 #include <gtest/gtest.h>

@@ -1,16 +1,17 @@
 // repair_rounding (solid/rounding_repair.h): contacts made by points that round alike are found
 // exactly and removed by collapsing rounding-scale edges; a mesh without contacts is unchanged;
 // an edge longer than the rounding scale is never collapsed.
+#include "cover/solid/rounding_repair.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "solid/measure.h"
-#include "solid/predicates.h"
-#include "solid/primitives.h"
-#include "solid/rounding_repair.h"
-#include "solid/validate.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/predicates.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {

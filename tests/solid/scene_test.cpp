@@ -1,13 +1,13 @@
 // JSON scenes (solid/scene.h): every node kind, transforms, and errors naming the JSON path.
-#include "solid/scene.h"
+#include "cover/solid/scene.h"
 
 #include <gtest/gtest.h>
 
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/primitives.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/mesh_io.h"
-#include "solid/primitives.h"
 
 namespace cover {
 namespace {

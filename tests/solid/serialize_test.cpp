@@ -1,15 +1,16 @@
 // solid/serialize.h: a Solid survives the trip through bytes exactly (same arrays, same tree,
 // same answers), and bytes that are not a solid — every truncation, random damage — are refused
 // with InputError, never read out of bounds (the checked build runs this under ASan).
+#include "cover/solid/serialize.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "cover/solid/errors.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/scene.h"
 #include "helpers.h"
-#include "solid/errors.h"
-#include "solid/primitives.h"
-#include "solid/scene.h"
-#include "solid/serialize.h"
 
 namespace cover {
 namespace {

@@ -1,10 +1,10 @@
 // The non-evaluated solid (solid/solid.h): concatenation, sign flips, the kept CSG tree.
-#include "solid/solid.h"
+#include "cover/solid/solid.h"
 
 #include <gtest/gtest.h>
 
-#include "solid/measure.h"
-#include "solid/primitives.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/primitives.h"
 
 namespace cover {
 namespace {

@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "solid/validate.h"
+#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {

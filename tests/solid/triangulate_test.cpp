@@ -1,7 +1,7 @@
 // Face triangulation (solid/triangulate.h): fans of convex faces, constrained triangulations of
 // the rest (every loop vertex a corner, holes behind false edges left empty, the loop's
 // orientation kept), and the two kinds of boundaries that cross themselves.
-#include "solid/triangulate.h"
+#include "cover/solid/triangulate.h"
 
 #include <gtest/gtest.h>
 

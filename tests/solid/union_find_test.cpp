@@ -1,6 +1,6 @@
 // Disjoint sets (solid/union_find.h): the representative is the smallest index of its set,
 // whatever the order of the unions.
-#include "solid/union_find.h"
+#include "cover/solid/union_find.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // through-hole whose faces hold two loops joined by false edges), exact degeneracy, exact
 // self-intersection, and the libcgal-demo meshes.
 
-#include "solid/validate.h"
+#include "cover/solid/validate.h"
 
 #include <gtest/gtest.h>
 
@@ -15,8 +15,8 @@
 #include <tuple>
 #include <vector>
 
-#include "solid/mesh_io.h"
-#include "tests/helpers.h"
+#include "cover/solid/mesh_io.h"
+#include "helpers.h"
 
 namespace cover {
 namespace {

@@ -1,10 +1,11 @@
 // Voxel bounds (solid/voxel_bounds.h): the default cube around a box.
-#include "solid/errors.h"
-#include "solid/voxel_bounds.h"
+#include "cover/solid/voxel_bounds.h"
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+
+#include "cover/solid/errors.h"
 
 namespace cover {
 namespace {

@@ -17,7 +17,7 @@
 #include <exception>
 #include <vector>
 
-#include "solid/triangulate.h"
+#include "cover/solid/triangulate.h"
 
 namespace cover::stress {
 namespace {

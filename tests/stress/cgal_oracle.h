@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "solid/polygon_mesh.h"
-#include "solid/solid.h"
+#include "cover/solid/polygon_mesh.h"
+#include "cover/solid/solid.h"
 
 namespace cover::stress {
 

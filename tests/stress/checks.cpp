@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "boolean/evaluate.h"
-#include "brep/cells.h"
-#include "brep/decompose.h"
-#include "brep/halfedge.h"
 #include "cgal_oracle.h"
-#include "model/model.h"
-#include "solid/errors.h"
-#include "solid/measure.h"
-#include "solid/validate.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/brep/cells.h"
+#include "cover/brep/decompose.h"
+#include "cover/brep/halfedge.h"
+#include "cover/model/model.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/validate.h"
 
 namespace cover::stress {
 namespace {

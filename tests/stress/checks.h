@@ -24,8 +24,8 @@
 #include <string>
 #include <utility>
 
-#include "solid/polygon_mesh.h"
-#include "solid/solid.h"
+#include "cover/solid/polygon_mesh.h"
+#include "cover/solid/solid.h"
 
 namespace cover::stress {
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <random>
 
-#include "solid/transform.h"
+#include "cover/solid/transform.h"
 
 namespace cover::stress {
 namespace {
@@ -35,10 +35,10 @@ std::string vec(double x, double y, double z) {
 }
 
 /// A random unit-ish axis (never zero).
-Eigen::Vector3d axis(Draw& d) {
+Vec3 axis(Draw& d) {
   for (;;) {
-    const Eigen::Vector3d a(d.real(-1, 1), d.real(-1, 1), d.real(-1, 1));
-    if (a.norm() > 0.1) return a;
+    const Vec3 a{d.real(-1, 1), d.real(-1, 1), d.real(-1, 1)};
+    if (std::sqrt(dot(a, a)) > 0.1) return a;
   }
 }
 
@@ -57,12 +57,12 @@ Leaf box_leaf(Draw& d) {
             "gridbox"};
   }
   const double h[3] = {d.real(0.2, 0.8), d.real(0.2, 0.8), d.real(0.2, 0.8)};
-  const Eigen::Vector3d a = axis(d);
+  const Vec3 a = axis(d);
   const double degrees = d.real(0, 360);
   const double t[3] = {d.real(-0.5, 0.5), d.real(-0.5, 0.5), d.real(-0.5, 0.5)};
   return {
       "{\"box\": {\"min\": " + vec(-h[0], -h[1], -h[2]) + ", \"max\": " + vec(h[0], h[1], h[2]) +
-          "}, \"transform\": {\"rotate\": {\"axis\": " + vec(a.x(), a.y(), a.z()) +
+          "}, \"transform\": {\"rotate\": {\"axis\": " + vec(a.x, a.y, a.z) +
           ", \"degrees\": " + num(degrees) + "}, \"translate\": " + vec(t[0], t[1], t[2]) + "}}",
       "box"};
 }
@@ -72,14 +72,15 @@ Leaf mesh_leaf(Draw& d, const MeshEntry& m) {
   const Vec3 e = m.box.max - m.box.min;
   const double ext = std::max({e.x, e.y, e.z});
   const double size = d.real(0.4, 1.0);  // half the side of the cube it is scaled into
-  Eigen::Vector3d scale = Eigen::Vector3d::Constant(2 * size / ext);
-  if (d.chance(1, 3))
-    for (int k = 0; k < 3; ++k) scale[k] *= d.real(0.6, 1.4);
-  const Eigen::Vector3d centre(d.real(-0.5, 0.5), d.real(-0.5, 0.5), d.real(-0.5, 0.5));
-  const Affine matrix = make_trs(scale, axis(d), d.real(0, 360), centre) *
-                        make_trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z});
+  Vec3 scale{2 * size / ext, 2 * size / ext, 2 * size / ext};
+  if (d.chance(1, 3))  // a braced list is evaluated left to right: x, y, z draw in order
+    scale = {scale.x * d.real(0.6, 1.4), scale.y * d.real(0.6, 1.4), scale.z * d.real(0.6, 1.4)};
+  const Vec3 centre{d.real(-0.5, 0.5), d.real(-0.5, 0.5), d.real(-0.5, 0.5)};
+  const Transform matrix = Transform::trs(scale, axis(d), d.real(0, 360), centre) *
+                           Transform::translation({-c.x, -c.y, -c.z});
   std::string json = "{\"mesh\": \"" + m.path.string() + "\", \"transform\": {\"matrix\": [";
-  for (int i = 0; i < 16; ++i) json += (i ? ", " : "") + num(matrix(i / 4, i % 4));
+  for (int i = 0; i < 16; ++i)
+    json += (i ? ", " : "") + num(i < 12 ? matrix.rows[i / 4][i % 4] : (i == 15 ? 1.0 : 0.0));
   return {json + "]}}", m.path.stem().string()};
 }
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "solid/types.h"
+#include "cover/solid/types.h"
 
 namespace cover::stress {
 

@@ -30,14 +30,14 @@
 #include <string>
 #include <vector>
 
-#include "boolean/evaluate.h"
 #include "cgal_oracle.h"
 #include "checks.h"
+#include "cover/boolean/evaluate.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/mesh_io.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/scene.h"
 #include "random_scene.h"
-#include "solid/errors.h"
-#include "solid/mesh_io.h"
-#include "solid/parallel.h"
-#include "solid/scene.h"
 #include "summary.h"
 
 namespace fs = std::filesystem;
