@@ -35,19 +35,23 @@ struct Scene {
 int main(int argc, char** argv) {
   const int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   std::vector<Scene> scenes;
-  scenes.push_back({"box − sphere(64) ∪ cylinder(48)",
-                    (cover::box({-1, -1, -1}, {1, 1, 1}) - cover::sphere({0.4, 0.3, 0.2}, 1.1, 64)) |
-                        cover::cylinder({-1.5, 0, 0}, {1.5, 0.1, 0.2}, 0.4, 48)});
-  scenes.push_back({"sphere(256) ∩ box",
-                    cover::sphere({0, 0, 0}, 1, 256) & cover::box({-0.9, -0.8, -0.7}, {0.9, 0.8, 0.7})});
-  std::printf("| scene | evaluated faces | N | pieces | cap faces | glued faces | evaluate s | "
-              "evaluate --cells s | of which cut s | glue s | repair s | collapsed | contacts left |\n");
+  scenes.push_back(
+      {"box − sphere(64) ∪ cylinder(48)",
+       (cover::box({-1, -1, -1}, {1, 1, 1}) - cover::sphere({0.4, 0.3, 0.2}, 1.1, 64)) |
+           cover::cylinder({-1.5, 0, 0}, {1.5, 0.1, 0.2}, 0.4, 48)});
+  scenes.push_back({"sphere(256) ∩ box", cover::sphere({0, 0, 0}, 1, 256) &
+                                             cover::box({-0.9, -0.8, -0.7}, {0.9, 0.8, 0.7})});
+  std::printf(
+      "| scene | evaluated faces | N | pieces | cap faces | glued faces | evaluate s | "
+      "evaluate --cells s | of which cut s | glue s | repair s | collapsed | contacts left |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Scene& s : scenes) {
     for (int n : {2, 4, 8}) {
       const cover::Bbox box = cover::face_bbox(s.model.evaluate().mesh);
-      const double ext = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
-      const cover::VoxelBounds cube{box.min - cover::Vec3{0.01 * ext, 0.01 * ext, 0.01 * ext}, 1.02 * ext};
+      const double ext =
+          std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+      const cover::VoxelBounds cube{box.min - cover::Vec3{0.01 * ext, 0.01 * ext, 0.01 * ext},
+                                    1.02 * ext};
       std::vector<double> plain, cells, cut, glue, repair;
       cover::CellsEvaluation last;
       size_t faces = 0;
@@ -62,12 +66,13 @@ int main(int argc, char** argv) {
         glue.push_back(last.cells.glue_seconds);
         repair.push_back(last.cells.repair_seconds);
       }
-      std::printf("| %s | %zu | %d | %zu | %lld | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %lld | %lld |\n",
-                  s.name.c_str(), faces, n, last.cells.pieces.size(),
-                  static_cast<long long>(last.cells.cap_faces), last.cells.glued.face_count(),
-                  median(plain), median(cells), median(cut), median(glue), median(repair),
-                  static_cast<long long>(last.cells.collapsed_edges),
-                  static_cast<long long>(last.cells.rounding_contacts));
+      std::printf(
+          "| %s | %zu | %d | %zu | %lld | %zu | %.3f | %.3f | %.3f | %.3f | %.3f | %lld | %lld |\n",
+          s.name.c_str(), faces, n, last.cells.pieces.size(),
+          static_cast<long long>(last.cells.cap_faces), last.cells.glued.face_count(),
+          median(plain), median(cells), median(cut), median(glue), median(repair),
+          static_cast<long long>(last.cells.collapsed_edges),
+          static_cast<long long>(last.cells.rounding_contacts));
       std::fflush(stdout);
     }
   }

@@ -31,7 +31,9 @@ using Mesh = CGAL::Surface_mesh<K::Point_3>;
 using Nef = CGAL::Nef_polyhedron_3<K>;
 using Clock = std::chrono::steady_clock;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 /// One Surface_mesh per connected component of the triangulated mesh.
 std::vector<Mesh> to_cgal(const cover::PolygonMesh& m) {
@@ -72,8 +74,9 @@ std::vector<Mesh> to_cgal(const cover::PolygonMesh& m) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::printf("| model | faces | reflex edges | Cover pieces | Cover s | CGAL pieces | CGAL s "
-              "(Nef build + decomposition) | Cover / CGAL time |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| model | faces | reflex edges | Cover pieces | Cover s | CGAL pieces | CGAL s "
+      "(Nef build + decomposition) | Cover / CGAL time |\n|---|---|---|---|---|---|---|---|\n");
   for (int i = 1; i < argc; ++i) {
     const std::filesystem::path path = argv[i];
     const cover::PolygonMesh m = cover::read_mesh(path);
@@ -102,8 +105,8 @@ int main(int argc, char** argv) {
     const double cgal_s = build_s + decompose_s;
     std::printf("| %s | %zu | %lld | %zu | %.3f | %ld | %.2f (%.2f + %.2f) | %.3f |\n",
                 path.filename().string().c_str(), m.face_count(),
-                static_cast<long long>(r.reflex_edges), r.pieces.size(), cover_s, cgal_pieces, cgal_s,
-                build_s, decompose_s, cover_s / cgal_s);
+                static_cast<long long>(r.reflex_edges), r.pieces.size(), cover_s, cgal_pieces,
+                cgal_s, build_s, decompose_s, cover_s / cgal_s);
     std::fflush(stdout);
   }
   return 0;

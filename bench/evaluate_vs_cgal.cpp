@@ -52,7 +52,8 @@ Operand operand(const std::string& file, cover::Vec3 centre, double size, double
       m);
   Operand o{cover::make_leaf(m, file), {}};
   std::vector<Mesh::Vertex_index> vs;
-  for (const cover::Vec3& p : m.vertices) vs.push_back(o.mesh.add_vertex(K::Point_3(p.x, p.y, p.z)));
+  for (const cover::Vec3& p : m.vertices)
+    vs.push_back(o.mesh.add_vertex(K::Point_3(p.x, p.y, p.z)));
   for (size_t f = 0; f < m.face_count(); ++f) {
     auto face = m.face(f);
     o.mesh.add_face(vs[face[0]], vs[face[1]], vs[face[2]]);
@@ -174,8 +175,9 @@ int main(int argc, char** argv) {
                 c.solid.face_count(), t_cover, t_checked, t_cgal, t_cover / t_cgal, result.volume,
                 CGAL::to_double(PMP::volume(out)));
   }
-  std::printf("\nCover seconds per step (median unchecked run)\n%-42s %8s %8s %8s %8s %8s %8s %8s\n",
-              "expression", "triang", "pairs", "inters", "split", "ident", "select", "assemb");
+  std::printf(
+      "\nCover seconds per step (median unchecked run)\n%-42s %8s %8s %8s %8s %8s %8s %8s\n",
+      "expression", "triang", "pairs", "inters", "split", "ident", "select", "assemb");
   for (const auto& [name, s] : phases)
     std::printf("%-44s %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n", name.c_str(), s.triangulate,
                 s.pairs, s.intersect, s.split, s.identify, s.select, s.assemble);

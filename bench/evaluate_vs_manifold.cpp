@@ -41,7 +41,9 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 struct LeafSpec {
   const char* file;
@@ -80,23 +82,26 @@ std::vector<Case> make_cases() {
   c.push_back({"bunny00 − elephant",
                {operand("bunny00.off", {0, 0, 0}, 1.0, 0),
                 operand("elephant.off", {0.35, 0.2, 0.1}, 0.8, 25)},
-               node(Op::kDifference, {leaf(0), leaf(1)}), {}});
+               node(Op::kDifference, {leaf(0), leaf(1)}),
+               {}});
   c.push_back({"armadillo ∩ knot1",
                {operand("armadillo.off", {0, 0, 0}, 1.0, 10),
                 operand("knot1.off", {0.1, -0.2, 0.05}, 1.0, 40)},
-               node(Op::kIntersection, {leaf(0), leaf(1)}), {}});
+               node(Op::kIntersection, {leaf(0), leaf(1)}),
+               {}});
   c.push_back({"cheese ∪ fandisk",
                {operand("cheese.off", {0, 0, 0}, 1.0, 0),
                 operand("fandisk.off", {0.3, 0.1, -0.2}, 0.9, 50)},
-               node(Op::kUnion, {leaf(0), leaf(1)}), {}});
-  c.push_back({"(bunny00 − knot1) ∪ (elephant ∩ fandisk)",
-               {operand("bunny00.off", {0, 0, 0}, 1.0, 0),
-                operand("knot1.off", {0.2, 0.3, 0}, 0.7, 60),
-                operand("elephant.off", {0.9, -0.3, 0.2}, 0.9, 15),
-                operand("fandisk.off", {0.8, -0.2, 0.3}, 0.9, 75)},
-               node(Op::kUnion, {node(Op::kDifference, {leaf(0), leaf(1)}),
-                                 node(Op::kIntersection, {leaf(2), leaf(3)})}),
+               node(Op::kUnion, {leaf(0), leaf(1)}),
                {}});
+  c.push_back(
+      {"(bunny00 − knot1) ∪ (elephant ∩ fandisk)",
+       {operand("bunny00.off", {0, 0, 0}, 1.0, 0), operand("knot1.off", {0.2, 0.3, 0}, 0.7, 60),
+        operand("elephant.off", {0.9, -0.3, 0.2}, 0.9, 15),
+        operand("fandisk.off", {0.8, -0.2, 0.3}, 0.9, 75)},
+       node(Op::kUnion, {node(Op::kDifference, {leaf(0), leaf(1)}),
+                         node(Op::kIntersection, {leaf(2), leaf(3)})}),
+       {}});
   // bench/render_vs_cgal.cpp kLeaves: ((A ∪ B ∪ C) − (D ∪ E)) ∪ ((F ∩ G) − H) ∪ (I − J).
   c.push_back({"10-leaf preview scene",
                {{"bunny00.off", {-0.2, -0.2, 0}, 0.8, {0, 0, 1}, 0},
@@ -191,7 +196,8 @@ manifold::MeshGL64 read_off(const fs::path& path) {
     p = q;
   };
   skip();
-  if (end - p < 3 || std::strncmp(p, "OFF", 3) != 0) throw std::runtime_error(path.string() + ": not OFF");
+  if (end - p < 3 || std::strncmp(p, "OFF", 3) != 0)
+    throw std::runtime_error(path.string() + ": not OFF");
   p += 3;
   size_t nv, nf, ne;
   number(nv), number(nf), number(ne);
@@ -275,13 +281,15 @@ int main(int argc, char** argv) {
       "usage: evaluate_vs_manifold MESH_FOLDER [--runs N] [--scratch DIR] [CASE...]\n"
       "  MESH_FOLDER  libcgal-demo data/meshes; CASE: 1-based case numbers (all by default)\n";
   if (argc < 2 || argv[1][0] == '-') {
-    const bool help = argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h");
+    const bool help =
+        argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h");
     std::fputs(usage, help ? stdout : stderr);
     return help ? 0 : 2;
   }
   const fs::path folder = argv[1];
   if (!fs::exists(folder / "bunny00.off")) {
-    std::fprintf(stderr, "evaluate_vs_manifold: %s has no bunny00.off (want libcgal-demo's data/meshes)\n",
+    std::fprintf(stderr,
+                 "evaluate_vs_manifold: %s has no bunny00.off (want libcgal-demo's data/meshes)\n",
                  folder.c_str());
     return 2;
   }
@@ -293,7 +301,8 @@ int main(int argc, char** argv) {
     char* end = nullptr;
     const long v = std::strtol(text.c_str(), &end, 10);
     if (text.empty() || *end != '\0' || v < 1) {
-      std::fprintf(stderr, "evaluate_vs_manifold: '%s' is not a positive number\n%s", text.c_str(), usage);
+      std::fprintf(stderr, "evaluate_vs_manifold: '%s' is not a positive number\n%s", text.c_str(),
+                   usage);
       std::exit(2);
     }
     return v;
@@ -321,8 +330,8 @@ int main(int argc, char** argv) {
     for (size_t l = 0; l < cases[i].leaves.size(); ++l) {
       const cover::PolygonMesh m = placed(folder, cases[i].leaves[l]);
       for (size_t f = 0; f < m.face_count(); ++f) triangles[i] += m.face(f).size() - 2;
-      cases[i].files.push_back(scratch / ("case" + std::to_string(i + 1) + "_leaf" +
-                                          std::to_string(l) + ".off"));
+      cases[i].files.push_back(
+          scratch / ("case" + std::to_string(i + 1) + "_leaf" + std::to_string(l) + ".off"));
       cover::write_mesh(cases[i].files.back(), m);  // OFF round trips are exact
     }
 
@@ -357,16 +366,18 @@ int main(int argc, char** argv) {
                 std::abs(cv - mv) / std::max(std::abs(cv), 1e-300));
   }
   // check+pairs: the leaf self-intersection test and the candidate pairs share one grid pass.
-  std::printf("\nCover seconds per step (run with the median kernel time)\n%-42s %7s %7s %7s "
-              "%7s %7s %7s %7s %7s\n", "expression", "triang", "chk+prs", "inters", "split",
-              "ident", "select", "assemb", "repair");
+  std::printf(
+      "\nCover seconds per step (run with the median kernel time)\n%-42s %7s %7s %7s "
+      "%7s %7s %7s %7s %7s\n",
+      "expression", "triang", "chk+prs", "inters", "split", "ident", "select", "assemb", "repair");
   for (size_t i : chosen) {
     std::vector<Timed> v = cov[i];
-    std::sort(v.begin(), v.end(), [](const Timed& a, const Timed& b) { return a.kernel < b.kernel; });
+    std::sort(v.begin(), v.end(),
+              [](const Timed& a, const Timed& b) { return a.kernel < b.kernel; });
     const cover::EvaluatePhases& s = v[v.size() / 2].phases;
-    std::printf("%-44s %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n",
-                cases[i].name.c_str(), s.triangulate, s.check + s.pairs, s.intersect, s.split,
-                s.identify, s.select, s.assemble, s.repair);
+    std::printf("%-44s %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f\n", cases[i].name.c_str(),
+                s.triangulate, s.check + s.pairs, s.intersect, s.split, s.identify, s.select,
+                s.assemble, s.repair);
   }
   return 0;
 }

@@ -89,10 +89,12 @@ void row(const std::string& name, const cover::PolygonMesh& closed_mesh) {
                    (co[i] == cover::PointClass::kInside);
       },
       1);
-  std::printf("| %s | %zu | %zu | %.3f | %.3f | %.1fx | %.3f | %.1fx | %.0f (%zu pts, 1 thread, scaled) | %zu/%zu |\n",
-              name.c_str(), tree.tris.size(), open.gwn()->closures[0].cone.tris.size(), t_closed,
-              t_open, t_open / t_closed, t_point, t_point / t_closed, t_brute * 1e6 / subset,
-              subset, agree, subset);
+  std::printf(
+      "| %s | %zu | %zu | %.3f | %.3f | %.1fx | %.3f | %.1fx | %.0f (%zu pts, 1 thread, scaled) | "
+      "%zu/%zu |\n",
+      name.c_str(), tree.tris.size(), open.gwn()->closures[0].cone.tris.size(), t_closed, t_open,
+      t_open / t_closed, t_point, t_point / t_closed, t_brute * 1e6 / subset, subset, agree,
+      subset);
   std::fflush(stdout);
 }
 
@@ -110,9 +112,10 @@ int main(int argc, char** argv) {
   tbb::global_control gc(tbb::global_control::max_allowed_parallelism, threads);
   std::printf("threads %d; seconds, median of 5 interleaved rounds (brute force: one run)\n\n",
               threads);
-  std::printf("| mesh | open triangles | cap triangles | closed classify 1M | open classify 1M | "
-              "open / closed | open, grid off | grid off / closed | brute force 1M (s) | "
-              "brute agrees |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| mesh | open triangles | cap triangles | closed classify 1M | open classify 1M | "
+      "open / closed | open, grid off | grid off / closed | brute force 1M (s) | "
+      "brute agrees |\n|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   if (!bunny.empty()) {
     const cover::Solid s = cover::load_input(bunny).solid;

@@ -66,9 +66,9 @@ int main(int argc, char** argv) {
   }
   write_bytes(dir / "points.txt", text);
   const std::array<uint64_t, 2> shape{n, 3};
-  write_bytes(dir / "points.npy",
-              cover::npy_header("<f8", shape) +
-                  std::string(reinterpret_cast<const char*>(points.data()), n * sizeof(cover::Vec3)));
+  write_bytes(dir / "points.npy", cover::npy_header("<f8", shape) +
+                                      std::string(reinterpret_cast<const char*>(points.data()),
+                                                  n * sizeof(cover::Vec3)));
 
   // Per point as `cover classify` asks: the point, its class, its output word.
   const size_t bytes_per_point = sizeof(cover::Vec3) + 1 + 8;
@@ -107,18 +107,21 @@ int main(int argc, char** argv) {
     median.push_back(s[s.size() / 2]);
   }
 
-  std::printf("%s: %zu faces; %zu random points in its box (text %.1f MB, .npy %.1f MB); %d "
-              "threads; %ld rounds, best / median s\n",
-              argv[1], solid.face_count(), n, static_cast<double>(text.size()) / 1e6,
-              static_cast<double>(n * 24 + 128) / 1e6, threads, repeat);
+  std::printf(
+      "%s: %zu faces; %zu random points in its box (text %.1f MB, .npy %.1f MB); %d "
+      "threads; %ld rounds, best / median s\n",
+      argv[1], solid.face_count(), n, static_cast<double>(text.size()) / 1e6,
+      static_cast<double>(n * 24 + 128) / 1e6, threads, repeat);
   const char* names[kSteps] = {"read_points text", "parse_points (text in memory)",
-                               "read_points .npy", "BVH build", "classify", "BVH + classify"};
+                               "read_points .npy", "BVH build",
+                               "classify",         "BVH + classify"};
   for (int k = 0; k < kSteps; ++k)
     std::printf("  %-30s %8.4f  %8.4f\n", names[k], best[k], median[k]);
-  std::printf("  / (BVH + classify), best / median: read text %.2f / %.2f, parse text %.2f / %.2f, "
-              "read .npy %.3f / %.3f\n",
-              best[kReadText] / best[kBvhClassify], median[kReadText] / median[kBvhClassify],
-              best[kParseText] / best[kBvhClassify], median[kParseText] / median[kBvhClassify],
-              best[kReadNpy] / best[kBvhClassify], median[kReadNpy] / median[kBvhClassify]);
+  std::printf(
+      "  / (BVH + classify), best / median: read text %.2f / %.2f, parse text %.2f / %.2f, "
+      "read .npy %.3f / %.3f\n",
+      best[kReadText] / best[kBvhClassify], median[kReadText] / median[kBvhClassify],
+      best[kParseText] / best[kBvhClassify], median[kParseText] / median[kBvhClassify],
+      best[kReadNpy] / best[kBvhClassify], median[kReadNpy] / median[kBvhClassify]);
   return 0;
 }

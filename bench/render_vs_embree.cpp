@@ -20,10 +20,11 @@
 // Figures: medians of --runs (default 3) interleaved runs (Cover, Embree, Cover, ...); per-ray
 // times are a frame's wall time over its pixels; cpu_s: the same spans in process CPU time (user
 // + system of all threads), a measure a loaded host disturbs less. Embree's device (its thread
-// pool) is created outside the timings, as Cover's TBB pool exists before its load. Checks: Cover's images for 1 and N threads are
-// identical (rgb, depth, ids); the later frame equals the first; and for a single mesh (no CSG)
-// the pixels Cover and Embree see as covered agree (reported as a fraction: Embree uses floats).
-// Usage: render_vs_embree INPUT [--runs 3] [--threads 2] [--size 1024] [--png OUT.png]
+// pool) is created outside the timings, as Cover's TBB pool exists before its load. Checks: Cover's
+// images for 1 and N threads are identical (rgb, depth, ids); the later frame equals the first; and
+// for a single mesh (no CSG) the pixels Cover and Embree see as covered agree (reported as a
+// fraction: Embree uses floats). Usage: render_vs_embree INPUT [--runs 3] [--threads 2] [--size
+// 1024] [--png OUT.png]
 //        [--cover-only]   (--cover-only: Cover's timings alone, for profiling or A/B runs)
 #include <embree3/rtcore.h>
 #include <sys/resource.h>
@@ -31,7 +32,6 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <Eigen/Core>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -149,9 +149,8 @@ double embree_load(const std::vector<LeafFile>& leaves, EmbreeScene& e) {
     size_t tris = 0;
     for (size_t f = 0; f < m.face_count(); ++f) tris += m.face(f).size() - 2;
     RTCGeometry g = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                          m.vertices.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.vertices.size()));
     auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris));
     cover::parallel_for(m.vertices.size(), 1 << 15, [&](size_t b, size_t end) {
@@ -217,73 +216,74 @@ size_t embree_frame(const EmbreeScene& e, const cover::Camera& cam, EmbreeFrame 
     dx = float(r.dir.x), dy = float(r.dir.y), dz = float(r.dir.z);
   };
   arena.execute([&] {
-    tbb::parallel_for(
-        tbb::blocked_range2d<int>(0, cam.height, 32, 0, cam.width, 32),
-        [&](const tbb::blocked_range2d<int>& r) {
-          size_t local = 0;
-          if (kind == EmbreeFrame::kPacket) {
-            RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-            for (int y0 = r.rows().begin(); y0 < r.rows().end(); y0 += 2)
-              for (int x0 = r.cols().begin(); x0 < r.cols().end(); x0 += 4) {
-                alignas(32) RTCRayHit8 rh;
-                alignas(32) int valid[8];
-                for (int k = 0; k < 8; ++k) {
-                  const int px = x0 + k % 4, py = y0 + k / 4;
-                  valid[k] = px < r.cols().end() && py < r.rows().end() ? -1 : 0;
-                  set_ray(std::min(px, cam.width - 1), std::min(py, cam.height - 1),
-                          rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k], rh.ray.dir_x[k],
-                          rh.ray.dir_y[k], rh.ray.dir_z[k]);
-                  rh.ray.tnear[k] = 0;
-                  rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
-                  rh.ray.mask[k] = ~0u;
-                  rh.ray.time[k] = 0;
-                  rh.ray.flags[k] = 0;
-                  rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                }
-                rtcIntersect8(valid, e.scene, &ctx, &rh);
-                for (int k = 0; k < 8; ++k) {
-                  const int px = x0 + k % 4, py = y0 + k / 4;
-                  if (!valid[k] || rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
-                  ++local;
-                  out[size_t(py) * cam.width + px] =
-                      shade(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k], cam.forward);
-                }
-              }
-          } else {
-            for (int py = r.rows().begin(); py < r.rows().end(); ++py)
-              for (int px = r.cols().begin(); px < r.cols().end(); ++px) {
-                RTCRayHit rh;
-                set_ray(px, py, rh.ray.org_x, rh.ray.org_y, rh.ray.org_z, rh.ray.dir_x,
-                        rh.ray.dir_y, rh.ray.dir_z);
-                rh.ray.tnear = 0;
-                rh.ray.tfar = std::numeric_limits<float>::infinity();
-                rh.ray.mask = ~0u;
-                rh.ray.time = 0;
-                rh.ray.flags = 0;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                const cover::Vec3 d{rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
-                if (kind == EmbreeFrame::kSingle) {
-                  RTCIntersectContext ctx;
-                  rtcInitIntersectContext(&ctx);
-                  rtcIntersect1(e.scene, &ctx, &rh);
-                  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-                  ++local;
-                  out[size_t(py) * cam.width + px] =
-                      shade(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z, d);
-                } else {
-                  AllHits c;
-                  rtcInitIntersectContext(&c.context);
-                  c.context.filter = collect_hit;
-                  rtcIntersect1(e.scene, &c.context, &rh);
-                  local += c.count;
-                  if (c.count > 0) out[size_t(py) * cam.width + px] = shade(c.nx, c.ny, c.nz, d);
-                }
-              }
-          }
-          total += local;
-        });
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, cam.height, 32, 0, cam.width, 32),
+                      [&](const tbb::blocked_range2d<int>& r) {
+                        size_t local = 0;
+                        if (kind == EmbreeFrame::kPacket) {
+                          RTCIntersectContext ctx;
+                          rtcInitIntersectContext(&ctx);
+                          ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                          for (int y0 = r.rows().begin(); y0 < r.rows().end(); y0 += 2)
+                            for (int x0 = r.cols().begin(); x0 < r.cols().end(); x0 += 4) {
+                              alignas(32) RTCRayHit8 rh;
+                              alignas(32) int valid[8];
+                              for (int k = 0; k < 8; ++k) {
+                                const int px = x0 + k % 4, py = y0 + k / 4;
+                                valid[k] = px < r.cols().end() && py < r.rows().end() ? -1 : 0;
+                                set_ray(std::min(px, cam.width - 1), std::min(py, cam.height - 1),
+                                        rh.ray.org_x[k], rh.ray.org_y[k], rh.ray.org_z[k],
+                                        rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]);
+                                rh.ray.tnear[k] = 0;
+                                rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+                                rh.ray.mask[k] = ~0u;
+                                rh.ray.time[k] = 0;
+                                rh.ray.flags[k] = 0;
+                                rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                              }
+                              rtcIntersect8(valid, e.scene, &ctx, &rh);
+                              for (int k = 0; k < 8; ++k) {
+                                const int px = x0 + k % 4, py = y0 + k / 4;
+                                if (!valid[k] || rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID)
+                                  continue;
+                                ++local;
+                                out[size_t(py) * cam.width + px] = shade(
+                                    rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k], cam.forward);
+                              }
+                            }
+                        } else {
+                          for (int py = r.rows().begin(); py < r.rows().end(); ++py)
+                            for (int px = r.cols().begin(); px < r.cols().end(); ++px) {
+                              RTCRayHit rh;
+                              set_ray(px, py, rh.ray.org_x, rh.ray.org_y, rh.ray.org_z,
+                                      rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+                              rh.ray.tnear = 0;
+                              rh.ray.tfar = std::numeric_limits<float>::infinity();
+                              rh.ray.mask = ~0u;
+                              rh.ray.time = 0;
+                              rh.ray.flags = 0;
+                              rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                              const cover::Vec3 d{rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
+                              if (kind == EmbreeFrame::kSingle) {
+                                RTCIntersectContext ctx;
+                                rtcInitIntersectContext(&ctx);
+                                rtcIntersect1(e.scene, &ctx, &rh);
+                                if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+                                ++local;
+                                out[size_t(py) * cam.width + px] =
+                                    shade(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z, d);
+                              } else {
+                                AllHits c;
+                                rtcInitIntersectContext(&c.context);
+                                c.context.filter = collect_hit;
+                                rtcIntersect1(e.scene, &c.context, &rh);
+                                local += c.count;
+                                if (c.count > 0)
+                                  out[size_t(py) * cam.width + px] = shade(c.nx, c.ny, c.nz, d);
+                              }
+                            }
+                        }
+                        total += local;
+                      });
   });
   return total;
 }
@@ -363,8 +363,8 @@ int main(int argc, char** argv) {
       const cover::Image later = model.render(cam);
       c.later_frame_s = since(t1);
       c.later_cpu_s = cpu_seconds() - cpu1;
-      later_identical &= later.rgb == first.rgb && later.depth == first.depth &&
-                         later.ids == first.ids;
+      later_identical &=
+          later.rgb == first.rgb && later.depth == first.depth && later.ids == first.ids;
       if (run == 0) reference = first;
       cover_runs.push_back(c);
     }
@@ -416,13 +416,13 @@ int main(int argc, char** argv) {
                         walked.ids == reference.ids;
   }
   if (cover_only) {
-    std::printf("{\"cover_load_s\": %.4f, \"cover_bvh_s\": %.4f, \"cover_frame_s\": %.4f, "
-                "\"cover_later_frame_s\": %.4f, \"images_identical_1_vs_%d_threads\": %s, "
-                "\"object_order_identical_to_rays\": %s}\n",
-                median_of(cover_runs, &CoverRun::load_s), median_of(cover_runs, &CoverRun::bvh_s),
-                median_of(cover_runs, &CoverRun::frame_s),
-                median_of(cover_runs, &CoverRun::later_frame_s), threads,
-                threads_identical ? "true" : "false", methods_identical ? "true" : "false");
+    std::printf(
+        "{\"cover_load_s\": %.4f, \"cover_bvh_s\": %.4f, \"cover_frame_s\": %.4f, "
+        "\"cover_later_frame_s\": %.4f, \"images_identical_1_vs_%d_threads\": %s, "
+        "\"object_order_identical_to_rays\": %s}\n",
+        median_of(cover_runs, &CoverRun::load_s), median_of(cover_runs, &CoverRun::bvh_s),
+        median_of(cover_runs, &CoverRun::frame_s), median_of(cover_runs, &CoverRun::later_frame_s),
+        threads, threads_identical ? "true" : "false", methods_identical ? "true" : "false");
     return threads_identical && later_identical && methods_identical ? 0 : 1;
   }
   // Coverage agreement (meaningful for a single mesh: no CSG on Embree's side).
@@ -435,35 +435,40 @@ int main(int argc, char** argv) {
   auto cm = [&](double CoverRun::*f) { return median_of(cover_runs, f); };
   const double c_first = cm(&CoverRun::first_frame_s), c_later = cm(&CoverRun::later_frame_s);
   const double ns = 1e9 / static_cast<double>(pixels);
-  std::printf("{\"input\": \"%s\", \"leaves\": %zu, \"embree_triangles\": %zu, \"pixels\": \"%dx%d\",\n",
-              input.filename().string().c_str(), leaves.size(), e_triangles, cam.width,
-              cam.height);
+  std::printf(
+      "{\"input\": \"%s\", \"leaves\": %zu, \"embree_triangles\": %zu, \"pixels\": \"%dx%d\",\n",
+      input.filename().string().c_str(), leaves.size(), e_triangles, cam.width, cam.height);
   std::printf(" \"threads\": %d, \"runs\": %d, \"embree\": \"%d.%d.%d\",\n", threads, runs,
               RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);
-  std::printf(" \"cover_load_s\": %.4f, \"cover_bvh_s\": %.4f, \"cover_frame_s\": %.4f, "
-              "\"cover_first_frame_s\": %.4f, \"cover_later_frame_s\": %.4f,\n",
-              cm(&CoverRun::load_s), cm(&CoverRun::bvh_s), cm(&CoverRun::frame_s), c_first,
-              c_later);
-  std::printf(" \"embree_load_build_s\": %.4f, \"embree_build_s\": %.4f, \"embree_first_frame_s\": %.4f, "
-              "\"embree_single_frame_s\": %.4f, \"embree_packet_frame_s\": %.4f, "
-              "\"embree_every_hit_frame_s\": %.4f, \"embree_hits_per_ray\": %.2f,\n",
-              median(e_load), median(e_build), median(e_first), median(e_single), median(e_packet),
-              median(e_every), static_cast<double>(e_hits) / pixels);
-  std::printf(" \"ns_per_ray\": {\"cover\": %.1f, \"embree_single\": %.1f, \"embree_packet\": %.1f, "
-              "\"embree_every_hit\": %.1f},\n",
-              c_later * ns, median(e_single) * ns, median(e_packet) * ns, median(e_every) * ns);
-  std::printf(" \"first_frame_ratio\": %.3f, \"later_vs_every_hit_ratio\": %.3f, "
-              "\"later_vs_single_ratio\": %.3f, \"later_vs_packet_ratio\": %.3f,\n",
-              c_first / median(e_first), c_later / median(e_every), c_later / median(e_single),
-              c_later / median(e_packet));
-  std::printf(" \"images_identical_1_vs_%d_threads\": %s, \"later_frame_identical\": %s, "
-              "\"object_order_identical_to_rays\": %s, \"covered_pixels_agree\": %.5f,\n",
-              threads, threads_identical ? "true" : "false", later_identical ? "true" : "false",
-              methods_identical ? "true" : "false", static_cast<double>(agree) / pixels);
-  std::printf(" \"cpu_s\": {\"cover_first_frame\": %.4f, \"cover_later_frame\": %.4f, "
-              "\"embree_first_frame\": %.4f, \"embree_every_hit_frame\": %.4f},\n",
-              cm(&CoverRun::first_cpu_s), cm(&CoverRun::later_cpu_s), median(e_first_cpu),
-              median(e_every_cpu));
+  std::printf(
+      " \"cover_load_s\": %.4f, \"cover_bvh_s\": %.4f, \"cover_frame_s\": %.4f, "
+      "\"cover_first_frame_s\": %.4f, \"cover_later_frame_s\": %.4f,\n",
+      cm(&CoverRun::load_s), cm(&CoverRun::bvh_s), cm(&CoverRun::frame_s), c_first, c_later);
+  std::printf(
+      " \"embree_load_build_s\": %.4f, \"embree_build_s\": %.4f, \"embree_first_frame_s\": %.4f, "
+      "\"embree_single_frame_s\": %.4f, \"embree_packet_frame_s\": %.4f, "
+      "\"embree_every_hit_frame_s\": %.4f, \"embree_hits_per_ray\": %.2f,\n",
+      median(e_load), median(e_build), median(e_first), median(e_single), median(e_packet),
+      median(e_every), static_cast<double>(e_hits) / pixels);
+  std::printf(
+      " \"ns_per_ray\": {\"cover\": %.1f, \"embree_single\": %.1f, \"embree_packet\": %.1f, "
+      "\"embree_every_hit\": %.1f},\n",
+      c_later * ns, median(e_single) * ns, median(e_packet) * ns, median(e_every) * ns);
+  std::printf(
+      " \"first_frame_ratio\": %.3f, \"later_vs_every_hit_ratio\": %.3f, "
+      "\"later_vs_single_ratio\": %.3f, \"later_vs_packet_ratio\": %.3f,\n",
+      c_first / median(e_first), c_later / median(e_every), c_later / median(e_single),
+      c_later / median(e_packet));
+  std::printf(
+      " \"images_identical_1_vs_%d_threads\": %s, \"later_frame_identical\": %s, "
+      "\"object_order_identical_to_rays\": %s, \"covered_pixels_agree\": %.5f,\n",
+      threads, threads_identical ? "true" : "false", later_identical ? "true" : "false",
+      methods_identical ? "true" : "false", static_cast<double>(agree) / pixels);
+  std::printf(
+      " \"cpu_s\": {\"cover_first_frame\": %.4f, \"cover_later_frame\": %.4f, "
+      "\"embree_first_frame\": %.4f, \"embree_every_hit_frame\": %.4f},\n",
+      cm(&CoverRun::first_cpu_s), cm(&CoverRun::later_cpu_s), median(e_first_cpu),
+      median(e_every_cpu));
   std::printf(" \"cpu_first_frame_ratio\": %.3f, \"cpu_later_vs_every_hit_ratio\": %.3f}\n",
               cm(&CoverRun::first_cpu_s) / median(e_first_cpu),
               cm(&CoverRun::later_cpu_s) / median(e_every_cpu));

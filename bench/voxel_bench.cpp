@@ -26,12 +26,14 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "bench_cli.h"
 #include "cover/octree/octree.h"
 #include "cover/raster/voxelize.h"
+#include "cover/solid/large_vector.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/scene.h"
 
@@ -57,7 +59,7 @@ double peak_mib() {
 }
 
 /// memset + XOR prefix pass over `words` (the same traffic a presence buffer needs at least).
-uint64_t floor_pass(cover::LargeVector<uint64_t>& words) {
+uint64_t floor_pass(std::span<uint64_t> words) {
   std::memset(words.data(), 0, words.size() * sizeof(uint64_t));
   uint64_t acc = 0x9e3779b97f4a7c15ULL;
   for (uint64_t& w : words) w = acc ^= w;
@@ -117,7 +119,8 @@ int main(int argc, char** argv) {
       sink ^= floor_pass(grid.bits);
       t_warm.push_back(since(t0));
       t0 = Clock::now();
-      cover::LargeVector<uint64_t> fresh(grid.bits.size());  // allocated as a grid is
+      std::vector<uint64_t> fresh;  // allocated as a grid is
+      cover::resize_huge(fresh, grid.bits.size());
       sink ^= floor_pass(fresh);
       t_fresh.push_back(since(t0));
     }

@@ -121,10 +121,10 @@ std::vector<Tri> leaf_tris(const Solid& solid, const std::vector<uint32_t>& id,
 std::vector<uint32_t> merge_equal(const std::vector<Point>& pts, const std::vector<uint32_t>& ids,
                                   const Bbox& box) {
   UnionFind sets(pts.size());
-  const double extent = std::max({box.max.x - box.min.x, box.max.y - box.min.y,
-                                  box.max.z - box.min.z, std::abs(box.min.x), std::abs(box.min.y),
-                                  std::abs(box.min.z), std::abs(box.max.x), std::abs(box.max.y),
-                                  std::abs(box.max.z), 1e-300});
+  const double extent =
+      std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z,
+                std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
+                std::abs(box.max.y), std::abs(box.max.z), 1e-300});
   const double h = extent * 0x1p-36;
   std::vector<std::pair<uint64_t, uint32_t>> cells;
   std::vector<uint32_t> wide;
@@ -335,7 +335,8 @@ Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grai
     if (next_touched < touched.size() && touched[next_touched] == t) {
       Local& local = locals[next_touched++];
       auto map = [&](uint32_t q) { return rep[local.ids[q]]; };
-      for (const auto& lt : local.tris) arr.pieces.push_back({{map(lt[0]), map(lt[1]), map(lt[2])}, t});
+      for (const auto& lt : local.tris)
+        arr.pieces.push_back({{map(lt[0]), map(lt[1]), map(lt[2])}, t});
       for (const auto& [x, y] : local.cuts) arr.cuts.push_back(edge_key(map(x), map(y)));
       local = Local{};
     } else {

@@ -136,7 +136,9 @@ bool round_crossing(const Vec3& a, const Vec3& b, const Vec3& p, const Vec3& q, 
     }
     const F twice_n = e.x[c] * F(2.0);
     // sign(X − (x0 + x1)/2) for neighbours x0 < x1
-    auto above_mid = [&](double x0, double x1) { return (twice_n - (F(x0) + F(x1)) * d).sign() * sd; };
+    auto above_mid = [&](double x0, double x1) {
+      return (twice_n - (F(x0) + F(x1)) * d).sign() * sd;
+    };
     auto even = [](double x0, double x1) {
       uint64_t bits;
       std::memcpy(&bits, &x0, sizeof bits);

@@ -22,8 +22,9 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   };
   EvaluateResult r;
   if (!is_bounded(solid))
-    throw NotComputable("evaluate: the result is unbounded (a complement at the root); a B-rep "
-                        "needs a bounded solid");
+    throw NotComputable(
+        "evaluate: the result is unbounded (a complement at the root); a B-rep "
+        "needs a bounded solid");
   // Leaf self-intersection test (with check_leaves) inside build_arrangement: it shares the grid
   // pass of the candidate pairs. Self-intersecting leaves get their own tri pairs intersected
   // too; the others need only pairs of different leaves.

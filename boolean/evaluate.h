@@ -35,7 +35,7 @@ struct EvaluateOptions {
   /// pass of the candidate pairs) and resolve them in the arrangement; false trusts that no leaf
   /// intersects itself (a leaf that does then gives an undefined, possibly invalid, result).
   bool check_leaves = true;
-  size_t grain = 64;         ///< items per parallel chunk (results never depend on it)
+  size_t grain = 64;  ///< items per parallel chunk (results never depend on it)
   /// Also compute EvaluateResult::exact_volume (rationals over every kept triangle: slower).
   /// evaluate() then throws NotComputable when that volume is not 0 but below the normal
   /// doubles (2.2e-308, a solid of side below about 1e-103): no double states it exactly.
@@ -58,12 +58,12 @@ struct EvaluatePhases {
 };
 
 struct EvaluateResult {
-  PolygonMesh mesh;        ///< triangles, outward; empty (no faces) when the result is empty
+  PolygonMesh mesh;  ///< triangles, outward; empty (no faces) when the result is empty
   std::vector<uint32_t> face_leaf;  ///< per face of `mesh`: the leaf (Solid::leaves index) whose
                                     ///< surface it lies on (the lowest, on coincident faces)
-  double volume = 0;       ///< signed volume of `mesh` (doubles, after rounding; summed about
-                           ///< the centre of its box, at a power-of-two scale: no cancellation
-                           ///< far from the origin, no underflow for tiny solids)
+  double volume = 0;  ///< signed volume of `mesh` (doubles, after rounding; summed about
+                      ///< the centre of its box, at a power-of-two scale: no cancellation
+                      ///< far from the origin, no underflow for tiny solids)
   /// With EvaluateOptions::exact_volume: the volume of the exact result (its exact points, before
   /// rounding), summed in rationals and rounded to the nearest double once.
   std::optional<double> exact_volume;

@@ -99,8 +99,8 @@ struct CrossKey {
 /// The same point through the lazy kernel's operators would be a DAG of about a dozen nodes,
 /// each allocated, evaluated in rationals when a predicate needs the exact value, and freed node
 /// by node (about a tenth of an evaluation for freeing alone).
-class CrossingRep final : public CGAL::Lazy_rep<K::Approximate_kernel::Point_3,
-                                                K::Exact_kernel::Point_3, K::E2A> {
+class CrossingRep final
+    : public CGAL::Lazy_rep<K::Approximate_kernel::Point_3, K::Exact_kernel::Point_3, K::E2A> {
   using Base = CGAL::Lazy_rep<K::Approximate_kernel::Point_3, K::Exact_kernel::Point_3, K::E2A>;
   std::array<Vec3, 5> in_;  // a, b, p, q, r
 
@@ -256,8 +256,7 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::v
   // drops those pairs itself, so their tris and flags are not read here per pair).
   std::vector<std::array<uint32_t, 3>> corners(tris.size());
   for (size_t i = 0; i < tris.size(); ++i) corners[i] = tris[i].v;
-  const std::vector<BoxCorners> marked =
-      marked_corners(corners, star_vertices(corners, leaf, pos));
+  const std::vector<BoxCorners> marked = marked_corners(corners, star_vertices(corners, leaf, pos));
   // One flag per leaf, set from several threads; a leaf found self-intersecting skips the rest
   // of its pairs.
   std::vector<std::atomic<uint8_t>> found(self.size());
@@ -343,8 +342,8 @@ std::vector<Hit> intersect_pairs(const std::vector<Tri>& tris, const std::vector
         hits[p] = transversal_hit(cuts[p], points, [&](const Sym& s, bool of_t) {
           if (s.a == s.b) return s.a;
           const CrossKey key{edge_key(s.a, s.b), of_t ? u : t};
-          return static_cast<uint32_t>(first_crossing +
-                                       (std::lower_bound(keys.begin(), keys.end(), key) - keys.begin()));
+          return static_cast<uint32_t>(
+              first_crossing + (std::lower_bound(keys.begin(), keys.end(), key) - keys.begin()));
         });
       }
     }

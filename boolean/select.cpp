@@ -86,9 +86,9 @@ struct Query {
 
 /// Adds tri w's contribution to the ray c → c2 of a point c on tri t (normal nt) to the counts
 /// (see notation); throws Degenerate / BadPoint.
-void ray_test(const Arrangement& arr, uint32_t w, const Query& q, const K::Vector_3& nt,
-              uint32_t t, std::vector<int>& count, std::vector<int>& s,
-              std::vector<uint8_t>& coincident, bool& lower_own) {
+void ray_test(const Arrangement& arr, uint32_t w, const Query& q, const K::Vector_3& nt, uint32_t t,
+              std::vector<int>& count, std::vector<int>& s, std::vector<uint8_t>& coincident,
+              bool& lower_own) {
   const Tri& wt = arr.tris[w];
   const Point& a = arr.points[wt.v[0]];
   const Point& b = arr.points[wt.v[1]];
@@ -144,7 +144,9 @@ std::vector<std::pair<uint32_t, uint32_t>> ray_candidates(const Arrangement& arr
   for (double& x : U) x /= un;
   const double V[3] = {D[1] * U[2] - D[2] * U[1], D[2] * U[0] - D[0] * U[2],
                        D[0] * U[1] - D[1] * U[0]};
-  auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  auto dot = [](const double* a, const double* b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  };
   const double length = reach * dn, pad = 1e-7 * reach;
   // Rays: projected origin (u, v) and extent [d, d + length] along D; a grid over (u, v).
   const size_t m = members.size();
@@ -157,7 +159,8 @@ std::vector<std::pair<uint32_t, uint32_t>> ray_candidates(const Arrangement& arr
     lo[1] = std::min(lo[1], rv[i]), hi[1] = std::max(hi[1], rv[i]);
   }
   const int g = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(m))), 1, 256);
-  const double cu = std::max((hi[0] - lo[0]) / g, 1e-300), cv = std::max((hi[1] - lo[1]) / g, 1e-300);
+  const double cu = std::max((hi[0] - lo[0]) / g, 1e-300),
+               cv = std::max((hi[1] - lo[1]) / g, 1e-300);
   // The cell of coordinate x, clamped in doubles before the conversion: a tri box widened by
   // `pad` reaches far beyond a grid over tiny rays (a feature 1e-20 wide), where the quotient
   // overflows an int.
@@ -182,7 +185,8 @@ std::vector<std::pair<uint32_t, uint32_t>> ray_candidates(const Arrangement& arr
           const Vec3& p = arr.originals[v];
           const double xyz[3] = {p.x, p.y, p.z};
           const double pr[3] = {dot(xyz, U), dot(xyz, V), dot(xyz, D)};
-          for (int a = 0; a < 3; ++a) bl[a] = std::min(bl[a], pr[a]), bh[a] = std::max(bh[a], pr[a]);
+          for (int a = 0; a < 3; ++a)
+            bl[a] = std::min(bl[a], pr[a]), bh[a] = std::max(bh[a], pr[a]);
         }
         for (double& x : bl) x -= pad;
         for (double& x : bh) x += pad;
@@ -226,9 +230,10 @@ std::vector<Sides> batch_windings(const Arrangement& arr, const std::vector<uint
     const Point& p0 = arr.points[piece.v[0]];
     const Point& p1 = arr.points[piece.v[1]];
     const Point& p2 = arr.points[piece.v[2]];
-    q.c = CGAL::ORIGIN + ((p0 - CGAL::ORIGIN) * K::FT(wgt[0]) + (p1 - CGAL::ORIGIN) * K::FT(wgt[1]) +
-                          (p2 - CGAL::ORIGIN) * K::FT(wgt[2])) /
-                             K::FT(wgt[0] + wgt[1] + wgt[2]);
+    q.c =
+        CGAL::ORIGIN + ((p0 - CGAL::ORIGIN) * K::FT(wgt[0]) + (p1 - CGAL::ORIGIN) * K::FT(wgt[1]) +
+                        (p2 - CGAL::ORIGIN) * K::FT(wgt[2])) /
+                           K::FT(wgt[0] + wgt[1] + wgt[2]);
     q.o[0] = CGAL::to_double(q.c.x()), q.o[1] = CGAL::to_double(q.c.y());
     q.o[2] = CGAL::to_double(q.c.z());
     for (; q.dir < kDirectionCount; ++q.dir) {
@@ -268,7 +273,8 @@ std::vector<Sides> batch_windings(const Arrangement& arr, const std::vector<uint
         const K::Vector_3 nt = CGAL::cross_product(arr.points[tri.v[1]] - arr.points[tri.v[0]],
                                                    arr.points[tri.v[2]] - arr.points[tri.v[0]]);
         count.assign(leaves, 0), s.assign(leaves, 0), coincident.assign(leaves, 0);
-        auto it = std::lower_bound(cand.begin(), cand.end(), std::pair<uint32_t, uint32_t>{q.root, 0});
+        auto it =
+            std::lower_bound(cand.begin(), cand.end(), std::pair<uint32_t, uint32_t>{q.root, 0});
         try {
           for (; it != cand.end() && it->first == q.root; ++it)
             ray_test(arr, it->second, q, nt, t, count, s, coincident, lower_own);
@@ -307,7 +313,8 @@ std::vector<Sides> batch_windings(const Arrangement& arr, const std::vector<uint
           throw InternalError("evaluate: no usable interior point in a patch");
         q.dir = 0;
       }
-      if (q.dir == kDirectionCount) throw InternalError("evaluate: every ray direction was degenerate");
+      if (q.dir == kDirectionCount)
+        throw InternalError("evaluate: every ray direction was degenerate");
       again.push_back(pending[x]);
     }
     parallel_for(again.size(), 1, [&](size_t b, size_t e) {

@@ -96,8 +96,7 @@ void drop_shared(const std::vector<Tri>& tris,
     };
     bool only_shared = true;
     if (hit.ends[0].id != kNone) {  // transversal: a point or a segment of ids
-      for (const End& e : hit.ends)
-        only_shared = only_shared && std::find(s, s + n, e.id) != s + n;
+      for (const End& e : hit.ends) only_shared = only_shared && std::find(s, s + n, e.id) != s + n;
     } else if (hit.segments.size() <= 1) {  // coplanar: one point or one segment
       for (const Point& x : hit.points) only_shared = only_shared && is_shared(x);
       for (const K::Segment_3& x : hit.segments)

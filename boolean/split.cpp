@@ -240,7 +240,7 @@ bool split_polyline(const Tri& tri, const std::vector<TriHit>& hits, const Arran
   // on (bits 0–2: the tri's edges, edge i from corner i to i + 1; bits 3–63: straight runs).
   local.ids.assign(tri.v.begin(), tri.v.end());
   std::vector<uint64_t> lines{0b101, 0b011, 0b110};  // corner c: edges c and c − 1
-  std::vector<uint32_t> at(path.size());  // local id of each path point
+  std::vector<uint32_t> at(path.size());             // local id of each path point
   for (size_t m = 0; m < path.size(); ++m) {
     const Node& n = nodes[path[m]];
     if (n.where < kEdge) {
@@ -465,8 +465,7 @@ Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const Arrangeme
       continue;
     }
     for (const K::Segment_3& s : h.hit->segments) {
-      const Cdt::Vertex_handle p = add_value(s.source(), kNone),
-                               q = add_value(s.target(), kNone);
+      const Cdt::Vertex_handle p = add_value(s.source(), kNone), q = add_value(s.target(), kNone);
       if (p != q) cdt.insert_constraint(p, q);
     }
     for (const Point& p : h.hit->points) add_value(p, kNone);
@@ -497,7 +496,8 @@ Local split_tri(const Tri& tri, const std::vector<TriHit>& hits, const Arrangeme
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     const uint32_t x = f->vertex(0)->info().id, y = f->vertex(1)->info().id,
                    z = f->vertex(2)->info().id;
-    std::array<uint32_t, 3> t = flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z};
+    std::array<uint32_t, 3> t =
+        flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z};
     std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // orientation kept
     local.tris.push_back(t);
   }

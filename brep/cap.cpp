@@ -82,7 +82,9 @@ std::vector<std::array<uint32_t, 3>> ear_clip_subset(const Geometry& g,
   struct Sub {
     const Geometry& g;
     const std::vector<uint32_t>& idx;
-    int orient(uint32_t i, uint32_t j, uint32_t k) const { return g.orient(idx[i], idx[j], idx[k]); }
+    int orient(uint32_t i, uint32_t j, uint32_t k) const {
+      return g.orient(idx[i], idx[j], idx[k]);
+    }
     uint32_t id(uint32_t i) const { return g.id(idx[i]); }
     bool thin(uint32_t i, uint32_t j, uint32_t k) const { return g.thin(idx[i], idx[j], idx[k]); }
     std::array<double, 4> bounds(uint32_t i) const { return g.bounds(idx[i]); }
@@ -185,8 +187,7 @@ class CapBuilder {
     const L err_num = 2 * 6 * u * (ma + std::abs(L(c_.plane.offset)));
     const L err_den = 2 * 8 * u * (ma + mb);
     // A plane through three points has no (n, d) in doubles: its points go the exact way.
-    const bool filtered =
-        !c_.through && std::abs(num) > 2 * err_num && std::abs(den) > 2 * err_den;
+    const bool filtered = !c_.through && std::abs(num) > 2 * err_num && std::abs(den) > 2 * err_den;
     const L t = num / den;
     const L rel_t = filtered ? 2 * (err_num / std::abs(num) + err_den / std::abs(den) + u) : 0;
     std::optional<FT> exact_t;
@@ -198,8 +199,9 @@ class CapBuilder {
         *out[k] = ak;
         continue;
       }
-      if (!c_.through && n[(k + 1) % 3] == 0 && n[(k + 2) % 3] == 0) {  // plane n_k·x_k = d: x_k = d/n_k exactly
-        *out[k] = c_.plane.offset / n[k];                // (IEEE division rounds to nearest)
+      if (!c_.through && n[(k + 1) % 3] == 0 &&
+          n[(k + 2) % 3] == 0) {           // plane n_k·x_k = d: x_k = d/n_k exactly
+        *out[k] = c_.plane.offset / n[k];  // (IEEE division rounds to nearest)
         continue;
       }
       if (filtered) {
@@ -302,14 +304,15 @@ class CapBuilder {
       Ring ring;
       size_t j = i;
       do {
-        if (visited[j]) throw NotComputable("clip: inconsistent cut rings (self-intersecting input?)");
+        if (visited[j])
+          throw NotComputable("clip: inconsistent cut rings (self-intersecting input?)");
         visited[j] = 1;
         const uint32_t h = borders[j].second;
         ring.nodes.push_back({slot(m_.origin(h)), m_.origin(h), h});
         const uint32_t v = m_.head(h);
-        auto [lo, hi] = std::equal_range(
-            borders.begin(), borders.end(), std::make_pair(v, 0u),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+        auto [lo, hi] =
+            std::equal_range(borders.begin(), borders.end(), std::make_pair(v, 0u),
+                             [](const auto& x, const auto& y) { return x.first < y.first; });
         if (lo == hi) throw NotComputable("clip: open cut ring (self-intersecting input?)");
         auto best = lo;
         if (hi - lo > 1) {  // pinched vertex: tightest clockwise turn keeps rings from crossing
@@ -343,7 +346,8 @@ class CapBuilder {
       r.sorted_vids.push_back(r.nodes[i].vid);
     }
     r.orientation = static_cast<int>(CGAL::sign(twice_area));
-    if (r.orientation == 0) throw NotComputable("clip: cut ring of zero area (self-touching input?)");
+    if (r.orientation == 0)
+      throw NotComputable("clip: cut ring of zero area (self-touching input?)");
     std::sort(r.sorted_vids.begin(), r.sorted_vids.end());
   }
 
@@ -377,7 +381,8 @@ class CapBuilder {
       // Even depth: outer boundary (counter-clockwise); odd: hole (clockwise).
       if ((rings[r].depth % 2 == 0) != (rings[r].orientation > 0) ||
           (rings[r].depth > 0 && rings[r].parent < 0))
-        throw NotComputable("clip: cut ring nesting contradicts orientation (self-intersecting input?)");
+        throw NotComputable(
+            "clip: cut ring nesting contradicts orientation (self-intersecting input?)");
     }
   }
 
@@ -386,7 +391,8 @@ class CapBuilder {
   /// `at` of `poly` (counter-clockwise)?
   bool in_cone(const std::vector<Node>& poly, size_t at, uint32_t target) const {
     const size_t n = poly.size();
-    const uint32_t a = poly[at].slot, a0 = poly[(at + n - 1) % n].slot, a1 = poly[(at + 1) % n].slot;
+    const uint32_t a = poly[at].slot, a0 = poly[(at + n - 1) % n].slot,
+                   a1 = poly[(at + 1) % n].slot;
     if (orient(a, a1, a0) >= 0) return orient(a, target, a0) > 0 && orient(target, a, a1) > 0;
     return !(orient(a, target, a1) >= 0 && orient(target, a, a0) >= 0);
   }
@@ -406,7 +412,8 @@ class CapBuilder {
     for (const Ring* h : holes) {
       size_t best = 0;
       for (size_t i = 1; i < h->nodes.size(); ++i)
-        if (CGAL::compare_xy(pt(h->nodes[i].slot), pt(h->nodes[best].slot)) == CGAL::SMALLER) best = i;
+        if (CGAL::compare_xy(pt(h->nodes[i].slot), pt(h->nodes[best].slot)) == CGAL::SMALLER)
+          best = i;
       order.push_back({best, h});
     }
     std::sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
@@ -445,7 +452,8 @@ class CapBuilder {
           const Node& p = poly[e];
           const Node& q = poly[(e + 1) % poly.size()];
           if (p.vid == va || q.vid == va || boxes_apart(sa, sb, p.slot, q.slot)) continue;
-          clear = !CGAL::do_intersect(K::Segment_2(pt(sa), pt(sb)), K::Segment_2(pt(p.slot), pt(q.slot)));
+          clear = !CGAL::do_intersect(K::Segment_2(pt(sa), pt(sb)),
+                                      K::Segment_2(pt(p.slot), pt(q.slot)));
         }
         if (clear) {
           ia = i;
@@ -617,7 +625,8 @@ class CapBuilder {
         const std::vector<Node>& poly;
         std::array<double, 2> at(uint32_t i) const {
           const Vec3& r = b.rounded_[poly[i].slot];
-          const int u = b.c_.axis == 2 ? 0 : b.c_.axis + 1, w = b.c_.axis == 0 ? 2 : (b.c_.axis == 1 ? 0 : 1);
+          const int u = b.c_.axis == 2 ? 0 : b.c_.axis + 1,
+                    w = b.c_.axis == 0 ? 2 : (b.c_.axis == 1 ? 0 : 1);
           return b.swap_ ? std::array<double, 2>{r[w], r[u]} : std::array<double, 2>{r[u], r[w]};
         }
         int orient(uint32_t i, uint32_t j, uint32_t k) const {
@@ -644,7 +653,8 @@ class CapBuilder {
       std::vector<uint8_t> dropped(n, 0);
       for (uint32_t i = 0; i < n; ++i) {
         const uint32_t e = (i + 1) % n;
-        if (rounded_[poly[i].slot] == rounded_[poly[e].slot] && !dropped[e] && keep.size() + (n - i) > 3)
+        if (rounded_[poly[i].slot] == rounded_[poly[e].slot] && !dropped[e] &&
+            keep.size() + (n - i) > 3)
           dropped[i] = 1;
         else
           keep.push_back(i);
@@ -704,7 +714,8 @@ class CapBuilder {
     const size_t m = poly.size();
     std::vector<uint8_t> disagree(m, 0);
     for (size_t i = 0; i < m; ++i) {
-      const uint32_t sa = poly[(i + m - 1) % m].slot, sb = poly[i].slot, sc = poly[(i + 1) % m].slot;
+      const uint32_t sa = poly[(i + m - 1) % m].slot, sb = poly[i].slot,
+                     sc = poly[(i + 1) % m].slot;
       disagree[i] = orient_in(false, sa, sb, sc) != orient_in(true, sa, sb, sc);
     }
     while (!parts.empty()) {
@@ -807,7 +818,8 @@ class CapBuilder {
         const uint32_t t = twin[d];
         if (t == kNone || t < d) continue;
         const uint32_t u = from[d], v = from[t];
-        if (!convex_corner(poly[from[prev[d]]].slot, poly[u].slot, poly[from[next[next[t]]]].slot) ||
+        if (!convex_corner(poly[from[prev[d]]].slot, poly[u].slot,
+                           poly[from[next[next[t]]]].slot) ||
             !convex_corner(poly[from[prev[t]]].slot, poly[v].slot, poly[from[next[next[d]]]].slot))
           continue;
         const uint32_t pd = prev[d], nd = next[d], pt = prev[t], nt = next[t];
@@ -845,9 +857,9 @@ class CapBuilder {
   HalfedgeMesh& m_;
   CapContext& c_;
   std::vector<uint32_t> slot_of_;
-  std::vector<Point2> frame_[2];                       // (u, w) and (w, u) per slot
-  std::vector<std::array<double, 4>> interval_[2];     // [xlo, xhi, ylo, yhi] per frame
-  std::vector<Vec3> rounded_;                          // output position per slot
+  std::vector<Point2> frame_[2];                    // (u, w) and (w, u) per slot
+  std::vector<std::array<double, 4>> interval_[2];  // [xlo, xhi, ylo, yhi] per frame
+  std::vector<Vec3> rounded_;                       // output position per slot
   std::vector<Point2> scratch_;
   int side_ = 0;
   bool swap_ = false;

@@ -122,8 +122,8 @@ class Cutter {
       throw NotComputable(std::string("cells: the wall ") + "xyz"[axis] + " = " + wall_text(c) +
                           ": " + e.what());
     } catch (const InputError& e) {
-      throw InputError(std::string("cells: the wall ") + "xyz"[axis] + " = " + wall_text(c) +
-                       ": " + e.what());
+      throw InputError(std::string("cells: the wall ") + "xyz"[axis] + " = " + wall_text(c) + ": " +
+                       e.what());
     }
     ++clips_;
     forced_ += r.forced_ears;

@@ -251,7 +251,8 @@ ClipResult clip(const PolygonMesh& mesh, const std::array<Vec3, 3>& through,
   // The cap projects along an axis where the exact normal is non-zero (orient2d is the sign of
   // that component of (p1 − p0) × (p2 − p0)); the largest rounded component first.
   int order[3] = {0, 1, 2};
-  std::sort(order, order + 3, [&](int a, int b) { return std::abs(approx[a]) > std::abs(approx[b]); });
+  std::sort(order, order + 3,
+            [&](int a, int b) { return std::abs(approx[a]) > std::abs(approx[b]); });
   for (int axis : order) {
     const int sign = orient2d(p0, p1, p2, axis);
     if (sign == 0) continue;

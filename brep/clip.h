@@ -24,9 +24,9 @@ struct ClipOptions {
 
 /// One half of the clip.
 struct ClipHalf {
-  PolygonMesh mesh;        ///< closed, outward-oriented 2-manifold (empty when nothing is there)
-  int64_t rings = 0;       ///< boundary rings walked on the plane (touching rings walk as one)
-  int64_t cap_faces = 0;   ///< faces added on the plane
+  PolygonMesh mesh;       ///< closed, outward-oriented 2-manifold (empty when nothing is there)
+  int64_t rings = 0;      ///< boundary rings walked on the plane (touching rings walk as one)
+  int64_t cap_faces = 0;  ///< faces added on the plane
   /// #F: per face of `mesh`, the input face it is part of, or kNoFace for a cap face.
   std::vector<uint32_t> face_source;
 };

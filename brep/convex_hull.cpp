@@ -23,7 +23,8 @@ PolygonMesh convex_hull(std::span<const Vec3> points) {
   // The output in a canonical order (vertices sorted by coordinates, each triangle from its
   // smallest vertex, triangles sorted): the mesh's own order follows handle addresses, which
   // differ between runs and threads.
-  const uint32_t n = static_cast<uint32_t>(hull.number_of_vertices() + hull.number_of_removed_vertices());
+  const uint32_t n =
+      static_cast<uint32_t>(hull.number_of_vertices() + hull.number_of_removed_vertices());
   std::vector<Mesh::Vertex_index> live(hull.vertices().begin(), hull.vertices().end());
   auto at = [&](Mesh::Vertex_index v) {
     const K::Point_3& p = hull.point(v);

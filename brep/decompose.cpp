@@ -114,7 +114,8 @@ class Decomposer {
         const uint32_t g = directed.at(key(b, a));
         if (f > g) continue;  // each edge once
         const auto gv = t_.face(g);
-        const uint32_t x = gv[0] != a && gv[0] != b ? gv[0] : (gv[1] != a && gv[1] != b ? gv[1] : gv[2]);
+        const uint32_t x =
+            gv[0] != a && gv[0] != b ? gv[0] : (gv[1] != a && gv[1] != b ? gv[1] : gv[2]);
         const auto& P = t_.vertices;
         if (orient3d(P[a], P[b], P[w], P[x]) <= 0) continue;  // convex or flat
         const Vec3 nf = unit_normal(P[v[0]], P[v[1]], P[v[2]]);
@@ -163,7 +164,8 @@ class Decomposer {
       const uint32_t sf = p.source[ff], sg = p.source[it->second];
       const auto r = pair_.find(key(std::min(sf, sg), std::max(sf, sg)));
       // Each mesh edge once: from the face on the input triangle that holds a → b.
-      if (r != pair_.end() && sf == reflex_[r->second].f) out.push_back({r->second, u, v, ff, it->second});
+      if (r != pair_.end() && sf == reflex_[r->second].f)
+        out.push_back({r->second, u, v, ff, it->second});
     }
     std::sort(out.begin(), out.end(), [](const PieceEdge& x, const PieceEdge& y) {
       return std::tie(x.reflex, x.u, x.v) < std::tie(y.reflex, y.u, y.v);
@@ -218,9 +220,12 @@ class Decomposer {
     for (uint32_t v : p.mesh.face(f)) {
       if (v == e.u || v == e.v) continue;
       const int s = orient3d(plane[0], plane[1], plane[2], p.mesh.vertices[v]);
-      if (s == 0) zero = true;
-      else if (side == 0) side = s;
-      else if (s != side) return 0;
+      if (s == 0)
+        zero = true;
+      else if (side == 0)
+        side = s;
+      else if (s != side)
+        return 0;
     }
     if (!zero) return side;
     if (side != 0) return 0;
@@ -427,7 +432,8 @@ std::vector<PolygonMesh> roots(const PolygonMesh& tris) {
       continue;
     }
     const auto base = static_cast<uint32_t>(joint.vertices.size());
-    joint.vertices.insert(joint.vertices.end(), shells[i].vertices.begin(), shells[i].vertices.end());
+    joint.vertices.insert(joint.vertices.end(), shells[i].vertices.begin(),
+                          shells[i].vertices.end());
     for (size_t f = 0; f < shells[i].face_count(); ++f) {
       const auto v = shells[i].face(f);
       joint.add_face({base + v[0], base + v[1], base + v[2]});
@@ -499,12 +505,13 @@ void cut_root(PolygonMesh tris, const DecomposeOptions& options, double input_vo
       });
       std::erase_if(parts, [&](const Piece& part) { return signed_volume(part.mesh) <= 0; });
       done = valid && std::none_of(parts.begin(), parts.end(), [&](const Piece& part) {
-        for (const PieceEdge& e : d.reflex_of(part)) {
-          const Vec3 x = part.mesh.vertices[e.u], y = part.mesh.vertices[e.v];
-          if (e.reflex == cut.edge.reflex && ((x == a && y == b) || (x == b && y == a))) return true;
-        }
-        return false;
-      });
+               for (const PieceEdge& e : d.reflex_of(part)) {
+                 const Vec3 x = part.mesh.vertices[e.u], y = part.mesh.vertices[e.v];
+                 if (e.reflex == cut.edge.reflex && ((x == a && y == b) || (x == b && y == a)))
+                   return true;
+               }
+               return false;
+             });
       if (done) break;
       ++result.failed_cuts;
     }
@@ -593,8 +600,8 @@ std::optional<std::pair<std::vector<PolygonMesh>, double>> nef_hulls(const Polyg
 /// the tree until the fallback's change is within `tolerance`. Returns the hulls and the sum of
 /// the changes.
 std::pair<std::vector<PolygonMesh>, double> hull_shell(const std::vector<Piece>& finished,
-                                                     const std::vector<CutNode>& nodes,
-                                                     double tolerance, int64_t& fallbacks) {
+                                                       const std::vector<CutNode>& nodes,
+                                                       double tolerance, int64_t& fallbacks) {
   const size_t n = finished.size();
   std::vector<std::vector<PolygonMesh>> hulls(n);
   std::vector<double> change(n, 0);
@@ -806,11 +813,10 @@ DecomposeResult decompose(const PolygonMesh& mesh, const DecomposeOptions& optio
     throw NotComputable(
         "decompose: rounded cut points leave pieces that are not convex (their hulls change " +
         relative(total_change / result.input_volume) + " of the volume, the pieces' volumes " +
-        "differ from the input's by " + relative(missing / result.input_volume) +
-        "; at most " + relative(kHullTolerance) + " is allowed)");
+        "differ from the input's by " + relative(missing / result.input_volume) + "; at most " +
+        relative(kHullTolerance) + " is allowed)");
   result.hull_seconds = hull_seconds;
-  result.cut_seconds =
-      std::chrono::duration<double>(Clock::now() - start).count() - hull_seconds;
+  result.cut_seconds = std::chrono::duration<double>(Clock::now() - start).count() - hull_seconds;
   return result;
 }
 

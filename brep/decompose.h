@@ -77,20 +77,20 @@ struct DecomposeOptions {
 struct DecomposeResult {
   /// The convex pieces: closed, outward triangle meshes (exact convex hulls, see above).
   std::vector<PolygonMesh> pieces;
-  int64_t reflex_edges = 0;  ///< reflex edges of the input (after triangulating its faces)
+  int64_t reflex_edges = 0;       ///< reflex edges of the input (after triangulating its faces)
   int64_t nearly_flat_edges = 0;  ///< of those, left uncut by DecomposeOptions::flat_angle
-  int64_t cuts = 0;          ///< plane clips made (failed_cuts included)
-  int64_t failed_cuts = 0;   ///< clips discarded because they left their edge in a half
+  int64_t cuts = 0;               ///< plane clips made (failed_cuts included)
+  int64_t failed_cuts = 0;        ///< clips discarded because they left their edge in a half
   /// Pieces finished with reflex edges that every plane failed to cut (rounding slivers).
   int64_t uncut_pieces = 0;
   /// Cut pieces (or shells) decomposed again by the exact Nef fallback (decompose.h "fallback").
   int64_t fallback_nodes = 0;
-  double input_volume = 0;   ///< signed volume of the input
-  double volume = 0;         ///< Σ piece volumes
+  double input_volume = 0;  ///< signed volume of the input
+  double volume = 0;        ///< Σ piece volumes
   /// max over shells of Σ |hull volume − cut piece volume| / input volume: what the hulls changed
   double hull_change = 0;
-  double cut_seconds = 0;    ///< reflex edges, ordering and clips
-  double hull_seconds = 0;   ///< convex hulls of the finished pieces
+  double cut_seconds = 0;   ///< reflex edges, ordering and clips
+  double hull_seconds = 0;  ///< convex hulls of the finished pieces
 };
 
 /// Decomposes a closed, outward, consistently oriented 2-manifold polygon mesh without

@@ -105,7 +105,8 @@ uint32_t HalfedgeMesh::add_vertex(const Vec3& p) {
 }
 
 void HalfedgeMesh::delete_vertex(uint32_t v) {
-  if (vertex_halfedge_[v] != kNone) throw PreconditionError("delete_vertex: vertex is not isolated");
+  if (vertex_halfedge_[v] != kNone)
+    throw PreconditionError("delete_vertex: vertex is not isolated");
   vertex_deleted_[v] = 1;
 }
 

@@ -121,10 +121,10 @@ struct BrepReport {
   bool closed = false;      ///< no border half-edge
   bool manifold = false;    ///< consistent and every vertex has exactly one fan
   int64_t vertices = 0, edges = 0, faces = 0;  ///< live, non-isolated vertices; live edges / faces
-  int64_t euler = 0;            ///< χ = V − E + F
-  int64_t components = 0;       ///< connected components (through edges)
-  int64_t boundary_loops = 0;   ///< cycles of border half-edges under border_next
-  int64_t genus = -1;           ///< (2·components − χ − boundary_loops)/2 when manifold, else −1
+  int64_t euler = 0;                           ///< χ = V − E + F
+  int64_t components = 0;                      ///< connected components (through edges)
+  int64_t boundary_loops = 0;                  ///< cycles of border half-edges under border_next
+  int64_t genus = -1;  ///< (2·components − χ − boundary_loops)/2 when manifold, else −1
 };
 
 /// Checks the link invariants and computes the topological numbers in O(#half-edges).

@@ -24,8 +24,8 @@ namespace {
 struct Side {
   uint32_t lo, hi;  ///< the undirected edge
   uint32_t face;
-  uint32_t third;   ///< the triangle's vertex off the edge
-  bool forward;     ///< holds lo → hi
+  uint32_t third;  ///< the triangle's vertex off the edge
+  bool forward;    ///< holds lo → hi
 };
 
 /// Rank of x by its clockwise angle from w around a → b: 0 in (0, π), 1 at π, 2 in (π, 2π),
@@ -79,9 +79,8 @@ std::vector<PolygonMesh> split_shells(const PolygonMesh& t) {
           const int rank = half_turn(a, b, w, x);
           // Within one half turn, x comes first (smaller clockwise angle) iff the best so far
           // is less than half a turn clockwise from it.
-          if (rank < best_rank ||
-              (rank == best_rank && (rank == 0 || rank == 2) &&
-               orient3d(a, b, P[sides[best].third], x) > 0)) {
+          if (rank < best_rank || (rank == best_rank && (rank == 0 || rank == 2) &&
+                                   orient3d(a, b, P[sides[best].third], x) > 0)) {
             best = g;
             best_rank = rank;
           }

@@ -46,12 +46,15 @@ void add(HalfSummary& s, const brep::ClipHalf& h) {
 
 /// Writes text atomically (solid/atomic_file.h).
 void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    out.flush();
-    return out.good();
-  }, "the scene");
+  write_atomically(
+      path,
+      [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp, std::ios::binary);
+        out << text;
+        out.flush();
+        return out.good();
+      },
+      "the scene");
 }
 
 /// The scene node of `node` with every leaf replaced by its clipped mesh file; empty when the
@@ -69,7 +72,8 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
   for (size_t k = 0; k < n.children.size(); ++k) {
     std::optional<json> c = clipped_node(tree, n.children[k], leaf_files);
     if (!c) {
-      if (n.op == CsgOp::kIntersection || (n.op == CsgOp::kDifference && k == 0)) return std::nullopt;
+      if (n.op == CsgOp::kIntersection || (n.op == CsgOp::kDifference && k == 0))
+        return std::nullopt;
       continue;  // an empty union member or subtrahend drops out
     }
     kids.push_back(std::move(*c));
@@ -88,12 +92,12 @@ template <typename Clip>
 brep::ClipResult clip_named(Clip&& clip, const std::string& where) {
   const auto named = [&](const char* what) {  // once: a leaf's own message may start with it
     return std::string_view(what).starts_with(where + ": ") ? std::string(what)
-                                                             : where + ": " + what;
+                                                            : where + ": " + what;
   };
   try {
     return clip();
   } catch (const InputError& e) {
-    throw InputError(named(e.what()));
+    throw std::string_view(e.what()).starts_with(where + ": ") ? e : e.prefixed(where + ": ");
   } catch (const NotComputable& e) {
     throw NotComputable(named(e.what()));
   }
@@ -113,7 +117,8 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     if ((out.extension() == ".json") != scene_out)
       throw InputError(out.string() + ": ABOVE and BELOW must both be meshes or both .json scenes");
     if (!scene_out && !is_mesh_extension(out))
-      throw InputError(out.string() + ": unsupported output format (use .off .obj .stl .ply or .json)");
+      throw InputError(out.string() +
+                       ": unsupported output format (use .off .obj .stl .ply or .json)");
   }
   const Model model = load_model(o.input, common.load_options(), "clip needs closed leaves");
   const Solid& s = model.solid();

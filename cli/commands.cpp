@@ -27,7 +27,6 @@ namespace {
 
 using nlohmann::json;
 
-
 json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
   const Leaf& leaf = s.leaves[l];
   json j;
@@ -56,8 +55,8 @@ json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
 json brep_json(const PolygonMesh& mesh) {
   try {
     const brep::BrepReport r = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(mesh));
-    return {{"closed", r.closed},       {"manifold", r.manifold},
-            {"euler", r.euler},         {"genus", r.genus >= 0 ? json(r.genus) : json(nullptr)},
+    return {{"closed", r.closed},         {"manifold", r.manifold},
+            {"euler", r.euler},           {"genus", r.genus >= 0 ? json(r.genus) : json(nullptr)},
             {"components", r.components}, {"boundary_loops", r.boundary_loops}};
   } catch (const InputError&) {
     return nullptr;
@@ -98,7 +97,8 @@ Model load_model(const std::string& input, const LoadOptions& options,
       if (l.open())
         throw InputError(l.name + ": open mesh (" + std::to_string(l.boundary_edges) +
                          " boundary edges): " + closed_needed);
-  for (const std::string& w : model.warnings()) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
+  for (const std::string& w : model.warnings())
+    std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   return model;
 }
 
@@ -145,38 +145,43 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
               s.face_count(), s.leaves.size());
   const Bbox b = s.bbox();
   if (!b.empty())
-    std::printf("bbox: [%.17g, %.17g, %.17g] .. [%.17g, %.17g, %.17g]\n", b.min.x, b.min.y,
-                b.min.z, b.max.x, b.max.y, b.max.z);
+    std::printf("bbox: [%.17g, %.17g, %.17g] .. [%.17g, %.17g, %.17g]\n", b.min.x, b.min.y, b.min.z,
+                b.max.x, b.max.y, b.max.z);
   for (const json& leaf : j["leaves_info"]) {
     auto yes = [&](const char* k) { return leaf[k].get<bool>() ? "yes" : "no"; };
-    std::printf("leaf %s%s\n", leaf["name"].get<std::string>().c_str(),
-                leaf.contains("origin") ? (" at " + leaf["origin"].get<std::string>()).c_str() : "");
+    std::printf(
+        "leaf %s%s\n", leaf["name"].get<std::string>().c_str(),
+        leaf.contains("origin") ? (" at " + leaf["origin"].get<std::string>()).c_str() : "");
     std::printf("  closed %s, manifold %s, oriented %s, outward %s\n", yes("closed"),
                 yes("manifold"), yes("oriented"), yes("outward"));
-    std::printf("  boundary edges %lld, non-manifold edges %lld, components %lld, genus %s\n",
-                leaf["boundary_edges"].get<long long>(), leaf["nonmanifold_edges"].get<long long>(),
-                leaf["components"].get<long long>(),
-                leaf["genus"].is_null() ? "n/a" : std::to_string(leaf["genus"].get<long long>()).c_str());
+    std::printf(
+        "  boundary edges %lld, non-manifold edges %lld, components %lld, genus %s\n",
+        leaf["boundary_edges"].get<long long>(), leaf["nonmanifold_edges"].get<long long>(),
+        leaf["components"].get<long long>(),
+        leaf["genus"].is_null() ? "n/a" : std::to_string(leaf["genus"].get<long long>()).c_str());
     std::printf("  degenerate faces %lld, self-intersecting %s, covering volume %.17g\n",
                 leaf["degenerate_faces"].get<long long>(),
                 leaf["self_intersecting"].is_null()     ? "not checked"
                 : leaf["self_intersecting"].get<bool>() ? "yes"
-                : leaf["self_touching"].get<bool>()     ? "no (touches itself at vertices of equal coordinates)"
-                                                        : "no",
+                : leaf["self_touching"].get<bool>()
+                    ? "no (touches itself at vertices of equal coordinates)"
+                    : "no",
                 leaf["volume"].get<double>());
     const json& rp = leaf["repair"];
-    std::printf("  rule %s; on load: %lld duplicate vertices welded, %lld zero-area faces dropped, "
-                "%lld boundary edges left (%.4g of %lld edges)\n",
-                leaf["rule"].get<std::string>().c_str(), rp["welded_vertices"].get<long long>(),
-                rp["zero_area_faces"].get<long long>(), rp["boundary_edges"].get<long long>(),
-                leaf["boundary_edge_fraction"].get<double>(), rp["edges"].get<long long>());
+    std::printf(
+        "  rule %s; on load: %lld duplicate vertices welded, %lld zero-area faces dropped, "
+        "%lld boundary edges left (%.4g of %lld edges)\n",
+        leaf["rule"].get<std::string>().c_str(), rp["welded_vertices"].get<long long>(),
+        rp["zero_area_faces"].get<long long>(), rp["boundary_edges"].get<long long>(),
+        leaf["boundary_edge_fraction"].get<double>(), rp["edges"].get<long long>());
     const json& b = leaf["brep"];
     if (b.is_null())
       std::printf("  half-edge kernel: not an oriented surface\n");
     else
-      std::printf("  half-edge kernel: euler %lld, boundary loops %lld, genus %s\n",
-                  b["euler"].get<long long>(), b["boundary_loops"].get<long long>(),
-                  b["genus"].is_null() ? "n/a" : std::to_string(b["genus"].get<long long>()).c_str());
+      std::printf(
+          "  half-edge kernel: euler %lld, boundary loops %lld, genus %s\n",
+          b["euler"].get<long long>(), b["boundary_loops"].get<long long>(),
+          b["genus"].is_null() ? "n/a" : std::to_string(b["genus"].get<long long>()).c_str());
   }
   return 0;
 }
@@ -192,14 +197,16 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   vo.rays = static_cast<int>(o.rays);
   vo.exact = o.exact;
   Progress progress("volume", common.quiet);
-  vo.progress = [&](double fraction) { progress.update(static_cast<size_t>(1000 * fraction), 1000); };
+  vo.progress = [&](double fraction) {
+    progress.update(static_cast<size_t>(1000 * fraction), 1000);
+  };
   // The covering where exact, else rays with their proven bound, else (--exact, or a bound that
   // misses the target) the evaluated B-rep's exact volume and area (Model::volume).
   VolumeResult r;
   try {
     r = model.volume(vo);
   } catch (const InputError& e) {
-    throw InputError(o.input + ": --exact: " + e.what());  // a leaf evaluate() refuses
+    throw e.prefixed(o.input + ": --exact: ");  // a leaf evaluate() refuses
   }
   progress.finish();
   timing.lap(Timing::kKernel);
@@ -231,8 +238,10 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
   // Per point: the point, its class, and its output: a line of at most 8 bytes ("outside\n"), or
   // a JSON string value (16 bytes, its heap string ~48, room for the array's growth, the dump);
   // --output writes the classes themselves.
-  const size_t bytes_per_point =
-      sizeof(Vec3) + sizeof(PointClass) + (!o.output.empty() ? 0 : common.json ? 96 : 8);
+  const size_t bytes_per_point = sizeof(Vec3) + sizeof(PointClass) +
+                                 (!o.output.empty() ? 0
+                                  : common.json     ? 96
+                                                    : 8);
   const std::vector<Vec3> points =
       read_points(o.points, common.max_memory_bytes(), bytes_per_point);
   timing.lap(Timing::kLoad);
@@ -351,9 +360,10 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   co.perspective = o.perspective;
   co.azimuth_degrees = o.azimuth;
   const std::vector<double> size = parse_numbers(o.size, "--size", 2, "xX");
-  if (size[0] < 1 || size[1] < 1 || size[0] > 16384 || size[1] > 16384 || size[0] != std::floor(size[0]) ||
-      size[1] != std::floor(size[1]))
-    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got '" + o.size + "'");
+  if (size[0] < 1 || size[1] < 1 || size[0] > 16384 || size[1] > 16384 ||
+      size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]))
+    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got '" + o.size +
+                     "'");
   co.width = static_cast<int>(size[0]);
   co.height = static_cast<int>(size[1]);
   // Frames are rendered one after the other: one frame's buffers at a time.
@@ -363,12 +373,14 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   ro.outline = o.outline;
   const std::vector<double> bg = parse_numbers(o.background, "--background", 3, ",");
   for (int c = 0; c < 3; ++c) {
-    if (bg[c] < 0 || bg[c] > 255) throw InputError("--background: expected 3 numbers from 0 to 255");
+    if (bg[c] < 0 || bg[c] > 255)
+      throw InputError("--background: expected 3 numbers from 0 to 255");
     ro.background[c] = static_cast<uint8_t>(bg[c]);
   }
   if (!o.section.empty()) {
     const std::vector<double> p = parse_numbers(o.section, "--section", 4, ",");
-    if (p[0] == 0 && p[1] == 0 && p[2] == 0) throw InputError("--section: the normal must be non-zero");
+    if (p[0] == 0 && p[1] == 0 && p[2] == 0)
+      throw InputError("--section: the normal must be non-zero");
     ro.section = Plane{{p[0], p[1], p[2]}, p[3]};
   }
   const std::vector<Frame> frames = render_frames(o, co);
@@ -381,7 +393,8 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   OutputBatch outputs;
   json frames_json = json::array();
   for (size_t f = 0; f < frames.size(); ++f) {
-    const Camera camera = model.camera(frames[f].camera);  // frames the result's box (Model::camera)
+    const Camera camera =
+        model.camera(frames[f].camera);  // frames the result's box (Model::camera)
     ro.progress = [&](size_t done, size_t total) {
       progress.update(f * total + done, frames.size() * total);
     };
@@ -391,7 +404,8 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
     write_png_rgb(with_suffix(o.output, sfx), image.width, image.height, image.rgb);
     if (!o.depth.empty())
       write_png_gray16(with_suffix(o.depth, sfx), image.width, image.height, image.depth);
-    if (!o.ids.empty()) write_png_gray16(with_suffix(o.ids, sfx), image.width, image.height, image.ids);
+    if (!o.ids.empty())
+      write_png_gray16(with_suffix(o.ids, sfx), image.width, image.height, image.ids);
     timing.lap(Timing::kWrite);
     json fj;
     fj["output"] = with_suffix(o.output, sfx);
@@ -420,7 +434,8 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
     std::printf("%zu frames %s ... %s: %dx%d, %zu rays, %.3f s\n", frames.size(),
                 with_suffix(o.output, frames.front().suffix).c_str(),
                 with_suffix(o.output, frames.back().suffix).c_str(), co.width, co.height,
-                static_cast<size_t>(co.width) * co.height * frames.size(), j["seconds"].get<double>());
+                static_cast<size_t>(co.width) * co.height * frames.size(),
+                j["seconds"].get<double>());
   }
   return 0;
 }

@@ -16,9 +16,9 @@
 namespace cover::cli {
 
 struct CommonOptions {
-  bool json = false;   ///< print exactly one JSON object on stdout
-  bool quiet = false;  ///< no progress bars
-  int threads = 0;     ///< 0: all cores
+  bool json = false;                               ///< print exactly one JSON object on stdout
+  bool quiet = false;                              ///< no progress bars
+  int threads = 0;                                 ///< 0: all cores
   uint64_t max_memory_mib = kDefaultMaxMemoryMiB;  ///< --max-memory: refuse estimates above it
   bool closed_only = false;  ///< --closed-only: refuse open leaves (else the winding-number rule)
 
@@ -58,29 +58,29 @@ struct ClassifyCommandOptions {
 
 struct RenderCommandOptions {
   std::string input;
-  std::string output;       ///< -o OUT.png
+  std::string output;  ///< -o OUT.png
   std::string size = "800x600";
   std::string view = "iso";
   bool perspective = false;
-  std::string section;      ///< "nx,ny,nz,d" or empty
-  std::string depth;        ///< --depth D.png
-  std::string ids;          ///< --ids I.png
+  std::string section;  ///< "nx,ny,nz,d" or empty
+  std::string depth;    ///< --depth D.png
+  std::string ids;      ///< --ids I.png
   std::string background = "255,255,255";
   bool outline = true;
-  double azimuth = 0;       ///< --azimuth DEG: the view turned about the vertical axis
-  int turntable = 0;        ///< --turntable N: N frames OUT_000.png ... around the vertical axis
-  std::string views;        ///< --views iso,front,...: one frame per view, OUT_iso.png ...
+  double azimuth = 0;  ///< --azimuth DEG: the view turned about the vertical axis
+  int turntable = 0;   ///< --turntable N: N frames OUT_000.png ... around the vertical axis
+  std::string views;   ///< --views iso,front,...: one frame per view, OUT_iso.png ...
 };
 
 struct VoxelizeCommandOptions {
   std::string input;
-  std::string output;   ///< -o OUT.(binvox|vti|npy|raw|zarr|vdb)
-  int res = 0;          ///< --res N (0: not given; then --voxel-size or --dims)
-  std::string bounds;   ///< --bounds xmin,ymin,zmin,size
+  std::string output;     ///< -o OUT.(binvox|vti|npy|raw|zarr|vdb)
+  int res = 0;            ///< --res N (0: not given; then --voxel-size or --dims)
+  std::string bounds;     ///< --bounds xmin,ymin,zmin,size
   double voxel_size = 0;  ///< --voxel-size h (0: not given)
-  std::string dims;     ///< --dims NX,NY,NZ
-  int chunk = 128;      ///< --chunk C (.zarr)
-  std::string surface;  ///< --surface OUT.(obj|stl|off|ply)
+  std::string dims;       ///< --dims NX,NY,NZ
+  int chunk = 128;        ///< --chunk C (.zarr)
+  std::string surface;    ///< --surface OUT.(obj|stl|off|ply)
 };
 
 struct OctreeCommandOptions {
@@ -93,19 +93,19 @@ struct OctreeCommandOptions {
 
 struct ClipCommandOptions {
   std::string input;
-  std::string plane;        ///< --plane nx,ny,nz,d
-  std::string output;       ///< -o ABOVE (mesh or .json scene)
-  std::string below;        ///< --below BELOW (same kind as ABOVE)
-  bool triangulate = false; ///< --triangulate: triangle caps instead of convex polygons
+  std::string plane;         ///< --plane nx,ny,nz,d
+  std::string output;        ///< -o ABOVE (mesh or .json scene)
+  std::string below;         ///< --below BELOW (same kind as ABOVE)
+  bool triangulate = false;  ///< --triangulate: triangle caps instead of convex polygons
 };
 
 struct EvaluateCommandOptions {
   std::string input;
   std::string output;     ///< -o OUT.(off|obj|stl|ply)
   bool leaf_ids = false;  ///< --leaf-ids: each face's source leaf (PLY face property, OBJ groups)
-  int cells = 0;       ///< --cells N: through N×N×N cells (0: plain evaluation)
-  std::string pieces;  ///< --pieces DIR: DIR/cell_I_J_K.ext and DIR/pieces.json (with --cells)
-  std::string bounds;  ///< --bounds xmin,ymin,zmin,size: the cells' cube (with --cells)
+  int cells = 0;          ///< --cells N: through N×N×N cells (0: plain evaluation)
+  std::string pieces;     ///< --pieces DIR: DIR/cell_I_J_K.ext and DIR/pieces.json (with --cells)
+  std::string bounds;     ///< --bounds xmin,ymin,zmin,size: the cells' cube (with --cells)
 };
 
 struct DecomposeCommandOptions {

@@ -40,7 +40,7 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   try {
     r = model.decompose();
   } catch (const InputError& e) {
-    throw InputError(o.input + ": " + e.what());
+    throw e.prefixed(o.input + ": ");
   } catch (const NotComputable& e) {
     throw NotComputable(o.input + ": " + e.what());
   }
@@ -72,12 +72,15 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
   j["hull_change"] = r.hull_change;
   nlohmann::json doc = j;
   doc["pieces"] = list;
-  write_atomically(folder->path() / "pieces.json", [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << doc.dump(1) << "\n";
-    out.flush();
-    return out.good();
-  }, "the piece list");
+  write_atomically(
+      folder->path() / "pieces.json",
+      [&](const std::filesystem::path& temp) {
+        std::ofstream out(temp, std::ios::binary);
+        out << doc.dump(1) << "\n";
+        out.flush();
+        return out.good();
+      },
+      "the piece list");
   folder->commit();
   outputs.commit();
   timing.lap(Timing::kWrite);

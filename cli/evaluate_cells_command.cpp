@@ -45,7 +45,8 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   if (!o.bounds.empty()) {
     const std::vector<double> v = parse_numbers(o.bounds, "--bounds", 4, ",");
     if (!(v[3] > 0))
-      throw InputError("--bounds: expected xmin,ymin,zmin,size with size > 0, got '" + o.bounds + "'");
+      throw InputError("--bounds: expected xmin,ymin,zmin,size with size > 0, got '" + o.bounds +
+                       "'");
     check_bounds_range({v[0], v[1], v[2]}, v[3]);
     bounds = VoxelBounds{{v[0], v[1], v[2]}, v[3]};
   }
@@ -84,12 +85,15 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
                         {"bounds", {{"min", to_json(r.grid.min)}, {"size", r.grid.size}}},
                         {"pieces", pieces}};
     const std::string text = index.dump(1) + "\n";
-    write_atomically(dir / "pieces.json", [&](const std::filesystem::path& tmp) {
-      std::FILE* f = std::fopen(tmp.c_str(), "wb");
-      if (!f) return false;
-      const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-      return std::fclose(f) == 0 && ok;
-    }, "the pieces index");
+    write_atomically(
+        dir / "pieces.json",
+        [&](const std::filesystem::path& tmp) {
+          std::FILE* f = std::fopen(tmp.c_str(), "wb");
+          if (!f) return false;
+          const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+          return std::fclose(f) == 0 && ok;
+        },
+        "the pieces index");
     folder->commit();
   }
   outputs.commit();
@@ -121,7 +125,8 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   } else {
     std::printf("wrote %s: %zu vertices, %zu faces, %lld components, genus %lld\n",
                 o.output.c_str(), glued.vertices.size(), glued.face_count(),
-                static_cast<long long>(rep.components), static_cast<long long>(j["genus"].get<int64_t>()));
+                static_cast<long long>(rep.components),
+                static_cast<long long>(j["genus"].get<int64_t>()));
     std::printf("%zu pieces of %d³ cells, %lld cap faces%s%s\n", r.cells.pieces.size(), o.cells,
                 static_cast<long long>(r.cells.cap_faces), o.pieces.empty() ? "" : " in ",
                 o.pieces.c_str());

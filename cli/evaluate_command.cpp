@@ -25,8 +25,7 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
     throw InputError("--leaf-ids: not available with --cells (the pieces carry no leaf ids)");
   if (o.cells > 0) return run_evaluate_cells(o, common);
   if (!o.pieces.empty() || !o.bounds.empty())
-    throw InputError(std::string(o.pieces.empty() ? "--bounds" : "--pieces") +
-                     ": needs --cells N");
+    throw InputError(std::string(o.pieces.empty() ? "--bounds" : "--pieces") + ": needs --cells N");
   Timing timing;
   if (!is_mesh_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
@@ -44,7 +43,8 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
     FaceLabels labels;
     labels.ply_property = "leaf";
     labels.labels = r.face_leaf;
-    for (size_t l = 0; l < model.leaf_count(); ++l) labels.obj_groups.push_back("leaf_" + std::to_string(l));
+    for (size_t l = 0; l < model.leaf_count(); ++l)
+      labels.obj_groups.push_back("leaf_" + std::to_string(l));
     write_mesh(o.output, r.mesh, labels);
   } else {
     write_mesh(o.output, r.mesh);

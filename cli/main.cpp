@@ -1,6 +1,7 @@
 // `cover`: command-line front end (docs/cli.md). Exit status: 0 success, 2 bad input or usage
 // (one line "cover: error: ..." on stderr), 1 internal failure.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,16 @@ namespace {
 int fail(int status, const std::string& what) {
   std::fprintf(stderr, "cover: error: %s\n", what.c_str());
   return status;
+}
+
+/// A library parameter's flag, for InputError messages (InputError::text): "--" and the name with
+/// '-' for '_', where the flag is not shorter.
+std::string flag_of(std::string_view name) {
+  if (name == "resolution") return "--res";
+  if (name == "width, height") return "--size";
+  std::string out = "--" + std::string(name);
+  std::replace(out.begin(), out.end(), '_', '-');
+  return out;
 }
 
 /// A command-line value for a message: in single quotes, control bytes as '?' (one line).
@@ -124,7 +135,8 @@ int main(int argc, char** argv) {
 
   cover::cli::InfoOptions info;
   CLI::App* info_cmd = app.add_subcommand("info", "Validate and describe a mesh or scene");
-  info_cmd->add_option("INPUT", info.input, "Mesh (.obj .off .stl .ply) or scene (.json)")->required();
+  info_cmd->add_option("INPUT", info.input, "Mesh (.obj .off .stl .ply) or scene (.json)")
+      ->required();
   info_cmd->add_flag("!--no-self-intersection", info.check_self_intersection,
                      "Skip the exact self-intersection check");
   add_common(info_cmd, common);
@@ -133,46 +145,60 @@ int main(int argc, char** argv) {
   CLI::App* vol_cmd = app.add_subcommand("volume", "Volume (and area where exact) of the solid");
   vol_cmd->add_option("INPUT", vol.input, "Mesh or scene")->required();
   vol_cmd->add_flag("--exact", vol.exact, "Require an exact method (B-rep evaluation)");
-  vol_cmd->add_option("--rays", vol.rays, "Ray integration with fixed finest cells: 1/N of the square (N rounded up to a power of two)")
+  vol_cmd
+      ->add_option("--rays", vol.rays,
+                   "Ray integration with fixed finest cells: 1/N of the square (N rounded up to a "
+                   "power of two)")
       ->transform(whole_number(1, 2048));
   add_common(vol_cmd, common);
 
   cover::cli::ClassifyCommandOptions cls;
-  CLI::App* cls_cmd = app.add_subcommand("classify", "Classify points: inside/outside/face/edge/vertex");
+  CLI::App* cls_cmd =
+      app.add_subcommand("classify", "Classify points: inside/outside/face/edge/vertex");
   cls_cmd->add_option("INPUT", cls.input, "Mesh or scene")->required();
-  cls_cmd->add_option("--points", cls.points,
-                      "Points: text (x y z per line; - for stdin) or .npy (float64/float32, shape (N, 3))")
+  cls_cmd
+      ->add_option(
+          "--points", cls.points,
+          "Points: text (x y z per line; - for stdin) or .npy (float64/float32, shape (N, 3))")
       ->required();
-  cls_cmd->add_option("--output", cls.output,
-                      "Write the classes to OUT.npy (uint8 (N,): outside 0, inside 1, face 2, edge 3, "
-                      "vertex 4) instead of printing them; --json then prints counts and seconds only");
+  cls_cmd->add_option(
+      "--output", cls.output,
+      "Write the classes to OUT.npy (uint8 (N,): outside 0, inside 1, face 2, edge 3, "
+      "vertex 4) instead of printing them; --json then prints counts and seconds only");
   add_common(cls_cmd, common);
 
   cover::cli::RenderCommandOptions ren;
-  CLI::App* ren_cmd = app.add_subcommand("render", "Ray-cast preview PNG of the non-evaluated solid");
+  CLI::App* ren_cmd =
+      app.add_subcommand("render", "Ray-cast preview PNG of the non-evaluated solid");
   ren_cmd->add_option("INPUT", ren.input, "Mesh or scene")->required();
-  ren_cmd->add_option("-o,--output", ren.output, "Output PNG")->required()->check(non_empty("a file"));
+  ren_cmd->add_option("-o,--output", ren.output, "Output PNG")
+      ->required()
+      ->check(non_empty("a file"));
   ren_cmd->add_option("--size", ren.size, "Image size WxH")->capture_default_str();
   ren_cmd->add_option("--view", ren.view, "iso, front, back, left, right, top or bottom")
       ->capture_default_str();
   ren_cmd->add_flag("--perspective", ren.perspective, "Perspective camera (default orthographic)");
   ren_cmd->add_option("--section", ren.section, "Remove n.x > d and show the cut: nx,ny,nz,d");
-  ren_cmd->add_option("--depth", ren.depth, "Also write 16-bit depth PNG")->check(non_empty("a file"));
+  ren_cmd->add_option("--depth", ren.depth, "Also write 16-bit depth PNG")
+      ->check(non_empty("a file"));
   ren_cmd->add_option("--ids", ren.ids, "Also write 16-bit leaf-id PNG (0 background, 65535 cap)")
       ->check(non_empty("a file"));
   ren_cmd->add_option("--background", ren.background, "Background colour r,g,b (0-255)")
       ->capture_default_str();
   ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
-  ren_cmd->add_option("--azimuth", ren.azimuth,
-                      "Turn the view about the vertical axis by DEG (counter-clockwise from above)")
+  ren_cmd
+      ->add_option("--azimuth", ren.azimuth,
+                   "Turn the view about the vertical axis by DEG (counter-clockwise from above)")
       ->check(real_number(-360, 360));
-  auto* turntable = ren_cmd->add_option("--turntable", ren.turntable,
-                                        "N frames around the vertical axis: OUT_000.png ... "
-                                        "(one load, one BVH)")
+  auto* turntable = ren_cmd
+                        ->add_option("--turntable", ren.turntable,
+                                     "N frames around the vertical axis: OUT_000.png ... "
+                                     "(one load, one BVH)")
                         ->transform(whole_number(1, 3600));
-  ren_cmd->add_option("--views", ren.views,
-                      "Frames from several views, e.g. iso,front,top: OUT_iso.png ... "
-                      "(one load, one BVH)")
+  ren_cmd
+      ->add_option("--views", ren.views,
+                   "Frames from several views, e.g. iso,front,top: OUT_iso.png ... "
+                   "(one load, one BVH)")
       ->check(non_empty("views, e.g. iso,front,top"))
       ->excludes(turntable);
   add_common(ren_cmd, common);
@@ -180,14 +206,20 @@ int main(int argc, char** argv) {
   cover::cli::VoxelizeCommandOptions vox;
   CLI::App* vox_cmd = app.add_subcommand("voxelize", "Voxelize the solid (presence buffer)");
   vox_cmd->add_option("INPUT", vox.input, "Mesh or scene")->required();
-  CLI::Option* vox_res = vox_cmd->add_option("--res", vox.res, "Voxels per axis (cubic grid; up to 4096, 16384 for .zarr)")
-      ->transform(whole_number(1, 16384));
+  CLI::Option* vox_res =
+      vox_cmd
+          ->add_option("--res", vox.res,
+                       "Voxels per axis (cubic grid; up to 4096, 16384 for .zarr)")
+          ->transform(whole_number(1, 16384));
   CLI::Option* vox_size =
-      vox_cmd->add_option("--voxel-size", vox.voxel_size, "Spacing h of a grid over the box (dims = ceil(extent / h))")
+      vox_cmd
+          ->add_option("--voxel-size", vox.voxel_size,
+                       "Spacing h of a grid over the box (dims = ceil(extent / h))")
           ->check(CLI::Validator(
               [](std::string& text) -> std::string {
                 double value = 0;
-                const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+                const auto [end, ec] =
+                    std::from_chars(text.data(), text.data() + text.size(), value);
                 if (ec != std::errc() || end != text.data() + text.size() || !(value > 0) ||
                     !std::isfinite(value))
                   return "expected a finite number > 0, got " + shown(text);
@@ -198,15 +230,21 @@ int main(int argc, char** argv) {
   vox_cmd->add_option("--dims", vox.dims, "NX,NY,NZ: voxel counts of a grid over the box")
       ->excludes(vox_res)
       ->excludes(vox_size);
-  vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy, .raw, .zarr or .vdb")->required();
-  vox_cmd->add_option("--bounds", vox.bounds, "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
-  vox_cmd->add_option("--chunk", vox.chunk, "Zarr chunk edge C (default 128)")->transform(whole_number(1, 16384));
-  vox_cmd->add_option("--surface", vox.surface, "Also write the blocky boundary mesh (.obj .stl .off .ply)")
+  vox_cmd->add_option("-o,--output", vox.output, "OUT.binvox, .vti, .npy, .raw, .zarr or .vdb")
+      ->required();
+  vox_cmd->add_option("--bounds", vox.bounds,
+                      "Grid cube xmin,ymin,zmin,size (default: the box, cubic)");
+  vox_cmd->add_option("--chunk", vox.chunk, "Zarr chunk edge C (default 128)")
+      ->transform(whole_number(1, 16384));
+  vox_cmd
+      ->add_option("--surface", vox.surface,
+                   "Also write the blocky boundary mesh (.obj .stl .off .ply)")
       ->check(non_empty("a file"));
   add_common(vox_cmd, common);
 
   cover::cli::OctreeCommandOptions oct;
-  CLI::App* oct_cmd = app.add_subcommand("octree", "Direct octree generation (exact full/empty cells)");
+  CLI::App* oct_cmd =
+      app.add_subcommand("octree", "Direct octree generation (exact full/empty cells)");
   oct_cmd->add_option("INPUT", oct.input, "Mesh or scene")->required();
   oct_cmd->add_option("--depth", oct.depth, "Maximum depth")
       ->required()
@@ -221,14 +259,16 @@ int main(int argc, char** argv) {
   add_common(oct_cmd, common);
 
   cover::cli::ClipCommandOptions clp;
-  CLI::App* clp_cmd = app.add_subcommand("clip", "Exact plane clip; both halves capped (closed 2-manifolds)");
+  CLI::App* clp_cmd =
+      app.add_subcommand("clip", "Exact plane clip; both halves capped (closed 2-manifolds)");
   clp_cmd->add_option("INPUT", clp.input, "Mesh or scene")->required();
   clp_cmd->add_option("--plane", clp.plane, "Plane nx,ny,nz,d (ABOVE: n.x >= d)")->required();
   clp_cmd->add_option("-o,--output", clp.output, "ABOVE: mesh (.off .obj .stl .ply) or .json scene")
       ->required();
   clp_cmd->add_option("--below", clp.below, "Also write BELOW (same kind as ABOVE)")
       ->check(non_empty("a file"));
-  clp_cmd->add_flag("--triangulate", clp.triangulate, "Triangulate caps (default: convex polygons)");
+  clp_cmd->add_flag("--triangulate", clp.triangulate,
+                    "Triangulate caps (default: convex polygons)");
   add_common(clp_cmd, common);
 
   cover::cli::EvaluateCommandOptions eva;
@@ -236,16 +276,20 @@ int main(int argc, char** argv) {
       app.add_subcommand("evaluate", "The CSG result as one closed 2-manifold mesh (B-rep)");
   eva_cmd->add_option("INPUT", eva.input, "Mesh or scene")->required();
   eva_cmd->add_option("-o,--output", eva.output, "OUT.off, .obj, .stl or .ply")->required();
-  eva_cmd->add_flag("--leaf-ids", eva.leaf_ids,
-                    "Each face's source leaf index i: PLY face property 'leaf', OBJ groups 'g leaf_<i>'");
-  eva_cmd->add_option("--cells", eva.cells,
-                      "Evaluate through N×N×N cells (plane clip and patch); OUT = the pieces glued")
+  eva_cmd->add_flag(
+      "--leaf-ids", eva.leaf_ids,
+      "Each face's source leaf index i: PLY face property 'leaf', OBJ groups 'g leaf_<i>'");
+  eva_cmd
+      ->add_option("--cells", eva.cells,
+                   "Evaluate through N×N×N cells (plane clip and patch); OUT = the pieces glued")
       ->transform(whole_number(1));
-  eva_cmd->add_option("--pieces", eva.pieces,
-                      "With --cells: write DIR/cell_I_J_K.ext (closed pieces) and DIR/pieces.json")
+  eva_cmd
+      ->add_option("--pieces", eva.pieces,
+                   "With --cells: write DIR/cell_I_J_K.ext (closed pieces) and DIR/pieces.json")
       ->check(non_empty("a folder"));
-  eva_cmd->add_option("--bounds", eva.bounds,
-                      "With --cells: the cells' cube xmin,ymin,zmin,size (default: the box, cubic)");
+  eva_cmd->add_option(
+      "--bounds", eva.bounds,
+      "With --cells: the cells' cube xmin,ymin,zmin,size (default: the box, cubic)");
   add_common(eva_cmd, common);
 
   cover::cli::DecomposeCommandOptions dec;
@@ -286,7 +330,7 @@ int main(int argc, char** argv) {
     if (dec_cmd->parsed()) return cover::cli::run_decompose(dec, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
-    return fail(2, e.what());
+    return fail(2, e.text(flag_of));
   } catch (const cover::NotComputable& e) {
     return fail(2, e.what());
   } catch (const std::bad_alloc&) {

@@ -17,17 +17,20 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
   size_t pos = 0;
   while (pos <= text.size()) {
     const size_t next = text.find_first_of(separators, pos);
-    const std::string item = text.substr(pos, next == std::string::npos ? std::string::npos : next - pos);
+    const std::string item =
+        text.substr(pos, next == std::string::npos ? std::string::npos : next - pos);
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
-      throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
+      throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text +
+                       "'");
     out.push_back(v);
     if (next == std::string::npos) break;
     pos = next + 1;
   }
   if (out.size() != count)
-    throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text + "'");
+    throw InputError(option + ": expected " + std::to_string(count) + " numbers, got '" + text +
+                     "'");
   return out;
 }
 
@@ -62,8 +65,10 @@ std::unique_ptr<OutputFolder> pieces_folder(const std::string& dir) {
 void check_bounds_range(const Vec3& min, double size) {
   for (int a = 0; a < 3; ++a)
     if (!(std::abs(min[a]) <= kMaxCoordinate && std::abs(min[a] + size) <= kMaxCoordinate))
-      throw InputError("--bounds: the cube reaches beyond the supported coordinate range ±2^64 "
-                       "(about ±1.8e19) on " + std::string(1, "xyz"[a]));
+      throw InputError(
+          "--bounds: the cube reaches beyond the supported coordinate range ±2^64 "
+          "(about ±1.8e19) on " +
+          std::string(1, "xyz"[a]));
 }
 
 Progress::Progress(std::string label, bool quiet)
@@ -108,7 +113,8 @@ void Timing::lap(Phase phase) {
 
 void Timing::put(nlohmann::json& j) const {
   j["seconds"] = total();
-  j["seconds_detail"] = {{"load", phase_[kLoad]}, {"kernel", phase_[kKernel]}, {"write", phase_[kWrite]}};
+  j["seconds_detail"] = {
+      {"load", phase_[kLoad]}, {"kernel", phase_[kKernel]}, {"write", phase_[kWrite]}};
 }
 
 }  // namespace cover::cli

@@ -36,7 +36,8 @@ namespace {
 
 constexpr size_t kChunkBytes = size_t{1} << 18;  ///< text parsed per task (whole lines)
 constexpr size_t kValueGrain = size_t{1} << 16;  ///< .npy points converted per task
-constexpr const char* kRangeMessage = " is outside the supported range [-2^64, 2^64] (about ±1.8e19)";
+constexpr const char* kRangeMessage =
+    " is outside the supported range [-2^64, 2^64] (about ±1.8e19)";
 
 /// A separator between the numbers of a line: a blank or a comma.
 bool is_separator(char c) { return c == ',' || detail::is_blank(c); }
@@ -53,9 +54,7 @@ std::string_view next_field(std::string_view& line) {
 }
 
 /// True when `path` ends in .npy (any case).
-bool has_npy_extension(const std::string& path) {
-  return lower_extension(path) == ".npy";
-}
+bool has_npy_extension(const std::string& path) { return lower_extension(path) == ".npy"; }
 
 // ---- text ----
 
@@ -156,7 +155,8 @@ const char* parse_plain_line(const char* p, const char* end, Vec3& point) {
 
 /// Parses the lines of `chunk`, the first numbered `first_line` + 1, into out[0..); returns the
 /// number of points. Throws InputError "NAME:LINE: ..." at the first bad line.
-size_t parse_chunk(std::string_view chunk, const std::string& name, uint64_t first_line, Vec3* out) {
+size_t parse_chunk(std::string_view chunk, const std::string& name, uint64_t first_line,
+                   Vec3* out) {
   size_t count = 0;
   uint64_t n = first_line;
   const char* p = chunk.data();
@@ -168,7 +168,8 @@ size_t parse_chunk(std::string_view chunk, const std::string& name, uint64_t fir
       p = next;
       continue;
     }
-    const auto* newline = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)));
+    const auto* newline =
+        static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)));
     std::string_view line(p, static_cast<size_t>((newline ? newline : end) - p));
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (parse_line(line, name, n, out[count])) ++count;
@@ -242,11 +243,11 @@ NpyPoints check_npy(std::string_view data, const std::string& name) {
   const uint64_t item = p.single ? 4 : 8;
   const uint64_t available = data.size() - h.data_offset;
   if (!detail::fits(p.count, 3 * item, available) || p.count * 3 * item != available)
-    detail::fail_file(name, ".npy shape " + shape_text(h.shape) + " of " + h.descr + " needs " +
-                                (detail::fits(p.count, 3 * item, UINT64_MAX)
-                                     ? std::to_string(p.count * 3 * item)
-                                     : std::string("more than 2^64")) +
-                                " data bytes, the file has " + std::to_string(available));
+    detail::fail_file(
+        name, ".npy shape " + shape_text(h.shape) + " of " + h.descr + " needs " +
+                  (detail::fits(p.count, 3 * item, UINT64_MAX) ? std::to_string(p.count * 3 * item)
+                                                               : std::string("more than 2^64")) +
+                  " data bytes, the file has " + std::to_string(available));
   p.data = data.substr(h.data_offset);
   return p;
 }
@@ -288,8 +289,7 @@ std::vector<Vec3> convert_npy(const NpyPoints& p, const std::string& name) {
     std::snprintf(value, sizeof value, "%.17g", v);
     detail::fail_file(name, "point " + std::to_string(b / 3) + " (counting from 0): " +
                                 (std::isfinite(v) ? "" : "non-finite ") + "xyz"[b % 3] +
-                                " coordinate " + value +
-                                (std::isfinite(v) ? kRangeMessage : ""));
+                                " coordinate " + value + (std::isfinite(v) ? kRangeMessage : ""));
   }
   return points;
 }
@@ -338,15 +338,16 @@ void write_classes(const std::string& path, std::span<const PointClass> classes)
       path,
       [&](const std::filesystem::path& temporary) {
         std::FILE* file = std::fopen(temporary.c_str(), "wb");
-        if (file == nullptr) detail::fail_file(path, std::string("cannot write: ") + std::strerror(errno));
-        const bool written =
-            std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
-            (classes.empty() ||
-             std::fwrite(classes.data(), 1, classes.size(), file) == classes.size()) &&
-            std::fflush(file) == 0;
+        if (file == nullptr)
+          detail::fail_file(path, std::string("cannot write: ") + std::strerror(errno));
+        const bool written = std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
+                             (classes.empty() || std::fwrite(classes.data(), 1, classes.size(),
+                                                             file) == classes.size()) &&
+                             std::fflush(file) == 0;
         const int error = errno;
         if (std::fclose(file) != 0 || !written)
-          detail::fail_file(path, std::string("cannot write: ") + std::strerror(written ? errno : error));
+          detail::fail_file(path,
+                            std::string("cannot write: ") + std::strerror(written ? errno : error));
         return true;
       },
       "the classes");

@@ -47,9 +47,7 @@ VoxelBounds bounds_option(const std::string& text, const Model& model, int n,
   return {{v[0], v[1], v[2]}, v[3]};
 }
 
-json bounds_json(const VoxelBounds& b) {
-  return json{{"min", to_json(b.min)}, {"size", b.size}};
-}
+json bounds_json(const VoxelBounds& b) { return json{{"min", to_json(b.min)}, {"size", b.size}}; }
 
 /// {"min", "size"} of a cubic grid's cube, else {"min", "max"} (max = origin + dims·h).
 json bounds_json(const VoxelLattice& l) {
@@ -80,10 +78,11 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   Timing timing;
   const bool zarr = is_zarr_extension(o.output), vdb = is_vdb_extension(o.output);
   if (!is_voxel_extension(o.output) && !zarr && !vdb)
-    throw InputError(o.output +
-                     ": unsupported voxel format (expected .binvox, .vti, .npy, .raw, .zarr, .vdb)");
+    throw InputError(
+        o.output + ": unsupported voxel format (expected .binvox, .vti, .npy, .raw, .zarr, .vdb)");
   if (!o.surface.empty() && !is_mesh_extension(o.surface))
-    throw InputError(o.surface + ": unsupported mesh format for --surface (expected .obj, .stl, .off, .ply)");
+    throw InputError(o.surface +
+                     ": unsupported mesh format for --surface (expected .obj, .stl, .off, .ply)");
   if (!o.surface.empty() && zarr)
     throw InputError("--surface: needs the grid in memory, not with a .zarr output");
   if (o.res == 0 && o.voxel_size == 0 && o.dims.empty())
@@ -118,7 +117,9 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
     check_memory(static_cast<double>(lattice.voxel_count()) / 8, common.max_memory_bytes(),
                  "--dims " + dims_text(lattice.dims) + ": the grid");
   Progress progress("voxelize", common.quiet);
-  auto report = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
+  auto report = [&progress](double done) {
+    progress.update(static_cast<size_t>(done * 1000), 1000);
+  };
   json j;
   uint64_t occupied = 0;
   if (zarr) {
@@ -179,7 +180,9 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   oo.depth = o.depth;
   oo.max_bytes = common.max_memory_bytes();
   Progress progress("octree", common.quiet);
-  oo.progress = [&progress](double done) { progress.update(static_cast<size_t>(done * 1000), 1000); };
+  oo.progress = [&progress](double done) {
+    progress.update(static_cast<size_t>(done * 1000), 1000);
+  };
   // A .bt's cube lies on OctoMap's grid (octree/octree_io.h); given --bounds are checked there.
   const bool bt = lower_extension(o.output) == ".bt";
   VoxelBounds bounds;
@@ -206,9 +209,10 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
     std::cout << j.dump() << "\n";
   } else {
     std::printf("%s: depth %d, %zu nodes, leaves: %llu full, %llu empty, %llu partial, %.3f s\n",
-                o.output.c_str(), o.depth, tree.nodes.size(), static_cast<unsigned long long>(counts[1]),
-                static_cast<unsigned long long>(counts[0]), static_cast<unsigned long long>(counts[2]),
-                j["seconds"].get<double>());
+                o.output.c_str(), o.depth, tree.nodes.size(),
+                static_cast<unsigned long long>(counts[1]),
+                static_cast<unsigned long long>(counts[0]),
+                static_cast<unsigned long long>(counts[2]), j["seconds"].get<double>());
   }
   return 0;
 }

@@ -85,8 +85,9 @@ std::optional<Bbox> result_bounds(const Solid& solid) {
 }
 
 std::string unbounded_message(const std::string& input) {
-  return input + ": the result is unbounded (it contains every point far from all leaves, e.g. "
-                 "a complement at the root); this command needs a bounded solid";
+  return input +
+         ": the result is unbounded (it contains every point far from all leaves, e.g. "
+         "a complement at the root); this command needs a bounded solid";
 }
 
 }  // namespace cover

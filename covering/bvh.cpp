@@ -215,7 +215,7 @@ void treelet_order(LargeVector<Bvh::Node>& nodes) {
   if (nodes.size() < 4 || nodes[0].count > 0) return;
   const size_t pairs = (nodes.size() - 2) / 2;
   auto pair_of = [](uint32_t node) { return (node - 2) / 2; };  // node index → pair number
-  LargeVector<uint32_t> order;  // pair numbers in the new order
+  LargeVector<uint32_t> order;                                  // pair numbers in the new order
   order.reserve(pairs);
   std::vector<uint32_t> roots{pair_of(nodes[0].first)}, level, below;
   while (!roots.empty()) {

@@ -26,7 +26,7 @@
 namespace cover {
 
 struct BvhOptions {
-  uint32_t leaf_size = 4;            ///< max triangles per leaf node (clamped to [1, Bvh::kMaxLeafSize])
+  uint32_t leaf_size = 4;  ///< max triangles per leaf node (clamped to [1, Bvh::kMaxLeafSize])
   size_t parallel_threshold = 8192;  ///< subtrees at least this large are built in parallel
 };
 

@@ -10,8 +10,10 @@ namespace {
 /// Cells i with planes[i] <= hi and planes[i+1] >= lo, as [first, last] (exact comparisons).
 std::pair<int, int> cell_range(const std::vector<double>& planes, double lo, double hi) {
   const int n = static_cast<int>(planes.size()) - 1;
-  const int first = static_cast<int>(std::lower_bound(planes.begin(), planes.end(), lo) - planes.begin()) - 1;
-  const int last = static_cast<int>(std::upper_bound(planes.begin(), planes.end(), hi) - planes.begin()) - 1;
+  const int first =
+      static_cast<int>(std::lower_bound(planes.begin(), planes.end(), lo) - planes.begin()) - 1;
+  const int last =
+      static_cast<int>(std::upper_bound(planes.begin(), planes.end(), hi) - planes.begin()) - 1;
   return {std::max(first, 0), std::min(last, n - 1)};
 }
 
@@ -33,7 +35,8 @@ CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(cons
     const Bvh::Tri t = bvh.triangle(i);
     std::array<std::pair<int, int>, 3> r;
     for (int a = 0; a < 3; ++a)
-      r[a] = cell_range(planes_[a], std::min({t.a[a], t.b[a], t.c[a]}), std::max({t.a[a], t.b[a], t.c[a]}));
+      r[a] = cell_range(planes_[a], std::min({t.a[a], t.b[a], t.c[a]}),
+                        std::max({t.a[a], t.b[a], t.c[a]}));
     for (int k = r[2].first; k <= r[2].second; ++k)
       for (int j = r[1].first; j <= r[1].second; ++j)
         for (int i = r[0].first; i <= r[0].second; ++i) state_[index(i, j, k)] = -1;
@@ -77,7 +80,8 @@ CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(cons
     for (int j = 0; j < n_; ++j)
       for (int i = 0; i < n_; ++i) {
         if (state_[index(i, j, k)] != 2) continue;
-        const Vec3 c{0.5 * (planes_[0][i] + planes_[0][i + 1]), 0.5 * (planes_[1][j] + planes_[1][j + 1]),
+        const Vec3 c{0.5 * (planes_[0][i] + planes_[0][i + 1]),
+                     0.5 * (planes_[1][j] + planes_[1][j + 1]),
                      0.5 * (planes_[2][k] + planes_[2][k + 1])};
         const int8_t label = member(c) ? 1 : 0;
         state_[index(i, j, k)] = label;
@@ -88,7 +92,8 @@ CellGrid::CellGrid(const Bvh& bvh, int resolution, const std::function<bool(cons
           const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z},
                                 {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
           for (const auto& q : nb) {
-            if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n_ || q[1] >= n_ || q[2] >= n_) continue;
+            if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n_ || q[1] >= n_ || q[2] >= n_)
+              continue;
             int8_t& s = state_[index(q[0], q[1], q[2])];
             if (s != 2) continue;
             s = label;

@@ -179,8 +179,8 @@ struct OpenRule {
 
 PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> winding,
                   std::span<const uint8_t> on_surface, std::vector<uint8_t>& inside,
-                  const std::function<const LeafTriangles&()>& triangles,
-                  const OpenRule& open = {}, size_t point = 0) {
+                  const std::function<const LeafTriangles&()>& triangles, const OpenRule& open = {},
+                  size_t point = 0) {
   inside.resize(winding.size());
   bool any_on = false;
   for (size_t l = 0; l < winding.size(); ++l) {
@@ -200,7 +200,6 @@ PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> windi
   if (!any_on) return tree.evaluate(inside) ? PointClass::kInside : PointClass::kOutside;
   return detail::classify_on_surface(triangles(), tree, q, on_surface, inside);
 }
-
 
 /// Orders `ids` bucket by bucket over a 32³ grid of `box` (counting sort, O(n), stable):
 /// consecutive queries then walk the same BVH nodes and triangles, which keeps them in cache
@@ -229,11 +228,16 @@ void bucket_order(std::span<const Vec3> points, const Bbox& box, std::vector<uin
 
 std::string_view to_string(PointClass c) {
   switch (c) {
-    case PointClass::kOutside: return "outside";
-    case PointClass::kInside: return "inside";
-    case PointClass::kFace: return "face";
-    case PointClass::kEdge: return "edge";
-    case PointClass::kVertex: return "vertex";
+    case PointClass::kOutside:
+      return "outside";
+    case PointClass::kInside:
+      return "inside";
+    case PointClass::kFace:
+      return "face";
+    case PointClass::kEdge:
+      return "edge";
+    case PointClass::kVertex:
+      return "vertex";
   }
   return "?";
 }
@@ -262,8 +266,8 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
   // leaves"); a component's label is the per-point membership at one cell centre.
   std::optional<detail::CellGrid> grid;
   if (points.size() >= options.grid_min_points) {
-    const int res = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(points.size()))),
-                               8, options.grid_max_resolution);
+    const int res = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(points.size()))), 8,
+                               options.grid_max_resolution);
     std::function<bool(const Bbox&)> settled;
     if (open.forest != nullptr)
       settled = [&](const Bbox& box) {

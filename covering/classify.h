@@ -35,9 +35,9 @@ enum class PointClass : uint8_t { kOutside, kInside, kFace, kEdge, kVertex };
 std::string_view to_string(PointClass c);
 
 struct ClassifyOptions {
-  size_t grain = 256;                ///< points per parallel chunk (results never depend on it)
-  size_t grid_min_points = 20000;    ///< build the empty-cell grid from this many points on
-  int grid_max_resolution = 64;      ///< cells per axis of that grid, at most
+  size_t grain = 256;              ///< points per parallel chunk (results never depend on it)
+  size_t grid_min_points = 20000;  ///< build the empty-cell grid from this many points on
+  int grid_max_resolution = 64;    ///< cells per axis of that grid, at most
   /// Open leaves (Leaf::open) are inside where |generalized winding number| > 1/2 (gwn.h):
   /// their trees, prebuilt (Model keeps one), or nullptr to build them per call.
   const GwnForest* gwn = nullptr;

@@ -163,7 +163,8 @@ GwnClosure make_closure(const std::vector<GwnTree::Tri>& tris, const GwnOptions&
   for (const auto& [e, m] : net) {
     if (m == 0) continue;
     const uint32_t a = id(e.first), b = id(e.second);
-    for (int64_t k = 0; k < std::abs(m); ++k) edges.push_back(m > 0 ? std::pair{a, b} : std::pair{b, a});
+    for (int64_t k = 0; k < std::abs(m); ++k)
+      edges.push_back(m > 0 ? std::pair{a, b} : std::pair{b, a});
   }
   UnionFind uf(static_cast<uint32_t>(verts.size()));
   for (const auto& [a, b] : edges) uf.unite(a, b);
@@ -327,7 +328,10 @@ bool winding_below(const GwnTree& tree, const Bbox& box, double limit, int budge
     for (int k = 0; k < 3; ++k) apart |= lo[k] > box.max[k] || hi[k] < box.min[k];
     const double area = 0.5 * norm(cross(t.b - t.a, t.c - t.a)) * (1 + 1e-12);
     const double gap = box_gap(box, lo, hi);
-    const double b = !apart ? INFINITY : area == 0 ? 0 : gap > 0 ? area / (gap * gap) * kInv4Pi : INFINITY;
+    const double b = !apart      ? INFINITY
+                     : area == 0 ? 0
+                     : gap > 0   ? area / (gap * gap) * kInv4Pi
+                                 : INFINITY;
     heap.push_back({b, -1 - static_cast<int64_t>(i)});
     std::push_heap(heap.begin(), heap.end(), lower);
     total += b;

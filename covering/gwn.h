@@ -36,9 +36,9 @@
 namespace cover {
 
 struct GwnOptions {
-  double beta = 4.0;           ///< first pass: expand nodes with d ≤ beta·r (> 1)
-  double refine_beta = 16.0;   ///< second pass, for points the first pass cannot decide
-  uint32_t leaf_size = 8;      ///< triangles per tree leaf, at most
+  double beta = 4.0;          ///< first pass: expand nodes with d ≤ beta·r (> 1)
+  double refine_beta = 16.0;  ///< second pass, for points the first pass cannot decide
+  uint32_t leaf_size = 8;     ///< triangles per tree leaf, at most
   /// open_inside: β of the cones' w_C where the bounds alone do not decide (see open_inside).
   double cone_beta = 3.0;
 };
@@ -58,8 +58,8 @@ struct GwnTree {
     Vec3 dipole;
     double moment[9] = {};  ///< M row-major (M_ij = Σ area·n_i (c − p)_j)
     double area = 0;
-    uint32_t first = 0;     ///< leaf: first triangle; inner: left child (right = first + 1)
-    uint32_t count = 0;     ///< leaf: triangles; inner: 0
+    uint32_t first = 0;  ///< leaf: first triangle; inner: left child (right = first + 1)
+    uint32_t count = 0;  ///< leaf: triangles; inner: 0
   };
   std::vector<Tri> tris;
   std::vector<Node> nodes;  ///< node 0 is the root (absent when there is no triangle)
@@ -79,9 +79,9 @@ struct GwnValue {
 /// leaf_windings) is an integer, and w_S = W − w_C. Only the cones' w_C (few triangles, near the
 /// holes) is then summed by its tree; W carries no error.
 struct GwnClosure {
-  Solid solid;                ///< one leaf: S's covering triangles + the cone triangles
+  Solid solid;                     ///< one leaf: S's covering triangles + the cone triangles
   std::shared_ptr<const Bvh> bvh;  ///< of `solid`
-  GwnTree cone;               ///< tree over the cone triangles only
+  GwnTree cone;                    ///< tree over the cone triangles only
 };
 
 /// One tree per open leaf of a solid; tree_of_leaf[l] = index into trees, or −1 (closed leaf).

@@ -60,8 +60,7 @@ int triple_sign(const Vec3& u1, const Vec3& u0, const Vec3& v1, const Vec3& v0, 
 
 /// A probe ray from q in direction d: its winding for one leaf, or nullopt on a tie (the ray
 /// passes exactly through an edge or vertex of a triangle it would cross).
-std::optional<int> ray_winding(const LeafTriangles& lt, size_t leaf, const Vec3& q,
-                               const RVec& d) {
+std::optional<int> ray_winding(const LeafTriangles& lt, size_t leaf, const Vec3& q, const RVec& d) {
   IVec di;
   {
     CGAL::Protect_FPU_rounding<true> rounding;
@@ -78,7 +77,7 @@ std::optional<int> ray_winding(const LeafTriangles& lt, size_t leaf, const Vec3&
     const int s2 = triple_sign(t.b, q, t.c, q, d, di);
     const int s3 = triple_sign(t.c, q, t.a, q, d, di);
     const bool pos = s1 > 0 || s2 > 0 || s3 > 0, neg = s1 < 0 || s2 < 0 || s3 < 0;
-    if (pos && neg) continue;                              // line misses the triangle
+    if (pos && neg) continue;                                // line misses the triangle
     if (s1 == 0 || s2 == 0 || s3 == 0) return std::nullopt;  // through an edge or vertex
     w += nd;  // leaving through an outward face counts +1
   }

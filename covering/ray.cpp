@@ -261,8 +261,8 @@ void cast_batch(const Bvh& bvh, const CsgTree& tree, size_t leaves, std::span<co
         for_each_triangle(bvh, first, count, [&](const Bvh::Tri& t, uint32_t i) {
           int sign;
           if (crosses(t, rays[j], per[j].ax, sign))
-            out[j].hits.push_back(
-                {hit_t(bvh, t, rays[j], per[j].slab), i, t.leaf, t.face, static_cast<int8_t>(sign)});
+            out[j].hits.push_back({hit_t(bvh, t, rays[j], per[j].slab), i, t.leaf, t.face,
+                                   static_cast<int8_t>(sign)});
         });
       });
   for (RayResult& r : out) sweep_spans(r, tree, leaves);

@@ -62,7 +62,7 @@ struct VisibleHit {
   bool hit = false;
   bool cap = false;  ///< the window starts inside the result (lo cuts a span): no surface there
   double t = 0;
-  RayHit enter;      ///< when hit && !cap: the hit where the span starts (its last hit at t)
+  RayHit enter;  ///< when hit && !cap: the hit where the span starts (its last hit at t)
 };
 
 /// All hits and the CSG inside spans of one ray. It walks the BVH level by level (walk_batch

@@ -67,8 +67,8 @@ Frame make_frame(const Solid& s, const Bbox& box) {
   f.e2 = cross(f.d, f.e1);
   f.centre = 0.5 * (box.min + box.max);
   const Vec3 ext = box.max - box.min;
-  const double extent = std::max({ext.x, ext.y, ext.z, std::abs(f.centre.x), std::abs(f.centre.y),
-                                  std::abs(f.centre.z)});
+  const double extent = std::max(
+      {ext.x, ext.y, ext.z, std::abs(f.centre.x), std::abs(f.centre.y), std::abs(f.centre.z)});
   int exponent = 0;
   std::frexp(extent > 0 ? extent : 1, &exponent);
   f.scale = std::ldexp(1.0, -exponent);
@@ -209,8 +209,10 @@ RayVolume ray_volume(const Solid& s, const Bvh& bvh, const Bbox& box,
   // Root square: the projection of the scaled box's corners.
   double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY, tlo = INFINITY;
   for (int c = 0; c < 8; ++c) {
-    const Vec3 p = fr.scale * (Vec3{(c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
-                                    (c & 4) ? box.max.z : box.min.z} - fr.centre);
+    const Vec3 p =
+        fr.scale * (Vec3{(c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+                         (c & 4) ? box.max.z : box.min.z} -
+                    fr.centre);
     umin = std::min(umin, dot(p, fr.e1));
     umax = std::max(umax, dot(p, fr.e1));
     vmin = std::min(vmin, dot(p, fr.e2));
@@ -309,8 +311,9 @@ RayVolume ray_volume(const Solid& s, const Bvh& bvh, const Bbox& box,
       open_bound.add(reports[i].bound * volume_unit);
       Cell c = next[i];
       c.first = open_lists.size();
-      open_lists.insert(open_lists.end(), next_lists.begin() + static_cast<std::ptrdiff_t>(next[i].first),
-                        next_lists.begin() + static_cast<std::ptrdiff_t>(next[i].first + next[i].count));
+      open_lists.insert(
+          open_lists.end(), next_lists.begin() + static_cast<std::ptrdiff_t>(next[i].first),
+          next_lists.begin() + static_cast<std::ptrdiff_t>(next[i].first + next[i].count));
       open.push_back(c);
     }
     NeumaierSum total = exact;
@@ -328,7 +331,8 @@ RayVolume ray_volume(const Solid& s, const Bvh& bvh, const Bbox& box,
       // The bound shrinks about 4× per level while the open cells (along curves) about double:
       // stop as soon as the levels still needed would overrun the budget.
       const double goal = options.target_relative_error * std::abs(out.volume);
-      const double levels = goal > 0 ? std::ceil(std::log(out.error_bound / goal) / std::log(4.0)) : 1;
+      const double levels =
+          goal > 0 ? std::ceil(std::log(out.error_bound / goal) / std::log(4.0)) : 1;
       const double needed = 4.0 * open.size() * (std::exp2(std::max(levels, 1.0)) - 1);
       if (static_cast<double>(out.rays) + needed > static_cast<double>(options.max_rays)) break;
     }

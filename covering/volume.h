@@ -29,8 +29,9 @@
 namespace cover {
 
 struct VolumeOptions {
-  bool exact = false;  ///< require the covering to be exact (else NotComputable; evaluate() is exact)
-  int rays = 0;        ///< ray method: finest cells 1/2^⌈log2 rays⌉ of the square (0: adaptive)
+  bool exact =
+      false;     ///< require the covering to be exact (else NotComputable; evaluate() is exact)
+  int rays = 0;  ///< ray method: finest cells 1/2^⌈log2 rays⌉ of the square (0: adaptive)
   double target_relative_error = 1e-4;  ///< adaptive ray method stops once the bound is below
   size_t max_rays = size_t{1} << 22;    ///< adaptive ray method: budget of rays cast
   /// Called on the calling thread with the estimated share of the work done, 0..1

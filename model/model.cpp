@@ -180,7 +180,7 @@ void check_vec(Vec3 v, const std::string& what) {
 }  // namespace
 
 std::shared_ptr<const Model::State> Model::make_state(Solid solid,
-                                                     std::vector<std::string> warnings) {
+                                                      std::vector<std::string> warnings) {
   auto state = std::make_shared<State>();
   state->leaves = solid.leaves.size();
   state->solid = std::move(solid);
@@ -378,13 +378,15 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
   if (solid().has_open_leaf()) {
     if (options.exact)
       throw InputError(open_leaf_message(solid()) +
-                       ": no exact volume; the winding method estimates it (without --exact)");
+                       ": no exact volume; the winding method estimates it (without " +
+                       parameter("exact") + ")");
     return winding_volume(options);
   }
   VolumeResult r;
   bool evaluate_instead = false;
   try {
-    r = cover::volume(solid(), bvh(), options);  // with exact: NotComputable where only the B-rep is
+    r = cover::volume(solid(), bvh(),
+                      options);  // with exact: NotComputable where only the B-rep is
     evaluate_instead = !r.target_met && options.rays == 0;
     // A covering or ray volume below the normal doubles, bound included (a solid of side below
     // about 1e-103), has underflowed: the B-rep's exact volume tells 0 from a volume no double
@@ -419,8 +421,8 @@ VoxelBounds Model::voxel_bounds(int n) const {
 VoxelLattice Model::voxel_lattice(const VoxelizeOptions& options) const {
   const bool cubic = options.voxel_size == 0 && options.dims == std::array<int, 3>{};
   if (cubic && (options.resolution < 1 || options.resolution > kMaxVoxelDims))
-    throw InputError("--res: expected a whole number from 1 to " + std::to_string(kMaxVoxelDims) +
-                     ", got " + std::to_string(options.resolution));
+    throw InputError(parameter("resolution") + ": expected a whole number from 1 to " +
+                     std::to_string(kMaxVoxelDims) + ", got " + std::to_string(options.resolution));
   if (options.bounds) return cover::voxel_lattice(Bbox{}, options);
   const std::optional<Bbox> box = bounds();
   if (!box) throw InputError("the result is unbounded (a complement at the root): give bounds");
@@ -430,7 +432,7 @@ VoxelLattice Model::voxel_lattice(const VoxelizeOptions& options) const {
 VoxelGrid Model::voxelize(const VoxelizeOptions& options) const {
   const bool cubic = options.voxel_size == 0 && options.dims == std::array<int, 3>{};
   if (cubic && (options.resolution < 1 || options.resolution > kMaxVoxelResolution))
-    throw InputError("--res: expected a whole number from 1 to " +
+    throw InputError(parameter("resolution") + ": expected a whole number from 1 to " +
                      std::to_string(kMaxVoxelResolution) + ", got " +
                      std::to_string(options.resolution));
   const VoxelLattice lattice = voxel_lattice(options);
@@ -450,7 +452,8 @@ void Model::open_voxelize(const VoxelLattice& lattice, const IndexBox& box, Voxe
   // Whole x slabs, about 2^20 centres at a time: bounded memory, and classify's empty-cell grid
   // (which settles the cells far from the holes) is built once per batch.
   const size_t slab = static_cast<size_t>(d[1]) * d[2];
-  const int per_batch = static_cast<int>(std::max<size_t>(1, (size_t{1} << 20) / std::max<size_t>(slab, 1)));
+  const int per_batch =
+      static_cast<int>(std::max<size_t>(1, (size_t{1} << 20) / std::max<size_t>(slab, 1)));
   std::vector<Vec3> centres;
   for (int i0 = box.lo[0]; i0 < box.hi[0]; i0 += per_batch) {
     const int i1 = std::min(box.hi[0], i0 + per_batch);
@@ -529,7 +532,8 @@ void check_brick(const VoxelLattice& lattice, const IndexBox& box) {
 
 }  // namespace
 
-void Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const {
+void Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box,
+                           VoxelGrid& grid) const {
   check_brick(lattice, box);
   if (empty()) {
     grid = empty_voxel_grid(lattice, box);
@@ -578,8 +582,8 @@ std::vector<PointClass> Model::classify_brick(const VoxelLattice& lattice, const
   return classify(centres, options);
 }
 
-ZarrResult Model::voxelize_to_zarr(const std::filesystem::path& path, const VoxelizeOptions& options,
-                                   const ZarrOptions& zarr) const {
+ZarrResult Model::voxelize_to_zarr(const std::filesystem::path& path,
+                                   const VoxelizeOptions& options, const ZarrOptions& zarr) const {
   const VoxelLattice lattice = voxel_lattice(options);
   if (!empty()) bvh();  // built once, before the workers
   return write_zarr(path, lattice, zarr, [&](const IndexBox& box, VoxelGrid& grid) {
@@ -598,7 +602,8 @@ Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBoun
 
 Camera Model::camera(const CameraOptions& options) const {
   if (options.width < 1 || options.height < 1 || options.width > 16384 || options.height > 16384)
-    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
+    throw InputError(parameter("width, height") +
+                     ": expected WxH with whole numbers from 1 to 16384, got " +
                      std::to_string(options.width) + "x" + std::to_string(options.height));
   const std::optional<Bbox> box = bounds();
   return frame_camera(box && !box->empty() ? *box : solid().bbox(), options);
@@ -610,19 +615,21 @@ Image Model::render(const CameraOptions& camera_options, const RenderOptions& op
 
 Image Model::render(const Camera& camera, const RenderOptions& options) const {
   if (camera.width < 1 || camera.height < 1 || camera.width > 16384 || camera.height > 16384)
-    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
+    throw InputError(parameter("width, height") +
+                     ": expected WxH with whole numbers from 1 to 16384, got " +
                      std::to_string(camera.width) + "x" + std::to_string(camera.height));
   if (options.section) {
     const Plane& s = *options.section;
     if (!finite(s.normal) || !std::isfinite(s.offset))
-      throw InputError("--section: expected finite numbers");
+      throw InputError(parameter("section") + ": expected finite numbers");
     if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0)
-      throw InputError("--section: the normal must be non-zero");
+      throw InputError(parameter("section") + ": the normal must be non-zero");
   }
   RenderOptions o = options;
   if (o.gwn == nullptr) o.gwn = gwn();
   // The object-order path needs no BVH: a first frame does not build one.
-  if (renders_in_object_order(solid(), camera, o)) return cover::render(solid(), nullptr, camera, o);
+  if (renders_in_object_order(solid(), camera, o))
+    return cover::render(solid(), nullptr, camera, o);
   return cover::render(solid(), bvh(), camera, o);
 }
 
@@ -646,10 +653,11 @@ brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& 
 
 CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& bounds,
                                       const brep::CellsOptions& options) const {
-  if (n < 1) throw InputError("evaluate cells: expected at least 1 cell per axis, got " +
-                              std::to_string(n));
-  check_memory(brep::cells_memory_bytes(n), options.max_memory_bytes,
-               "evaluate cells: n = " + std::to_string(n) + ": cutting into cells");  // before evaluating
+  if (n < 1)
+    throw InputError("evaluate cells: expected at least 1 cell per axis, got " + std::to_string(n));
+  check_memory(
+      brep::cells_memory_bytes(n), options.max_memory_bytes,
+      "evaluate cells: n = " + std::to_string(n) + ": cutting into cells");  // before evaluating
   CellsEvaluation out;
   if (!empty() && !is_bounded(solid()))
     throw NotComputable("evaluate cells: the result is unbounded (a complement at the root)");

@@ -50,9 +50,9 @@ namespace cover {
 
 /// What Model::evaluate_cells() gives: the plain evaluation and its pieces per cell.
 struct CellsEvaluation {
-  brep::CellGrid grid;        ///< the cube and the cells per axis
-  EvaluateResult evaluated;   ///< evaluate(): the mesh that was cut
-  brep::CellsResult cells;    ///< pieces in (i, j, k) order and, glued, the same solid
+  brep::CellGrid grid;          ///< the cube and the cells per axis
+  EvaluateResult evaluated;     ///< evaluate(): the mesh that was cut
+  brep::CellsResult cells;      ///< pieces in (i, j, k) order and, glued, the same solid
   double evaluate_seconds = 0;  ///< wall-clock time of evaluate()
 };
 
@@ -129,7 +129,8 @@ class Model {
   std::vector<RayResult> cast(std::span<const Ray> rays, const CastOptions& options = {}) const;
   /// The first entry into the result along each ray (FirstHit::hit false where there is none).
   /// \throws InputError as cast().
-  std::vector<FirstHit> first_hits(std::span<const Ray> rays, const CastOptions& options = {}) const;
+  std::vector<FirstHit> first_hits(std::span<const Ray> rays,
+                                   const CastOptions& options = {}) const;
 
   /// Volume, area where known, method ("covering", "rays" or "brep") and error bound: the
   /// covering's exact value where the expression allows it (covering/volume.h); else the ray

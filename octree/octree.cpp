@@ -290,7 +290,7 @@ double expected_nodes(double area, double size, int depth) {
 
 /// "--depth D: the octree", the subject of the memory refusals.
 std::string octree_subject(int depth) {
-  return "--depth " + std::to_string(depth) + ": the octree";
+  return parameter("depth") + " " + std::to_string(depth) + ": the octree";
 }
 
 /// How the segment rq, whose ends lie strictly on opposite sides of a triangle's plane, meets
@@ -1154,15 +1154,15 @@ class Builder {
 void check_octree_request(const Solid& solid, const VoxelBounds& bounds,
                           const OctreeOptions& options) {
   if (options.depth < 0 || options.depth > kMaxDepth)
-    throw InputError("--depth: expected a whole number from 0 to " + std::to_string(kMaxDepth) +
-                     ", got " + std::to_string(options.depth));
+    throw InputError(parameter("depth") + ": expected a whole number from 0 to " +
+                     std::to_string(kMaxDepth) + ", got " + std::to_string(options.depth));
   if (options.samples < 1 || options.samples > kMaxSamples)
     throw InputError("octree samples: expected 1 to " + std::to_string(kMaxSamples) + ", got " +
                      std::to_string(options.samples));
   const bool finite = std::isfinite(bounds.min.x) && std::isfinite(bounds.min.y) &&
                       std::isfinite(bounds.min.z) && std::isfinite(bounds.size);
   if (!finite || !(bounds.size > 0))
-    throw InputError("--bounds: expected a finite cube of positive size");
+    throw InputError(parameter("bounds") + ": expected a finite cube of positive size");
   check_memory(kBytesPerNode * expected_nodes(covering_area(solid), bounds.size, options.depth),
                options.max_bytes, octree_subject(options.depth));
 }

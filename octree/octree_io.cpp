@@ -194,18 +194,22 @@ BtKeys bt_keys(const fs::path& path, const VoxelBounds& bounds, int depth) {
   for (int a = 0; a < 3; ++a) {
     const double q = bounds.min[a] / res;
     if (!(std::abs(q) <= 65536) || q != std::nearbyint(q))
-      throw InputError(path.string() + ": OctoMap .bt puts cells at whole multiples of the "
-                       "resolution size/2^depth = " + number(res) + " from the origin; the cube's " +
-                       axes[a] + "min " + number(bounds.min[a]) + " is " + number(q) +
-                       " of them (give --bounds with xmin, ymin, zmin whole multiples of "
-                       "size/2^depth, or no --bounds)");
+      throw InputError(path.string() +
+                       ": OctoMap .bt puts cells at whole multiples of the "
+                       "resolution size/2^depth = " +
+                       number(res) + " from the origin; the cube's " + axes[a] + "min " +
+                       number(bounds.min[a]) + " is " + number(q) + " of them (give " +
+                       parameter("bounds") +
+                       " with xmin, ymin, zmin whole multiples of "
+                       "size/2^depth, or no " +
+                       parameter("bounds") + ")");
     keys.base[a] = static_cast<int64_t>(q) + 32768;
     if (keys.base[a] < 0 || keys.base[a] + span > 65536)
-      throw InputError(path.string() + ": OctoMap .bt keys reach ±32768 cells of size " +
-                       number(res) + " (±" + number(32768 * res) + ") from the origin; the cube's " +
-                       axes[a] + " range [" + number(bounds.min[a]) + ", " +
-                       number(bounds.min[a] + bounds.size) +
-                       "] is outside (use a smaller --depth, whose cells are larger)");
+      throw InputError(
+          path.string() + ": OctoMap .bt keys reach ±32768 cells of size " + number(res) + " (±" +
+          number(32768 * res) + ") from the origin; the cube's " + axes[a] + " range [" +
+          number(bounds.min[a]) + ", " + number(bounds.min[a] + bounds.size) +
+          "] is outside (use a smaller " + parameter("depth") + ", whose cells are larger)");
   }
   return keys;
 }
@@ -288,8 +292,10 @@ class BtWriter {
     }
     const int64_t half = r.span / 2;
     for (uint32_t k = 0; k < 8; ++k)
-      add({child + k, half, {r.lo[0] + (k & 1) * half, r.lo[1] + ((k >> 1) & 1) * half,
-                             r.lo[2] + ((k >> 2) & 1) * half}},
+      add({child + k,
+           half,
+           {r.lo[0] + (k & 1) * half, r.lo[1] + ((k >> 1) & 1) * half,
+            r.lo[2] + ((k >> 2) & 1) * half}},
           o, size, refs);
   }
 
@@ -401,8 +407,8 @@ void write_json(std::ostream& out, const Octree& tree, double threshold) {
     *p++ = first ? '\n' : ',';
     if (!first) *p++ = '\n';
     *p++ = '[';
-    for (const int v : {int{node.depth}, int{ijk[0]}, int{ijk[1]}, int{ijk[2]},
-                        static_cast<int>(node.state)}) {
+    for (const int v :
+         {int{node.depth}, int{ijk[0]}, int{ijk[1]}, int{ijk[2]}, static_cast<int>(node.state)}) {
       p = std::to_chars(p, end, v).ptr;
       *p++ = ',';
     }
@@ -439,7 +445,7 @@ VoxelBounds octomap_bounds(const Bbox& box, int depth) {
   const Vec3 hi = box.empty() ? Vec3{0.5, 0.5, 0.5} : box.max;
   int e = 0;
   const double f = std::frexp(extent / (n - 2 * margin), &e);  // = f·2^e, f in [0.5, 1)
-  double q = std::ceil(16 * f);  // h = q·2^(e − 4), q in 8..16
+  double q = std::ceil(16 * f);                                // h = q·2^(e − 4), q in 8..16
   for (;; q == 16 ? (q = 9, ++e) : ++q) {
     const double h = std::ldexp(q, e - 4);
     VoxelBounds bounds;
@@ -473,25 +479,32 @@ bool is_octree_extension(const std::filesystem::path& path) {
 
 void write_octree(const std::filesystem::path& path, const Octree& tree, double threshold) {
   if (!(threshold >= 0 && threshold <= 1))
-    throw InputError("--threshold: expected a number from 0 to 1, got " +
+    throw InputError(parameter("threshold") + ": expected a number from 0 to 1, got " +
                      std::to_string(threshold));
   if (tree.nodes.empty()) throw InputError(path.string() + ": empty octree");
   const std::string ext = lower_extension(path);
   if (ext == ".htg") {
-    write_atomically(path, [&](const fs::path& tmp) {
-      return write_text(tmp, [&](std::ostream& out) { write_htg(out, tree); });
-    }, "the octree");
+    write_atomically(
+        path,
+        [&](const fs::path& tmp) {
+          return write_text(tmp, [&](std::ostream& out) { write_htg(out, tree); });
+        },
+        "the octree");
   } else if (ext == ".json") {
-    write_atomically(path, [&](const fs::path& tmp) {
-      return write_text(tmp, [&](std::ostream& out) { write_json(out, tree, threshold); });
-    }, "the octree");
+    write_atomically(
+        path,
+        [&](const fs::path& tmp) {
+          return write_text(tmp, [&](std::ostream& out) { write_json(out, tree, threshold); });
+        },
+        "the octree");
   } else if (ext == ".bt") {
     if (tree.depth < 1 || tree.depth > 16)
       throw InputError(path.string() + ": OctoMap .bt needs a depth from 1 to 16, got " +
                        std::to_string(tree.depth));
     const BtKeys keys = bt_keys(path, tree.bounds, tree.depth);
-    write_atomically(path, [&](const fs::path& tmp) { return write_bt(tmp, tree, keys, threshold); },
-                     "the octree");
+    write_atomically(
+        path, [&](const fs::path& tmp) { return write_bt(tmp, tree, keys, threshold); },
+        "the octree");
   } else {
     throw InputError(path.string() + ": unsupported octree format (expected .htg, .bt, .json)");
   }

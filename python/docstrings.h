@@ -5,7 +5,8 @@
 
 namespace cover::python::doc {
 
-inline constexpr const char* kModule = R"(Cover: CSG solids without boundary evaluation (simplicial coverings).
+inline constexpr const char* kModule =
+    R"(Cover: CSG solids without boundary evaluation (simplicial coverings).
 
 Build a Model with load(), box(), sphere(), cylinder() or mesh(); combine with | & - ~;
 query it with classify(), winding(), volume(), voxelize(), cast(), render(), evaluate(),
@@ -18,16 +19,20 @@ direction has unit length); leaf int32 (n,) leaf index (-1 where none); face int
 leaf's face index (-1 where none); normal float64 (n, 3) unit outward normal of the result at
 the hit (0 where none).)";
 
-inline constexpr const char* kInputError = R"(Invalid input (file contents, scene, arrays, options); a ValueError.
+inline constexpr const char* kInputError =
+    R"(Invalid input (file contents, scene, arrays, options); a ValueError.
 The message is the CLI's one-line error without its "cover: error: " prefix, naming the file
 and the line / record / JSON path where it applies.)";
 
-inline constexpr const char* kNotComputable = R"(A well-formed request that no exact method can answer (e.g. the volume or
+inline constexpr const char* kNotComputable =
+    R"(A well-formed request that no exact method can answer (e.g. the volume or
 bounds of an unbounded result); a RuntimeError.)";
 
-inline constexpr const char* kPreconditionError = R"(A violated precondition (e.g. ~Model() of the empty Model); a ValueError.)";
+inline constexpr const char* kPreconditionError =
+    R"(A violated precondition (e.g. ~Model() of the empty Model); a ValueError.)";
 
-inline constexpr const char* kModel = R"(A non-evaluated CSG solid: leaves (closed meshes) and the expression over them.
+inline constexpr const char* kModel =
+    R"(A non-evaluated CSG solid: leaves (closed meshes) and the expression over them.
 
 Immutable; copies share the solid and its BVH (built once, on the first query that needs
 it). Safe to query from several Python threads at once.)";
@@ -35,20 +40,26 @@ it). Safe to query from several Python threads at once.)";
 inline constexpr const char* kModelInit = "The empty solid (no leaves): the identity of |.";
 inline constexpr const char* kLeaves = "Number of leaves (int).";
 inline constexpr const char* kEmpty = "True for the empty Model (no leaves).";
-inline constexpr const char* kBounded = "True when the result is a bounded set (no complement at the root).";
-inline constexpr const char* kWarnings = "Warnings from loading and repairs (list of str, one line each).";
+inline constexpr const char* kBounded =
+    "True when the result is a bounded set (no complement at the root).";
+inline constexpr const char* kWarnings =
+    "Warnings from loading and repairs (list of str, one line each).";
 inline constexpr const char* kOr = "Union (regularized): a | b.";
 inline constexpr const char* kAnd = "Intersection (regularized): a & b.";
 inline constexpr const char* kSub = "Difference (regularized): a - b.";
-inline constexpr const char* kInvert = "Complement: ~a (unbounded). Raises PreconditionError for the empty Model.";
+inline constexpr const char* kInvert =
+    "Complement: ~a (unbounded). Raises PreconditionError for the empty Model.";
 
-inline constexpr const char* kTransform = R"(A new Model mapped by the affine 4x4 matrix M (p' = M @ [p, 1]).
+inline constexpr const char* kTransform =
+    R"(A new Model mapped by the affine 4x4 matrix M (p' = M @ [p, 1]).
 
 M: array-like (4, 4), last row 0 0 0 1. A mirror keeps solids solid. Raises InputError when
 M is not affine, not finite, or singular.)";
 inline constexpr const char* kTranslate = "A new Model moved by v (3 numbers).";
-inline constexpr const char* kScale = R"(A new Model scaled about the origin by s: one number or 3 (per axis, non-zero).)";
-inline constexpr const char* kRotate = R"(A new Model rotated about the line through the origin along `axis` (3 numbers,
+inline constexpr const char* kScale =
+    R"(A new Model scaled about the origin by s: one number or 3 (per axis, non-zero).)";
+inline constexpr const char* kRotate =
+    R"(A new Model rotated about the line through the origin along `axis` (3 numbers,
 non-zero) by `degrees` (right-hand rule).)";
 
 inline constexpr const char* kMirror =
@@ -63,7 +74,8 @@ inline constexpr const char* kIntersectionAll =
     R"(The intersection of all Models in `models` (at least one;
 PreconditionError for none).)";
 
-inline constexpr const char* kClassify = R"(Exact class of each point: uint8 (n,), codes indexing CLASS_NAMES.
+inline constexpr const char* kClassify =
+    R"(Exact class of each point: uint8 (n,), codes indexing CLASS_NAMES.
 
 points: array-like (n, 3), converted once to float64 (no copy for a float64 C-contiguous
 array). Codes: 0 outside, 1 inside, 2 face, 3 edge, 4 vertex (the last three: on the
@@ -71,7 +83,8 @@ result's boundary; a point on a leaf's surface buried in the result is inside / 
 Same classes as `cover classify`. Raises ValueError for a wrong shape, InputError for a
 non-finite point (naming its index).)";
 
-inline constexpr const char* kWinding = R"(Every leaf's winding number at every point: int32 (n, leaves).
+inline constexpr const char* kWinding =
+    R"(Every leaf's winding number at every point: int32 (n, leaves).
 
 points: array-like (n, 3) as for classify(). Column l is leaf l (load order / operand order).
 A closed leaf: its exact winding number. An open leaf: its generalized winding number w (the
@@ -81,7 +94,8 @@ leaf inside. Where a point lies ON leaf l's surface the entry is undefined: a cl
 holds the count of a symbolically perturbed point (a neighbouring value, 0 or 1 for a simple
 leaf), an open leaf's 0: use classify() to detect such points (its face / edge / vertex codes).)";
 
-inline constexpr const char* kCast = R"(First entry into the result along each ray: a Hits named tuple of arrays.
+inline constexpr const char* kCast =
+    R"(First entry into the result along each ray: a Hits named tuple of arrays.
 
 origins: array-like (n, 3); directions: (n, 3), or (3,) for one direction shared by every
 ray (non-zero, finite). A ray is origin + t * direction, t > 0. Returns Hits(hit bool (n,),
@@ -96,15 +110,18 @@ met); exact=True requires an exact method (B-rep evaluation); rays=N fixes the r
 finest cells (1..2048). volume_info() returns the method and error bound as well. Raises
 NotComputable for an unbounded result.)";
 
-inline constexpr const char* kVolumeInfo = R"(Volume with its provenance: dict with volume (float), area (float or None where
+inline constexpr const char* kVolumeInfo =
+    R"(Volume with its provenance: dict with volume (float), area (float or None where
 it would need evaluation), method ("covering", "rays" or "brep"), error_bound (float, 0 for
 exact methods); for the ray method also rays (int) and target_met (bool). Same keys and
 values as `cover volume --json`. Arguments as volume().)";
 
-inline constexpr const char* kBounds = R"(A box containing the result: float64 (2, 3), [min, max] (an empty result gives
+inline constexpr const char* kBounds =
+    R"(A box containing the result: float64 (2, 3), [min, max] (an empty result gives
 [inf, -inf] rows). Raises NotComputable for an unbounded result.)";
 
-inline constexpr const char* kVoxelBounds = R"(The default grid cube of voxelize(res): (xmin, ymin, zmin, size), the result's
+inline constexpr const char* kVoxelBounds =
+    R"(The default grid cube of voxelize(res): (xmin, ymin, zmin, size), the result's
 box made cubic with one voxel of margin per side.)";
 
 inline constexpr const char* kVoxelizeBrick = R"(The voxels of one brick of the res³ grid: bool
@@ -114,12 +131,15 @@ Bit-identical to voxelize(res, bounds)[i0:i1, j0:j1, k0:k1] (global centres, the
 its cost follows the brick, and res may reach 16384 since only the brick is held. The building
 block of cover.dask.voxelize.)";
 
-inline constexpr const char* kToBytes = R"(The model as bytes: the same doubles and expression in another process
+inline constexpr const char* kToBytes =
+    R"(The model as bytes: the same doubles and expression in another process
 (Model.from_bytes, pickle); load warnings are not kept.)";
 
-inline constexpr const char* kFromBytes = R"(The Model of to_bytes(); raises cover.InputError for bytes that are not one.)";
+inline constexpr const char* kFromBytes =
+    R"(The Model of to_bytes(); raises cover.InputError for bytes that are not one.)";
 
-inline constexpr const char* kVoxelize = R"(Voxel grid of the result: bool (res, res, res), indexed [x, y, z].
+inline constexpr const char* kVoxelize =
+    R"(Voxel grid of the result: bool (res, res, res), indexed [x, y, z].
 
 Voxel (i, j, k) has centre min + (i + 1/2, j + 1/2, k + 1/2) * size / res and is True iff
 the centre is inside (a centre exactly on a surface is decided for the point displaced
@@ -127,13 +147,15 @@ infinitesimally towards +x, then +y, then +z). bounds: (xmin, ymin, zmin, size) 
 for voxel_bounds(res). Equal to the .npy of `cover voxelize --res res` (uint8 there).
 res: 1..4096.)";
 
-inline constexpr const char* kRender = R"(Ray-cast preview of the non-evaluated solid: uint8 (height, width, 3) RGB, row 0 at the top.
+inline constexpr const char* kRender =
+    R"(Ray-cast preview of the non-evaluated solid: uint8 (height, width, 3) RGB, row 0 at the top.
 
 view: "iso", "front", "back", "left", "right", "top" or "bottom"; section: (nx, ny, nz, d)
 removes the half-space n.x > d and shows the exact cut faces; perspective: a perspective
 camera (default orthographic). The same pixels as `cover render --size WxH`.)";
 
-inline constexpr const char* kEvaluate = R"(The result as one closed, outward, 2-manifold triangle mesh (exact evaluation).
+inline constexpr const char* kEvaluate =
+    R"(The result as one closed, outward, 2-manifold triangle mesh (exact evaluation).
 
 Returns (V float64 (n, 3), F int64 (m, 3)), faces counter-clockwise seen from outside; the
 same mesh as `cover evaluate -o out.off`. leaf_ids=True returns (V, F, L) with L int32 (m,):
@@ -142,14 +164,16 @@ A self-intersecting leaf stands for its nonzero-winding set (as classify). Raise
 NotComputable for an unbounded result, InputError for a leaf face whose boundary crosses itself.
 Not interruptible.)";
 
-inline constexpr const char* kClip = R"(Plane clip and patch: ((V_above, F_above), (V_below, F_below)).
+inline constexpr const char* kClip =
+    R"(Plane clip and patch: ((V_above, F_above), (V_below, F_below)).
 
 plane: (nx, ny, nz, d); above = result with n.x >= d, below = n.x <= d, each closed and
 outward with cap triangles on the plane; V float64 (n, 3), F int64 (m, 3): polygon faces are
 triangulated exactly (a fan for convex faces). A single leaf is clipped as it
 is, any other expression is evaluated first (as `cover clip`). Not interruptible.)";
 
-inline constexpr const char* kEvaluateCells = R"(The result through n x n x n cells: a list of pieces, one dict per cell the result meets.
+inline constexpr const char* kEvaluateCells =
+    R"(The result through n x n x n cells: a list of pieces, one dict per cell the result meets.
 
 Each piece is result ∩ cell, closed on the cell walls by the plane patcher (exact, as
 `cover clip`): a closed, outward, 2-manifold mesh; a cell inside the result gives its box.
@@ -159,7 +183,8 @@ triangulated), volume, area, cap_area. Pieces come in (i, j, k) order, i slowest
 pieces as `cover evaluate --cells n --pieces DIR`. max_memory (MiB, default 4096, the CLI's
 --max-memory): n whose pieces may need more (3 KiB a cell) is refused with InputError before
 anything is evaluated. Not interruptible.)";
-inline constexpr const char* kDecompose = R"(Exact convex decomposition by plane cuts through reflex edges: a list of pieces.
+inline constexpr const char* kDecompose =
+    R"(Exact convex decomposition by plane cuts through reflex edges: a list of pieces.
 
 Each piece is (V float64 (n, 3), F int64 (m, 3)): a closed, outward triangle mesh, convex
 exactly on its doubles (every vertex on the inner side of, or on, every face's plane); the
@@ -167,32 +192,39 @@ volumes sum to the result's. A single leaf is decomposed as it is, any other exp
 evaluated first (as `cover decompose`). Raises InputError for an open or inside-out leaf.
 Not interruptible.)";
 
-inline constexpr const char* kInfo = R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
+inline constexpr const char* kInfo =
+    R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
 faces, leaves, bbox ((min, max) or None) and leaves_info (one dict per leaf: name, origin,
 vertices, faces, closed, manifold, oriented, outward, boundary_edges, nonmanifold_edges,
-components, genus, degenerate_faces, self_intersecting, self_touching, volume, bbox, brep). A loaded Model
-is the repaired one (outward, consistently oriented), so for a file that needs repairs this
-differs from `cover info`, which reports the file as found. self_intersection=False skips
-the exact self-intersection check (self_intersecting is then None).)";
+components, genus, degenerate_faces, self_intersecting, self_touching, volume, bbox, brep).
+A loaded Model is the repaired one (outward, consistently oriented), so for a file that needs
+repairs this differs from `cover info`, which reports the file as found.
+self_intersection=False skips the exact self-intersection check (self_intersecting is then
+None).)";
 
-inline constexpr const char* kLoad = R"(Loads a mesh (.obj .off .stl .ply: one leaf) or a JSON scene as a Model.
+inline constexpr const char* kLoad =
+    R"(Loads a mesh (.obj .off .stl .ply: one leaf) or a JSON scene as a Model.
 
 Repaired as the CLI does (inside-out leaves flipped, inconsistent orientation fixed), each
 repair reported by a Python warning and in Model.warnings. Raises InputError with the CLI's
 one-line message (naming the file and line / JSON path). An open mesh is accepted with a warning
 (inside where its generalized winding number has |w| > 1/2); closed_only=True refuses it.)";
 
-inline constexpr const char* kBox = R"(Axis-aligned box [min, max] (3 numbers each, min < max on every axis).)";
-inline constexpr const char* kSphere = R"(UV sphere inscribed in the sphere (center, radius): `segments` longitudes (3..4096),
+inline constexpr const char* kBox =
+    R"(Axis-aligned box [min, max] (3 numbers each, min < max on every axis).)";
+inline constexpr const char* kSphere =
+    R"(UV sphere inscribed in the sphere (center, radius): `segments` longitudes (3..4096),
 segments/2 latitude bands.)";
-inline constexpr const char* kCylinder = R"(Cylinder from `base` to `top` with a regular `segments`-gon cross-section inscribed
+inline constexpr const char* kCylinder =
+    R"(Cylinder from `base` to `top` with a regular `segments`-gon cross-section inscribed
 in the circle of `radius`.)";
 inline constexpr const char* kMesh = R"(A leaf from a triangle mesh given as arrays.
 
 V: array-like (n, 3) of coordinates (used without a copy when float64 C-contiguous); F:
 integer array-like (m, 3) of vertex indices, counter-clockwise seen from outside (an
 inside-out mesh is flipped, with a warning). Raises ValueError for a wrong shape, TypeError
-for non-integer F, InputError for an index out of range, a non-orientable mesh, or (closed_only=True)
-an open mesh; otherwise an open mesh is inside where its generalized winding number has |w| > 1/2.)";
+for non-integer F, InputError for an index out of range, a non-orientable mesh, or
+(closed_only=True) an open mesh; otherwise an open mesh is inside where its generalized
+winding number has |w| > 1/2.)";
 
 }  // namespace cover::python::doc

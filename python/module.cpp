@@ -46,8 +46,14 @@ std::optional<VoxelBounds> bounds_arg(const py::object& bounds) {
   const std::vector<double> b = numbers_arg(bounds, "bounds", 4);
   if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !std::isfinite(b[2]) ||
       !std::isfinite(b[3]) || !(b[3] > 0))
-    throw InputError("--bounds: expected finite xmin,ymin,zmin and a size > 0");
+    throw InputError("bounds: expected finite xmin,ymin,zmin and a size > 0");
   return VoxelBounds{{b[0], b[1], b[2]}, b[3]};
+}
+
+/// A C++ parameter's Python keyword, for InputError messages (InputError::text).
+std::string keyword(std::string_view name) {
+  if (name == "resolution") return "res";
+  return std::string(name);
 }
 
 Transform matrix_arg(py::handle obj) {
@@ -73,7 +79,8 @@ void check_scale(const Vec3& f) {
                        " scale factor is 0 (it flattens the solid)");
   }
   // log2 of |sx·sy·sz| without forming the product (which may underflow or overflow).
-  const double log2 = std::log2(std::abs(f.x)) + std::log2(std::abs(f.y)) + std::log2(std::abs(f.z));
+  const double log2 =
+      std::log2(std::abs(f.x)) + std::log2(std::abs(f.y)) + std::log2(std::abs(f.z));
   if (log2 < -1022 || log2 >= 1024) {
     char text[256];
     std::snprintf(text, sizeof text,
@@ -108,13 +115,15 @@ py::array_t<int32_t> winding_numbers(const Model& model, py::handle points, Thre
   const std::span<const Vec3> all = p.span();
   check_finite(all, "windings");
   const size_t leaves = model.leaf_count();
-  py::array_t<int32_t> out({static_cast<py::ssize_t>(all.size()), static_cast<py::ssize_t>(leaves)});
+  py::array_t<int32_t> out(
+      {static_cast<py::ssize_t>(all.size()), static_cast<py::ssize_t>(leaves)});
   int32_t* dst = out.mutable_data();
   {
     KernelScope scope(threads);
     Interrupt interrupt;
     for (size_t begin = 0; begin < all.size() && leaves > 0; begin += kBatch) {
-      const LeafWindings w = model.windings(all.subspan(begin, std::min(kBatch, all.size() - begin)));
+      const LeafWindings w =
+          model.windings(all.subspan(begin, std::min(kBatch, all.size() - begin)));
       std::copy(w.winding.begin(), w.winding.end(), dst + begin * leaves);
       interrupt.poll();
     }
@@ -122,7 +131,8 @@ py::array_t<int32_t> winding_numbers(const Model& model, py::handle points, Thre
   return out;
 }
 
-py::object cast_rays(const Model& model, py::handle origins, py::handle directions, Threads threads) {
+py::object cast_rays(const Model& model, py::handle origins, py::handle directions,
+                     Threads threads) {
   const Points o = points_arg(origins, "origins");
   const std::span<const Vec3> from = o.span();
   std::vector<Ray> rays(from.size());
@@ -180,12 +190,14 @@ py::object cast_rays(const Model& model, py::handle origins, py::handle directio
   return py::module_::import("cover._cover").attr("Hits")(hit, t, leaf, face, normal);
 }
 
-VolumeResult volume_result(const Model& model, bool exact, std::optional<int> rays, Threads threads) {
+VolumeResult volume_result(const Model& model, bool exact, std::optional<int> rays,
+                           Threads threads) {
   VolumeOptions o;
   o.exact = exact;
   if (rays) {
     if (*rays < 1 || *rays > 2048)
-      throw InputError("--rays: expected a whole number from 1 to 2048, got " + std::to_string(*rays));
+      throw InputError("rays: expected a whole number from 1 to 2048, got " +
+                       std::to_string(*rays));
     o.rays = *rays;
   }
   KernelScope scope(threads);
@@ -198,8 +210,8 @@ VolumeResult volume_result(const Model& model, bool exact, std::optional<int> ra
 py::array_t<bool> unpack_grid(const VoxelGrid& grid) {
   const auto nx = static_cast<size_t>(grid.nx()), ny = static_cast<size_t>(grid.ny()),
              nz = static_cast<size_t>(grid.nz());
-  py::array_t<bool> out({static_cast<py::ssize_t>(nx), static_cast<py::ssize_t>(ny),
-                         static_cast<py::ssize_t>(nz)});
+  py::array_t<bool> out(
+      {static_cast<py::ssize_t>(nx), static_cast<py::ssize_t>(ny), static_cast<py::ssize_t>(nz)});
   bool* dst = out.mutable_data();
   const size_t words = grid.words_per_column();
   // Eight bits at a time through a table of their eight bytes (a bit at a time took most of a
@@ -239,8 +251,9 @@ py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box
   for (int a = 0; a < 3; ++a) {
     const double lo = b[2 * a], hi = b[2 * a + 1];
     if (lo != std::floor(lo) || hi != std::floor(hi) || !(0 <= lo && lo < hi && hi <= res))
-      throw InputError("box: expected whole numbers 0 <= lo < hi <= res per axis "
-                       "(i0, i1, j0, j1, k0, k1)");
+      throw InputError(
+          "box: expected whole numbers 0 <= lo < hi <= res per axis "
+          "(i0, i1, j0, j1, k0, k1)");
     index.lo[a] = static_cast<int>(lo);
     index.hi[a] = static_cast<int>(hi);
   }
@@ -254,15 +267,17 @@ py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box
   return unpack_grid(grid);
 }
 
-py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& bounds, Threads threads) {
+py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& bounds,
+                             Threads threads) {
   VoxelizeOptions o;
   o.resolution = res;
   o.bounds = bounds_arg(bounds);
   if (res < 1 || res > kMaxVoxelResolution)  // before allocating the output
     throw InputError("res: expected a whole number from 1 to " +
-                     std::to_string(kMaxVoxelResolution) + " (above, voxelize_brick or "
-                     "cover.dask.voxelize, up to " + std::to_string(kMaxVoxelDims) + "), got " +
-                     std::to_string(res));
+                     std::to_string(kMaxVoxelResolution) +
+                     " (above, voxelize_brick or "
+                     "cover.dask.voxelize, up to " +
+                     std::to_string(kMaxVoxelDims) + "), got " + std::to_string(res));
   VoxelGrid grid;
   {
     KernelScope scope(threads);
@@ -273,8 +288,9 @@ py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& boun
   return unpack_grid(grid);
 }
 
-py::array_t<uint8_t> render_image(const Model& model, int width, int height, const std::string& view,
-                            const py::object& section, bool perspective, Threads threads) {
+py::array_t<uint8_t> render_image(const Model& model, int width, int height,
+                                  const std::string& view, const py::object& section,
+                                  bool perspective, Threads threads) {
   CameraOptions co;
   co.view = parse_view(view);
   co.width = width;
@@ -286,8 +302,8 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height, con
     ro.section = Plane{{s[0], s[1], s[2]}, s[3]};
   }
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw InputError("--size: expected WxH with whole numbers from 1 to 16384, got " +
-                     std::to_string(width) + "x" + std::to_string(height));
+    throw InputError("width, height: expected whole numbers from 1 to 16384, got " +
+                     std::to_string(width) + ", " + std::to_string(height));
   py::array_t<uint8_t> out({py::ssize_t{height}, py::ssize_t{width}, py::ssize_t{3}});
   uint8_t* dst = out.mutable_data();
   {
@@ -432,15 +448,16 @@ py::dict info_dict(const Model& model, bool self_intersection) {
     d["components"] = r.components;
     d["genus"] = r.genus >= 0 ? py::object(py::int_(r.genus)) : py::none();
     d["degenerate_faces"] = r.degenerate_faces;
-    d["self_intersecting"] = r.self_intersecting ? py::object(py::bool_(*r.self_intersecting)) : py::none();
+    d["self_intersecting"] =
+        r.self_intersecting ? py::object(py::bool_(*r.self_intersecting)) : py::none();
     d["self_touching"] = r.self_touching ? py::object(py::bool_(*r.self_touching)) : py::none();
     d["volume"] = r.volume;
     d["bbox"] = bbox_list(leaf.bbox);
     d["brep"] = brep_dict(reports[l].mesh);
     const RepairReport rr = repair_report(reports[l].mesh, r);
-    d["repair"] = py::dict("welded_vertices"_a = rr.welded_vertices,
-                           "zero_area_faces"_a = rr.zero_area_faces,
-                           "boundary_edges"_a = rr.boundary_edges, "edges"_a = rr.edges);
+    d["repair"] =
+        py::dict("welded_vertices"_a = rr.welded_vertices, "zero_area_faces"_a = rr.zero_area_faces,
+                 "boundary_edges"_a = rr.boundary_edges, "edges"_a = rr.edges);
     d["rule"] = rr.rule();
     d["boundary_edge_fraction"] = rr.boundary_edge_fraction();
     leaves.append(d);
@@ -469,10 +486,12 @@ PYBIND11_MODULE(_cover, m) {
   m.doc() = doc::kModule;
   m.attr("__version__") = COVER_VERSION;
   py::tuple names(5);
-  for (int c = 0; c < 5; ++c) names[c] = py::str(std::string(to_string(static_cast<PointClass>(c))));
+  for (int c = 0; c < 5; ++c)
+    names[c] = py::str(std::string(to_string(static_cast<PointClass>(c))));
   m.attr("CLASS_NAMES") = names;
-  m.attr("Hits") = py::module_::import("collections")
-                       .attr("namedtuple")("Hits", py::make_tuple("hit", "t", "leaf", "face", "normal"));
+  m.attr("Hits") =
+      py::module_::import("collections")
+          .attr("namedtuple")("Hits", py::make_tuple("hit", "t", "leaf", "face", "normal"));
   m.attr("Hits").attr("__doc__") = doc::kHits;
 
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
@@ -485,7 +504,7 @@ PYBIND11_MODULE(_cover, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      input_error(e.what());
+      input_error(e.text(keyword).c_str());
     } catch (const NotComputable& e) {
       not_computable(e.what());
     } catch (const PreconditionError& e) {
@@ -627,7 +646,8 @@ PYBIND11_MODULE(_cover, m) {
           },
           [](const py::tuple& t) {
             if (t.size() != 1) throw InputError("pickled cover.Model: expected one bytes object");
-            return Model::from_bytes(std::string_view(t[0].cast<py::bytes>()), "pickled cover.Model");
+            return Model::from_bytes(std::string_view(t[0].cast<py::bytes>()),
+                                     "pickled cover.Model");
           }))
       .def("render", &render_image, py::arg("width"), py::arg("height"), py::arg("view") = "iso",
            py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false, threads,
@@ -640,18 +660,19 @@ PYBIND11_MODULE(_cover, m) {
       .def("decompose", &decompose_pieces, py::kw_only(), threads, doc::kDecompose)
       .def("info", &info_dict, py::kw_only(), py::arg("self_intersection") = true, doc::kInfo);
 
-  m.def("load",
-        [](const std::filesystem::path& path, bool closed_only) {
-          Model model;
-          {
-            py::gil_scoped_release release;
-            LoadOptions options;
-            options.require_closed = closed_only;
-            model = cover::load(path, options);
-          }
-          return warned(std::move(model));
-        },
-        py::arg("path"), py::kw_only(), py::arg("closed_only") = false, doc::kLoad);
+  m.def(
+      "load",
+      [](const std::filesystem::path& path, bool closed_only) {
+        Model model;
+        {
+          py::gil_scoped_release release;
+          LoadOptions options;
+          options.require_closed = closed_only;
+          model = cover::load(path, options);
+        }
+        return warned(std::move(model));
+      },
+      py::arg("path"), py::kw_only(), py::arg("closed_only") = false, doc::kLoad);
   // Any iterable of Models (a list, a generator), as Python's sum() takes.
   auto models_arg = [](const py::iterable& models) {
     std::vector<Model> out;
@@ -666,28 +687,35 @@ PYBIND11_MODULE(_cover, m) {
       "intersection_all",
       [models_arg](const py::iterable& models) { return intersection_all(models_arg(models)); },
       py::arg("models"), doc::kIntersectionAll);
-  m.def("box", [](py::handle lo, py::handle hi) { return box(vec3_arg(lo, "min"), vec3_arg(hi, "max")); },
-        py::arg("min"), py::arg("max"), doc::kBox);
-  m.def("sphere",
-        [](py::handle c, double r, int segments) { return sphere(vec3_arg(c, "center"), r, segments); },
-        py::arg("center"), py::arg("radius"), py::arg("segments") = 32, doc::kSphere);
-  m.def("cylinder",
-        [](py::handle base, py::handle top, double r, int segments) {
-          return cylinder(vec3_arg(base, "base"), vec3_arg(top, "top"), r, segments);
-        },
-        py::arg("base"), py::arg("top"), py::arg("radius"), py::arg("segments") = 32, doc::kCylinder);
-  m.def("mesh",
-        [](py::handle v, py::handle f, bool closed_only) {
-          const Points vertices = points_arg(v, "V");
-          const auto triangles = triangles_arg(f, vertices.span().size());
-          Model model;
-          {
-            py::gil_scoped_release release;
-            LoadOptions options;
-            options.require_closed = closed_only;
-            model = mesh(vertices.span(), triangles, "mesh", options);
-          }
-          return warned(std::move(model));
-        },
-        py::arg("V"), py::arg("F"), py::kw_only(), py::arg("closed_only") = false, doc::kMesh);
+  m.def(
+      "box",
+      [](py::handle lo, py::handle hi) { return box(vec3_arg(lo, "min"), vec3_arg(hi, "max")); },
+      py::arg("min"), py::arg("max"), doc::kBox);
+  m.def(
+      "sphere",
+      [](py::handle c, double r, int segments) {
+        return sphere(vec3_arg(c, "center"), r, segments);
+      },
+      py::arg("center"), py::arg("radius"), py::arg("segments") = 32, doc::kSphere);
+  m.def(
+      "cylinder",
+      [](py::handle base, py::handle top, double r, int segments) {
+        return cylinder(vec3_arg(base, "base"), vec3_arg(top, "top"), r, segments);
+      },
+      py::arg("base"), py::arg("top"), py::arg("radius"), py::arg("segments") = 32, doc::kCylinder);
+  m.def(
+      "mesh",
+      [](py::handle v, py::handle f, bool closed_only) {
+        const Points vertices = points_arg(v, "V");
+        const auto triangles = triangles_arg(f, vertices.span().size());
+        Model model;
+        {
+          py::gil_scoped_release release;
+          LoadOptions options;
+          options.require_closed = closed_only;
+          model = mesh(vertices.span(), triangles, "mesh", options);
+        }
+        return warned(std::move(model));
+      },
+      py::arg("V"), py::arg("F"), py::kw_only(), py::arg("closed_only") = false, doc::kMesh);
 }

@@ -17,13 +17,20 @@ struct ViewFrame {
 
 ViewFrame frame_of(View v) {
   switch (v) {
-    case View::kFront: return {{0, -1, 0}, {0, 0, 1}};
-    case View::kBack: return {{0, 1, 0}, {0, 0, 1}};
-    case View::kLeft: return {{-1, 0, 0}, {0, 0, 1}};
-    case View::kRight: return {{1, 0, 0}, {0, 0, 1}};
-    case View::kTop: return {{0, 0, 1}, {0, 1, 0}};
-    case View::kBottom: return {{0, 0, -1}, {0, 1, 0}};
-    case View::kIso: return {{1, -1, 1}, {0, 0, 1}};
+    case View::kFront:
+      return {{0, -1, 0}, {0, 0, 1}};
+    case View::kBack:
+      return {{0, 1, 0}, {0, 0, 1}};
+    case View::kLeft:
+      return {{-1, 0, 0}, {0, 0, 1}};
+    case View::kRight:
+      return {{1, 0, 0}, {0, 0, 1}};
+    case View::kTop:
+      return {{0, 0, 1}, {0, 1, 0}};
+    case View::kBottom:
+      return {{0, 0, -1}, {0, 1, 0}};
+    case View::kIso:
+      return {{1, -1, 1}, {0, 0, 1}};
   }
   return {{1, -1, 1}, {0, 0, 1}};
 }
@@ -34,19 +41,26 @@ View parse_view(const std::string& name) {
   for (View v : {View::kIso, View::kFront, View::kBack, View::kLeft, View::kRight, View::kTop,
                  View::kBottom})
     if (name == to_string(v)) return v;
-  throw InputError("--view: unknown view '" + name +
+  throw InputError(parameter("view") + ": unknown view '" + name +
                    "' (expected iso, front, back, left, right, top, bottom)");
 }
 
 const char* to_string(View v) {
   switch (v) {
-    case View::kIso: return "iso";
-    case View::kFront: return "front";
-    case View::kBack: return "back";
-    case View::kLeft: return "left";
-    case View::kRight: return "right";
-    case View::kTop: return "top";
-    case View::kBottom: return "bottom";
+    case View::kIso:
+      return "iso";
+    case View::kFront:
+      return "front";
+    case View::kBack:
+      return "back";
+    case View::kLeft:
+      return "left";
+    case View::kRight:
+      return "right";
+    case View::kTop:
+      return "top";
+    case View::kBottom:
+      return "bottom";
   }
   return "iso";
 }

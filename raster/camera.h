@@ -33,12 +33,12 @@ struct CameraOptions {
 struct Camera {
   bool perspective = false;
   int width = 0, height = 0;
-  Vec3 target;                 ///< centre of the framed sphere
-  Vec3 eye;                    ///< perspective: the eye; orthographic: centre of the image plane
-  Vec3 forward, right, up;     ///< orthonormal
-  double pixel_size = 0;       ///< orthographic: world units per pixel
-  double tan_half_fov = 0;     ///< perspective: tan(fov/2) of the shorter side
-  double near = 0, far = 0;    ///< t range that holds the framed sphere (depth mapping)
+  Vec3 target;               ///< centre of the framed sphere
+  Vec3 eye;                  ///< perspective: the eye; orthographic: centre of the image plane
+  Vec3 forward, right, up;   ///< orthonormal
+  double pixel_size = 0;     ///< orthographic: world units per pixel
+  double tan_half_fov = 0;   ///< perspective: tan(fov/2) of the shorter side
+  double near = 0, far = 0;  ///< t range that holds the framed sphere (depth mapping)
 
   /// The ray through the centre of pixel (px, py).
   Ray ray(int px, int py) const;

@@ -1,5 +1,6 @@
 // object_order_visible() (raster/object_order.h). Notation:
-//   fan triangle g   (v0, v_k, v_k+1) of face f in its leaf's own orientation, k = g − start[f] + 1,
+//   fan triangle g   (v0, v_k, v_k+1) of face f in its leaf's own orientation, k = g − start[f] +
+//   1,
 //                    numbered face by face (every one, degenerate ones included: a collinear
 //                    triangle is never crossed by a perturbed ray, ray.h)
 //   (sx, sy)         a point's image coordinates in pixels: dot(p − eye, right) / pixel_size and
@@ -109,7 +110,7 @@ VisibleHit resolve(std::span<RayHit> hits, const std::vector<uint8_t>& table,
   for (const RayHit& h : hits)
     if (winding[h.leaf] != 0) mask |= uint32_t{1} << h.leaf;
   bool in = table[mask] != 0;
-  double t0 = 0;                  // the open span's start: the origin, or hit `enter`
+  double t0 = 0;  // the open span's start: the origin, or hit `enter`
   uint32_t enter = Span::kNone;
   auto shown = [&](double t1, VisibleHit& v) {  // the span [t0, t1] in view?
     const double a = std::max(t0, lo), b = std::min(t1, hi);
@@ -143,8 +144,8 @@ VisibleHit resolve(std::span<RayHit> hits, const std::vector<uint8_t>& table,
 
 }  // namespace
 
-void object_order_visible(const Solid& solid, const Camera& cam, const std::optional<Plane>& section,
-                          int tile, const VisibleSink& sink,
+void object_order_visible(const Solid& solid, const Camera& cam,
+                          const std::optional<Plane>& section, int tile, const VisibleSink& sink,
                           const std::function<void(size_t)>& tile_done) {
   const int w = cam.width, h = cam.height;
   tile = std::max(1, tile);
@@ -168,9 +169,10 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
   // within about 89° of forward (d·forward ≥ |d|₁/100) projects to the triangle of its projected
   // corners; rounding (of the projections and of the pixel rays' directions, magnified at most
   // ~10⁴ times by the division at those angles: about 10⁻¹²/scale pixels) and the frame's skew
-  // (at most ~10⁴·skew/scale) stay far below m = 1e-3 + (1e-9 + 10⁵·skew)/scale pixels. A corner behind the eye plane by that much on
-  // every corner: no candidates; any other triangle: every pixel is a candidate (the exact test
-  // decides). The 2D prefilter and the inside shortcut below are for orthographic cameras only.
+  // (at most ~10⁴·skew/scale) stay far below m = 1e-3 + (1e-9 + 10⁵·skew)/scale pixels. A corner
+  // behind the eye plane by that much on every corner: no candidates; any other triangle: every
+  // pixel is a candidate (the exact test decides). The 2D prefilter and the inside shortcut below
+  // are for orthographic cameras only.
   const bool persp = cam.perspective;
   const double ps = cam.pixel_size;
   const double scale = persp ? 2 * cam.tan_half_fov / std::min(w, h) : 0.0;
@@ -199,8 +201,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
     largest = std::max(largest, std::abs(p.x) + std::abs(p.y) + std::abs(p.z));
   const double reach = std::abs(cam.eye.x) + std::abs(cam.eye.y) + std::abs(cam.eye.z) + largest +
                        std::abs(cam.far) + (static_cast<double>(w) + h) * ps;
-  const double skew = std::max(std::abs(dot(cam.forward, cam.right)),
-                               std::abs(dot(cam.forward, cam.up))) + 1e-15;
+  const double skew =
+      std::max(std::abs(dot(cam.forward, cam.right)), std::abs(dot(cam.forward, cam.up))) + 1e-15;
   const double delta = (1e-9 + 2 * skew) * reach / ps;
   const double m = persp ? 1e-3 + (1e-9 + 1e5 * skew) / scale : 1e-3 + delta;
   // The orientation of the image frame, (right × up)·forward: −1 for frame_camera's cameras
@@ -219,7 +221,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
   };
   auto rect = [&](const FanTri& t) {
     if (persp) {
-      const bool behind[3] = {std::isnan(sx[t.v[0]]), std::isnan(sx[t.v[1]]), std::isnan(sx[t.v[2]])};
+      const bool behind[3] = {std::isnan(sx[t.v[0]]), std::isnan(sx[t.v[1]]),
+                              std::isnan(sx[t.v[2]])};
       if (behind[0] && behind[1] && behind[2]) return Rect{1, 0, 1, 0};
       for (uint32_t v : t.v)
         if (!std::isfinite(sx[v])) return Rect{0, w - 1, 0, h - 1};
@@ -230,8 +233,12 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
       y0 = std::min(y0, sy[t.v[i]]), y1 = std::max(y1, sy[t.v[i]]);
     }
     // px = sx − ½ + w/2; py = h/2 − ½ − sy. Clamped before the conversion to int.
-    auto lo = [](double v, int limit) { return static_cast<int>(std::clamp(std::ceil(v), -1.0, static_cast<double>(limit))); };
-    auto hi = [](double v, int limit) { return static_cast<int>(std::clamp(std::floor(v), -1.0, static_cast<double>(limit))); };
+    auto lo = [](double v, int limit) {
+      return static_cast<int>(std::clamp(std::ceil(v), -1.0, static_cast<double>(limit)));
+    };
+    auto hi = [](double v, int limit) {
+      return static_cast<int>(std::clamp(std::floor(v), -1.0, static_cast<double>(limit)));
+    };
     Rect r{lo(x0 - 0.5 + 0.5 * w - m, w), hi(x1 - 0.5 + 0.5 * w + m, w),
            lo(0.5 * h - 0.5 - y1 - m, h), hi(0.5 * h - 0.5 - y0 + m, h)};
     r.x0 = std::max(r.x0, 0), r.y0 = std::max(r.y0, 0);
@@ -243,9 +250,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
   // order (chunks in order), so the lists do not depend on the threads.
   // Chunks of at least 16384 triangles, fewer when the counts (chunks × tiles) would pass 2^21
   // entries (a 16384² image has 262,144 tiles): memory stays bounded for any mesh and image.
-  const size_t chunk_size =
-      std::max<size_t>(16384, static_cast<size_t>(
-                                  std::ceil(static_cast<double>(n) * tiles / (size_t{1} << 21))));
+  const size_t chunk_size = std::max<size_t>(
+      16384, static_cast<size_t>(std::ceil(static_cast<double>(n) * tiles / (size_t{1} << 21))));
   const size_t chunks = std::max<size_t>(1, (n + chunk_size - 1) / chunk_size);
   std::vector<uint32_t> count(chunks * tiles, 0);
   auto for_tiles = [&](const Rect& r, auto&& f) {
@@ -294,11 +300,11 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
   const size_t leaves = solid.leaves.size();
   // A ray without hits is outside every leaf all along: inside the result iff the expression
   // holds the all-outside point (then its one span [0, ∞) shows a cap at the window's start).
-  const bool outside_in_result = !solid.tree.nodes.empty() &&
-                                 solid.tree.evaluate(std::vector<uint8_t>(leaves, 0));
+  const bool outside_in_result =
+      !solid.tree.nodes.empty() && solid.tree.evaluate(std::vector<uint8_t>(leaves, 0));
   const bool use_table = !solid.tree.nodes.empty() && leaves <= kTableLeaves;
-  const std::vector<uint8_t> table = use_table ? solid.tree.truth_table(leaves)
-                                               : std::vector<uint8_t>{};
+  const std::vector<uint8_t> table =
+      use_table ? solid.tree.truth_table(leaves) : std::vector<uint8_t>{};
   parallel_for(tiles, 1, [&](size_t t0, size_t t1) {
     std::vector<Ray> rays;
     std::vector<detail::Axes> axes;  // per ray (perspective: each direction its own)
@@ -309,7 +315,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
     std::vector<int> winding(leaves, 0);
     RayResult result;
     for (size_t t = t0; t < t1; ++t) {
-      const int x0 = static_cast<int>(t % tiles_x) * tile, y0 = static_cast<int>(t / tiles_x) * tile;
+      const int x0 = static_cast<int>(t % tiles_x) * tile,
+                y0 = static_cast<int>(t / tiles_x) * tile;
       const int tw = std::min(w, x0 + tile) - x0, th = std::min(h, y0 + tile) - y0;
       rays.resize(static_cast<size_t>(tw) * th);
       win.resize(rays.size());
@@ -365,8 +372,9 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
             } else if (!detail::crosses(tr, rays[k], axes[k], sign)) {
               continue;
             }
-            found.push_back({k, {detail::hit_t(plane, tr, rays[k]), g, tr.leaf, tr.face,
-                                 static_cast<int8_t>(sign)}});
+            found.push_back({k,
+                             {detail::hit_t(plane, tr, rays[k]), g, tr.leaf, tr.face,
+                              static_cast<int8_t>(sign)}});
           }
       }
       // Counting sort by pixel (stable: the hits' own order is settled by sweep_spans's sort).
@@ -387,8 +395,8 @@ void object_order_visible(const Solid& solid, const Camera& cam, const std::opti
           if (lo <= hi && first[k] == first[k + 1]) {
             if (outside_in_result && lo < hi) v = {true, true, lo, {}};
           } else if (lo <= hi && use_table) {
-            v = resolve(std::span<RayHit>(sorted.data() + first[k], first[k + 1] - first[k]),
-                        table, winding, lo, hi);
+            v = resolve(std::span<RayHit>(sorted.data() + first[k], first[k + 1] - first[k]), table,
+                        winding, lo, hi);
           } else if (lo <= hi && !solid.tree.nodes.empty()) {
             result.hits.assign(sorted.begin() + first[k], sorted.begin() + first[k + 1]);
             result.spans.clear();

@@ -32,7 +32,8 @@ namespace cover {
 
 /// The allowed parameter interval [lo, hi] of a ray outside the removed half-space
 /// {x : n·x > d} of a section (none: [0, ∞)); lo > hi: nothing visible.
-inline std::pair<double, double> section_window(const Ray& ray, const std::optional<Plane>& section) {
+inline std::pair<double, double> section_window(const Ray& ray,
+                                                const std::optional<Plane>& section) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   if (!section) return {0.0, kInf};
   const double s = dot(section->normal, ray.dir);

@@ -30,7 +30,6 @@ Vec3 unit(Vec3 v) {
   return l > 0 ? (1.0 / l) * v : v;
 }
 
-
 /// What a pixel shows, from its visible hit (`tri`: the triangle of v.enter when v.hit && !v.cap).
 Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
                  const std::optional<Plane>& section) {
@@ -55,8 +54,7 @@ Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
 /// `open`: the open leaves' trees (gwn.h), or nullptr when every leaf is closed; then spans
 /// come from cast() and open_spans() (membership changes only at surface hits).
 Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
-              const std::optional<Plane>& section, bool outside_in_result,
-              const GwnForest* open) {
+              const std::optional<Plane>& section, bool outside_in_result, const GwnForest* open) {
   const auto [lo, hi] = section_window(ray, section);
   if (lo > hi) return {};
   VisibleHit v;
@@ -178,8 +176,8 @@ Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const Render
         c[ch] = static_cast<uint8_t>(std::lround(std::min(255.0, base[ch] * k)));
       const double f = (s.t - cam.near) / (cam.far - cam.near);
       img.depth[i] = static_cast<uint16_t>(std::lround(std::clamp(f, 0.0, 1.0) * 65534));
-      img.ids[i] = s.cap ? Image::kCapId
-                         : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
+      img.ids[i] =
+          s.cap ? Image::kCapId : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
       normals[i] = {s.normal.x, s.normal.y, s.normal.z};
     }
     std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);

@@ -65,7 +65,8 @@ double render_bytes(int width, int height);
 
 /// Whether render() takes the object-order path for this solid, camera and options (then it
 /// needs no BVH). \throws InputError for kObjectOrder where it does not apply.
-bool renders_in_object_order(const Solid& solid, const Camera& camera, const RenderOptions& options);
+bool renders_in_object_order(const Solid& solid, const Camera& camera,
+                             const RenderOptions& options);
 
 /// Renders `solid` (with its prebuilt BVH) through `camera`.
 /// \pre closed leaves; camera from frame_camera() with a size of 1..16384 per side; a section

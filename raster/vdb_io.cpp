@@ -94,9 +94,7 @@ const Plugin& plugin() {
 
 }  // namespace
 
-bool is_vdb_extension(const fs::path& path) {
-  return lower_extension(path) == ".vdb";
-}
+bool is_vdb_extension(const fs::path& path) { return lower_extension(path) == ".vdb"; }
 
 void write_vdb(const fs::path& path, const VoxelGrid& grid) {
   if (!grid.whole() || grid.bits.size() != grid.word_count())

@@ -27,9 +27,9 @@ namespace cover {
 
 /// The global grid of a voxelization: origin, spacing, dims.
 struct VoxelLattice {
-  Vec3 origin;                      ///< min corner of voxel (0, 0, 0)
-  double spacing = 1;               ///< h > 0, the same on every axis
-  std::array<int, 3> dims{};        ///< voxels per axis (NX, NY, NZ), each ≥ 1
+  Vec3 origin;                ///< min corner of voxel (0, 0, 0)
+  double spacing = 1;         ///< h > 0, the same on every axis
+  std::array<int, 3> dims{};  ///< voxels per axis (NX, NY, NZ), each ≥ 1
   /// The cube of a cubic grid made from VoxelBounds (cubic_lattice): its exact size, which
   /// .binvox and the .raw sidecar record (spacing = cube_size / N); nullopt for grids made
   /// from a voxel size or dims.

@@ -172,14 +172,15 @@ std::string point_list(const Vec3& p) {
 std::string raw_sidecar(const VoxelGrid& grid) {
   const VoxelLattice& l = grid.lattice;
   const std::string bounds =
-      l.cube_size ? "\"min\": " + point_list(l.origin) + ", \"size\": " + number(*l.cube_size)
-                  : "\"min\": " + point_list(l.origin) + ", \"max\": " +
-                        point_list({l.origin.x + l.dims[0] * l.spacing,
-                                    l.origin.y + l.dims[1] * l.spacing,
-                                    l.origin.z + l.dims[2] * l.spacing});
+      l.cube_size
+          ? "\"min\": " + point_list(l.origin) + ", \"size\": " + number(*l.cube_size)
+          : "\"min\": " + point_list(l.origin) + ", \"max\": " +
+                point_list({l.origin.x + l.dims[0] * l.spacing, l.origin.y + l.dims[1] * l.spacing,
+                            l.origin.z + l.dims[2] * l.spacing});
   return "{\n  \"dims\": " + dims_list(grid, "[", "]") +
          ",\n  \"order\": \"xyz (z fastest)\",\n  \"dtype\": \"uint8\",\n"
-         "  \"bounds\": {" + bounds + "},\n  \"voxel_size\": " + number(grid.voxel_size()) + "\n}\n";
+         "  \"bounds\": {" +
+         bounds + "},\n  \"voxel_size\": " + number(grid.voxel_size()) + "\n}\n";
 }
 
 // ---- .binvox: RLE over index x·N·N + z·N + y ----
@@ -273,8 +274,8 @@ void write_binvox(OutputFile& out, const VoxelGrid& grid) {
 
 void write_vti(OutputFile& out, const VoxelGrid& grid) {
   const int nx = grid.nx(), ny = grid.ny(), nz = grid.nz();
-  const std::string extent = "0 " + std::to_string(nx) + " 0 " + std::to_string(ny) + " 0 " +
-                             std::to_string(nz);
+  const std::string extent =
+      "0 " + std::to_string(nx) + " 0 " + std::to_string(ny) + " 0 " + std::to_string(nz);
   const Vec3& min = grid.lattice.origin;
   const std::string h = number(grid.voxel_size());
   const std::string origin = number(min.x) + " " + number(min.y) + " " + number(min.z);

@@ -171,7 +171,7 @@ class SurfaceBuilder {
     }
     if (faces * 4 > UINT32_MAX)
       throw NotComputable("voxel_surface: " + std::to_string(faces) +
-                              " faces exceed 32-bit indices");
+                          " faces exceed 32-bit indices");
     mesh_.face_start.reserve(faces + 1);
     mesh_.face_vertices.reserve(faces * 4);
     mesh_.vertices.reserve(faces + 2);  // V = F + 2 per sphere-like component of quads
@@ -341,7 +341,8 @@ class SurfaceBuilder {
       throw NotComputable("voxel_surface: vertices exceed 32-bit indices");
     const uint32_t index = static_cast<uint32_t>(mesh_.vertices.size());
     std::array<double, 3> c;
-    const std::array<double, 3> min = {grid_.lattice.origin.x, grid_.lattice.origin.y, grid_.lattice.origin.z};
+    const std::array<double, 3> min = {grid_.lattice.origin.x, grid_.lattice.origin.y,
+                                       grid_.lattice.origin.z};
     for (int d = 0; d < 3; ++d) c[d] = min[d] + (d == axis ? low[d] + 0.5 : low[d]) * h_;
     mesh_.vertices.push_back({c[0], c[1], c[2]});
     mesh_.face_vertices.push_back(index);

@@ -160,7 +160,8 @@ void crossings_of(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t leaf, in
                   int i1, int j0, int j1, int band_first_row, const std::vector<double>& xs,
                   const std::vector<double>& ys, const std::vector<double>& zs,
                   std::vector<Crossing>& out) {
-  const int ny = static_cast<int>(ys.size()), nk = static_cast<int>(zs.size());  // columns per row, centres per column
+  const int ny = static_cast<int>(ys.size()),
+            nk = static_cast<int>(zs.size());  // columns per row, centres per column
   const double inv_h = zs.size() > 1 ? 1 / (zs[1] - zs[0]) : 1;
   const double snz = nz;
   // The plane's z in centre-index units, k(x, y) = k0 + kx·(x − a.x) + ky·(y − a.y): only the
@@ -298,14 +299,17 @@ VoxelLattice voxel_lattice(const Bbox& result_box, const VoxelizeOptions& option
   const bool by_dims = options.dims != std::array<int, 3>{};
   if (!by_size && !by_dims) {
     const int n = options.resolution;
-    return cubic_lattice(options.bounds ? *options.bounds : default_voxel_bounds(result_box, std::max(n, 3)), n);
+    return cubic_lattice(
+        options.bounds ? *options.bounds : default_voxel_bounds(result_box, std::max(n, 3)), n);
   }
-  if (by_size && by_dims) throw InputError("--voxel-size and --dims: give one of them, not both");
+  if (by_size && by_dims)
+    throw InputError(parameter("voxel_size") + " and " + parameter("dims") +
+                     ": give one of them, not both");
   if (by_size && !(options.voxel_size > 0 && std::isfinite(options.voxel_size)))
-    throw InputError("--voxel-size: expected a finite number > 0");
+    throw InputError(parameter("voxel_size") + ": expected a finite number > 0");
   for (const int d : options.dims)
     if (by_dims && (d < 1 || d > kMaxVoxelDims))
-      throw InputError("--dims: expected three whole numbers from 1 to " +
+      throw InputError(parameter("dims") + ": expected three whole numbers from 1 to " +
                        std::to_string(kMaxVoxelDims) + ", got " + std::to_string(d));
   // The box B to cover: the given cube, else the result's box; no extent anywhere (or empty):
   // the unit cube around its centre.
@@ -330,13 +334,13 @@ VoxelLattice voxel_lattice(const Bbox& result_box, const VoxelizeOptions& option
     for (int a = 0; a < 3; ++a) {
       const double guess = std::ceil(extent[a] / h);
       if (!(guess <= kMaxVoxelDims))
-        throw InputError("--voxel-size: " + shortest(h) + " gives more than " +
+        throw InputError(parameter("voxel_size") + ": " + shortest(h) + " gives more than " +
                          std::to_string(kMaxVoxelDims) + " voxels on an axis");
       int d = std::max(1, static_cast<int>(guess));
       while (d * h < extent[a]) ++d;  // the rounded quotient may fall short by one
       if (d > kMaxVoxelDims)
-        throw InputError("--voxel-size: too small, more than " + std::to_string(kMaxVoxelDims) +
-                         " voxels on an axis");
+        throw InputError(parameter("voxel_size") + ": too small, more than " +
+                         std::to_string(kMaxVoxelDims) + " voxels on an axis");
       lattice.dims[a] = d;
     }
   } else {
@@ -493,8 +497,8 @@ void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const Index
   // the sweep then looks runs up instead of evaluating the tree once per run.
   constexpr size_t kTableLeaves = 10;
   const bool use_table = leaves <= kTableLeaves;
-  const std::vector<uint8_t> table = use_table ? solid.tree.truth_table(leaves)
-                                               : std::vector<uint8_t>{};
+  const std::vector<uint8_t> table =
+      use_table ? solid.tree.truth_table(leaves) : std::vector<uint8_t>{};
   auto sweep_band = [&](size_t band) {
     // Per-thread scratch, reused across bands and calls (no allocation per band).
     thread_local std::vector<Crossing> found;

@@ -45,10 +45,10 @@ inline constexpr int kMaxVoxelResolution = 4096;
 /// extent everywhere (or empty) is taken as the unit cube around its centre (the origin when
 /// empty).
 struct VoxelizeOptions {
-  int resolution = 128;                ///< N: voxels per axis of a cubic grid (1 to 4096)
-  std::optional<VoxelBounds> bounds;   ///< cube of a cubic grid, or the box B of the others
-  double voxel_size = 0;               ///< > 0: a grid of this spacing over B (not with dims)
-  std::array<int, 3> dims{};           ///< all > 0: a grid with these voxel counts over B
+  int resolution = 128;               ///< N: voxels per axis of a cubic grid (1 to 4096)
+  std::optional<VoxelBounds> bounds;  ///< cube of a cubic grid, or the box B of the others
+  double voxel_size = 0;              ///< > 0: a grid of this spacing over B (not with dims)
+  std::array<int, 3> dims{};          ///< all > 0: a grid with these voxel counts over B
   /// Called on the calling thread, after each band of rows it finishes and once at the end, with
   /// the share of bands done, 0..1 (non-decreasing); default: none. The grid does not depend on
   /// it.

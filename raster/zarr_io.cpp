@@ -49,14 +49,13 @@ std::string triple(double a, double b, double c) {
 /// Writes `size` bytes to a new file `file`; throws InputError naming `target` on failure.
 void write_bytes(const fs::path& file, const void* data, size_t size, const fs::path& target) {
   std::FILE* f = std::fopen(file.c_str(), "wb");
-  if (f == nullptr)
-    throw InputError(target.string() + ": cannot write: " + std::strerror(errno));
+  if (f == nullptr) throw InputError(target.string() + ": cannot write: " + std::strerror(errno));
   const bool written = size == 0 || std::fwrite(data, 1, size, f) == size;
   const int write_errno = errno;
   const bool closed = std::fclose(f) == 0;
   if (!written || !closed)
-    throw InputError(target.string() + ": cannot write: " +
-                     std::strerror(!written ? write_errno : errno));
+    throw InputError(target.string() +
+                     ": cannot write: " + std::strerror(!written ? write_errno : errno));
 }
 
 std::string zarray(const VoxelLattice& l, int chunk, int level) {
@@ -72,11 +71,12 @@ std::string zarray(const VoxelLattice& l, int chunk, int level) {
 std::string zattrs(const VoxelLattice& l) {
   const Vec3& o = l.origin;
   const std::string bounds =
-      l.cube_size ? "{\"min\": " + triple(o.x, o.y, o.z) + ", \"size\": " + number(*l.cube_size) + "}"
-                  : "{\"min\": " + triple(o.x, o.y, o.z) + ", \"max\": " +
-                        triple(o.x + l.dims[0] * l.spacing, o.y + l.dims[1] * l.spacing,
-                               o.z + l.dims[2] * l.spacing) +
-                        "}";
+      l.cube_size
+          ? "{\"min\": " + triple(o.x, o.y, o.z) + ", \"size\": " + number(*l.cube_size) + "}"
+          : "{\"min\": " + triple(o.x, o.y, o.z) + ", \"max\": " +
+                triple(o.x + l.dims[0] * l.spacing, o.y + l.dims[1] * l.spacing,
+                       o.z + l.dims[2] * l.spacing) +
+                "}";
   return "{\n  \"bounds\": " + bounds +
          ",\n  \"centre\": \"origin + (i + 1/2, j + 1/2, k + 1/2) * spacing\",\n"
          "  \"dims\": [" +
@@ -108,7 +108,8 @@ void expand_range(const uint64_t* column, int k0, int k1, uint8_t* out) {
     detail::expand_bits(column + (k0 >> 6), static_cast<size_t>(k1 - k0), out);
     return;
   }
-  for (int k = k0; k < k1; ++k) out[k - k0] = static_cast<uint8_t>((column[k >> 6] >> (k & 63)) & 1);
+  for (int k = k0; k < k1; ++k)
+    out[k - k0] = static_cast<uint8_t>((column[k >> 6] >> (k & 63)) & 1);
 }
 
 /// True if every bit [k0, k1) of the column is set.
@@ -144,9 +145,7 @@ bool own_store_name(const std::string& name) {
 
 }  // namespace
 
-bool is_zarr_extension(const fs::path& path) {
-  return lower_extension(path) == ".zarr";
-}
+bool is_zarr_extension(const fs::path& path) { return lower_extension(path) == ".zarr"; }
 
 double zarr_brick_bytes(const VoxelLattice& lattice, int chunk) {
   const double c = chunk, nz = std::max(lattice.dims[2], 1);
@@ -161,13 +160,15 @@ ZarrResult write_zarr(const fs::path& path, const VoxelLattice& lattice, const Z
                       const BrickFunction& brick) {
   const std::string name = path.string();
   if (options.chunk < 1)
-    throw InputError("--chunk: expected a whole number ≥ 1, got " + std::to_string(options.chunk));
+    throw InputError(parameter("chunk") + ": expected a whole number ≥ 1, got " +
+                     std::to_string(options.chunk));
   if (options.level < 1 || options.level > 9)
     throw InputError(name + ": zlib level must be 1 to 9, got " + std::to_string(options.level));
   for (const int d : lattice.dims)
     if (d < 1) throw PreconditionError("write_zarr: lattice dims must be ≥ 1");
   // C is at most the largest dim: a larger chunk only pads.
-  const int c = std::min(options.chunk, std::max({lattice.dims[0], lattice.dims[1], lattice.dims[2]}));
+  const int c =
+      std::min(options.chunk, std::max({lattice.dims[0], lattice.dims[1], lattice.dims[2]}));
   ZarrResult result;
   result.brick_bytes = zarr_brick_bytes(lattice, c);
   check_memory(result.brick_bytes, options.max_bytes, name + ": one brick of the Zarr store");
@@ -235,9 +236,9 @@ ZarrResult write_zarr(const fs::path& path, const VoxelLattice& lattice, const Z
               all = all && all_bits(column, k0, k1);
             }
           if (!any) continue;  // all 0: fill_value, no file
-          const std::string file = temporary.path() / (std::to_string(ci) + "." +
-                                                       std::to_string(cj) + "." +
-                                                       std::to_string(ck));
+          const std::string file =
+              temporary.path() /
+              (std::to_string(ci) + "." + std::to_string(cj) + "." + std::to_string(ck));
           if (all) {  // all 1 (inside the solid): the same compressed bytes every time
             write_bytes(file, full_chunk.data(), full_chunk.size(), target);
             ++written;

@@ -44,11 +44,11 @@ struct ZarrOptions {
 
 /// What write_zarr wrote.
 struct ZarrResult {
-  uint64_t occupied = 0;     ///< set voxels
-  uint64_t chunks = 0;       ///< chunks of the array
+  uint64_t occupied = 0;        ///< set voxels
+  uint64_t chunks = 0;          ///< chunks of the array
   uint64_t chunks_written = 0;  ///< chunk files (those not all 0)
-  int bricks_in_flight = 0;  ///< bricks computed at once
-  double brick_bytes = 0;    ///< memory estimate of one brick in flight
+  int bricks_in_flight = 0;     ///< bricks computed at once
+  double brick_bytes = 0;       ///< memory estimate of one brick in flight
 };
 
 /// Fills `grid` with the brick `box` of the lattice (VoxelGrid::box = box); called concurrently

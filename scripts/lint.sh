@@ -10,7 +10,8 @@
 # origin/main` when origin/main exists, else HEAD~1. The working tree is compared with the base,
 # so uncommitted edits count, and untracked C/C++ files are checked whole. Only changed lines are
 # checked by (a) and (b), so lines a change does not touch are not reported; LINT_WHOLE_FILES=1
-# checks the changed files whole.
+# checks the changed files whole. LINT_ALL=1 checks every tracked C/C++ file whole (what CI runs:
+# the whole tree is formatted and within the limit).
 # Prints one "file:line: message" per problem and exits 1 if there is any, else 0.
 # Usage: scripts/lint.sh            LINT_BASE=main scripts/lint.sh
 set -euo pipefail
@@ -34,8 +35,14 @@ fi
 status=0
 cxx=('*.h' '*.hpp' '*.hh' '*.c' '*.cc' '*.cpp' '*.cxx')
 
-# Changed C/C++ files (added, copied, modified, renamed), and untracked ones.
-mapfile -t changed < <(git diff --name-only --diff-filter=ACMR "$base" -- "${cxx[@]}")
+# Changed C/C++ files (added, copied, modified, renamed), and untracked ones; with LINT_ALL=1
+# every tracked one.
+if [ "${LINT_ALL:-0}" = 1 ]; then
+  mapfile -t changed < <(git ls-files -- "${cxx[@]}")
+  LINT_WHOLE_FILES=1
+else
+  mapfile -t changed < <(git diff --name-only --diff-filter=ACMR "$base" -- "${cxx[@]}")
+fi
 mapfile -t untracked < <(git ls-files --others --exclude-standard -- "${cxx[@]}")
 
 # "LINE COUNT" ranges of the lines `file` adds relative to the base (from the diff's hunk

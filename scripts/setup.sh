@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config clang-format
   libeigen3-dev libtbb-dev
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev

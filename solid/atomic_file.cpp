@@ -310,8 +310,10 @@ void OutputBatch::commit() {
 
 OutputFolder::OutputFolder(const fs::path& path, std::string_view what,
                            std::function<std::string(const fs::path&)> refusal)
-    : name_(path.string()), message_(name_ + ": cannot write " + std::string(what)),
-      target_(folder_target(path)), refusal_(std::move(refusal)) {
+    : name_(path.string()),
+      message_(name_ + ": cannot write " + std::string(what)),
+      target_(folder_target(path)),
+      refusal_(std::move(refusal)) {
   std::error_code error;
   const fs::file_status status = fs::status(target_, error);
   if (fs::exists(status)) {

@@ -171,7 +171,8 @@ void scan(std::span<const Bbox> boxes, std::span<const uint32_t> color, Chunks&&
   parallel_for(boxes.size(), 4096, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; ++b)
       if (!boxes[b].empty())
-        for (int a = 0; a < 3; ++a) low[b][a] = static_cast<uint32_t>(grid.cell(boxes[b].min[a], a));
+        for (int a = 0; a < 3; ++a)
+          low[b][a] = static_cast<uint32_t>(grid.cell(boxes[b].min[a], a));
   });
   std::atomic<bool> stop{false};
   parallel_for(groups.size() - 1, kGroupGrain, [&](size_t g0, size_t g1) {
@@ -236,8 +237,10 @@ std::vector<std::pair<uint32_t, uint32_t>> between(
   scan<M>(
       boxes, same ? std::span<const uint32_t>{} : color, [&](size_t n) { found.resize(n); },
       [&](size_t chunk, uint32_t a, uint32_t b) {
-        if (color[a] != color[b]) found[chunk].emplace_back(a, b);
-        else same(a, b);
+        if (color[a] != color[b])
+          found[chunk].emplace_back(a, b);
+        else
+          same(a, b);
         return false;
       },
       color, corners);
@@ -250,7 +253,8 @@ std::vector<std::pair<uint32_t, uint32_t>> between(
 }  // namespace
 
 void box_pairs(std::span<const Bbox> boxes, const std::function<bool(uint32_t, uint32_t)>& pair) {
-  scan(boxes, {}, [](size_t) {}, [&](size_t, uint32_t a, uint32_t b) { return pair(a, b); });
+  scan(
+      boxes, {}, [](size_t) {}, [&](size_t, uint32_t a, uint32_t b) { return pair(a, b); });
 }
 
 std::vector<std::pair<uint32_t, uint32_t>> box_pairs_between(std::span<const Bbox> boxes,

@@ -4,8 +4,11 @@
 // the same type. Public functions document what they throw with \throws.
 //   InputError         (std::runtime_error) bad input: file contents, scene, arrays, options.
 //                      what() names the place: "FILE:LINE: message", "FILE: record N: message",
-//                      "scene.json: /json/path: message", "--option: message". The CLI prints
-//                      "cover: error: <what()>" and exits with status 2.
+//                      "scene.json: /json/path: message", "resolution: message". A parameter is
+//                      named as the C++ API spells it (an options field), marked with
+//                      parameter(): the CLI shows its flag instead ("--res: message"), Python
+//                      its keyword ("res: message"); InputError::text renders either. The CLI
+//                      prints "cover: error: <message>" and exits with status 2.
 //   NotComputable      (std::runtime_error) a well-formed request that this build cannot answer
 //                      without a wrong or inexact result (exit 2).
 //   PreconditionError  (std::logic_error) a caller broke a documented precondition of a public
@@ -17,15 +20,30 @@
 // std::bad_alloc and InternalError, and with \pre what it does not check; one without \throws
 // throws only those two.
 
+#include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace cover {
 
-/// Invalid input; the message names the file and the place in it.
+/// `name`, a parameter as the C++ API spells it ("resolution", "max_memory"), marked inside an
+/// InputError message so that each front end can show its own name for it (InputError::text).
+std::string parameter(std::string_view name);
+
+/// Invalid input; the message names the file and the place in it, or the parameter.
 class InputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// `message` may hold parameter() marks; what() shows each parameter's C++ name.
+  explicit InputError(const std::string& message);
+  /// The message with every marked parameter shown as `name_of(name)`.
+  std::string text(const std::function<std::string(std::string_view)>& name_of) const;
+  /// The same error with `prefix` before its message (marks kept): "FILE: " + message.
+  InputError prefixed(const std::string& prefix) const;
+
+ private:
+  std::shared_ptr<const std::string> marked_;  ///< the message with its marks (copies share it)
 };
 
 /// A well-formed request that cannot be answered without a wrong or inexact result.

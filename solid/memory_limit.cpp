@@ -28,8 +28,9 @@ std::string mib(double bytes) {
 
 void check_memory(double estimate_bytes, uint64_t limit_bytes, const std::string& what) {
   if (estimate_bytes > static_cast<double>(limit_bytes))
-    throw InputError(what + " needs " + mib(estimate_bytes) + " MiB, over --max-memory " +
-                     mib(static_cast<double>(limit_bytes)) + " MiB");
+    throw InputError(what + " needs " + mib(estimate_bytes) + " MiB, over " +
+                     parameter("max_memory") + " " + mib(static_cast<double>(limit_bytes)) +
+                     " MiB");
 }
 
 FileBytes read_regular_file(const std::filesystem::path& path, uint64_t max_bytes) {
@@ -72,7 +73,8 @@ FileBytes read_stream(std::istream& in, uint64_t max_bytes, const std::string& n
   FileBytes out;
   LargeBuffer<char>& text = out.bytes_;
   while (in) {
-    if (text.size() < out.size_ + kBlock) text.resize(std::max(2 * text.size(), out.size_ + kBlock));
+    if (text.size() < out.size_ + kBlock)
+      text.resize(std::max(2 * text.size(), out.size_ + kBlock));
     in.read(text.data() + out.size_, static_cast<std::streamsize>(kBlock));
     out.size_ += static_cast<size_t>(in.gcount());
     check_memory(static_cast<double>(out.size_), max_bytes, name + ": the input");

@@ -40,10 +40,14 @@ class HeaderParser {
       }
     }
     skip_blanks();
-    if (pos_ != text_.size()) fail("unexpected " + detail::quote(text_.substr(pos_)) + " after the dict");
+    if (pos_ != text_.size())
+      fail("unexpected " + detail::quote(text_.substr(pos_)) + " after the dict");
     for (int k = 0; k < 3; ++k)
       if (!seen[k])
-        fail(std::string("missing key '") + (k == 0 ? "descr" : k == 1 ? "fortran_order" : "shape") +
+        fail(std::string("missing key '") +
+             (k == 0   ? "descr"
+              : k == 1 ? "fortran_order"
+                       : "shape") +
              "'");
     return h;
   }
@@ -129,10 +133,12 @@ class HeaderParser {
 std::string npy_header(std::string_view descr, std::span<const uint64_t> shape) {
   std::string dims;
   for (const uint64_t d : shape) dims += std::to_string(d) + ", ";
-  if (shape.size() > 1) dims.resize(dims.size() - 2);  // "(7,)" but "(7, 3)"
-  else if (shape.size() == 1) dims.pop_back();
-  std::string header = "{'descr': '" + std::string(descr) +
-                       "', 'fortran_order': False, 'shape': (" + dims + "), }";
+  if (shape.size() > 1)
+    dims.resize(dims.size() - 2);  // "(7,)" but "(7, 3)"
+  else if (shape.size() == 1)
+    dims.pop_back();
+  std::string header =
+      "{'descr': '" + std::string(descr) + "', 'fortran_order': False, 'shape': (" + dims + "), }";
   constexpr size_t kPreamble = 10;  // magic (6) + version (2) + header length (2)
   header.append((64 - (kPreamble + header.size() + 1) % 64) % 64, ' ');
   header += '\n';

@@ -19,12 +19,12 @@ void parallel_for(size_t n, size_t grain, const std::function<void(size_t, size_
     return;
   }
   const size_t chunks = (n + grain - 1) / grain;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t c = r.begin(); c != r.end(); ++c)
-                        body(c * grain, std::min(n, (c + 1) * grain));
-                    },
-                    tbb::simple_partitioner());
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, chunks, 1),
+      [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t c = r.begin(); c != r.end(); ++c) body(c * grain, std::min(n, (c + 1) * grain));
+      },
+      tbb::simple_partitioner());
 }
 
 void parallel_invoke(const std::function<void()>& f, const std::function<void()>& g) {

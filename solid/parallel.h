@@ -5,8 +5,8 @@
 // the thread count), so any per-chunk reduction combined in chunk order is deterministic.
 
 #include <cstddef>
-#include <functional>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 

@@ -75,8 +75,8 @@ int orient2d_exact(const Vec3& a, const Vec3& b, const Vec3& c, int axis) {
       exact_difference(a[v], c[v], y1) && exact_difference(b[u], c[u], x2) &&
       exact_product(x1, y2, l) && exact_product(y1, x2, r))
     return sign_of(l - r);  // the sign of a rounded difference is exact
-  return static_cast<int>(CGAL::orientation(K::Point_2(a[u], a[v]), K::Point_2(b[u], b[v]),
-                                            K::Point_2(c[u], c[v])));
+  return static_cast<int>(
+      CGAL::orientation(K::Point_2(a[u], a[v]), K::Point_2(b[u], b[v]), K::Point_2(c[u], c[v])));
 }
 
 int triple_sign_exact(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& d) {

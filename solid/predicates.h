@@ -138,7 +138,8 @@ inline int plane_side(const Vec3& n, double d, const Vec3& v) {
 int polygon_orientation(std::span<const Vec3> points, int axis);
 
 /// True when the points vertices[loop[i]] lie on one line. Fewer than three distinct points
-/// (coincident coordinates count once) are collinear. Precondition: every loop[i] < vertices.size().
+/// (coincident coordinates count once) are collinear. Precondition: every loop[i] <
+/// vertices.size().
 bool all_collinear(std::span<const Vec3> vertices, std::span<const uint32_t> loop);
 
 }  // namespace cover

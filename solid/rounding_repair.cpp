@@ -158,7 +158,8 @@ class Collapser {
       if (!c.loop.empty()) loop_of[c.face] = &c.loop;
     for (uint32_t f : around_[b])
       if (alive_[f] && !loop_of.count(f) &&
-          std::none_of(changed.begin(), changed.end(), [&](const Changed& c) { return c.face == f; }))
+          std::none_of(changed.begin(), changed.end(),
+                       [&](const Changed& c) { return c.face == f; }))
         loop_of[f] = &loops_[f];
     // in/out corners of b per face; each must be unique, and the fan one cycle.
     std::unordered_map<uint32_t, uint32_t> by_in, by_out;

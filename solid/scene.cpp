@@ -24,7 +24,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kMaxDepth = 256;              // nesting of operations
+constexpr int kMaxDepth = 256;  // nesting of operations
 
 /// Reads a scene in three steps. plan() walks the JSON in document order, checking its structure
 /// and every primitive and transform, and lists the leaves (their meshes not yet read); the
@@ -63,12 +63,12 @@ class SceneReader {
  private:
   /// One leaf to make: a mesh file (read by read_files()) or a primitive's mesh (built by plan()).
   struct LeafTask {
-    std::string path;                  ///< its JSON path
-    std::filesystem::path file;        ///< mesh leaves: the file; empty for primitives
-    std::string kind;                  ///< primitives: box, sphere or cylinder
-    PolygonMesh mesh;                  ///< primitives: the mesh (transformed)
-    Transform world;                   ///< mesh leaves: the transform to apply
-    size_t read = 0;                   ///< mesh leaves: its file's entry in reads_
+    std::string path;            ///< its JSON path
+    std::filesystem::path file;  ///< mesh leaves: the file; empty for primitives
+    std::string kind;            ///< primitives: box, sphere or cylinder
+    PolygonMesh mesh;            ///< primitives: the mesh (transformed)
+    Transform world;             ///< mesh leaves: the transform to apply
+    size_t read = 0;             ///< mesh leaves: its file's entry in reads_
   };
   /// One distinct mesh file, read once however many leaves place it (instances: the 10-leaf
   /// preview scene reads 6 files for 10 leaves).
@@ -119,8 +119,10 @@ class SceneReader {
         fail(path, "more than one of leaf/operation keys ('" + kind + "', '" + it.key() + "')");
       }
     }
-    if (kind.empty()) fail(path, "expected one of mesh, box, sphere, cylinder, union, "
-                                 "intersection, difference, complement");
+    if (kind.empty())
+      fail(path,
+           "expected one of mesh, box, sphere, cylinder, union, "
+           "intersection, difference, complement");
     const json& v = j.at(kind);
     const std::string sub = path + "/" + kind;
     if (kind == "mesh") {
@@ -203,7 +205,8 @@ class SceneReader {
   }
 
   /// Checks that `j` is an object whose keys are all in `allowed`.
-  void keys(const json& j, const std::string& path, std::initializer_list<const char*> allowed) const {
+  void keys(const json& j, const std::string& path,
+            std::initializer_list<const char*> allowed) const {
     if (!j.is_object()) fail(path, "expected an object");
     for (auto it = j.begin(); it != j.end(); ++it) {
       bool ok = false;
@@ -236,7 +239,8 @@ class SceneReader {
       keys(v, path, {"min", "max"});
       const Vec3 lo = vec3(required(v, path, "min"), path + "/min");
       const Vec3 hi = vec3(required(v, path, "max"), path + "/max");
-      if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) fail(path, "expected min < max on every axis");
+      if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+        fail(path, "expected min < max on every axis");
       return make_box(lo, hi);
     }
     if (kind == "sphere") {
@@ -259,7 +263,8 @@ class SceneReader {
     if (t.contains("matrix")) {
       keys(t, path, {"matrix"});
       const json& a = t.at("matrix");
-      if (!a.is_array() || a.size() != 16) fail(path + "/matrix", "expected 16 numbers (row-major)");
+      if (!a.is_array() || a.size() != 16)
+        fail(path + "/matrix", "expected 16 numbers (row-major)");
       std::array<double, 16> rows{};
       for (int i = 0; i < 16; ++i) rows[i] = number(a[i], path + "/matrix/" + std::to_string(i));
       if (rows[12] != 0 || rows[13] != 0 || rows[14] != 0 || rows[15] != 1)
@@ -408,8 +413,8 @@ class SceneReader {
         if (!(std::abs(p[a]) <= kMaxCoordinate)) {
           char value[32];
           std::snprintf(value, sizeof value, "%.17g", p[a]);
-          throw InputError(where + ": vertex " + std::to_string(v) + " (counting from 0): " +
-                           "xyz"[a] + " coordinate " + value +
+          throw InputError(where + ": vertex " + std::to_string(v) +
+                           " (counting from 0): " + "xyz"[a] + " coordinate " + value +
                            " is outside the supported range [-2^64, 2^64] (about ±1.8e19)");
         }
     }
@@ -419,8 +424,8 @@ class SceneReader {
   std::filesystem::path scene_;
   LoadOptions options_;
   std::vector<std::string>& warnings_;
-  std::vector<LeafTask> tasks_;  ///< the leaves, in document order
-  std::vector<FileRead> reads_;  ///< the distinct mesh files, in order of first use
+  std::vector<LeafTask> tasks_;               ///< the leaves, in document order
+  std::vector<FileRead> reads_;               ///< the distinct mesh files, in order of first use
   std::map<std::string, size_t> read_index_;  ///< a file's (normalized) path → its entry
 };
 
@@ -516,8 +521,8 @@ LoadedInput parse_scene(const std::string& text, const std::filesystem::path& sc
     const auto colon = what.find("] ");
     const auto* parse = dynamic_cast<const json::parse_error*>(&e);
     const size_t byte = parse && parse->byte > 0 ? parse->byte - 1 : 0;
-    throw InputError(scene_path.string() + ":" + line_of(text, byte) +
-                     ": invalid JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
+    throw InputError(scene_path.string() + ":" + line_of(text, byte) + ": invalid JSON: " +
+                     (colon == std::string::npos ? what : what.substr(colon + 2)));
   }
   LoadedInput out;
   SceneReader reader(scene_path, options, out.warnings);
@@ -527,7 +532,8 @@ LoadedInput parse_scene(const std::string& text, const std::filesystem::path& sc
 
 LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == ".json")
     return parse_scene(std::string(read_regular_file(path, options.max_file_bytes).view()), path,
                        options);

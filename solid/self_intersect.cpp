@@ -48,8 +48,7 @@ Triangle make_triangle(const std::array<uint32_t, 3>& t, uint32_t face, std::spa
 
 /// Whether the corners of `b` not in `skip` lie strictly on one side of the plane of `a`
 /// (exact orient3d on the doubles): then b meets a's plane at most in the skipped corners.
-bool strictly_aside(const Triangle& a, const Triangle& b, std::span<const Vec3> v,
-                    uint32_t skip) {
+bool strictly_aside(const Triangle& a, const Triangle& b, std::span<const Vec3> v, uint32_t skip) {
   int side = 0;
   for (uint32_t c : b.v) {
     if (c == skip) continue;
@@ -557,7 +556,8 @@ std::vector<std::pair<uint32_t, uint32_t>> intersecting_face_pairs(
       if (!needed[f]) continue;
       tiles.clear();
       if (triangulate_face(mesh.vertices, mesh.face(f), tiles) != FaceTiling::kSimple) {
-        if (all || suspect[f]) chunk_bad[c].push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
+        if (all || suspect[f])
+          chunk_bad[c].push_back({static_cast<uint32_t>(f), static_cast<uint32_t>(f)});
         continue;
       }
       for (const auto& t : tiles)

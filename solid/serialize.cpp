@@ -228,7 +228,8 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
     for (int a = 0; a < 3; ++a)
       if (!(std::abs(s.vertices[v][a]) <= kMaxCoordinate))
         r.fail("vertex " + num(v) + ": a coordinate that is not finite or outside ±2^64");
-  if (s.face_start[0] != 0 || s.face_start[nf] != ni) r.fail("face offsets do not span the indices");
+  if (s.face_start[0] != 0 || s.face_start[nf] != ni)
+    r.fail("face offsets do not span the indices");
   for (uint64_t f = 0; f < nf; ++f) {
     if (s.face_start[f + 1] < s.face_start[f]) r.fail("face " + num(f) + ": offsets that decrease");
     if (s.face_start[f + 1] - s.face_start[f] < 3)
@@ -259,8 +260,7 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
     leaf.flipped = (flags & 1) != 0;
     flagged_open[l] = (flags & 2) != 0;
     if (leaf.first_face != next_face || uint64_t{leaf.first_face} + leaf.face_count > nf ||
-        leaf.first_vertex != next_vertex ||
-        uint64_t{leaf.first_vertex} + leaf.vertex_count > nv)
+        leaf.first_vertex != next_vertex || uint64_t{leaf.first_vertex} + leaf.vertex_count > nv)
       r.fail(label + ": faces or vertices that do not follow the previous leaf's");
     next_face += leaf.face_count;
     next_vertex += leaf.vertex_count;
@@ -317,8 +317,8 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
   for (uint64_t i = nn; i-- > 0;) {
     const CsgNode& node = s.tree.nodes[i];
     for (size_t k = 0; k < node.children.size(); ++k) {
-      const bool reverses = node.op == CsgOp::kComplement ||
-                            (node.op == CsgOp::kDifference && k > 0);
+      const bool reverses =
+          node.op == CsgOp::kComplement || (node.op == CsgOp::kDifference && k > 0);
       parity[node.children[k]] = static_cast<int8_t>(reverses ? -parity[i] : parity[i]);
     }
   }

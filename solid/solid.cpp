@@ -135,7 +135,8 @@ Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
     out.face_sign.insert(out.face_sign.end(), s.face_sign.begin(), s.face_sign.end());
     out.face_vertices.resize(i_off + s.face_vertices.size());
     parallel_for(s.face_vertices.size(), kGrain, [&](size_t begin, size_t end) {
-      for (size_t k = begin; k < end; ++k) out.face_vertices[i_off + k] = s.face_vertices[k] + v_off;
+      for (size_t k = begin; k < end; ++k)
+        out.face_vertices[i_off + k] = s.face_vertices[k] + v_off;
     });
     out.face_start.resize(f_off + 1 + nf);
     out.face_leaf.resize(f_off + nf);
@@ -164,7 +165,9 @@ Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
 
 }  // namespace
 
-Solid unite(std::vector<Solid> parts) { return concatenate(std::move(parts), CsgOp::kUnion, false); }
+Solid unite(std::vector<Solid> parts) {
+  return concatenate(std::move(parts), CsgOp::kUnion, false);
+}
 Solid intersect(std::vector<Solid> parts) {
   return concatenate(std::move(parts), CsgOp::kIntersection, false);
 }

@@ -109,8 +109,8 @@ Solid transform_solid(const Transform& t, Solid solid) {
     const double scaled =
         largest > 0 ? (linear / std::exp2(std::ilogb(largest))).determinant() : 0.0;
     if (scaled == 0) throw InputError("transform: singular matrix (it flattens the solid)");
-    const int exponent = static_cast<int>(std::lround(
-        std::log10(std::abs(scaled)) + 3.0 * std::ilogb(largest) * std::log10(2.0)));
+    const int exponent = static_cast<int>(
+        std::lround(std::log10(std::abs(scaled)) + 3.0 * std::ilogb(largest) * std::log10(2.0)));
     throw InputError("transform: the determinant, about 1e" + std::to_string(exponent) +
                      ", is beyond the range of normal doubles: volumes would " +
                      (exponent < 0 ? "underflow" : "overflow"));

@@ -41,8 +41,8 @@ Vec3 projection_normal(std::span<const Vec3> points, std::span<const uint32_t> l
   Vec3 normal{};
   for (size_t i = 0; i < loop.size(); ++i) {
     const Vec3 a = at(i), b = at(i + 1);
-    normal = normal + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
-                           (a.x - b.x) * (a.y + b.y)};
+    normal = normal +
+             Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
   }
   for (size_t i = 1; normal == Vec3{} && i + 1 < loop.size(); ++i)
     normal = normal_direction(at(0), at(i), at(i + 1));
@@ -56,9 +56,9 @@ bool turns_one_way(std::span<const Vec3> points, std::span<const uint32_t> loop,
   CGAL::Orientation first = CGAL::COLLINEAR;
   for (size_t i = 0; i < n; ++i) {
     if (loop[i] == loop[(i + 1) % n]) return false;
-    const auto o = CGAL::orientation(project(points[loop[i]], k),
-                                     project(points[loop[(i + 1) % n]], k),
-                                     project(points[loop[(i + 2) % n]], k));
+    const auto o =
+        CGAL::orientation(project(points[loop[i]], k), project(points[loop[(i + 1) % n]], k),
+                          project(points[loop[(i + 2) % n]], k));
     if (o == CGAL::COLLINEAR || (first != CGAL::COLLINEAR && o != first)) return false;
     first = o;
   }

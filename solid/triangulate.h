@@ -38,8 +38,8 @@ inline int dominant_axis(const Vec3& n) {
 /// does not underflow to 0. For choosing a projection; signs that matter are taken exactly.
 inline Vec3 normal_direction(const Vec3& a, const Vec3& b, const Vec3& c) {
   Vec3 u = b - a, v = c - a;
-  const double m = std::max({std::abs(u.x), std::abs(u.y), std::abs(u.z), std::abs(v.x),
-                             std::abs(v.y), std::abs(v.z)});
+  const double m = std::max(
+      {std::abs(u.x), std::abs(u.y), std::abs(u.z), std::abs(v.x), std::abs(v.y), std::abs(v.z)});
   if (m > 0 && std::isfinite(m)) {
     const int e = -std::ilogb(m);
     u = {std::ldexp(u.x, e), std::ldexp(u.y, e), std::ldexp(u.z, e)};

@@ -44,13 +44,13 @@ struct MeshReport {
   bool manifold = false;
   bool oriented = false;
   bool outward = false;
-  int64_t edges = 0;           ///< distinct surface edges (boundary_edges is a part of them)
+  int64_t edges = 0;  ///< distinct surface edges (boundary_edges is a part of them)
   int64_t boundary_edges = 0;
   int64_t nonmanifold_edges = 0;
   int64_t components = 0;
   int64_t genus = -1;  ///< -1 when not closed/manifold/oriented
   int64_t degenerate_faces = 0;
-  double volume = 0;                      ///< signed covering volume, signed_volume() of measure.h
+  double volume = 0;  ///< signed covering volume, signed_volume() of measure.h
   /// Faces meet beyond their shared vertices (self_intersects()), other than where distinct
   /// vertices at equal coordinates touch: false for a mesh whose faces meet only there. Empty
   /// when not checked.

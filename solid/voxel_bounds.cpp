@@ -12,7 +12,7 @@ namespace cover {
 VoxelBounds default_voxel_bounds(const Bbox& box, int n) {
   if (n < 3)
     throw PreconditionError("default_voxel_bounds: resolution " + std::to_string(n) +
-                                " < 3 leaves no room for the margin");
+                            " < 3 leaves no room for the margin");
   // An empty box (nothing to enclose) is centred at the origin; a box with no extent (a point)
   // gets unit extent so that the cube keeps a positive size.
   const Vec3 centre = box.empty() ? Vec3{} : 0.5 * (box.min + box.max);

@@ -228,7 +228,8 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
       detail::fail_file(file, "cannot carry face labels (use .ply or .obj)");
     if (labels->labels.size() != mesh.face_count())
       detail::fail_file(file, "cannot write: " + std::to_string(labels->labels.size()) +
-                                  " face labels for " + std::to_string(mesh.face_count()) + " faces");
+                                  " face labels for " + std::to_string(mesh.face_count()) +
+                                  " faces");
     for (uint32_t l : labels->labels)
       if (l > 0x7FFFFFFFu || (ext == ".obj" && l >= labels->obj_groups.size()))
         detail::fail_file(file, "cannot write: face label " + std::to_string(l) + " out of range");

@@ -1,6 +1,8 @@
 #pragma once
 // Shared test helpers: model locations, temp folders, running the CLI.
 
+#include <sys/wait.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -8,7 +10,6 @@
 #include <random>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace cover::test {
 
@@ -22,8 +23,8 @@ inline std::filesystem::path assimp_models() { return COVER_ASSIMP_MODELS; }
 /// A fresh empty folder under the system temp dir, unique per call.
 inline std::filesystem::path temp_dir(const std::string& tag) {
   static std::mt19937_64 rng(std::random_device{}());
-  auto dir = std::filesystem::temp_directory_path() /
-             ("cover-test-" + tag + "-" + std::to_string(rng()));
+  auto dir =
+      std::filesystem::temp_directory_path() / ("cover-test-" + tag + "-" + std::to_string(rng()));
   std::filesystem::create_directories(dir);
   return dir;
 }
@@ -41,9 +42,9 @@ inline std::string read_file(const std::filesystem::path& path) {
 }
 
 struct RunResult {
-  int status = -1;      ///< exit status
-  std::string out;      ///< stdout
-  std::string err;      ///< stderr
+  int status = -1;  ///< exit status
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
 };
 
 /// Runs `cover ARGS` (a shell-quoted argument string), capturing stdout and stderr. `shell_prefix`

@@ -128,7 +128,7 @@ void group_half_edges(size_t m, size_t n, From from, To to, std::vector<uint32_t
 struct Tri {
   std::array<uint32_t, 3> v;  ///< point ids (originals), leaf orientation
   uint32_t leaf = 0;
-  uint32_t face = 0;          ///< the solid's face it tiles
+  uint32_t face = 0;  ///< the solid's face it tiles
 };
 
 struct Piece {
@@ -137,21 +137,21 @@ struct Piece {
 };
 
 struct Arrangement {
-  std::vector<Point> points;       ///< exact points (see notation)
-  std::vector<Vec3> originals;     ///< the input vertices' doubles, points[i] == originals[i]
-  std::vector<Tri> tris;           ///< grouped by leaf, leaves in order
-  std::vector<Piece> pieces;       ///< in tri order
-  std::vector<uint64_t> cuts;      ///< sorted, unique edge keys of cut edges
+  std::vector<Point> points;    ///< exact points (see notation)
+  std::vector<Vec3> originals;  ///< the input vertices' doubles, points[i] == originals[i]
+  std::vector<Tri> tris;        ///< grouped by leaf, leaves in order
+  std::vector<Piece> pieces;    ///< in tri order
+  std::vector<uint64_t> cuts;   ///< sorted, unique edge keys of cut edges
   /// Points [first_crossing, first_crossing + crossings.size()) are edge × plane crossings:
   /// {a, b, tri}, the crossing of line a–b with the plane of tris[tri] (all input vertices), so
   /// that assemble() rounds them from the input doubles (round_crossing, assemble.cpp).
   uint32_t first_crossing = 0;
   std::vector<std::array<uint32_t, 3>> crossings;
-  std::vector<uint8_t> solo;       ///< per tri: overlaps a coplanar tri of its own leaf (its
-                                   ///< pieces form patches of their own, select.cpp)
-  size_t candidate_pairs = 0;      ///< tri pairs with meeting boxes (different leaves, and
-                                   ///< same-leaf pairs of self-intersecting leaves)
-  size_t intersecting_pairs = 0;   ///< pairs whose triangles meet
+  std::vector<uint8_t> solo;      ///< per tri: overlaps a coplanar tri of its own leaf (its
+                                  ///< pieces form patches of their own, select.cpp)
+  size_t candidate_pairs = 0;     ///< tri pairs with meeting boxes (different leaves, and
+                                  ///< same-leaf pairs of self-intersecting leaves)
+  size_t intersecting_pairs = 0;  ///< pairs whose triangles meet
 };
 
 /// Steps 1–3 of evaluate(): triangulation, exact pairwise intersections, per-tri constrained
@@ -174,8 +174,7 @@ Arrangement build_arrangement(const Solid& solid, bool check_leaves, size_t grai
 /// ones (what group_half_edges over the kept triangles gives, without grouping them again).
 std::vector<std::array<uint32_t, 3>> select_pieces(const Solid& solid, const Arrangement& arr,
                                                    size_t grain, std::vector<uint32_t>& leaves,
-                                                   size_t& patches,
-                                                   std::vector<uint32_t>& grouped);
+                                                   size_t& patches, std::vector<uint32_t>& grouped);
 
 /// The exact volume enclosed by the kept triangles `tris` (outward) on the exact points, as
 /// Σ det(a, b, c)/6 in rationals, rounded to the nearest double once.

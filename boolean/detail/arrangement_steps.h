@@ -75,8 +75,8 @@ void drop_shared(const std::vector<Tri>& tris,
 
 /// Step 3's result for one tri.
 struct Local {
-  std::vector<uint32_t> ids;    ///< per local point: its point id, kNone when only its value is known
-  std::vector<Point> points;    ///< values of the local points with ids[q] == kNone (in order)
+  std::vector<uint32_t> ids;  ///< per local point: its point id, kNone when only its value is known
+  std::vector<Point> points;  ///< values of the local points with ids[q] == kNone (in order)
   std::vector<std::array<uint32_t, 3>> tris;        ///< local ids, the tri's orientation
   std::vector<std::pair<uint32_t, uint32_t>> cuts;  ///< local id pairs on intersections
 };

@@ -19,10 +19,10 @@ template <class Kind>
 void triangulate_nonplanar(PolygonMesh& mesh, std::vector<Kind>& kinds);
 
 /// Why `mesh` is not valid as written, or "" when it is: a closed, consistently oriented
-/// 2-manifold without degenerate faces or self-intersections (CGAL's exact test on the doubles; distinct vertices
-/// at one point are a contact) whose exact signed volume is > 0.
-/// With `contacts_allowed` (the cut mesh itself has distinct vertices at one point: a result
-/// that touches itself, whose pieces touch there too) the self-intersection test is left out.
+/// 2-manifold without degenerate faces or self-intersections (CGAL's exact test on the doubles;
+/// distinct vertices at one point are a contact) whose exact signed volume is > 0. With
+/// `contacts_allowed` (the cut mesh itself has distinct vertices at one point: a result that
+/// touches itself, whose pieces touch there too) the self-intersection test is left out.
 std::string invalid_reason(const PolygonMesh& mesh, bool contacts_allowed = false);
 
 }  // namespace cover::brep::detail

@@ -19,13 +19,13 @@ struct CapContext {
   Plane plane;  ///< with `through`: a rounded plane whose normal[axis] has the exact sign
   /// The plane through three points (clip.h), exact; then `plane` only orients the cap frame.
   std::optional<std::array<Vec3, 3>> through;
-  int axis = 2;                          ///< dominant axis of the normal (largest |n_k|)
-  uint32_t original_vertices = 0;        ///< vertex ids below this are input vertices
+  int axis = 2;                    ///< dominant axis of the normal (largest |n_k|)
+  uint32_t original_vertices = 0;  ///< vertex ids below this are input vertices
   /// For vertex id original_vertices + i: the input vertices of the edge it splits.
   std::vector<std::array<uint32_t, 2>> constructed_from;
-  std::vector<Vec3> input_points;        ///< input vertex positions (exact)
-  std::vector<uint8_t> face_side;        ///< per face: 0 above, 1 below (grown by add_caps)
-  bool triangulate = false;              ///< ClipOptions::triangulate_caps
+  std::vector<Vec3> input_points;  ///< input vertex positions (exact)
+  std::vector<uint8_t> face_side;  ///< per face: 0 above, 1 below (grown by add_caps)
+  bool triangulate = false;        ///< ClipOptions::triangulate_caps
 };
 
 struct CapStats {

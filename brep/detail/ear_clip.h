@@ -53,20 +53,26 @@ std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int
   std::array<double, 4> box = g.bounds(0);
   for (uint32_t i = 1; i < n; ++i) {
     const std::array<double, 4> b = g.bounds(i);
-    box = {std::min(box[0], b[0]), std::max(box[1], b[1]), std::min(box[2], b[2]), std::max(box[3], b[3])};
+    box = {std::min(box[0], b[0]), std::max(box[1], b[1]), std::min(box[2], b[2]),
+           std::max(box[3], b[3])};
   }
   const int side = std::max(1, static_cast<int>(std::sqrt(n / 2.0)));
   const double sx = box[1] > box[0] ? side / (box[1] - box[0]) : 0;
   const double sy = box[3] > box[2] ? side / (box[3] - box[2]) : 0;
-  auto cell_x = [&](double x) { return std::clamp(static_cast<int>((x - box[0]) * sx), 0, side - 1); };
-  auto cell_y = [&](double y) { return std::clamp(static_cast<int>((y - box[2]) * sy), 0, side - 1); };
+  auto cell_x = [&](double x) {
+    return std::clamp(static_cast<int>((x - box[0]) * sx), 0, side - 1);
+  };
+  auto cell_y = [&](double y) {
+    return std::clamp(static_cast<int>((y - box[2]) * sy), 0, side - 1);
+  };
   std::vector<std::vector<uint32_t>> cells(static_cast<size_t>(side) * side);
   for (uint32_t i = 0; i < n; ++i) {
     reflex[i] = g.orient(prev[i], i, next[i]) <= 0;
     if (!reflex[i] && !dup[i]) continue;
     const std::array<double, 4> b = g.bounds(i);
     for (int y = cell_y(b[2]); y <= cell_y(b[3]); ++y)
-      for (int x = cell_x(b[0]); x <= cell_x(b[1]); ++x) cells[static_cast<size_t>(y) * side + x].push_back(i);
+      for (int x = cell_x(b[0]); x <= cell_x(b[1]); ++x)
+        cells[static_cast<size_t>(y) * side + x].push_back(i);
   }
   // Does node p block the ear (a, b, c)?
   auto blocks = [&](uint32_t p, uint32_t a, uint32_t b, uint32_t c) {
@@ -87,8 +93,10 @@ std::vector<std::array<uint32_t, 3>> ear_clip(uint32_t n, const Geometry& g, int
     const uint32_t a = prev[b], c = next[b];
     if (g.orient(a, b, c) <= 0) return false;
     const std::array<double, 4> ba = g.bounds(a), bb = g.bounds(b), bc = g.bounds(c);
-    const int x0 = cell_x(std::min({ba[0], bb[0], bc[0]})), x1 = cell_x(std::max({ba[1], bb[1], bc[1]}));
-    const int y0 = cell_y(std::min({ba[2], bb[2], bc[2]})), y1 = cell_y(std::max({ba[3], bb[3], bc[3]}));
+    const int x0 = cell_x(std::min({ba[0], bb[0], bc[0]})),
+              x1 = cell_x(std::max({ba[1], bb[1], bc[1]}));
+    const int y0 = cell_y(std::min({ba[2], bb[2], bc[2]})),
+              y1 = cell_y(std::max({ba[3], bb[3], bc[3]}));
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x)
         for (uint32_t p : cells[static_cast<size_t>(y) * side + x])

@@ -33,7 +33,7 @@ struct RayVolumeOptions {
   double target_relative_error = 1e-4;  ///< stop refining once bound ≤ this·|V| (adaptive)
   int fixed_level = -1;                 ///< ≥ 0: refine every uncertified cell to this level only
   size_t max_rays = size_t{1} << 22;    ///< budget of cast rays (adaptive)
-  std::function<void(double)> progress; ///< fraction of the budget or of the levels done
+  std::function<void(double)> progress;  ///< fraction of the budget or of the levels done
 };
 
 struct RayVolume {

@@ -172,8 +172,15 @@ def test_render_view_and_section():
     assert image.shape == (24, 32, 3) and image.dtype == np.uint8
     assert (image[0, 0] == 255).all()  # background
     assert not np.array_equal(image, m.render(32, 24, view="front", section=(0, -1, 0, 0)))  # front half off
-    with pytest.raises(cover.InputError, match="view"):
+    # Messages name Python's parameters, never the CLI's flags.
+    with pytest.raises(cover.InputError, match=r"^view: unknown view 'sideways'"):
         m.render(32, 24, view="sideways")
+    with pytest.raises(cover.InputError, match=r"^width, height: expected whole numbers"):
+        m.render(0, 24)
+    with pytest.raises(cover.InputError, match=r"^res: expected a whole number from 1 to"):
+        m.voxelize(5000)
+    with pytest.raises(cover.InputError, match=r"^bounds: expected finite"):
+        m.voxelize(8, bounds=(0, 0, 0, -1))
 
 
 def test_evaluate_leaf_ids():

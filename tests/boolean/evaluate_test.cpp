@@ -126,8 +126,8 @@ void check_against(const Solid& solid, const Mesh& expected, const std::string& 
   const VolumeResult cov = volume(solid, vo);
   EXPECT_NEAR(r.volume, cov.volume, 2 * cov.error_bound + 1e-9 * cgal) << label;
   std::printf("%-44s faces %7zu genus %3lld  volume %.12g  CGAL %.12g  rel %.2e  covering %.9g\n",
-              label.c_str(), r.mesh.face_count(), static_cast<long long>(rep.genus), r.volume,
-              cgal, rel, cov.volume);
+              label.c_str(), r.mesh.face_count(), static_cast<long long>(rep.genus), r.volume, cgal,
+              rel, cov.volume);
 }
 
 // ---- seeded random expressions ---------------------------------------------------------------
@@ -157,8 +157,8 @@ void random_case(unsigned seed, std::vector<std::string> names) {
   Op op1 = static_cast<Op>(op_pick(rng));
   Solid s = combine(ops[0].solid, ops[1].solid, op1);
   Mesh m = corefine(ops[0].mesh, ops[1].mesh, op1);
-  std::string label = "seed " + std::to_string(seed) + ": (" + names[0] + " " + op_name(op1) +
-                      " " + names[1] + ")";
+  std::string label =
+      "seed " + std::to_string(seed) + ": (" + names[0] + " " + op_name(op1) + " " + names[1] + ")";
   if (ops.size() == 3) {
     Op op2 = static_cast<Op>(op_pick(rng));
     s = combine(std::move(s), ops[2].solid, op2);
@@ -170,19 +170,18 @@ void random_case(unsigned seed, std::vector<std::string> names) {
 
 TEST(Evaluate, RandomTwoOperand) {
   const std::vector<std::vector<std::string>> sets = {
-      {"elephant", "knot1"},  {"knot1", "box"},        {"fandisk", "sphere"},
-      {"cheese", "sphere"},   {"elephant", "fandisk"}, {"box", "sphere"},
-      {"knot1", "fandisk"},   {"sphere", "elephant"},  {"cheese", "box"},
-      {"bunny00", "sphere"},  {"armadillo", "box"},    {"fandisk", "knot1"}};
+      {"elephant", "knot1"},   {"knot1", "box"},      {"fandisk", "sphere"}, {"cheese", "sphere"},
+      {"elephant", "fandisk"}, {"box", "sphere"},     {"knot1", "fandisk"},  {"sphere", "elephant"},
+      {"cheese", "box"},       {"bunny00", "sphere"}, {"armadillo", "box"},  {"fandisk", "knot1"}};
   for (unsigned i = 0; i < sets.size(); ++i) random_case(100 + i, sets[i]);
 }
 
 TEST(Evaluate, RandomThreeOperand) {
   const std::vector<std::vector<std::string>> sets = {
-      {"elephant", "knot1", "box"},   {"box", "sphere", "knot1"},
+      {"elephant", "knot1", "box"},      {"box", "sphere", "knot1"},
       {"fandisk", "elephant", "sphere"}, {"knot1", "cheese", "box"},
-      {"sphere", "box", "elephant"},  {"fandisk", "sphere", "knot1"},
-      {"box", "knot1", "sphere"},     {"elephant", "box", "fandisk"}};
+      {"sphere", "box", "elephant"},     {"fandisk", "sphere", "knot1"},
+      {"box", "knot1", "sphere"},        {"elephant", "box", "fandisk"}};
   for (unsigned i = 0; i < sets.size(); ++i) random_case(200 + i, sets[i]);
 }
 
@@ -230,13 +229,39 @@ TEST(Evaluate, DefaultSceneSameMeshForAnyThreadCountAndRun) {
 // 50 of a random-CSG generator), that failed with "an edge of the result has an odd number of
 // faces": checked against CGAL corefinement of the same leaves.
 TEST(Evaluate, RotatedBoxesAnchorAndCheeseScene) {
-  const std::string text = R"json({"intersection": [{"union": [{"intersection": [{"box": {"min": [-0.42424316782792254, -0.8407443507077996, -0.5357449403453367], "max": [0.6359759120153026, 0.3430339313833288, 0.11972597462878193]}, "transform": {"rotate": {"axis": [-0.6220620264300913, 0.9447505006829322, -0.34216161089945185], "degrees": 37.36242831904724}, "translate": [0.053747104215872143, 0.06749437782524803, 0.20769607993681005]}}, {"union": [{"union": [{"mesh": "anchor.off", "transform": {"translate": [-0.0, -0.0, -0.0]}}], "transform": {"scale": 1.835062859598275}}], "transform": {"rotate": {"axis": [0.28624717642078923, -0.13941571107915274, -0.5455577919267234], "degrees": -84.17513841722025}, "translate": [0.21500860688990003, 0.10003295162388942, -0.1971024267335511]}}]}, {"box": {"min": [-0.1682245140145378, -0.4556348739054516, -0.5029080934754839], "max": [0.39917867453661376, 0.40762553308234545, 0.2265044484047846]}, "transform": {"rotate": {"axis": [0.2488837970792439, 0.39196422643340845, 0.6388808506360171], "degrees": 127.14660462774128}, "translate": [0.062731924606579, 0.2332021353535454, -0.0019475317488711896]}}]}, {"union": [{"union": [{"mesh": "cheese.off", "transform": {"translate": [-0.0, -0.0, -0.0]}}], "transform": {"scale": 15.99518578132811}}], "transform": {"rotate": {"axis": [0.6531216281144503, -0.3989801094954506, 0.7150211687049219], "degrees": 92.94295866804589}, "translate": [-0.17488225919476286, -0.07080146294453105, 0.20234608123828207]}}]})json";
+  const std::string text =
+      R"json({"intersection": [{"union": [{"intersection": [)json"
+      R"json({"box": {"min": [-0.42424316782792254, )json"
+      R"json(-0.8407443507077996, -0.5357449403453367], "max": [0.6359759120153026, )json"
+      R"json(0.3430339313833288, 0.11972597462878193]}, )json"
+      R"json("transform": {"rotate": {"axis": [-0.6220620264300913, 0.9447505006829322, )json"
+      R"json(-0.34216161089945185], "degrees": 37.36242831904724}, )json"
+      R"json("translate": [0.053747104215872143, 0.06749437782524803, )json"
+      R"json(0.20769607993681005]}}, {"union": [{"union": [{"mesh": "anchor.off", )json"
+      R"json("transform": {"translate": [-0.0, -0.0, -0.0]}}], )json"
+      R"json("transform": {"scale": 1.835062859598275}}], )json"
+      R"json("transform": {"rotate": {"axis": [0.28624717642078923, )json"
+      R"json(-0.13941571107915274, -0.5455577919267234], "degrees": -84.17513841722025}, )json"
+      R"json("translate": [0.21500860688990003, 0.10003295162388942, )json"
+      R"json(-0.1971024267335511]}}]}, {"box": {"min": [-0.1682245140145378, )json"
+      R"json(-0.4556348739054516, -0.5029080934754839], "max": [0.39917867453661376, )json"
+      R"json(0.40762553308234545, 0.2265044484047846]}, )json"
+      R"json("transform": {"rotate": {"axis": [0.2488837970792439, 0.39196422643340845, )json"
+      R"json(0.6388808506360171], "degrees": 127.14660462774128}, )json"
+      R"json("translate": [0.062731924606579, 0.2332021353535454, )json"
+      R"json(-0.0019475317488711896]}}]}, {"union": [{"union": [{"mesh": "cheese.off", )json"
+      R"json("transform": {"translate": [-0.0, -0.0, -0.0]}}], )json"
+      R"json("transform": {"scale": 15.99518578132811}}], )json"
+      R"json("transform": {"rotate": {"axis": [0.6531216281144503, -0.3989801094954506, )json"
+      R"json(0.7150211687049219], "degrees": 92.94295866804589}, )json"
+      R"json("translate": [-0.17488225919476286, -0.07080146294453105, )json"
+      R"json(0.20234608123828207]}}]})json";
   const Solid s = parse_scene(text, test::cgal_mesh("scene.json")).solid;
   ASSERT_EQ(s.leaves.size(), 4u);
   auto leaf = [&](uint32_t l) { return to_cgal(test::triangulate(leaf_mesh(s, l))); };
-  const Mesh expected = corefine(corefine(corefine(leaf(0), leaf(1), Op::kIntersection), leaf(2),
-                                          Op::kUnion),
-                                 leaf(3), Op::kIntersection);
+  const Mesh expected =
+      corefine(corefine(corefine(leaf(0), leaf(1), Op::kIntersection), leaf(2), Op::kUnion),
+               leaf(3), Op::kIntersection);
   check_against(s, expected, "((box ∩ anchor) ∪ box) ∩ cheese");
 }
 
@@ -375,8 +400,10 @@ TEST(Evaluate, ExactVolumeBelowTheNormalDoublesIsRefused) {
   EvaluateOptions o;
   o.exact_volume = true;
   const double a = 1e-150;
-  EXPECT_THROW(evaluate(unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {2 * a, 2 * a, 2 * a})}), o),
-               NotComputable);
+  EXPECT_THROW(
+      evaluate(
+          unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {2 * a, 2 * a, 2 * a})}), o),
+      NotComputable);
   const EvaluateResult empty =
       evaluate(intersect({box({0, 0, 0}, {a, a, a}), box({2 * a, 0, 0}, {3 * a, a, a})}), o);
   EXPECT_EQ(*empty.exact_volume, 0);
@@ -391,13 +418,15 @@ TEST(Evaluate, ExactVolumeBelowTheNormalDoublesIsRefused) {
 // A tiny box next to a unit box: both kept, each exact.
 TEST(Evaluate, TinyBoxNextToAUnitBox) {
   const double a = 1e-20;
-  const Solid s = unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {1.5 * a, 1.5 * a, 1.5 * a}),
-                         box({-1, -1, -1}, {-0.5, -0.5, -0.5})});
+  const Solid s =
+      unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {1.5 * a, 1.5 * a, 1.5 * a}),
+             box({-1, -1, -1}, {-0.5, -0.5, -0.5})});
   const EvaluateResult r = evaluate(s);
   check_manifold(r.mesh);
   EXPECT_EQ(r.components, 2);
   EXPECT_DOUBLE_EQ(r.volume, 0.125);
-  const EvaluateResult t = evaluate(unite({box({0, 0, 0}, {a, a, a}), box({-1, -1, -1}, {0, 0, 0})}));
+  const EvaluateResult t =
+      evaluate(unite({box({0, 0, 0}, {a, a, a}), box({-1, -1, -1}, {0, 0, 0})}));
   check_manifold(t.mesh);
   EXPECT_EQ(t.components, 2);  // touching at the origin only
 }
@@ -436,12 +465,14 @@ TEST(Evaluate, IdenticalBoxes) {
 
 TEST(Evaluate, FlushCut) {
   // [0,2]³ minus [1,2]×[0,2]×[0,2] (shares three faces partly and x = 2 wholly): [0,1]×[0,2]².
-  const EvaluateResult r = evaluate(subtract({box({0, 0, 0}, {2, 2, 2}), box({1, 0, 0}, {2, 2, 2})}));
+  const EvaluateResult r =
+      evaluate(subtract({box({0, 0, 0}, {2, 2, 2}), box({1, 0, 0}, {2, 2, 2})}));
   check_manifold(r.mesh);
   EXPECT_DOUBLE_EQ(r.volume, 4);
   EXPECT_DOUBLE_EQ(r.area, 16);
   // A slot cut flush with the top: [0,3]³ minus [1,2]×[−1,4]×[2,3].
-  const EvaluateResult s = evaluate(subtract({box({0, 0, 0}, {3, 3, 3}), box({1, -1, 2}, {2, 4, 3})}));
+  const EvaluateResult s =
+      evaluate(subtract({box({0, 0, 0}, {3, 3, 3}), box({1, -1, 2}, {2, 4, 3})}));
   check_manifold(s.mesh);
   test::expect_valid_cells(s.mesh, {{0, 0, 0}, 3, 4}, "slot");
   test::expect_valid_cells(s.mesh, {{0, 0, 0}, 3, 3}, "slot");
@@ -452,7 +483,8 @@ TEST(Evaluate, FlushCut) {
 
 TEST(Evaluate, OverlappingCoplanarTops) {
   // Two boxes with flush tops and bottoms, overlapping in x: one box [0, 1.5]×[0,1]×[0,1].
-  const EvaluateResult u = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({0.5, 0, 0}, {1.5, 1, 1})}));
+  const EvaluateResult u =
+      evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({0.5, 0, 0}, {1.5, 1, 1})}));
   check_manifold(u.mesh);
   test::expect_valid_cells(u.mesh, {{0, 0, 0}, 1.5, 4}, "coplanar tops");
   EXPECT_DOUBLE_EQ(u.volume, 1.5);
@@ -484,15 +516,15 @@ TEST(EvaluateCli, WritesMeshAndJson) {
     const test::RunResult r = test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" +
                                               out.string() + "' --json");
     ASSERT_EQ(r.status, 0) << r.err;
-    for (const char* key : {"\"volume\"", "\"area\"", "\"vertices\"", "\"faces\"", "\"genus\"",
-                            "\"seconds\""})
+    for (const char* key :
+         {"\"volume\"", "\"area\"", "\"vertices\"", "\"faces\"", "\"genus\"", "\"seconds\""})
       EXPECT_NE(r.out.find(key), std::string::npos) << key;
     const PolygonMesh back = read_mesh(out);
     EXPECT_GT(back.face_count(), 0u);
     if (std::string(ext) != "stl") check_manifold(back);  // STL rounds to float and re-welds
   }
-  const test::RunResult human =
-      test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" + (dir / "h.off").string() + "'");
+  const test::RunResult human = test::run_cover("evaluate '" + (dir / "s.json").string() +
+                                                "' -o '" + (dir / "h.off").string() + "'");
   EXPECT_EQ(human.status, 0);
   EXPECT_NE(human.out.find("volume"), std::string::npos);
   std::filesystem::remove_all(dir);
@@ -506,8 +538,9 @@ TEST(EvaluateCli, BadInputExitsTwo) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("bad.json"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "o.off"));
-  test::write_file(dir / "bowtie.off", "OFF\n5 5 0\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n0.5 0.5 1\n"
-                                      "4 0 1 2 3\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n");
+  test::write_file(dir / "bowtie.off",
+                   "OFF\n5 5 0\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n0.5 0.5 1\n"
+                   "4 0 1 2 3\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n");
   r = test::run_cover("evaluate '" + (dir / "bowtie.off").string() + "' -o '" +
                       (dir / "o.off").string() + "'");
   EXPECT_EQ(r.status, 2);
@@ -541,9 +574,9 @@ TEST(EvaluateCli, LeafIds) {
       {"box": {"min": [0,0,0], "max": [2,2,2]}},
       {"sphere": {"center": [2,2,1.5], "radius": 1.2, "segments": 16}}]})");
   auto run = [&](const std::string& out, const std::string& threads) {
-    const test::RunResult r = test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" +
-                                              (dir / out).string() + "' --leaf-ids --json --threads " +
-                                              threads);
+    const test::RunResult r =
+        test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" + (dir / out).string() +
+                        "' --leaf-ids --json --threads " + threads);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("\"leaf_names\""), std::string::npos) << r.out;
   };
@@ -555,7 +588,8 @@ TEST(EvaluateCli, LeafIds) {
   // PLY: binary little endian; after the vertices, per face: uchar 3, int ×3, int leaf.
   const std::string ply = test::read_file(dir / "a.ply");
   const size_t body = ply.find("end_header\n") + 11;
-  ASSERT_NE(ply.find("property list uchar int vertex_indices\nproperty int leaf\n"), std::string::npos);
+  ASSERT_NE(ply.find("property list uchar int vertex_indices\nproperty int leaf\n"),
+            std::string::npos);
   std::vector<int32_t> leaf;
   for (size_t f = 0, at = body + 24 * mesh.vertices.size(); f < mesh.face_count(); ++f, at += 17) {
     ASSERT_EQ(ply[at], 3);

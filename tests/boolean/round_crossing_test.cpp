@@ -21,8 +21,10 @@ double nearest_rational(const ET& x) {
   double d = CGAL::to_double(x);
   for (int i = 0; i < 4; ++i) {  // to_double is within an ulp; step to the nearest
     const double up = std::nextafter(d, INFINITY), down = std::nextafter(d, -INFINITY);
-    if (x > (ET(d) + ET(up)) / 2) d = up;
-    else if (x < (ET(d) + ET(down)) / 2) d = down;
+    if (x > (ET(d) + ET(up)) / 2)
+      d = up;
+    else if (x < (ET(d) + ET(down)) / 2)
+      d = down;
   }
   for (const double n : {std::nextafter(d, INFINITY), std::nextafter(d, -INFINITY)})
     if (x == (ET(d) + ET(n)) / 2) {  // a tie
@@ -111,11 +113,10 @@ TEST(RoundCrossing, TiesGoToTheEvenNeighbour) {
   struct Case {
     double x0, x1, want;
   };
-  for (const Case& c : {Case{1, 1 + u, 1},                    // tie between 1 and 1 + u: even 1
-                        Case{1 + u, 1 + 2 * u, 1 + 2 * u},   // 1 + u is odd: up
-                        Case{-1 - u, -1 - 2 * u, -1 - 2 * u},
-                        Case{3, 3, 3},                        // exactly a double
-                        Case{0.1, 0.3, 0.2}}) {               // not a tie
+  for (const Case& c : {Case{1, 1 + u, 1},                  // tie between 1 and 1 + u: even 1
+                        Case{1 + u, 1 + 2 * u, 1 + 2 * u},  // 1 + u is odd: up
+                        Case{-1 - u, -1 - 2 * u, -1 - 2 * u}, Case{3, 3, 3},  // exactly a double
+                        Case{0.1, 0.3, 0.2}}) {                               // not a tie
     const Vec3 a{c.x0, 0.5, -1}, b{c.x1, 0.5, 1};
     const Point x = lazy_crossing(a, b, p, q, r);
     Vec3 out;

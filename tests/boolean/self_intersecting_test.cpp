@@ -136,7 +136,8 @@ TEST(EvaluateSelfIntersecting, OverlappingBoxesInOneLeaf) {
   const PolygonMesh two = concat(make_box({0, 0, 0}, {2, 2, 2}), make_box({1, 1, 1}, {3, 3, 3}));
   EXPECT_NEAR(check(leaf(two, "two"), "two boxes (w = 2 overlap)"), 15, 1e-12);
   // Against another leaf: the union minus a slab through both shells.
-  const Solid d = subtract({leaf(two, "two"), make_leaf(make_box({-1, 1.5, -1}, {4, 1.75, 4}), "s")});
+  const Solid d =
+      subtract({leaf(two, "two"), make_leaf(make_box({-1, 1.5, -1}, {4, 1.75, 4}), "s")});
   EXPECT_NEAR(check(d, "two boxes − slab"), 15 - 0.25 * 7, 1e-12);
 }
 
@@ -147,18 +148,19 @@ TEST(EvaluateSelfIntersecting, WindingTwoAndZero) {
                     "nested shells (w = 2)"),
               8, 1e-12);
   // The same shell twice (coincident faces, equal orientation), minus a box.
-  const Solid twice = subtract({make_leaf(concat(outer, outer), "twice"),
-                                make_leaf(make_box({1, 1, 1}, {3, 3, 3}), "b")});
+  const Solid twice = subtract(
+      {make_leaf(concat(outer, outer), "twice"), make_leaf(make_box({1, 1, 1}, {3, 3, 3}), "b")});
   EXPECT_NEAR(check(twice, "repeated shell − box"), 7, 1e-12);
   // A reversed shell in a corner (coincident faces, opposite orientation): winding 0 there.
   EXPECT_NEAR(check(make_leaf(concat(outer, make_box({0, 0, 0}, {1, 1, 1}), true), "corner"),
                     "reversed corner shell (w = 0)"),
               7, 1e-12);
   // Two shells touching along a face: one box, the shared face gone.
-  EXPECT_NEAR(check(make_leaf(concat(make_box({0, 0, 0}, {1, 1, 1}), make_box({1, 0, 0}, {2, 1, 1})),
-                              "touching"),
-                    "shells sharing a face"),
-              2, 1e-12);
+  EXPECT_NEAR(
+      check(make_leaf(concat(make_box({0, 0, 0}, {1, 1, 1}), make_box({1, 0, 0}, {2, 1, 1})),
+                      "touching"),
+            "shells sharing a face"),
+      2, 1e-12);
   // A shell and its reversed copy: winding 0 everywhere, an empty result.
   EXPECT_EQ(check(make_leaf(concat(outer, outer, true), "void"), "shell and its reverse"), 0);
 }
@@ -191,8 +193,8 @@ TEST(EvaluateSelfIntersecting, TouchingCurveOfOneEdge) {
   prism.add_face({1, 2, 5, 4});
   prism.add_face({2, 0, 3, 5});
   const Solid a = leaf(concat(prism, make_box({1, 0, 0}, {3, 2, 1}), true), "prism");
-  const Solid b = make_leaf(concat(make_box({1, 0, 0}, {3, 1.2, 1}), make_box({1, 1.4, 0}, {3, 2, 1})),
-                            "boxes");
+  const Solid b = make_leaf(
+      concat(make_box({1, 0, 0}, {3, 1.2, 1}), make_box({1, 1.4, 0}, {3, 2, 1})), "boxes");
   check(unite({a, b}), "prism ∪ boxes (touching edges)");
 }
 

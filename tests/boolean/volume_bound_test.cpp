@@ -35,12 +35,14 @@ PolygonMesh scaled(PolygonMesh m, double s) {
 TEST(VolumeBound, RandomOrientationFlipsAreRepaired) {
   std::mt19937_64 rng(17);
   for (int c = 0; c < kCases; ++c) {
-    PolygonMesh m = c % 2 ? make_sphere({0.5, -1, 2}, 1.5, 6 + c % 7) : make_box({0, 0, 0}, {1, 2, 3});
+    PolygonMesh m =
+        c % 2 ? make_sphere({0.5, -1, 2}, 1.5, 6 + c % 7) : make_box({0, 0, 0}, {1, 2, 3});
     const double expected = signed_volume(m);
     std::bernoulli_distribution flip(0.4);
     for (size_t f = 0; f < m.face_count(); ++f)
       if (flip(rng))
-        std::reverse(m.face_vertices.begin() + m.face_start[f], m.face_vertices.begin() + m.face_start[f + 1]);
+        std::reverse(m.face_vertices.begin() + m.face_start[f],
+                     m.face_vertices.begin() + m.face_start[f + 1]);
     std::vector<std::string> warnings;
     const Solid s = prepared(std::move(m), warnings);
     const VolumeResult v = volume(s);
@@ -54,7 +56,8 @@ TEST(VolumeBound, ThinBoxesLongUnionsAndScales) {
   std::uniform_real_distribution<double> unit(0, 1);
   int compared = 0;
   for (int c = 0; c < kCases; ++c) {
-    const int exponent = static_cast<int>(unit(rng) * 97) - 40;  // 2^-40 .. 2^56: boxes ≤ 140·2^56 < 2^64
+    const int exponent =
+        static_cast<int>(unit(rng) * 97) - 40;  // 2^-40 .. 2^56: boxes ≤ 140·2^56 < 2^64
     const double scale = std::ldexp(1.0, exponent);
     const int boxes = 2 + c % 4;
     std::vector<Solid> parts;
@@ -62,7 +65,8 @@ TEST(VolumeBound, ThinBoxesLongUnionsAndScales) {
     for (int b = 0; b < boxes; ++b) {
       const double length = 10 + 90 * unit(rng), thick = 0.01 + 0.2 * unit(rng);
       const Vec3 lo{40 * unit(rng), 0.05 * unit(rng), 0.05 * unit(rng)};
-      parts.push_back(prepared(scaled(make_box(lo, lo + Vec3{length, thick, thick}), scale), warnings));
+      parts.push_back(
+          prepared(scaled(make_box(lo, lo + Vec3{length, thick, thick}), scale), warnings));
     }
     Solid s = c % 3 == 2 ? subtract(std::move(parts)) : unite(std::move(parts));
     const double exact = evaluate(s).volume;

@@ -20,7 +20,7 @@ namespace cover::test {
 struct HalfCheck {
   brep::BrepReport report;
   double volume = 0;
-  int64_t pinched = 0;        ///< extra vertices sharing coordinates with another vertex
+  int64_t pinched = 0;  ///< extra vertices sharing coordinates with another vertex
   bool self_intersecting = false;
 };
 

@@ -36,8 +36,7 @@ TEST(Cells, FullCellsAreTheirBoxes) {
     EXPECT_EQ(piece.area, 6);
     EXPECT_EQ(piece.cap_area, 3);  // three interior walls, three faces of the input
     for (const Vec3& p : piece.mesh.vertices)
-      for (int a = 0; a < 3; ++a)
-        EXPECT_TRUE(p[a] == piece.cell[a] || p[a] == piece.cell[a] + 1);
+      for (int a = 0; a < 3; ++a) EXPECT_TRUE(p[a] == piece.cell[a] || p[a] == piece.cell[a] + 1);
   }
   EXPECT_EQ(r.pieces.front().cell, (std::array<int, 3>{0, 0, 0}));
   EXPECT_EQ(r.pieces.back().cell, (std::array<int, 3>{1, 1, 1}));
@@ -84,7 +83,8 @@ TEST(Cells, WallsThroughVertices) {
     for (auto [a, b] : {std::pair{0u, 2u}, {2u, 1u}, {1u, 3u}, {3u, 0u}})
       octa.add_face(s == 4 ? std::initializer_list<uint32_t>{a, b, s}
                            : std::initializer_list<uint32_t>{b, a, s});
-  const brep::CellsResult r = test::expect_valid_cells(octa, grid({-1, -1, -1}, 2, 2), "octahedron");
+  const brep::CellsResult r =
+      test::expect_valid_cells(octa, grid({-1, -1, -1}, 2, 2), "octahedron");
   EXPECT_EQ(r.pieces.size(), 8u);
   for (const brep::CellPiece& piece : r.pieces) EXPECT_DOUBLE_EQ(piece.volume, 1.0 / 6);
 }
@@ -109,7 +109,8 @@ TEST(Cells, EmptyAndBadGrids) {
   EXPECT_THROW(brep::cut_cells(cube, grid({0, 0, 0}, 0, 2)), InputError);
 }
 
-// ---- random CSG scenes ---------------------------------------------------------------------------
+// ---- random CSG scenes
+// ---------------------------------------------------------------------------
 
 /// `name` (box, sphere or a libcgal-demo mesh) scaled to `size`, turned and moved at random.
 Solid random_leaf(std::mt19937_64& rng, const std::string& name, double size) {
@@ -204,11 +205,12 @@ TEST(Cells, CubeCuttingTheResultGluesToResultInCube) {
   // The cube cuts the result: its outer caps are made before any interior wall, so the walls
   // split them at points both sides share (no wall edge without a partner). The glued mesh is
   // result ∩ cube, whose volume the evaluator gives independently.
-  const Solid s =
-      subtract({box_leaf({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "ball")});
+  const Solid s = subtract(
+      {box_leaf({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "ball")});
   const EvaluateResult e = evaluate(s);
-  for (const auto& [min, size] : {std::pair{Vec3{0.5, 0.5, 0.5}, 1.0},
-                                  std::pair{Vec3{-0.5, 0.3, 0.1}, 1.7}, std::pair{Vec3{1, 1, 1}, 2.0}}) {
+  for (const auto& [min, size] :
+       {std::pair{Vec3{0.5, 0.5, 0.5}, 1.0}, std::pair{Vec3{-0.5, 0.3, 0.1}, 1.7},
+        std::pair{Vec3{1, 1, 1}, 2.0}}) {
     const double in_cube =
         signed_volume(evaluate(intersect({s, box_leaf(min, min + Vec3{size, size, size})})).mesh);
     for (int n : {2, 3, 5}) {
@@ -285,7 +287,8 @@ TEST(Cells, MemoryEstimateCoversMeasuredUse) {
   EXPECT_GT(brep::cells_memory_bytes(2000), 1e13);
   brep::CellsOptions o;
   o.max_memory_bytes = 1 << 20;
-  EXPECT_THROW(brep::cut_cells(make_box({0, 0, 0}, {1, 1, 1}), grid({0, 0, 0}, 1, 8), o), InputError);
+  EXPECT_THROW(brep::cut_cells(make_box({0, 0, 0}, {1, 1, 1}), grid({0, 0, 0}, 1, 8), o),
+               InputError);
 }
 
 // ---- the facade and the CLI ----------------------------------------------------------------
@@ -311,9 +314,9 @@ TEST(CellsCli, PiecesFolder) {
       {"box": {"min": [0, 0, 0], "max": [2, 2, 2]}},
       {"box": {"min": [1, 1, 1], "max": [3, 3, 3]}}]})");
   const std::string out = (dir / "out.off").string(), pieces = (dir / "p").string();
-  const test::RunResult r = test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" +
-                                            out + "' --cells 2 --bounds 0,0,0,2 --pieces '" +
-                                            pieces + "' --json");
+  const test::RunResult r =
+      test::run_cover("evaluate '" + (dir / "s.json").string() + "' -o '" + out +
+                      "' --cells 2 --bounds 0,0,0,2 --pieces '" + pieces + "' --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["pieces"], 7);

@@ -65,11 +65,12 @@ TEST_P(ClipRealMesh, HalvesAreValidAndMatchCgal) {
     o.triangulate_caps = i % 2 == 1;
     const std::string what = name + " plane " + std::to_string(i);
     const ClipResult r = clip(m, p, o);
-    const double scale = std::sqrt(dot(p.normal, p.normal)) * (size + std::abs(b.max.x) +
-                                                                 std::abs(b.max.y) + std::abs(b.max.z));
+    const double scale = std::sqrt(dot(p.normal, p.normal)) *
+                         (size + std::abs(b.max.x) + std::abs(b.max.y) + std::abs(b.max.z));
     test::expect_valid_clip(r, p, volume, 1e-9 * scale, what);
 #ifdef COVER_SANITIZED
-    if (i % 8 != 0 && i != 20) continue;  // checked build: every eighth random plane, one axis plane
+    if (i % 8 != 0 && i != 20)
+      continue;  // checked build: every eighth random plane, one axis plane
 #endif
     const double below = cgal_half_volume(cgal, p.normal, p.offset);
     const double above = cgal_half_volume(cgal, -1.0 * p.normal, -p.offset);

@@ -38,8 +38,8 @@ ClipResult clip_and_check(const PolygonMesh& m, const Plane& p, const std::strin
     r = clip(m, p, o);
   } catch (const std::exception& e) {
     char plane[160];
-    std::snprintf(plane, sizeof plane, "%.17g,%.17g,%.17g,%.17g", p.normal.x, p.normal.y, p.normal.z,
-                  p.offset);
+    std::snprintf(plane, sizeof plane, "%.17g,%.17g,%.17g,%.17g", p.normal.x, p.normal.y,
+                  p.normal.z, p.offset);
     ADD_FAILURE() << what << " plane " << plane << ": " << e.what();
     return r;
   }
@@ -151,7 +151,8 @@ TEST(Clip, ExactPointsThatRoundToOneDouble) {
     const BrepReport b = validate(HalfedgeMesh::from_polygon_mesh(h->mesh));
     EXPECT_TRUE(b.consistent && b.closed && b.manifold);
   }
-  EXPECT_NEAR(signed_volume(r.above.mesh) + signed_volume(r.below.mesh), signed_volume(frame), 1e-12);
+  EXPECT_NEAR(signed_volume(r.above.mesh) + signed_volume(r.below.mesh), signed_volume(frame),
+              1e-12);
   EXPECT_EQ(r.forced_ears, 0);
   int64_t zero_area = 0;
   for (const ClipHalf* h : {&r.above, &r.below})
@@ -214,7 +215,8 @@ TEST_P(ClipPaperModel, RingsAndValidity) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, ClipPaperModel,
-                         ::testing::Values(PaperModel{"knot.off", 6}, PaperModel{"torus1536.off", 2},
+                         ::testing::Values(PaperModel{"knot.off", 6},
+                                           PaperModel{"torus1536.off", 2},
                                            PaperModel{"box_with_holes.off", 9},
                                            PaperModel{"box_with_rings.off", 8},
                                            PaperModel{"pinch.off", 2}),

@@ -75,15 +75,21 @@ PolygonMesh tube(Curve c, int segments, int sides, double radius) {
 }
 
 PolygonMesh torus(int segments, int sides) {
-  return tube([](double t) { return Vec3{2 * std::cos(t), 2 * std::sin(t), 0}; }, segments, sides, 0.6);
+  return tube(
+      [](double t) {
+        return Vec3{2 * std::cos(t), 2 * std::sin(t), 0};
+      },
+      segments, sides, 0.6);
 }
 
 /// (2, 3) torus knot tube (the report's knot).
 PolygonMesh knot(int segments, int sides) {
-  return tube([](double t) {
-    const double r = 2 + std::cos(3 * t);
-    return Vec3{r * std::cos(2 * t), r * std::sin(2 * t), -std::sin(3 * t)};
-  }, segments, sides, 0.4);
+  return tube(
+      [](double t) {
+        const double r = 2 + std::cos(3 * t);
+        return Vec3{r * std::cos(2 * t), r * std::sin(2 * t), -std::sin(3 * t)};
+      },
+      segments, sides, 0.4);
 }
 
 Mesh to_cgal(const PolygonMesh& m) {
@@ -181,7 +187,8 @@ TEST(IsConvexExact, AcceptsABoxAndRejectsAFrame) {
 TEST(ClipThroughPoints, SameHalvesAsTheRoundedPlaneWhenItIsExact) {
   const PolygonMesh box = read_mesh(source_dir() / "models" / "frame.off");
   const brep::ClipResult a = brep::clip(box, brep::Plane{{0, 0, 1}, 1.0});
-  const brep::ClipResult b = brep::clip(box, std::array<Vec3, 3>{{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}});
+  const brep::ClipResult b =
+      brep::clip(box, std::array<Vec3, 3>{{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}});
   EXPECT_DOUBLE_EQ(signed_volume(a.above.mesh), signed_volume(b.above.mesh));
   EXPECT_DOUBLE_EQ(signed_volume(a.below.mesh), signed_volume(b.below.mesh));
   EXPECT_EQ(b.above.face_source.size(), b.above.mesh.face_count());
@@ -429,7 +436,8 @@ TEST(Decompose, SamePiecesForEveryThreadCount) {
   for (size_t i = 0; i < one.pieces.size(); ++i) {
     EXPECT_EQ(one.pieces[i].vertices, two.pieces[i].vertices) << i;
     EXPECT_NEAR(signed_volume(one.pieces[i]), signed_volume(two.pieces[i]),
-                1e-14 * signed_volume(one.pieces[i])) << i;
+                1e-14 * signed_volume(one.pieces[i]))
+        << i;
   }
 }
 
@@ -448,7 +456,8 @@ TEST(Decompose, InsidePointsLieInExactlyOnePiece) {
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<Vec3> points(2000);
   for (Vec3& p : points)
-    p = {lo.x + u(rng) * (hi.x - lo.x), lo.y + u(rng) * (hi.y - lo.y), lo.z + u(rng) * (hi.z - lo.z)};
+    p = {lo.x + u(rng) * (hi.x - lo.x), lo.y + u(rng) * (hi.y - lo.y),
+         lo.z + u(rng) * (hi.z - lo.z)};
   const std::vector<PointClass> c = model.classify(points);
   int inside = 0;
   for (size_t i = 0; i < points.size(); ++i) {
@@ -481,8 +490,9 @@ TEST(Decompose, RefusesOpenAndInsideOutMeshes) {
 
 TEST(DecomposeCli, WritesPiecesAndJson) {
   const auto dir = temp_dir("decompose");
-  const RunResult r = run_cover("decompose '" + (source_dir() / "models" / "box_with_rings.off").string() +
-                                "' -o '" + (dir / "out").string() + "' --json");
+  const RunResult r =
+      run_cover("decompose '" + (source_dir() / "models" / "box_with_rings.off").string() +
+                "' -o '" + (dir / "out").string() + "' --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"pieces", "reflex_edges", "volume", "seconds", "seconds_detail"})
@@ -508,12 +518,13 @@ TEST(DecomposeCli, OpenMeshIsExitTwoNamingTheFile) {
   const auto dir = temp_dir("decompose_open");
   const auto path = dir / "open.off";
   write_file(path, "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n");
-  const RunResult r = run_cover("decompose '" + path.string() + "' -o '" + (dir / "out").string() + "'");
+  const RunResult r =
+      run_cover("decompose '" + path.string() + "' -o '" + (dir / "out").string() + "'");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("open.off"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "piece_0000.off"));
-  const RunResult ext = run_cover("decompose '" + path.string() + "' -o '" + (dir / "o").string() +
-                                  "' --ext .png");
+  const RunResult ext =
+      run_cover("decompose '" + path.string() + "' -o '" + (dir / "o").string() + "' --ext .png");
   EXPECT_EQ(ext.status, 2);
   std::filesystem::remove_all(dir);
 }

@@ -13,7 +13,8 @@ namespace {
 
 PolygonMesh cube() {
   PolygonMesh m;
-  for (int i = 0; i < 8; ++i) m.vertices.push_back({double(i & 1), double((i >> 1) & 1), double(i >> 2)});
+  for (int i = 0; i < 8; ++i)
+    m.vertices.push_back({double(i & 1), double((i >> 1) & 1), double(i >> 2)});
   m.add_face({0, 2, 3, 1});
   m.add_face({4, 5, 7, 6});
   m.add_face({0, 1, 5, 4});

@@ -54,7 +54,8 @@ TEST_F(Cli, VersionAndHelp) {
   EXPECT_EQ(lines(r.out).size(), 1u);
   r = run_cover("--help");
   EXPECT_EQ(r.status, 0);
-  for (const char* cmd : {"info", "volume", "classify"}) EXPECT_NE(r.out.find(cmd), std::string::npos);
+  for (const char* cmd : {"info", "volume", "classify"})
+    EXPECT_NE(r.out.find(cmd), std::string::npos);
   r = run_cover("classify --help");
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("--points"), std::string::npos);
@@ -102,8 +103,10 @@ TEST_F(Cli, ClassifyNestedSceneSameForOneAndTwoThreads) {
     pts += std::to_string(g(rng) * 0.25) + " " + std::to_string(g(rng) * 0.25) + " " +
            std::to_string(g(rng) * 0.25) + "\n";
   test::write_file(dir_ / "p.txt", pts);
-  const auto a = run_cover("classify " + q(dir_ / "nested.json") + " --points " + q(dir_ / "p.txt") + " --threads 1");
-  const auto b = run_cover("classify " + q(dir_ / "nested.json") + " --points " + q(dir_ / "p.txt") + " --threads 2");
+  const auto a = run_cover("classify " + q(dir_ / "nested.json") + " --points " +
+                           q(dir_ / "p.txt") + " --threads 1");
+  const auto b = run_cover("classify " + q(dir_ / "nested.json") + " --points " +
+                           q(dir_ / "p.txt") + " --threads 2");
   ASSERT_EQ(a.status, 0) << a.err;
   EXPECT_EQ(a.out, b.out);
   EXPECT_EQ(lines(a.out).size(), 2000u);
@@ -142,8 +145,8 @@ TEST_F(Cli, NestedSceneMatchesTruthTable) {
 // for cow.off) is reported touching, not self-intersecting; info's exact test runs on the mesh
 // with equal points identified, and a crossing still reads as one.
 TEST_F(Cli, EvaluatedResultThatTouchesItselfIsNotSelfIntersecting) {
-  std::vector<std::string> scenes = {
-      R"({"union": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, {"box": {"min": [1,1,0], "max": [2,2,1]}}]})"};
+  std::vector<std::string> scenes = {R"({"union": [{"box": {"min": [0,0,0], "max": [1,1,1]}}, )"
+                                     R"({"box": {"min": [1,1,0], "max": [2,2,1]}}]})"};
 #ifndef COVER_SANITIZED  // cow ∪ box evaluates in about a second in Release
   scenes.push_back(R"({"union": [{"mesh": ")" + test::cgal_mesh("cow.off").string() +
                    R"("}, {"box": {"min": [0,0,0], "max": [0.2,0.2,0.2]}}]})");
@@ -311,12 +314,15 @@ TEST_F(Cli, RenderWritesImagesAndCamera) {
   EXPECT_TRUE(j["seconds"].is_number());
   EXPECT_EQ(j["camera"]["type"], "orthographic");
   EXPECT_TRUE(j["camera"]["pixel_size"].is_number());
-  for (const char* f : {"a.png", "d.png", "i.png"}) EXPECT_TRUE(std::filesystem::exists(dir_ / f)) << f;
+  for (const char* f : {"a.png", "d.png", "i.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir_ / f)) << f;
   const std::string first = test::read_file(dir_ / "a.png");
-  r = run_cover("render " + q(scene) + " -o " + out + " --size 120x90 --section 0,-1,0,-2 --threads 2");
+  r = run_cover("render " + q(scene) + " -o " + out +
+                " --size 120x90 --section 0,-1,0,-2 --threads 2");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(test::read_file(dir_ / "a.png"), first);  // same bytes with 1 and 2 threads
-  r = run_cover("render " + q(scene) + " -o " + q(dir_ / "p.png") + " --perspective --view top --json");
+  r = run_cover("render " + q(scene) + " -o " + q(dir_ / "p.png") +
+                " --perspective --view top --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(json::parse(r.out)["camera"]["type"], "perspective");
   for (const std::string bad : {"--size 0x10", "--size 12", "--view sideways", "--section 0,0,0,1",
@@ -369,10 +375,11 @@ TEST_F(Cli, VoxelizeAndOctreeWriteEveryFormatDeterministically) {
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(test::read_file(out), first) << ext;
   }
-  for (const std::string bad : {"voxelize --res 10 -o x.png", "voxelize --res 0 -o x.npy",
-                                "voxelize --res 5000 -o x.npy", "voxelize --res 10 -o x.npy --bounds 1,2,3",
-                                "voxelize --res 4096 -o x.npy", "octree --depth 4 -o x.vtk",
-                                "octree --depth 40 -o x.bt", "octree --depth 3 -o x.bt --threshold 2"}) {
+  for (const std::string bad :
+       {"voxelize --res 10 -o x.png", "voxelize --res 0 -o x.npy", "voxelize --res 5000 -o x.npy",
+        "voxelize --res 10 -o x.npy --bounds 1,2,3", "voxelize --res 4096 -o x.npy",
+        "octree --depth 4 -o x.vtk", "octree --depth 40 -o x.bt",
+        "octree --depth 3 -o x.bt --threshold 2"}) {
     const std::string cmd = bad.substr(0, bad.find(' '));
     r = run_cover(cmd + " " + q(scene) + bad.substr(bad.find(' ')));
     EXPECT_EQ(r.status, 2) << bad << r.err;
@@ -384,7 +391,8 @@ TEST_F(Cli, VoxelizeZarrVdbAndNonCubicGrids) {
   const auto scene = test::source_dir() / "models" / "default.json";
   // The same grid as .npy, .zarr (one and two threads) and .vdb: equal counts; the stores are
   // compared voxel by voxel in raster_tests (zarr_io_test.cpp).
-  auto r = run_cover("voxelize " + q(scene) + " --dims 20,31,9 -o " + q(dir_ / "g.npy") + " --json");
+  auto r =
+      run_cover("voxelize " + q(scene) + " --dims 20,31,9 -o " + q(dir_ / "g.npy") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
   const json npy = json::parse(r.out);
   EXPECT_EQ(npy["dims"], json({20, 31, 9}));
@@ -448,12 +456,15 @@ TEST_F(Cli, VoxelizeZarrVdbAndNonCubicGrids) {
 TEST_F(Cli, EveryCommandIsByteIdenticalWithOneAndTwoThreads) {
   // stdout (without --json, whose "seconds" is a timing) and every output file.
   test::write_file(dir_ / "s.json", R"({"difference": [
-      {"union": [{"box": {"min": [0,0,0], "max": [2,2,2]}}, {"sphere": {"center": [2,2,2], "radius": 1}}]},
+      {"union": [{"box": {"min": [0,0,0], "max": [2,2,2]}},
+                 {"sphere": {"center": [2,2,2], "radius": 1}}]},
       {"cylinder": {"base": [1,1,-1], "top": [1,1,4], "radius": 0.5}}]})");
   test::write_file(dir_ / "p.txt", "1 1 1\n2 2 2\n0 0 0\n1.5 1 1\n2 1 1\n");
   const std::string in = q(dir_ / "s.json");
   const std::vector<std::string> commands = {
-      "info " + in, "volume " + in, "classify " + in + " --points " + q(dir_ / "p.txt"),
+      "info " + in,
+      "volume " + in,
+      "classify " + in + " --points " + q(dir_ / "p.txt"),
       "render " + in + " --size 64x48 -o " + q(dir_ / "r.png") + " --depth " + q(dir_ / "d.png"),
       "voxelize " + in + " --res 32 -o " + q(dir_ / "v.binvox"),
       "octree " + in + " --depth 4 -o " + q(dir_ / "o.json")};

@@ -24,7 +24,8 @@ TEST(ClipCli, WritesBothHalvesAndReportsJson) {
   const json j = json::parse(r.out);
   for (const char* side : {"above", "below"}) {
     ASSERT_TRUE(j.contains(side));
-    for (const char* key : {"volume", "faces", "rings", "closed"}) EXPECT_TRUE(j[side].contains(key));
+    for (const char* key : {"volume", "faces", "rings", "closed"})
+      EXPECT_TRUE(j[side].contains(key));
     EXPECT_TRUE(j[side]["closed"].get<bool>());
     EXPECT_EQ(j[side]["rings"].get<int>(), 2);
   }
@@ -73,12 +74,14 @@ TEST(ClipCli, SceneWritesClippedLeavesOrTheEvaluatedMesh) {
                                 q(dir / "a.off") + " --below " + q(dir / "b.off") + " --json");
   ASSERT_EQ(meshes.status, 0) << meshes.err;
   const json jm = json::parse(meshes.out);
-  const auto evaluated = run_cover("evaluate " + q(dir / "scene.json") + " -o " + q(dir / "e.off") + " --json");
+  const auto evaluated =
+      run_cover("evaluate " + q(dir / "scene.json") + " -o " + q(dir / "e.off") + " --json");
   ASSERT_EQ(evaluated.status, 0) << evaluated.err;
   const double ve = json::parse(evaluated.out)["volume"].get<double>();
   EXPECT_TRUE(jm["above"]["closed"].get<bool>());
   EXPECT_TRUE(jm["below"]["closed"].get<bool>());
-  EXPECT_NEAR(jm["above"]["volume"].get<double>() + jm["below"]["volume"].get<double>(), ve, 1e-9 * ve);
+  EXPECT_NEAR(jm["above"]["volume"].get<double>() + jm["below"]["volume"].get<double>(), ve,
+              1e-9 * ve);
   EXPECT_GT(jm["above"]["rings"].get<int>(), 1);  // the box's outline and the sphere's hole
   // .json outputs: the expression is kept over clipped leaves.
   const auto r = run_cover("clip " + q(dir / "scene.json") + " --plane 0,0,1,2 -o " +
@@ -100,7 +103,8 @@ TEST(ClipCli, SceneWritesClippedLeavesOrTheEvaluatedMesh) {
   EXPECT_NEAR(sum, volume(dir / "scene.json"), bound);
   // A single-leaf scene clips to a mesh.
   test::write_file(dir / "one.json", R"({"box": {"min": [0, 0, 0], "max": [1, 1, 1]}})");
-  const auto one = run_cover("clip " + q(dir / "one.json") + " --plane 1,1,1,1.5 -o " + q(dir / "one.off") + " --json");
+  const auto one = run_cover("clip " + q(dir / "one.json") + " --plane 1,1,1,1.5 -o " +
+                             q(dir / "one.off") + " --json");
   ASSERT_EQ(one.status, 0) << one.err;
   EXPECT_NEAR(json::parse(one.out)["above"]["volume"].get<double>(), 0.5, 1e-15);
   std::filesystem::remove_all(dir);

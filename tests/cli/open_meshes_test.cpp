@@ -22,12 +22,12 @@ std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 std::vector<std::filesystem::path> open_inputs() {
   std::vector<std::filesystem::path> out;
   const std::string a = "/usr/share/assimp/models/";
-  for (const char* m : {"OBJ/WusonOBJ.obj", "OBJ/concave_polygon.obj", "OBJ/multiple_spaces.obj",
-                        "OBJ/regr01.obj", "OBJ/space_in_material_name.obj", "OBJ/spider.obj",
-                        "OFF/Wuson.off", "PLY/cube_uv.ply", "PLY/float-color.ply",
-                        "STL/Spider_ascii.stl", "STL/Spider_binary.stl", "STL/Wuson.stl",
-                        "STL/sphereWithHole.stl", "STL/triangle.stl",
-                        "STL/triangle_with_empty_solid.stl", "STL/triangle_with_two_solids.stl"})
+  for (const char* m :
+       {"OBJ/WusonOBJ.obj", "OBJ/concave_polygon.obj", "OBJ/multiple_spaces.obj", "OBJ/regr01.obj",
+        "OBJ/space_in_material_name.obj", "OBJ/spider.obj", "OFF/Wuson.off", "PLY/cube_uv.ply",
+        "PLY/float-color.ply", "STL/Spider_ascii.stl", "STL/Spider_binary.stl", "STL/Wuson.stl",
+        "STL/sphereWithHole.stl", "STL/triangle.stl", "STL/triangle_with_empty_solid.stl",
+        "STL/triangle_with_two_solids.stl"})
     out.push_back(a + m);
   for (const char* m : {"elephant-with-holes.off", "mushroom.off", "cube-ouvert.off", "holes.off"})
     out.push_back(test::cgal_mesh(m));
@@ -49,8 +49,7 @@ TEST_F(OpenMeshes, EveryCommandAcceptsThemAndClosedOnlyRefuses) {
     ++tried;
     const bool closes = in.filename() == "cube_uv.ply";  // closed once its seams are welded
     const std::vector<std::string> commands = {
-        "classify " + q(in) + " --points " + q(dir_ / "p.txt"),
-        "volume " + q(in) + " --rays 16",
+        "classify " + q(in) + " --points " + q(dir_ / "p.txt"), "volume " + q(in) + " --rays 16",
         "voxelize " + q(in) + " --res 12 -o " + q(dir_ / "v.npy"),
         "render " + q(in) + " --size 40x30 -o " + q(dir_ / "r.png"),
         "octree " + q(in) + " --depth 3 -o " + q(dir_ / "o.json")};
@@ -60,7 +59,8 @@ TEST_F(OpenMeshes, EveryCommandAcceptsThemAndClosedOnlyRefuses) {
       EXPECT_NE(r.err.find(in.string()), std::string::npos) << c;
       EXPECT_NE(r.err.find(closes ? "closed after repair" : "generalized winding number"),
                 std::string::npos)
-          << c << "\n" << r.err;
+          << c << "\n"
+          << r.err;
     }
     if (closes) continue;
     // --closed-only: today's refusal, naming the file and its boundary edges.
@@ -86,13 +86,14 @@ TEST_F(OpenMeshes, ClosedOnlyOnEveryCommandEvaluateAndClipRefuse) {
     EXPECT_EQ(r.status, 2) << c;
     EXPECT_NE(r.err.find("open mesh"), std::string::npos) << c;
   }
-  for (const std::string& c : {"evaluate " + q(in) + " -o " + q(dir_ / "e.off"),
-                               "clip " + q(in) + " --plane 0,0,1,0 -o " + q(dir_ / "c.off"),
-                               "volume --exact " + q(in)}) {
+  for (const std::string& c :
+       {"evaluate " + q(in) + " -o " + q(dir_ / "e.off"),
+        "clip " + q(in) + " --plane 0,0,1,0 -o " + q(dir_ / "c.off"), "volume --exact " + q(in)}) {
     const auto r = run_cover(c);
     EXPECT_EQ(r.status, 2) << c;
     EXPECT_NE(r.err.find(in.string() + ": open mesh (1353 boundary edges)"), std::string::npos)
-        << c << "\n" << r.err;
+        << c << "\n"
+        << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir_ / "e.off"));
   }
 }

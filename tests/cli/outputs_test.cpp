@@ -2,9 +2,8 @@
 // `--max-memory`), issue 17 groups 6 and 7: all outputs of a command are committed together or
 // not at all, links and modes survive, signals leave no temporary; estimates over --max-memory,
 // inputs that are not regular files and inputs over the limit are refused with exit 2.
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -222,8 +221,8 @@ TEST_F(Outputs, SignalDuringZarrWriteRemovesTheTemporaryFolder) {
       if ((exited = ::waitpid(pid, &status, WNOHANG) == pid)) break;
       for (const std::string& t : temporaries(dir_)) {  // chunk files beside .zarray, .zattrs
         std::error_code ignored;
-        const auto n = std::distance(fs::directory_iterator(dir_ / t, ignored),
-                                     fs::directory_iterator());
+        const auto n =
+            std::distance(fs::directory_iterator(dir_ / t, ignored), fs::directory_iterator());
         writing = writing || n > 2;
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -275,10 +274,11 @@ TEST_F(Outputs, PiecesFolderOfOtherFilesIsRefused) {
   fs::create_directory(mine);
   test::write_file(mine / "notes.txt", "keep");
   const std::string g = " -o " + q(dir_ / "g.off") + " --cells 2 --pieces ";
-  for (const std::string& c : {"evaluate " + q(box_) + g + q(mine),
-                               "decompose " + q(box_) + " -o " + q(mine)}) {
-    expect_refused(run_cover(c), "mine: exists and is not a pieces folder written by Cover (it "
-                                 "holds 'notes.txt'); remove it or name another folder");
+  for (const std::string& c :
+       {"evaluate " + q(box_) + g + q(mine), "decompose " + q(box_) + " -o " + q(mine)}) {
+    expect_refused(run_cover(c),
+                   "mine: exists and is not a pieces folder written by Cover (it "
+                   "holds 'notes.txt'); remove it or name another folder");
     EXPECT_EQ(names_in(mine), std::vector<std::string>{"notes.txt"});
     EXPECT_EQ(test::read_file(mine / "notes.txt"), "keep");
   }
@@ -300,9 +300,9 @@ TEST_F(Outputs, ConcurrentRunsIntoOnePiecesFolderDoNotMix) {
   for (int round = 0; round < 3; ++round) {
     std::vector<pid_t> pids;
     for (const fs::path& in : {dir_ / "l.json", box_})
-      pids.push_back(start_cover({"evaluate", in.string(), "-o", (dir_ / (in.stem().string() + ".off")).string(),
-                                  "--cells", "2", "--bounds", "0,0,0,2", "--pieces",
-                                  pieces.string()}));
+      pids.push_back(start_cover({"evaluate", in.string(), "-o",
+                                  (dir_ / (in.stem().string() + ".off")).string(), "--cells", "2",
+                                  "--bounds", "0,0,0,2", "--pieces", pieces.string()}));
     for (const pid_t pid : pids) {
       int status = 0;
       ASSERT_EQ(::waitpid(pid, &status, 0), pid);

@@ -31,7 +31,8 @@ std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3
 /// Runs `python3 -c SCRIPT ARGS...`; returns its stdout (the test fails on a non-zero status).
 std::string run_python(const fs::path& dir, const std::string& script, const std::string& args) {
   test::write_file(dir / "script.py", script);
-  const std::string cmd = python() + " " + q(dir / "script.py") + " " + args + " >" + q(dir / "py.out");
+  const std::string cmd =
+      python() + " " + q(dir / "script.py") + " " + args + " >" + q(dir / "py.out");
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   return test::read_file(dir / "py.out");
 }
@@ -83,7 +84,8 @@ np.lib.format.write_array(open(out + "/v2.npy", "wb"), p, version=(2, 0))
 np.lib.format.write_array(open(out + "/v3.npy", "wb"), p, version=(3, 0))
 )",
              q(dir_ / "p.txt") + " " + q(dir_));
-  for (const char* name : {"f8.npy", "f4.npy", "be.npy", "be4.npy", "fortran.npy", "v2.npy", "v3.npy"})
+  for (const char* name :
+       {"f8.npy", "f4.npy", "be.npy", "be4.npy", "fortran.npy", "v2.npy", "v3.npy"})
     EXPECT_EQ(classify((dir_ / name).string()), words) << name;
   // From stdin, recognised by its magic.
   const auto r = run_cover("classify " + q(dir_ / "box.json") + " --points -",
@@ -151,12 +153,18 @@ TEST_F(PointsCli, MalformedNpyExitsTwoWithOneLineAndWritesNothing) {
       {"truncated.npy", npy(header, std::string(47, '\0'))},
       {"long.npy", npy(header, std::string(49, '\0'))},
       {"header.npy", npy(header, "").substr(0, 50)},
-      {"lies.npy", npy("{'descr': '<f8', 'fortran_order': False, 'shape': (4611686018427387904, 3), }", "")},
-      {"dtype.npy", npy("{'descr': '<i4', 'fortran_order': False, 'shape': (2, 3), }", std::string(24, '\0'))},
-      {"shape.npy", npy("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }", std::string(48, '\0'))},
-      {"version.npy", std::string("\x93NUMPY\x09\x00", 8) + npy(header, std::string(48, '\0')).substr(8)},
-      {"nan.npy", npy(header, std::string(40, '\0') + std::string("\x00\x00\x00\x00\x00\x00\xf8\x7f", 8))},
-      {"range.npy", npy(header, std::string(40, '\0') + std::string("\x00\x00\x00\x00\x00\x00\x00\x44", 8))},
+      {"lies.npy",
+       npy("{'descr': '<f8', 'fortran_order': False, 'shape': (4611686018427387904, 3), }", "")},
+      {"dtype.npy",
+       npy("{'descr': '<i4', 'fortran_order': False, 'shape': (2, 3), }", std::string(24, '\0'))},
+      {"shape.npy",
+       npy("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }", std::string(48, '\0'))},
+      {"version.npy",
+       std::string("\x93NUMPY\x09\x00", 8) + npy(header, std::string(48, '\0')).substr(8)},
+      {"nan.npy",
+       npy(header, std::string(40, '\0') + std::string("\x00\x00\x00\x00\x00\x00\xf8\x7f", 8))},
+      {"range.npy",
+       npy(header, std::string(40, '\0') + std::string("\x00\x00\x00\x00\x00\x00\x00\x44", 8))},
   };
   for (const auto& [name, bytes] : cases) {
     test::write_file(dir_ / name, bytes);

@@ -86,9 +86,11 @@ TEST(Points, ParallelTextEqualsThePointsWrittenForEveryThreadCount) {
 TEST(Points, PlainLinesReadAsTheGeneralLineRuleReadsThem) {
   // Each line alone takes the direct path where it can; with a trailing comment (or a leading
   // '+') it takes the general one. Both give the same points, or the same message.
-  const std::vector<std::string> lines = {
-      "1 2 3", ".5 5. -0", "1e-400 -1e-320 4E+2", ",1,,2\t3,", "1\v2\f3 \r", "0x10 1 2", "1e5x 2 3",
-      "nan 1 2", "1 inf 2", "1 2 1e400", "1 2 1e20", "1 2", "1 2 3 4", "- 1 2", "1 2 3.0.0"};
+  const std::vector<std::string> lines = {"1 2 3",     ".5 5. -0",   "1e-400 -1e-320 4E+2",
+                                          ",1,,2\t3,", "1\v2\f3 \r", "0x10 1 2",
+                                          "1e5x 2 3",  "nan 1 2",    "1 inf 2",
+                                          "1 2 1e400", "1 2 1e20",   "1 2",
+                                          "1 2 3 4",   "- 1 2",      "1 2 3.0.0"};
   for (const std::string& line : lines) {
     const std::string plain = error_of([&] { parse_points(line + "\n", "p.txt"); });
     EXPECT_EQ(plain, error_of([&] { parse_points(line + " # c\n", "p.txt"); })) << line;
@@ -152,7 +154,8 @@ TEST(Points, ErrorsNameTheFirstBadLineInFileOrder) {
   two = with_bad_line(two, 8000, "1 2 3 4");
   for (int threads : {1, 2}) {
     ThreadLimit limit(threads);
-    EXPECT_EQ(error_of([&] { parse_points(two, "p.txt"); }), "p.txt:8000: expected 3 numbers, got more");
+    EXPECT_EQ(error_of([&] { parse_points(two, "p.txt"); }),
+              "p.txt:8000: expected 3 numbers, got more");
   }
   // The last line without its newline, behind a byte order mark and CRLF lines.
   std::string crlf = "\xEF\xBB\xBF";
@@ -182,7 +185,8 @@ std::string npy_file(const std::string& header, const std::string& data, int maj
   std::string out = "\x93NUMPY";
   out += static_cast<char>(major);
   out += '\0';
-  for (size_t i = 0; i < (major == 1 ? 2u : 4u); ++i) out += static_cast<char>((h.size() >> (8 * i)) & 0xff);
+  for (size_t i = 0; i < (major == 1 ? 2u : 4u); ++i)
+    out += static_cast<char>((h.size() >> (8 * i)) & 0xff);
   return out + h + data;
 }
 
@@ -215,7 +219,7 @@ std::string dict(const std::string& descr, bool fortran, const std::string& shap
 
 TEST(Points, NpyEqualsTheSamePointsAsText) {
   std::vector<Vec3> points = random_points(70000, 3);  // two conversion tasks and a bit
-  std::vector<Vec3> floats = points;  // float32-representable, in range
+  std::vector<Vec3> floats = points;                   // float32-representable, in range
   for (Vec3& p : floats)
     p = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
   std::string text;
@@ -244,7 +248,8 @@ TEST(Points, NpyEqualsTheSamePointsAsText) {
 }
 
 TEST(Points, MalformedNpyIsOneLineNamingTheFile) {
-  const std::string good = npy_file(dict("<f8", false, "(2, 3)"), npy_data({{1, 2, 3}, {4, 5, 6}}, false, false, false));
+  const std::string good =
+      npy_file(dict("<f8", false, "(2, 3)"), npy_data({{1, 2, 3}, {4, 5, 6}}, false, false, false));
   const std::string huge = std::to_string(uint64_t{1} << 62);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"", "not a NumPy .npy file"},
@@ -255,29 +260,43 @@ TEST(Points, MalformedNpyIsOneLineNamingTheFile) {
       {good.substr(0, 40), "truncated .npy header"},
       {good.substr(0, good.size() - 1), "needs 48 data bytes, the file has 47"},
       {good + "x", "needs 48 data bytes, the file has 49"},
-      {npy_file(dict("<i8", false, "(2, 3)"), std::string(48, '\0')), "unsupported .npy dtype '<i8'"},
-      {npy_file(dict("<f2", false, "(2, 3)"), std::string(12, '\0')), "unsupported .npy dtype '<f2'"},
-      {npy_file(dict("|u1", false, "(2, 3)"), std::string(6, '\0')), "unsupported .npy dtype '|u1'"},
+      {npy_file(dict("<i8", false, "(2, 3)"), std::string(48, '\0')),
+       "unsupported .npy dtype '<i8'"},
+      {npy_file(dict("<f2", false, "(2, 3)"), std::string(12, '\0')),
+       "unsupported .npy dtype '<f2'"},
+      {npy_file(dict("|u1", false, "(2, 3)"), std::string(6, '\0')),
+       "unsupported .npy dtype '|u1'"},
       {npy_file(dict("<f8", false, "(6,)"), std::string(48, '\0')), "shape (6,) is not (N, 3)"},
       {npy_file(dict("<f8", false, "(3, 2)"), std::string(48, '\0')), "shape (3, 2) is not (N, 3)"},
-      {npy_file(dict("<f8", false, "(2, 3, 1)"), std::string(48, '\0')), "shape (2, 3, 1) is not (N, 3)"},
+      {npy_file(dict("<f8", false, "(2, 3, 1)"), std::string(48, '\0')),
+       "shape (2, 3, 1) is not (N, 3)"},
       {npy_file(dict("<f8", false, "()"), std::string(8, '\0')), "shape () is not (N, 3)"},
       {npy_file(dict("<f8", false, "(" + huge + ", 3)"), ""), "needs more than 2^64 data bytes"},
       {npy_file(dict("<f8", false, "(99999999999999999999999, 3)"), ""), "is too large"},
       {npy_file(dict("<f8", false, "(-2, 3)"), ""), "expected a whole number in 'shape'"},
-      {npy_file("{'descr': '<f8', 'shape': (2, 3)}", std::string(48, '\0')), "missing key 'fortran_order'"},
-      {npy_file("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), 'x': 1}", ""), "unexpected key 'x'"},
-      {npy_file("{'descr': '<f8', 'fortran_order': false, 'shape': (2, 3)}", ""), "expected True or False"},
-      {npy_file("{'descr': [('x', '<f8')], 'fortran_order': False, 'shape': (2,)}", ""), "expected a dtype string"},
-      {npy_file("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3)} junk", ""), "after the dict"},
+      {npy_file("{'descr': '<f8', 'shape': (2, 3)}", std::string(48, '\0')),
+       "missing key 'fortran_order'"},
+      {npy_file("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), 'x': 1}", ""),
+       "unexpected key 'x'"},
+      {npy_file("{'descr': '<f8', 'fortran_order': false, 'shape': (2, 3)}", ""),
+       "expected True or False"},
+      {npy_file("{'descr': [('x', '<f8')], 'fortran_order': False, 'shape': (2,)}", ""),
+       "expected a dtype string"},
+      {npy_file("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3)} junk", ""),
+       "after the dict"},
       {npy_file("'descr': '<f8'", ""), "expected '{'"},
       {npy_file("{'descr: '<f8', 'fortran_order': False, 'shape': (2, 3)}", ""), "expected ':'"},
-      {npy_file(dict("<f8", false, "(1099511627776, 3)"), ""), "needs 26388279066624 data bytes, the file has 0"},
-      {npy_file(dict("<f8", false, "(2, 3)"), npy_data({{1, 2, 3}, {4, 1e300, 6}}, false, false, false)),
-       "point 1 (counting from 0): y coordinate 1.0000000000000001e+300 is outside the supported range"},
-      {npy_file(dict("<f8", false, "(2, 3)"), npy_data({{1, 2, 3}, {4, 5, NAN}}, false, false, false)),
+      {npy_file(dict("<f8", false, "(1099511627776, 3)"), ""),
+       "needs 26388279066624 data bytes, the file has 0"},
+      {npy_file(dict("<f8", false, "(2, 3)"),
+                npy_data({{1, 2, 3}, {4, 1e300, 6}}, false, false, false)),
+       "point 1 (counting from 0): y coordinate 1.0000000000000001e+300 is outside the supported "
+       "range"},
+      {npy_file(dict("<f8", false, "(2, 3)"),
+                npy_data({{1, 2, 3}, {4, 5, NAN}}, false, false, false)),
        "point 1 (counting from 0): non-finite z coordinate nan"},
-      {npy_file(dict(">f4", true, "(2, 3)"), npy_data({{1, INFINITY, 3}, {-INFINITY, 5, 6}}, true, true, true)),
+      {npy_file(dict(">f4", true, "(2, 3)"),
+                npy_data({{1, INFINITY, 3}, {-INFINITY, 5, 6}}, true, true, true)),
        "point 0 (counting from 0): non-finite y coordinate inf"},
   };
   for (const auto& [bytes, needle] : cases) {
@@ -292,17 +311,22 @@ TEST(Points, ReadPointsChecksTheMemoryLimitBeforeConverting) {
   const auto dir = test::temp_dir("points");
   // 1000 points in a 24 kB file; at 10 kB per point they need ~10 MB, over a 1 MiB limit.
   std::vector<Vec3> points(1000, Vec3{1, 2, 3});
-  test::write_file(dir / "p.npy", npy_file(dict("<f8", false, "(1000, 3)"), npy_data(points, false, false, false)));
+  test::write_file(dir / "p.npy", npy_file(dict("<f8", false, "(1000, 3)"),
+                                           npy_data(points, false, false, false)));
   EXPECT_EQ(cli::read_points((dir / "p.npy").string(), 1 << 20, 24), points);
-  const std::string e = error_of([&] { cli::read_points((dir / "p.npy").string(), 1 << 20, 10000); });
-  EXPECT_NE(e.find("p.npy: classifying 1000 points needs 10 MiB, over --max-memory 1 MiB"),
-            std::string::npos) << e;
+  const std::string e =
+      error_of([&] { cli::read_points((dir / "p.npy").string(), 1 << 20, 10000); });
+  // The library's name of the limit (the CLI's main shows --max-memory: messages_test.cpp).
+  EXPECT_NE(e.find("p.npy: classifying 1000 points needs 10 MiB, over max_memory 1 MiB"),
+            std::string::npos)
+      << e;
   // Any name: the magic decides; a .npy name without it is refused.
   std::filesystem::copy_file(dir / "p.npy", dir / "p.txt");
   EXPECT_EQ(cli::read_points((dir / "p.txt").string(), 1 << 20, 24), points);
   test::write_file(dir / "q.NPY", "1 2 3\n");
-  EXPECT_NE(error_of([&] { cli::read_points((dir / "q.NPY").string(), 1 << 20, 24); })
-                .find("q.NPY: not a NumPy .npy file"),
+  EXPECT_NE(error_of([&] {
+              cli::read_points((dir / "q.NPY").string(), 1 << 20, 24);
+            }).find("q.NPY: not a NumPy .npy file"),
             std::string::npos);
   std::filesystem::remove_all(dir);
 }

@@ -49,7 +49,8 @@ TEST_P(RealMesh, ClassificationAgreesWithSideOfTriangleMesh) {
   std::vector<Vec3> pts(4000);
   for (Vec3& p : pts) p = {ux(rng), uy(rng), uz(rng)};
   // Mesh vertices are exactly on the surface.
-  for (size_t i = 0; i < 12; ++i) pts.push_back(in.solid.vertices[i * 7 % in.solid.vertices.size()]);
+  for (size_t i = 0; i < 12; ++i)
+    pts.push_back(in.solid.vertices[i * 7 % in.solid.vertices.size()]);
   const auto classes = classify(in.solid, pts);
   int disagreements = 0, inside = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -60,8 +61,8 @@ TEST_P(RealMesh, ClassificationAgreesWithSideOfTriangleMesh) {
     } else {
       const bool in_cgal = s == CGAL::ON_BOUNDED_SIDE;
       inside += in_cgal;
-      disagreements += (c == PointClass::kInside) != in_cgal || (c != PointClass::kInside &&
-                                                                 c != PointClass::kOutside);
+      disagreements += (c == PointClass::kInside) != in_cgal ||
+                       (c != PointClass::kInside && c != PointClass::kOutside);
     }
   }
   EXPECT_EQ(disagreements, 0) << GetParam();

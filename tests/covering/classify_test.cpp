@@ -93,9 +93,9 @@ TEST(Classify, NonConvexFaces) {
   EXPECT_EQ(one(s, {1.5, 1.5, 1}), PC::kOutside);    // notch, on the top plane
   EXPECT_EQ(one(s, {0.5, 1.5, 0.5}), PC::kInside);
   EXPECT_EQ(one(s, {0.5, 1.5, 1}), PC::kFace);
-  EXPECT_EQ(one(s, {1, 1, 0.5}), PC::kEdge);   // reflex edge
-  EXPECT_EQ(one(s, {1, 1, 1}), PC::kVertex);   // reflex vertex
-  EXPECT_EQ(one(s, {1, 1.5, 0.5}), PC::kFace); // notch wall
+  EXPECT_EQ(one(s, {1, 1, 0.5}), PC::kEdge);    // reflex edge
+  EXPECT_EQ(one(s, {1, 1, 1}), PC::kVertex);    // reflex vertex
+  EXPECT_EQ(one(s, {1, 1.5, 0.5}), PC::kFace);  // notch wall
 }
 
 TEST(Classify, ResultLevelRules) {
@@ -113,9 +113,9 @@ TEST(Classify, ResultLevelRules) {
   EXPECT_EQ(one(unite({a, c}), {2, 2, 2}), PC::kEdge);  // straight crease across the seam
   // Difference: carved surfaces.
   const Solid d = subtract({a, b});
-  EXPECT_EQ(one(d, {1, 1, 1}), PC::kFace);    // B's wall x = 1 inside A
+  EXPECT_EQ(one(d, {1, 1, 1}), PC::kFace);  // B's wall x = 1 inside A
   EXPECT_EQ(one(d, {1.5, 1, 1}), PC::kOutside);
-  EXPECT_EQ(one(d, {1, 0, 1}), PC::kEdge);    // B's wall meets A's face y = 0
+  EXPECT_EQ(one(d, {1, 0, 1}), PC::kEdge);  // B's wall meets A's face y = 0
   EXPECT_EQ(one(d, {1, 0, 0}), PC::kVertex);
   // Intersection of a box with itself: same classes as the box.
   expect_box_classes(intersect({a, a}), {0, 0, 0}, {2, 2, 2});
@@ -137,7 +137,8 @@ TEST(Classify, NestedExpressionTruthTable) {
   // (A − B) ∪ C with overlapping A, B, C.
   const Vec3 alo{0, 0, 0}, ahi{2, 2, 2}, blo{1, 1, -1}, bhi{3, 3, 3}, clo{1.5, 1.5, 1.5},
       chi{2.5, 2.5, 2.5};
-  const Solid s = unite({subtract({box_solid(alo, ahi), box_solid(blo, bhi)}), box_solid(clo, chi)});
+  const Solid s =
+      unite({subtract({box_solid(alo, ahi), box_solid(blo, bhi)}), box_solid(clo, chi)});
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(-0.5, 3.5);
   std::vector<Vec3> pts(10000);
@@ -163,8 +164,9 @@ TEST(Classify, MirroredSolidKeepsClasses) {
 }
 
 TEST(Classify, SameResultsWithOneAndTwoThreads) {
-  const Solid s = unite({subtract({box_solid({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "s")}),
-                         make_leaf(make_cylinder({0, 0, 0}, {0, 0, 3}, 0.5, 12), "c")});
+  const Solid s = unite(
+      {subtract({box_solid({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "s")}),
+       make_leaf(make_cylinder({0, 0, 0}, {0, 0, 3}, 0.5, 12), "c")});
   std::mt19937_64 rng(7);
   std::uniform_int_distribution<int> grid(-2, 10);  // many points exactly on faces and edges
   std::vector<Vec3> pts(3000);

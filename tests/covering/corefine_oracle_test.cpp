@@ -102,10 +102,11 @@ void check(const Solid& solid, const Mesh& result, const std::vector<const Mesh*
     inside += t;
     disagreements += (classes[i] == PointClass::kInside) != t;
   }
-  std::printf("cover volume %.9g (rays %zu, error bound %.3g), CGAL corefinement %.9g, relative "
-              "difference %.2g; %zu points, %ld inside, %ld disagreements\n",
-              v.volume, v.rays, v.error_bound, expected, std::abs(v.volume - expected) / expected,
-              pts.size(), inside, disagreements);
+  std::printf(
+      "cover volume %.9g (rays %zu, error bound %.3g), CGAL corefinement %.9g, relative "
+      "difference %.2g; %zu points, %ld inside, %ld disagreements\n",
+      v.volume, v.rays, v.error_bound, expected, std::abs(v.volume - expected) / expected,
+      pts.size(), inside, disagreements);
   EXPECT_EQ(disagreements, 0);
   EXPECT_GT(inside, 1000);
   EXPECT_EQ(boundary, 0);

@@ -44,8 +44,8 @@ TEST(Degenerate, CoincidentLeaves) {
   const Solid a = box({0, 0, 0}, {1, 1, 1});
   const auto pts = probe_points(-0.5, 1.5, 0.25, 1);
   const auto ref = classify(a, pts);
-  EXPECT_EQ(classify(unite({a, a}), pts), ref);      // A ∪ A = A
-  EXPECT_EQ(classify(intersect({a, a}), pts), ref);  // A ∩ A = A
+  EXPECT_EQ(classify(unite({a, a}), pts), ref);                             // A ∪ A = A
+  EXPECT_EQ(classify(intersect({a, a}), pts), ref);                         // A ∩ A = A
   for (PC c : classify(subtract({a, a}), pts)) EXPECT_EQ(c, PC::kOutside);  // A − A = ∅
   EXPECT_NEAR(volume(unite({a, a})).volume, 1.0, 1e-4);
   EXPECT_NEAR(volume(intersect({a, a})).volume, 1.0, 1e-4);
@@ -56,9 +56,9 @@ TEST(Degenerate, CoincidentLeaves) {
 TEST(Degenerate, LeavesSharingFacesEdgesAndVertices) {
   const Solid a = box({0, 0, 0}, {1, 1, 1});
   const auto pts = probe_points(-0.5, 2.5, 0.25, 2);
-  for (const Solid& b : {box({1, 0, 0}, {2, 1, 1}),     // shared face
-                         box({1, 1, 0}, {2, 2, 1}),     // shared edge
-                         box({1, 1, 1}, {2, 2, 2}),     // shared vertex
+  for (const Solid& b : {box({1, 0, 0}, {2, 1, 1}),             // shared face
+                         box({1, 1, 0}, {2, 2, 1}),             // shared edge
+                         box({1, 1, 1}, {2, 2, 2}),             // shared vertex
                          box({0.5, 0.5, 1}, {1.5, 1.5, 2})}) {  // partly shared face
     expect_paths_agree(unite({a, b}), pts);
     expect_paths_agree(subtract({a, b}), pts);
@@ -92,8 +92,8 @@ TEST(Degenerate, RaysExactlyAlongFacesAndThroughEdges) {
   const Solid s = unite({box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {2, 1, 1})});
   const Bvh bvh(s);
   // Along the shared face x = 1, through the common edge, along a face plane, through vertices.
-  const std::vector<Ray> rays = {{{1, 0.5, -1}, {0, 0, 1}},  {{1, 1, -1}, {0, 0, 1}},
-                                 {{-1, 0, 0.5}, {1, 0, 0}},  {{-1, 0, 0}, {1, 0, 0}},
+  const std::vector<Ray> rays = {{{1, 0.5, -1}, {0, 0, 1}}, {{1, 1, -1}, {0, 0, 1}},
+                                 {{-1, 0, 0.5}, {1, 0, 0}}, {{-1, 0, 0}, {1, 0, 0}},
                                  {{-1, -1, -1}, {1, 1, 1}}, {{0.5, 0.5, -1}, {0, 0, 1}}};
   for (const Ray& r : rays) {
     const RayResult res = cast(bvh, s.tree, s.leaves.size(), r);
@@ -133,8 +133,10 @@ TEST(Degenerate, DuplicateVerticesAndRayOriginsOnFaces) {
   expect_paths_agree(s, pts);
   // Rays starting exactly on a face, an edge and a vertex, pointing in and out.
   const Bvh bvh(s);
-  const std::vector<Ray> rays = {{{0.5, 0.5, 0}, {0, 0, 1}}, {{0.5, 0.5, 0}, {0, 0, -1}},
-                                 {{0.5, 0, 0}, {0, 1, 1}},    {{0, 0, 0}, {1, 1, 1}},
+  const std::vector<Ray> rays = {{{0.5, 0.5, 0}, {0, 0, 1}},
+                                 {{0.5, 0.5, 0}, {0, 0, -1}},
+                                 {{0.5, 0, 0}, {0, 1, 1}},
+                                 {{0, 0, 0}, {1, 1, 1}},
                                  {{1, 1, 1}, {1, 1, 1}}};
   const std::vector<size_t> spans = {1, 0, 1, 1, 0};
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -151,14 +153,16 @@ TEST_P(SelfIntersecting, NonzeroRuleBothPathsAgree) {
   const Solid s = load_input(test::cgal_mesh(GetParam()), o).solid;
   const Bbox b = s.bbox();
   std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> ux(b.min.x, b.max.x), uy(b.min.y, b.max.y), uz(b.min.z, b.max.z);
+  std::uniform_real_distribution<double> ux(b.min.x, b.max.x), uy(b.min.y, b.max.y),
+      uz(b.min.z, b.max.z);
   std::vector<Vec3> pts(1500);
   for (Vec3& p : pts) p = {ux(rng), uy(rng), uz(rng)};
   EXPECT_EQ(classify(s, pts), classify_brute_force(s, pts)) << GetParam();
 }
 
 INSTANTIATE_TEST_SUITE_P(Cgal, SelfIntersecting,
-                         ::testing::Values("cow.off", "camel.off", "bull.off", "man.off", "bones.off", "elk.off"),
+                         ::testing::Values("cow.off", "camel.off", "bull.off", "man.off",
+                                           "bones.off", "elk.off"),
                          [](const auto& info) {
                            std::string n = info.param;
                            return n.substr(0, n.find('.'));

@@ -29,7 +29,8 @@ double brute_winding(const detail::LeafTriangles& lt, const Vec3& q) {
     const L ax = t.a.x - q.x, ay = t.a.y - q.y, az = t.a.z - q.z;
     const L bx = t.b.x - q.x, by = t.b.y - q.y, bz = t.b.z - q.z;
     const L cx = t.c.x - q.x, cy = t.c.y - q.y, cz = t.c.z - q.z;
-    const L la = std::sqrt(ax * ax + ay * ay + az * az), lb = std::sqrt(bx * bx + by * by + bz * bz),
+    const L la = std::sqrt(ax * ax + ay * ay + az * az),
+            lb = std::sqrt(bx * bx + by * by + bz * bz),
             lc = std::sqrt(cx * cx + cy * cy + cz * cz);
     const L det = ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
     const L den = la * lb * lc + (ax * bx + ay * by + az * bz) * lc +
@@ -167,7 +168,8 @@ TEST(Gwn, GridCellsSettledByConeBound) {
   for (int i = 0; i < 30000; ++i)
     pts.push_back(hole_centres[i % hole_centres.size()] + Vec3{near(rng), near(rng), near(rng)});
   for (int variant = 0; variant < 2; ++variant) {
-    const Solid solid = variant == 0 ? s : subtract({s, make_leaf(make_box({0, 0, 0}, {1.2, 0.5, 0.5}), "box")});
+    const Solid solid =
+        variant == 0 ? s : subtract({s, make_leaf(make_box({0, 0, 0}, {1.2, 0.5, 0.5}), "box")});
     ClassifyOptions with_grid, per_point;
     with_grid.grid_min_points = 0;
     per_point.grid_min_points = SIZE_MAX;
@@ -197,16 +199,16 @@ TEST_P(OpenModels, ClassifyAgreesWithBruteForceSum) {
 
 std::vector<std::string> open_models() {
   std::vector<std::string> out;
-  for (const char* m : {"elephant-with-holes.off", "mushroom.off", "cube-ouvert.off",
-                        "head.off", "nefertiti.off", "mesh_with_border.off", "patch-01.off"})
+  for (const char* m : {"elephant-with-holes.off", "mushroom.off", "cube-ouvert.off", "head.off",
+                        "nefertiti.off", "mesh_with_border.off", "patch-01.off"})
     out.push_back(test::cgal_mesh(m).string());
   const std::string a = "/usr/share/assimp/models/";
-  for (const char* m : {"OBJ/WusonOBJ.obj", "OBJ/concave_polygon.obj", "OBJ/multiple_spaces.obj",
-                        "OBJ/regr01.obj", "OBJ/space_in_material_name.obj", "OBJ/spider.obj",
-                        "OFF/Wuson.off", "PLY/float-color.ply", "STL/Spider_ascii.stl",
-                        "STL/Spider_binary.stl", "STL/Wuson.stl", "STL/sphereWithHole.stl",
-                        "STL/triangle.stl", "STL/triangle_with_empty_solid.stl",
-                        "STL/triangle_with_two_solids.stl"})
+  for (const char* m :
+       {"OBJ/WusonOBJ.obj", "OBJ/concave_polygon.obj", "OBJ/multiple_spaces.obj", "OBJ/regr01.obj",
+        "OBJ/space_in_material_name.obj", "OBJ/spider.obj", "OFF/Wuson.off", "PLY/float-color.ply",
+        "STL/Spider_ascii.stl", "STL/Spider_binary.stl", "STL/Wuson.stl", "STL/sphereWithHole.stl",
+        "STL/triangle.stl", "STL/triangle_with_empty_solid.stl",
+        "STL/triangle_with_two_solids.stl"})
     out.push_back(a + m);
   return out;
 }

@@ -71,9 +71,11 @@ TEST(RandomCsg, AcceleratedEqualsBruteForce) {
     std::vector<Vec3> pts;
     for (int i = 0; i < 400; ++i) pts.push_back({u(rng), u(rng), u(rng)});
     // Points on the box lattice: exactly on faces, edges and vertices of the box leaves.
-    for (int i = 0; i < 300; ++i) pts.push_back({grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25});
+    for (int i = 0; i < 300; ++i)
+      pts.push_back({grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25});
     // Mesh and primitive vertices: exactly on surfaces.
-    for (size_t i = 0; i < s.vertices.size(); i += s.vertices.size() / 12 + 1) pts.push_back(s.vertices[i]);
+    for (size_t i = 0; i < s.vertices.size(); i += s.vertices.size() / 12 + 1)
+      pts.push_back(s.vertices[i]);
     ClassifyOptions many;
     many.grid_min_points = 1;  // exercise the empty-cell grid too
     EXPECT_EQ(classify(s, pts, many), classify_brute_force(s, pts)) << "trial " << trial;
@@ -108,8 +110,8 @@ TEST(RandomCsg, FrontToBackFirstVisibleEqualsAllHits) {
       // Windows: the whole ray, one starting inside the scene (section caps), one ending there.
       const double a = 0.5 + std::abs(u(rng)), b = a + std::abs(u(rng));
       constexpr double kInf = std::numeric_limits<double>::infinity();
-      for (const auto& [lo, hi] : {std::pair{0.0, kInf}, std::pair{a, kInf}, std::pair{0.0, a},
-                                   std::pair{a, b}}) {
+      for (const auto& [lo, hi] :
+           {std::pair{0.0, kInf}, std::pair{a, kInf}, std::pair{0.0, a}, std::pair{a, b}}) {
         const VisibleHit want = first_visible(all, lo, hi);
         const VisibleHit got = first_visible(bvh, s.tree, s.leaves.size(), r, lo, hi);
         ASSERT_EQ(got.hit, want.hit) << "trial " << trial << " ray " << i;
@@ -212,7 +214,8 @@ TEST(RandomCsg, ScaledCopiesClassifyIdentically) {
   const Solid s = random_tree(rng, knot, 2);
   std::uniform_int_distribution<int> grid(-6, 6);
   std::vector<Vec3> pts;
-  for (int i = 0; i < 1500; ++i) pts.push_back({grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25});
+  for (int i = 0; i < 1500; ++i)
+    pts.push_back({grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25});
   const auto reference = classify(s, pts);
   for (double scale : {0x1p-30, 0x1p30}) {  // 2^±30: every coordinate scales exactly
     Solid t = s;

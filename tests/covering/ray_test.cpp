@@ -52,9 +52,9 @@ TEST(Ray, EdgesAndFacesAreCountedOnce) {
   // Rays along an edge, through a vertex, and in a face's plane: the perturbed line crosses
   // the closed surface an even number of times with signs summing to zero (winding 0 far away).
   const Solid s = box({0, 0, 0}, {1, 1, 1});
-  const Ray rays[] = {{{-1, 0, 0}, {1, 0, 0}},       {{-1, -1, -1}, {1, 1, 1}},
-                      {{-1, 0.5, 1}, {1, 0, 0}},     {{-1, 1, 0.5}, {1, 0, 0}},
-                      {{0.5, 0.5, -1}, {0, 0, 1}},   {{-1, 0.5, 0.5}, {1, 0.5, 0}}};
+  const Ray rays[] = {{{-1, 0, 0}, {1, 0, 0}},     {{-1, -1, -1}, {1, 1, 1}},
+                      {{-1, 0.5, 1}, {1, 0, 0}},   {{-1, 1, 0.5}, {1, 0, 0}},
+                      {{0.5, 0.5, -1}, {0, 0, 1}}, {{-1, 0.5, 0.5}, {1, 0.5, 0}}};
   for (const Ray& ray : rays) {
     const RayResult r = cast_one(s, ray);
     int winding = 0;

@@ -34,8 +34,8 @@ void expect_brick_equals_whole(const VoxelGrid& brick, const VoxelGrid& whole, c
   for (int i = 0; i < brick.nx(); ++i)
     for (int j = 0; j < brick.ny(); ++j)
       for (int k = 0; k < brick.nz(); ++k)
-        mismatches += brick.get(i, j, k) !=
-                      whole_bit(whole, box.lo[0] + i, box.lo[1] + j, box.lo[2] + k);
+        mismatches +=
+            brick.get(i, j, k) != whole_bit(whole, box.lo[0] + i, box.lo[1] + j, box.lo[2] + k);
   EXPECT_EQ(mismatches, 0) << what;
   EXPECT_EQ(brick.voxel_centre(0, 0, 0), whole.voxel_centre(box.lo[0], box.lo[1], box.lo[2]))
       << what;
@@ -52,7 +52,8 @@ std::vector<IndexBox> bricks(const std::array<int, 3>& dims, uint64_t seed, int 
   // Chunk-like tiling with a ragged edge (chunk 7).
   for (int i = 0; i < dims[0]; i += 7)
     for (int k = 0; k < dims[2]; k += 7)
-      out.push_back({{i, 7, k}, {std::min(dims[0], i + 7), std::min(dims[1], 14), std::min(dims[2], k + 7)}});
+      out.push_back(
+          {{i, 7, k}, {std::min(dims[0], i + 7), std::min(dims[1], 14), std::min(dims[2], k + 7)}});
   std::mt19937_64 rng(seed);
   for (int r = 0; r < random_count; ++r) {
     IndexBox b;
@@ -98,15 +99,15 @@ TEST(Bricks, EveryBrickEqualsTheWholeGridOnASceneAndARealMesh) {
     VoxelGrid brick;  // reused across bricks, as a worker does
     for (const IndexBox& box : bricks(lattice.dims, 7, 40)) {
       c.model.voxelize_brick(lattice, box, brick);
-      expect_brick_equals_whole(brick, whole, box,
-                                c.name + " brick [" + std::to_string(box.lo[0]) + "," +
-                                    std::to_string(box.lo[1]) + "," + std::to_string(box.lo[2]) +
-                                    ")-[" + std::to_string(box.hi[0]) + "," +
-                                    std::to_string(box.hi[1]) + "," + std::to_string(box.hi[2]) +
-                                    ")");
+      expect_brick_equals_whole(
+          brick, whole, box,
+          c.name + " brick [" + std::to_string(box.lo[0]) + "," + std::to_string(box.lo[1]) + "," +
+              std::to_string(box.lo[2]) + ")-[" + std::to_string(box.hi[0]) + "," +
+              std::to_string(box.hi[1]) + "," + std::to_string(box.hi[2]) + ")");
     }
     // The raster function without a face list (every face scanned) gives the same bricks.
-    const IndexBox some{{1, 2, 3}, {lattice.dims[0] - 1, lattice.dims[1] / 2 + 1, lattice.dims[2] - 2}};
+    const IndexBox some{{1, 2, 3},
+                        {lattice.dims[0] - 1, lattice.dims[1] / 2 + 1, lattice.dims[2] - 2}};
     VoxelGrid scanned;
     voxelize_brick(c.model.solid(), lattice, some, nullptr, scanned);
     expect_brick_equals_whole(scanned, whole, some, c.name + " scanned");
@@ -149,8 +150,8 @@ TEST(Bricks, TieRuleOnBoxFacesInEveryBrick) {
       for (int j = 0; j < g.ny(); ++j)
         for (int k = 0; k < g.nz(); ++k) {
           const Vec3 c = g.voxel_centre(i, j, k);
-          const bool in_a = lo.x <= c.x && c.x < hi.x && lo.y <= c.y && c.y < hi.y &&
-                            lo.z <= c.z && c.z < hi.z;
+          const bool in_a =
+              lo.x <= c.x && c.x < hi.x && lo.y <= c.y && c.y < hi.y && lo.z <= c.z && c.z < hi.z;
           const bool in_b = 5 <= c.x && c.x < 7 && 2 <= c.y && c.y < 4 && 0 <= c.z && c.z < 3;
           EXPECT_EQ(g.get(i, j, k), in_a || in_b) << c.x << " " << c.y << " " << c.z;
         }

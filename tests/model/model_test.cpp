@@ -202,7 +202,8 @@ long double solid_angle_sum(const std::vector<std::array<Vec3, 3>>& tris, const 
   L sum = 0;
   for (const auto& t : tris) {
     L A[3], B[3], C[3];
-    for (int k = 0; k < 3; ++k) A[k] = L(t[0][k]) - q[k], B[k] = L(t[1][k]) - q[k], C[k] = L(t[2][k]) - q[k];
+    for (int k = 0; k < 3; ++k)
+      A[k] = L(t[0][k]) - q[k], B[k] = L(t[1][k]) - q[k], C[k] = L(t[2][k]) - q[k];
     auto dotl = [](const L* x, const L* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
     const L la = std::sqrt(dotl(A, A)), lb = std::sqrt(dotl(B, B)), lc = std::sqrt(dotl(C, C));
     const L det = A[0] * (B[1] * C[2] - B[2] * C[1]) - A[1] * (B[0] * C[2] - B[2] * C[0]) +
@@ -315,8 +316,8 @@ TEST(Model, TransformedEqualsTransformingEveryLeaf) {
   PolygonMesh b = make_box({0, 0, 0}, {2, 2, 2}), s = make_sphere({2, 2, 2}, 1, 32),
               bar = make_box({1.5, 0.5, 0.5}, {3.5, 1, 1});
   for (PolygonMesh* mesh : {&b, &s, &bar}) apply_transform(t, *mesh);
-  const Solid expected = unite({subtract({make_leaf(b, "box"), make_leaf(s, "sphere")}),
-                                make_leaf(bar, "box")});
+  const Solid expected =
+      unite({subtract({make_leaf(b, "box"), make_leaf(s, "sphere")}), make_leaf(bar, "box")});
   const std::vector<Vec3> points = random_points(5000, -8, 8, 4);
   EXPECT_EQ(m.classify(points), classify(expected, points));
   // A mirror keeps the solid solid (faces re-oriented): the volume keeps its sign.
@@ -366,7 +367,8 @@ TEST(Model, CastAndFirstHitsEqualTheKernel) {
   size_t hits = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     ASSERT_EQ(all[i].spans.size(), direct[i].spans.size());
-    for (size_t k = 0; k < all[i].spans.size(); ++k) EXPECT_EQ(all[i].spans[k].t0, direct[i].spans[k].t0);
+    for (size_t k = 0; k < all[i].spans.size(); ++k)
+      EXPECT_EQ(all[i].spans[k].t0, direct[i].spans[k].t0);
     const FirstHit expected = first_hit(bvh, direct[i]);
     EXPECT_EQ(first[i].hit, expected.hit);
     EXPECT_EQ(first[i].t, expected.t);
@@ -511,7 +513,7 @@ TEST(Model, EvaluateCellsRefusesNOverTheMemoryLimitBeforeEvaluating) {
     ADD_FAILURE() << "not refused";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "evaluate cells: n = 2000: cutting into cells needs 23437500 MiB, over --max-memory "
+              "evaluate cells: n = 2000: cutting into cells needs 23437500 MiB, over max_memory "
               "4096 MiB");
   }
   brep::CellsOptions small;
@@ -572,7 +574,8 @@ TEST(Model, LoadAndMeshFromArrays) {
   }
   // A tetrahedron from arrays, given inside-out: reversed on load (a warning), volume 1/6.
   const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  const std::vector<std::array<uint32_t, 3>> inside_out = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  const std::vector<std::array<uint32_t, 3>> inside_out = {
+      {0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
   const Model tet = mesh(v, inside_out, "tet");
   EXPECT_DOUBLE_EQ(tet.volume().volume, 1.0 / 6.0);
   EXPECT_EQ(tet.warnings().size(), 1u);
@@ -588,6 +591,37 @@ TEST(Model, LoadAndMeshFromArrays) {
   EXPECT_THROW(cylinder({0, 0, 0}, {0, 0, 0}, 1), InputError);
   const std::vector<Vec3> nan_point = {{std::nan(""), 0, 0}};
   EXPECT_THROW(tet.classify(nan_point), InputError);
+}
+
+// A parameter is named as the C++ API spells it, marked so that each front end shows its own
+// name: the CLI its flag, Python its keyword (cli/main.cpp flag_of, python/module.cpp keyword).
+TEST(Model, ParameterErrorsNameTheOptionsField) {
+  const Model m = part();
+  const auto flag = [](std::string_view name) {
+    return name == "resolution" ? std::string("--res") : "--" + std::string(name);
+  };
+  try {
+    (void)m.voxelize({.resolution = 5000});
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "resolution: expected a whole number from 1 to 4096, got 5000");
+    EXPECT_EQ(e.text(flag), "--res: expected a whole number from 1 to 4096, got 5000");
+    EXPECT_EQ(e.prefixed("in.off: ").text(flag),
+              "in.off: --res: expected a whole number from 1 to 4096, got 5000");
+  }
+  try {
+    (void)m.octree({.depth = 17});
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(std::string_view(e.what()).starts_with("depth: expected a whole number"))
+        << e.what();
+    EXPECT_TRUE(e.text(flag).starts_with("--depth: expected a whole number")) << e.text(flag);
+  }
+  // Text without marks is shown as written, whatever the renderer.
+  EXPECT_EQ(InputError("a.off:3: bad face").text(flag), "a.off:3: bad face");
+  EXPECT_EQ(InputError(parameter("x") + " and " + parameter("y_z") + ": both").text(flag),
+            "--x and --y_z: both");
 }
 
 }  // namespace

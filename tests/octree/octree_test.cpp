@@ -902,8 +902,7 @@ TEST_F(OctreeFiles, BtCubeOffOctomapGridRefused) {
     write_octree(dir_ / "t.bt", beyond, 0.5);
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("keys reach ±32768 cells"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("keys reach ±32768 cells"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(dir_ / "t.bt"));
 }

@@ -59,7 +59,8 @@ TEST(Render, BoxSilhouetteMatchesProjectionPixelForPixel) {
     for (int x = 0; x < img.width; ++x) {
       const Ray r = cam.ray(x, y);
       ASSERT_EQ(r.dir, (Vec3{0, 1, 0}));
-      const bool expected = r.origin.x > lo.x && r.origin.x < hi.x && r.origin.z > lo.z && r.origin.z < hi.z;
+      const bool expected =
+          r.origin.x > lo.x && r.origin.x < hi.x && r.origin.z > lo.z && r.origin.z < hi.z;
       inside += expected;
       ASSERT_EQ(img.ids[at(img, x, y)] == 1, expected) << x << "," << y;
       ASSERT_EQ(img.ids[at(img, x, y)] == Image::kBackgroundId, !expected);
@@ -108,7 +109,8 @@ TEST(Render, SectionCapExactlyWhereTheCutIs) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const Ray r = cam.ray(x, y);
-      const bool in = r.origin.x > lo.x && r.origin.x < hi.x && r.origin.z > lo.z && r.origin.z < hi.z;
+      const bool in =
+          r.origin.x > lo.x && r.origin.x < hi.x && r.origin.z > lo.z && r.origin.z < hi.z;
       ASSERT_EQ(img.ids[at(img, x, y)], in ? Image::kCapId : Image::kBackgroundId) << x << "," << y;
       if (in) {
         EXPECT_GT(img.rgb[3 * at(img, x, y)], img.rgb[3 * at(img, x, y) + 1]);  // reddish cap
@@ -164,8 +166,9 @@ TEST(Render, DifferenceShowsTheSubtrahendOnCarvedSurfaces) {
 }
 
 TEST(Render, SameImageWithOneAndTwoThreadsAndPngRoundTrip) {
-  const Solid s = unite({subtract({box_solid({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "s")}),
-                         make_leaf(make_cylinder({0, 0, -1}, {0, 0, 3}, 0.6, 20), "c")});
+  const Solid s = unite(
+      {subtract({box_solid({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "s")}),
+       make_leaf(make_cylinder({0, 0, -1}, {0, 0, 3}, 0.6, 20), "c")});
   const Bbox frame = s.bbox();
   for (bool perspective : {false, true}) {
     CameraOptions co;
@@ -230,9 +233,9 @@ TEST(Render, EveryPixelIsTheVisiblePointOfTheFullCast) {
             if (sd > 0) hi = -v0 / sd;
             if (sd < 0) lo = std::max(0.0, -v0 / sd);
           }
-          const VisibleHit v = lo > hi ? VisibleHit{}
-                                       : first_visible(cast(bvh, s.tree, s.leaves.size(), ray),
-                                                       lo, hi);
+          const VisibleHit v = lo > hi
+                                   ? VisibleHit{}
+                                   : first_visible(cast(bvh, s.tree, s.leaves.size(), ray), lo, hi);
           const uint16_t want = !v.hit  ? Image::kBackgroundId
                                 : v.cap ? Image::kCapId
                                         : static_cast<uint16_t>(v.enter.leaf + 1);
@@ -297,9 +300,8 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
           ASSERT_TRUE(a.ids == b.ids) << to_string(view) << " " << w << " " << cut;
           ASSERT_TRUE(a.depth == b.depth) << to_string(view) << " " << w << " " << cut;
           ASSERT_TRUE(a.rgb == b.rgb) << to_string(view) << " " << w << " " << cut;
-          compared += static_cast<int>(std::count_if(a.ids.begin(), a.ids.end(), [](uint16_t id) {
-            return id != Image::kBackgroundId;
-          }));
+          compared += static_cast<int>(std::count_if(
+              a.ids.begin(), a.ids.end(), [](uint16_t id) { return id != Image::kBackgroundId; }));
         }
   }
   EXPECT_GT(compared, 50000);
@@ -311,9 +313,9 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
     return box_solid({std::min(a.x, b.x), y0, std::min(a.z, b.z)},
                      {std::max(a.x, b.x), y1, std::max(a.z, b.z)});
   };
-  const Solid aligned = unite({subtract({span(o(10, 50), o(40, 20), -0.5, 0.5),
-                                         span(o(25, 35), o(45, 10), -0.6, 0.2)}),
-                               span(o(40, 20), o(55, 5), 0.1, 0.3)});  // touches at o(40, 20)
+  const Solid aligned = unite(
+      {subtract({span(o(10, 50), o(40, 20), -0.5, 0.5), span(o(25, 35), o(45, 10), -0.6, 0.2)}),
+       span(o(40, 20), o(55, 5), 0.1, 0.3)});  // touches at o(40, 20)
   const Bvh bvh(aligned);
   for (bool cut : {false, true}) {
     RenderOptions rays, objects;

@@ -29,9 +29,6 @@ using test::sphere_grid;
 
 namespace fs = std::filesystem;
 
-
-
-
 VoxelGrid full_grid(int n) {
   VoxelGrid grid = empty_grid(n);
   for (int i = 0; i < n; ++i)
@@ -86,7 +83,6 @@ void expect_xyz_bytes(const VoxelGrid& grid, const std::string& bytes, const std
       }
   EXPECT_EQ(mismatches, 0) << what;
 }
-
 
 /// Header fields and decoded voxels (index x·N·N + z·N + y) of a binvox file.
 struct Binvox {

@@ -36,14 +36,11 @@ using test::empty_grid;
 using test::random_grid;
 using test::sphere_grid;
 
-
 VoxelGrid grid_of(int n, const std::vector<std::array<int, 3>>& voxels) {
   VoxelGrid grid = empty_grid(n);
   for (const auto& v : voxels) grid.set(v[0], v[1], v[2]);
   return grid;
 }
-
-
 
 bool occupied(const VoxelGrid& g, int i, int j, int k) {
   return i >= 0 && j >= 0 && k >= 0 && i < g.nx() && j < g.nx() && k < g.nx() && g.get(i, j, k);

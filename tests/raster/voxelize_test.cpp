@@ -68,9 +68,11 @@ TEST(Voxelize, NestedCsgScenesMatchPointClassification) {
       R"({"union": [{"difference": [{"mesh": ")" + bunny + R"("},
           {"sphere": {"center": [0.1, 0.1, 0.1], "radius": 0.3}}]},
           {"box": {"min": [0.2, -0.6, -0.2], "max": [0.7, 0.0, 0.3]}}]})",
-      R"({"intersection": [{"mesh": ")" + bunny + R"(", "transform": {"rotate": {"axis": [0,0,1], "degrees": 30}}},
+      R"({"intersection": [{"mesh": ")" + bunny +
+          R"(", "transform": {"rotate": {"axis": [0,0,1], "degrees": 30}}},
           {"complement": {"cylinder": {"base": [0, 0, -1], "top": [0, 0, 1], "radius": 0.2}}},
-          {"mesh": ")" + bunny + R"(", "transform": {"scale": 0.9, "translate": [0.15, 0, 0]}}]})"};
+          {"mesh": ")" +
+          bunny + R"(", "transform": {"scale": 0.9, "translate": [0.15, 0, 0]}}]})"};
   for (const std::string& text : scenes)
     for (int n : {64, 128}) {
       const Solid s = parse_scene(text, "scene.json").solid;
@@ -97,7 +99,8 @@ TEST(Voxelize, CentresOnTheBoundaryFollowTheTieRule) {
     for (int j = 0; j < 8; ++j)
       for (int k = 0; k < 8; ++k) {
         const Vec3 c = g.voxel_centre(i, j, k);
-        const bool expected = lo.x <= c.x && c.x < hi.x && lo.y <= c.y && c.y < hi.y && lo.z <= c.z && c.z < hi.z;
+        const bool expected =
+            lo.x <= c.x && c.x < hi.x && lo.y <= c.y && c.y < hi.y && lo.z <= c.z && c.z < hi.z;
         EXPECT_EQ(g.get(i, j, k), expected) << i << " " << j << " " << k;
       }
   // Union of two boxes sharing the face x = 3.5 (through centres): no seam.

@@ -23,7 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 /// Several leaves: a box minus a sphere, with a bar through it.
 Solid scene() {
   return unite({subtract({make_leaf(make_box({-1, -0.7, -0.5}, {1, 0.8, 0.6}), "a"),
@@ -48,7 +47,8 @@ BrickFunction bricks_of(const Solid& s, const VoxelLattice& lattice) {
 TEST(Zarr, StoreAndVdbEqualTheNpyOfTheSameGrid) {
   const fs::path dir = test::temp_dir("zarr");
   const Solid s = scene();
-  for (const std::array<int, 3> dims : {std::array<int, 3>{37, 22, 29}, std::array<int, 3>{16, 16, 16}}) {
+  for (const std::array<int, 3> dims :
+       {std::array<int, 3>{37, 22, 29}, std::array<int, 3>{16, 16, 16}}) {
     const VoxelLattice lattice = lattice_of(s, dims);
     VoxelGrid whole;
     voxelize_brick(s, lattice, whole_box(lattice), nullptr, whole);

@@ -31,7 +31,8 @@ std::vector<Bbox> random_boxes(size_t n, unsigned seed) {
     const bool large = i % 31 == 0;
     Vec3 lo{pos(rng) * 0.25, pos(rng) * 0.25, pos(rng) * 0.25};
     boxes[i].add(lo);
-    boxes[i].add(lo + Vec3{(large ? big(rng) : size(rng)) * 0.25, (large ? big(rng) : size(rng)) * 0.25,
+    boxes[i].add(lo + Vec3{(large ? big(rng) : size(rng)) * 0.25,
+                           (large ? big(rng) : size(rng)) * 0.25,
                            (i % 7 == 0 ? 0 : size(rng)) * 0.25});
   }
   return boxes;
@@ -42,7 +43,8 @@ std::vector<std::pair<uint32_t, uint32_t>> brute(const std::vector<Bbox>& boxes,
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (uint32_t a = 0; a < boxes.size(); ++a)
     for (uint32_t b = a + 1; b < boxes.size(); ++b)
-      if (meet(boxes[a], boxes[b]) && (!color || (*color)[a] != (*color)[b])) pairs.emplace_back(a, b);
+      if (meet(boxes[a], boxes[b]) && (!color || (*color)[a] != (*color)[b]))
+        pairs.emplace_back(a, b);
   return pairs;
 }
 

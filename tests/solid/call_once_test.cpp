@@ -51,10 +51,11 @@ TEST(CallOnce, ConcurrentCallersRunTheRoutineOnceAndSeeItsEffect) {
 TEST(CallOnce, AThrowingRoutineLetsTheNextCallerRetry) {
   std::once_flag flag;
   int calls = 0;
-  EXPECT_THROW(std::call_once(flag, [&] {
-                 ++calls;
-                 throw std::runtime_error("first");
-               }),
+  EXPECT_THROW(std::call_once(flag,
+                              [&] {
+                                ++calls;
+                                throw std::runtime_error("first");
+                              }),
                std::runtime_error);
   std::call_once(flag, [&] { ++calls; });
   std::call_once(flag, [&] { ++calls; });

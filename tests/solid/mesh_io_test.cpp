@@ -242,9 +242,9 @@ TEST(MeshIoTest, LargeOffParsedInParallelGivesTheSameMeshAndErrors) {
   {
     std::string t = good;
     t.insert(t.rfind("\n", t.size() - 2) + 1, "3 0 1 " + std::to_string(kV) + "\n");
-    EXPECT_EQ(error_of(t), file + ":" + std::to_string(line_of_face[kF - 1]) +
-                               ": vertex index " + std::to_string(kV) + " out of range [0, " +
-                               std::to_string(kV) + ")");
+    EXPECT_EQ(error_of(t), file + ":" + std::to_string(line_of_face[kF - 1]) + ": vertex index " +
+                               std::to_string(kV) + " out of range [0, " + std::to_string(kV) +
+                               ")");
   }
   {
     std::string t = good.substr(0, good.rfind("\n", good.size() - 2) + 1);  // last face gone
@@ -928,8 +928,9 @@ TEST(MeshIoTest, PlyFreeTextBeforeTheFirstElementIsAComment) {
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "propety float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  EXPECT_NE(bad_file(dir, "misspelt.ply", misspelt).find(":6: unknown PLY header keyword 'propety'"),
-            std::string::npos);
+  EXPECT_NE(
+      bad_file(dir, "misspelt.ply", misspelt).find(":6: unknown PLY header keyword 'propety'"),
+      std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -15,7 +15,8 @@ namespace cover {
 namespace {
 
 TEST(Npy, WrittenHeadersParseBack) {
-  const std::vector<std::vector<uint64_t>> shapes = {{}, {0}, {7}, {5, 3}, {4, 4, 4}, {1ull << 40, 3}};
+  const std::vector<std::vector<uint64_t>> shapes = {{},     {0},       {7},
+                                                     {5, 3}, {4, 4, 4}, {1ull << 40, 3}};
   for (const std::vector<uint64_t>& shape : shapes) {
     const std::string h = npy_header("|u1", shape);
     EXPECT_EQ(h.size() % 64, 0u);

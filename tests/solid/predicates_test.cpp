@@ -13,12 +13,12 @@ namespace {
 
 TEST(Predicates, SignConventions) {
   const Vec3 o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
-  EXPECT_EQ(orient3d(o, x, y, z), 1);   // z is on the side of (x−o)×(y−o)
+  EXPECT_EQ(orient3d(o, x, y, z), 1);  // z is on the side of (x−o)×(y−o)
   EXPECT_EQ(orient3d(o, y, x, z), -1);
   EXPECT_EQ(orient3d(o, x, y, {0.3, 0.4, 0}), 0);
-  EXPECT_EQ(orient2d(o, y, z, 0), 1);   // x component of y × z
-  EXPECT_EQ(orient2d(o, z, x, 1), 1);   // y component of z × x
-  EXPECT_EQ(orient2d(o, x, y, 2), 1);   // z component of x × y
+  EXPECT_EQ(orient2d(o, y, z, 0), 1);  // x component of y × z
+  EXPECT_EQ(orient2d(o, z, x, 1), 1);  // y component of z × x
+  EXPECT_EQ(orient2d(o, x, y, 2), 1);  // z component of x × y
   EXPECT_EQ(orient2d(o, y, x, 2), -1);
 }
 
@@ -69,8 +69,8 @@ TEST(Predicates, PlaneSideAndPolygonOrientation) {
 }
 
 TEST(Predicates, AllCollinear) {
-  const std::vector<Vec3> v{{0, 0, 0}, {0, 0, 0}, {0.1, 0.1, 0.1}, {0.3, 0.3, 0.3},
-                            {0.3, 0.3, std::nextafter(0.3, 1.0)}};
+  const std::vector<Vec3> v{
+      {0, 0, 0}, {0, 0, 0}, {0.1, 0.1, 0.1}, {0.3, 0.3, 0.3}, {0.3, 0.3, std::nextafter(0.3, 1.0)}};
   EXPECT_TRUE(all_collinear(v, std::vector<uint32_t>{}));
   EXPECT_TRUE(all_collinear(v, std::vector<uint32_t>{0, 1}));
   EXPECT_TRUE(all_collinear(v, std::vector<uint32_t>{0, 1, 2, 3}));
@@ -89,15 +89,23 @@ TEST(Predicates, ExactFallbacksAgreeWithRationals) {
   std::uniform_real_distribution<double> unit(-1, 1);
   auto coordinate = [&](int k) {
     switch (k) {
-      case 0: return static_cast<double>(small(rng));
-      case 1: return small(rng) / 64.0;
-      case 2: return std::round(unit(rng) * 1000) / 1000;  // decimals: differences inexact at times
-      case 3: return unit(rng) * 1e-200;
-      case 4: return unit(rng) * 1e200;
-      default: return unit(rng) * std::ldexp(1.0, small(rng) * 8);
+      case 0:
+        return static_cast<double>(small(rng));
+      case 1:
+        return small(rng) / 64.0;
+      case 2:
+        return std::round(unit(rng) * 1000) / 1000;  // decimals: differences inexact at times
+      case 3:
+        return unit(rng) * 1e-200;
+      case 4:
+        return unit(rng) * 1e200;
+      default:
+        return unit(rng) * std::ldexp(1.0, small(rng) * 8);
     }
   };
-  auto nudge = [&](double v) { return small(rng) > 4 ? std::nextafter(v, small(rng) > 0 ? 1e308 : -1e308) : v; };
+  auto nudge = [&](double v) {
+    return small(rng) > 4 ? std::nextafter(v, small(rng) > 0 ? 1e308 : -1e308) : v;
+  };
   int zeros = 0, zeros2 = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     const int k = kind(rng);
@@ -107,7 +115,8 @@ TEST(Predicates, ExactFallbacksAgreeWithRationals) {
     for (int i = 0; i < 3; ++i) p[i] = {coordinate(k), coordinate(k), coordinate(k)};
     const double s = small(rng) / 4.0, t = small(rng) / 4.0;
     double q[3];
-    for (int a = 0; a < 3; ++a) q[a] = nudge(p[0][a] + s * (p[1][a] - p[0][a]) + t * (p[2][a] - p[0][a]));
+    for (int a = 0; a < 3; ++a)
+      q[a] = nudge(p[0][a] + s * (p[1][a] - p[0][a]) + t * (p[2][a] - p[0][a]));
     p[3] = {q[0], q[1], q[2]};
     Q m[3][3];
     for (int r = 0; r < 3; ++r)

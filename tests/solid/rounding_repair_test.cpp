@@ -107,7 +107,8 @@ TEST(RoundingRepair, NothingToRepairOrTooLongToCollapse) {
   // A real defect far above rounding scale (a vertex pulled through the opposite side of the
   // ball): left alone and reported.
   const auto t = before.face(5);
-  const Vec3 c = (1.0 / 3) * (before.vertices[t[0]] + before.vertices[t[1]] + before.vertices[t[2]]);
+  const Vec3 c =
+      (1.0 / 3) * (before.vertices[t[0]] + before.vertices[t[1]] + before.vertices[t[2]]);
   PolygonMesh dent = split_edge(before, t[0], t[1], -1.5 * c);
   ASSERT_TRUE(self_intersects(dent));
   std::vector<uint8_t> flags(dent.vertices.size(), 1);

@@ -44,17 +44,20 @@ TEST(Scene, TransformsComposeParentAfterChild) {
   // Child: scale 2 then translate x by 1 → [1,3]; parent: translate y by 10.
   const Solid s = parse(R"({"union": [{"box": {"min": [0,0,0], "max": [1,1,1]},
       "transform": {"scale": 2, "translate": [1,0,0]}}],
-      "transform": {"translate": [0,10,0]}})").solid;
+      "transform": {"translate": [0,10,0]}})")
+                      .solid;
   EXPECT_EQ(s.leaves[0].bbox.min, (Vec3{1, 10, 0}));
   EXPECT_EQ(s.leaves[0].bbox.max, (Vec3{3, 12, 2}));
   // T·R·S: rotate 90° about z then translate.
   const Solid r = parse(R"({"box": {"min": [0,0,0], "max": [2,1,1]},
-      "transform": {"rotate": {"axis": [0,0,1], "degrees": 90}, "translate": [5,0,0]}})").solid;
+      "transform": {"rotate": {"axis": [0,0,1], "degrees": 90}, "translate": [5,0,0]}})")
+                      .solid;
   EXPECT_NEAR(r.leaves[0].bbox.min.x, 4, 1e-15);
   EXPECT_NEAR(r.leaves[0].bbox.max.y, 2, 1e-15);
   // Row-major matrix.
   const Solid m = parse(R"({"box": {"min": [0,0,0], "max": [1,1,1]},
-      "transform": {"matrix": [1,0,0,7, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})").solid;
+      "transform": {"matrix": [1,0,0,7, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})")
+                      .solid;
   EXPECT_EQ(m.leaves[0].bbox.min, (Vec3{7, 0, 0}));
 }
 
@@ -69,8 +72,10 @@ TEST(Scene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(error_of(R"({"union": [{"box": {"min": [0,0,0], "max": [1,1,1]}},
       {"box": {"min": [0,0,0], "max": [1,1,1]}, "transform": {"scale": "big"}}]})"),
             "scene.json: /union/1/transform/scale: expected a number or 3 numbers");
-  EXPECT_EQ(error_of(R"({"union": []})"), "scene.json: /union: expected an array of one or more nodes");
-  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1]}})"), "scene.json: /box/max: expected 3 numbers");
+  EXPECT_EQ(error_of(R"({"union": []})"),
+            "scene.json: /union: expected an array of one or more nodes");
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1]}})"),
+            "scene.json: /box/max: expected 3 numbers");
   EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1], "colour": 1}})"),
             "scene.json: /box/colour: unknown key");
   EXPECT_EQ(error_of(R"({"sphere": {"center": [0,0,0], "radius": -1}})"),

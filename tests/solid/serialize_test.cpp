@@ -16,12 +16,16 @@ namespace cover {
 namespace {
 
 void expect_same(const Solid& a, const Solid& b) {
-  EXPECT_TRUE(std::equal(a.vertices.begin(), a.vertices.end(), b.vertices.begin(), b.vertices.end()));
-  EXPECT_TRUE(std::equal(a.face_start.begin(), a.face_start.end(), b.face_start.begin(), b.face_start.end()));
+  EXPECT_TRUE(
+      std::equal(a.vertices.begin(), a.vertices.end(), b.vertices.begin(), b.vertices.end()));
+  EXPECT_TRUE(std::equal(a.face_start.begin(), a.face_start.end(), b.face_start.begin(),
+                         b.face_start.end()));
   EXPECT_TRUE(std::equal(a.face_vertices.begin(), a.face_vertices.end(), b.face_vertices.begin(),
                          b.face_vertices.end()));
-  EXPECT_TRUE(std::equal(a.face_leaf.begin(), a.face_leaf.end(), b.face_leaf.begin(), b.face_leaf.end()));
-  EXPECT_TRUE(std::equal(a.face_sign.begin(), a.face_sign.end(), b.face_sign.begin(), b.face_sign.end()));
+  EXPECT_TRUE(
+      std::equal(a.face_leaf.begin(), a.face_leaf.end(), b.face_leaf.begin(), b.face_leaf.end()));
+  EXPECT_TRUE(
+      std::equal(a.face_sign.begin(), a.face_sign.end(), b.face_sign.begin(), b.face_sign.end()));
   ASSERT_EQ(a.leaves.size(), b.leaves.size());
   for (size_t l = 0; l < a.leaves.size(); ++l) {
     EXPECT_EQ(a.leaves[l].name, b.leaves[l].name);
@@ -74,7 +78,8 @@ TEST(Serialize, RandomDamageIsRefusedOrReadsAValidSolid) {
   for (int trial = 0; trial < 3000; ++trial) {
     std::string damaged = bytes;
     const int flips = 1 + static_cast<int>(rng() % 4);
-    for (int f = 0; f < flips; ++f) damaged[rng() % damaged.size()] ^= static_cast<char>(1 + rng() % 255);
+    for (int f = 0; f < flips; ++f)
+      damaged[rng() % damaged.size()] ^= static_cast<char>(1 + rng() % 255);
     try {
       const Solid s = solid_from_bytes(damaged);
       // Accepted: then it is internally consistent (re-serializes to the same bytes).
@@ -139,14 +144,16 @@ TEST(Serialize, ClosedLeafFlaggedOpenIsRefused) {
 TEST(Serialize, InsideOutClosedLeafIsRefused) {
   PolygonMesh m = unit_cube();
   for (size_t f = 0; f < m.face_count(); ++f)
-    std::reverse(m.face_vertices.begin() + m.face_start[f], m.face_vertices.begin() + m.face_start[f + 1]);
+    std::reverse(m.face_vertices.begin() + m.face_start[f],
+                 m.face_vertices.begin() + m.face_start[f + 1]);
   const std::string why = refusal(solid_to_bytes(raw_leaf(std::move(m))));
   EXPECT_NE(why.find("leaf 0 ('cube'): inside-out (signed volume -1"), std::string::npos) << why;
 }
 
 TEST(Serialize, InconsistentlyOrientedClosedLeafIsRefused) {
   PolygonMesh m = unit_cube();
-  std::reverse(m.face_vertices.begin() + m.face_start[3], m.face_vertices.begin() + m.face_start[4]);
+  std::reverse(m.face_vertices.begin() + m.face_start[3],
+               m.face_vertices.begin() + m.face_start[4]);
   const std::string why = refusal(solid_to_bytes(raw_leaf(std::move(m))));
   EXPECT_NE(why.find("is not traversed equally often in each direction"), std::string::npos) << why;
 }
@@ -155,8 +162,10 @@ TEST(Serialize, FaceSignsAgainstTheExpressionAreRefused) {
   // Leaf 1's faces reversed and their signs negated: its own orientation is unchanged, but the
   // union does not reverse it.
   Solid s = unite({make_leaf(unit_cube(), "a"), make_leaf(make_box({2, 0, 0}, {3, 1, 1}), "b")});
-  for (uint32_t f = s.leaves[1].first_face; f < s.leaves[1].first_face + s.leaves[1].face_count; ++f) {
-    std::reverse(s.face_vertices.begin() + s.face_start[f], s.face_vertices.begin() + s.face_start[f + 1]);
+  for (uint32_t f = s.leaves[1].first_face; f < s.leaves[1].first_face + s.leaves[1].face_count;
+       ++f) {
+    std::reverse(s.face_vertices.begin() + s.face_start[f],
+                 s.face_vertices.begin() + s.face_start[f + 1]);
     s.face_sign[f] = -1;
   }
   const std::string why = refusal(solid_to_bytes(s));

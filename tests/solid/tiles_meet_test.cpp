@@ -80,7 +80,8 @@ TEST(TilesMeet, CoplanarAndLiftedPairsAgreeWithCgalsExactTests) {
       const K::Point_3 a0(v[a[0]].x, v[a[0]].y, v[a[0]].z), a1(v[a[1]].x, v[a[1]].y, v[a[1]].z),
           a2(v[a[2]].x, v[a[2]].y, v[a[2]].z);
       bool flat = true;
-      for (uint32_t c : b) flat = flat && CGAL::coplanar(a0, a1, a2, K::Point_3(v[c].x, v[c].y, v[c].z));
+      for (uint32_t c : b)
+        flat = flat && CGAL::coplanar(a0, a1, a2, K::Point_3(v[c].x, v[c].y, v[c].z));
       coplanar_meeting += flat && expected;
     }
   EXPECT_GT(meeting, 1000);

@@ -62,8 +62,7 @@ TEST(TriangulateFace, NonConvexKeepsTheLoopOrientation) {
 
 TEST(TriangulateFace, HoleBehindFalseEdgesStaysEmpty) {
   // Outer square 0..3 (4×4), inner square 4..7 (clockwise), joined by the false edge 0–4.
-  const auto p =
-      planar({{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 1}, {1, 3}, {3, 3}, {3, 1}});
+  const auto p = planar({{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 1}, {1, 3}, {3, 3}, {3, 1}});
   Tris tris;
   EXPECT_EQ(triangulate_face(p, std::vector<uint32_t>{0, 1, 2, 3, 0, 4, 5, 6, 7, 4}, tris),
             FaceTiling::kSimple);
@@ -81,8 +80,7 @@ TEST(TriangulateFace, StarWindsTwiceAndIsFanned) {
     p.push_back({std::cos(a), std::sin(a), 0});
   }
   Tris tris;
-  EXPECT_EQ(triangulate_face(p, std::vector<uint32_t>{0, 1, 2, 3, 4}, tris),
-            FaceTiling::kWinding);
+  EXPECT_EQ(triangulate_face(p, std::vector<uint32_t>{0, 1, 2, 3, 4}, tris), FaceTiling::kWinding);
   EXPECT_EQ(tris, (Tris{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}}));
 }
 
