@@ -414,7 +414,9 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
 
 VoxelBounds Model::voxel_bounds(int n) const {
   const std::optional<Bbox> box = bounds();
-  if (!box) throw InputError("the result is unbounded (a complement at the root): give bounds");
+  if (!box)
+    throw InputError("the result is unbounded (a complement at the root): give " +
+                     parameter("bounds"));
   return default_voxel_bounds(!box->empty() ? *box : solid().bbox(), std::max(n, 3));
 }
 
@@ -425,7 +427,9 @@ VoxelLattice Model::voxel_lattice(const VoxelizeOptions& options) const {
                      std::to_string(kMaxVoxelDims) + ", got " + std::to_string(options.resolution));
   if (options.bounds) return cover::voxel_lattice(Bbox{}, options);
   const std::optional<Bbox> box = bounds();
-  if (!box) throw InputError("the result is unbounded (a complement at the root): give bounds");
+  if (!box)
+    throw InputError("the result is unbounded (a complement at the root): give " +
+                     parameter("bounds"));
   return cover::voxel_lattice(!box->empty() ? *box : solid().bbox(), options);
 }
 
@@ -592,7 +596,9 @@ ZarrResult Model::voxelize_to_zarr(const std::filesystem::path& path,
 }
 
 Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBounds>& bounds) const {
-  if (empty()) throw PreconditionError("octree of the empty Model");
+  // The empty set, as evaluate() and voxelize() answer it: an empty octree over the given cube
+  // (or the unit cube), built by the same kernel from a solid with no leaf.
+  if (empty()) return build_octree(Solid{}, bounds ? *bounds : VoxelBounds{{0, 0, 0}, 1}, options);
   const int depth = std::clamp(options.depth, 0, 30);
   const VoxelBounds b = bounds ? *bounds : voxel_bounds(1 << depth);
   OctreeOptions o = options;

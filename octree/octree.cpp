@@ -1198,8 +1198,21 @@ std::array<uint64_t, 3> Octree::leaf_counts() const {
   return counts;
 }
 
+namespace {
+/// The octree of a solid with no leaf, the empty set: the root alone, empty (as a cube that no
+/// leaf reaches gives).
+Octree empty_octree(const VoxelBounds& bounds, const OctreeOptions& options) {
+  Octree tree;
+  tree.bounds = bounds;
+  tree.depth = options.depth;
+  tree.nodes.push_back(Octree::Node{});
+  return tree;
+}
+}  // namespace
+
 Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options) {
   check_octree_request(solid, bounds, options);
+  if (solid.leaves.empty()) return empty_octree(bounds, options);
   const Bvh bvh(solid);
   return Builder(solid, bvh, bounds, options).run();
 }
@@ -1207,6 +1220,7 @@ Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeO
 Octree build_octree(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
                     const OctreeOptions& options) {
   check_octree_request(solid, bounds, options);
+  if (solid.leaves.empty()) return empty_octree(bounds, options);
   return Builder(solid, bvh, bounds, options).run();
 }
 

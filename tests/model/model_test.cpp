@@ -559,6 +559,14 @@ TEST(Model, EmptyModelIsTheEmptySet) {
   EXPECT_EQ(empty.volume().volume, 0);
   EXPECT_EQ(empty.classify(std::vector<Vec3>{{0, 0, 0}})[0], PointClass::kOutside);
   EXPECT_EQ(empty.evaluate().mesh.face_count(), 0u);
+  EXPECT_EQ(empty.voxelize({.resolution = 4}).count(), 0u);
+  // The octree of the empty set: every node empty, as a cube far from a box gives.
+  const Octree none = empty.octree({.depth = 3}, VoxelBounds{{5, 5, 5}, 1});
+  const Octree far = b.octree({.depth = 3}, VoxelBounds{{5, 5, 5}, 1});
+  ASSERT_FALSE(none.nodes.empty());
+  EXPECT_EQ(none.nodes.size(), far.nodes.size());
+  for (const Octree::Node& node : none.nodes) EXPECT_EQ(node.state, CellState::kEmpty);
+  EXPECT_EQ(empty.octree({.depth = 2}).nodes.size(), 1u);
   EXPECT_THROW(~empty, PreconditionError);
 }
 
