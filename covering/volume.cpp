@@ -135,7 +135,7 @@ double covering_volume(const Solid& s) {
 
 std::optional<std::string> covering_inexact_reason(const Solid& s) {
   std::vector<uint32_t> leaves;
-  if (empty_intersection(s, s.tree.root)) return std::nullopt;
+  if (s.tree.nodes.empty() || empty_intersection(s, s.tree.root)) return std::nullopt;
   return collect(s, s.tree.root, leaves);
 }
 
@@ -146,7 +146,7 @@ VolumeResult volume_with(const Solid& s, const Bvh* bvh, const VolumeOptions& op
   if (!is_bounded(s)) throw NotComputable("the result is unbounded (a complement at the root)");
   VolumeResult r;
   r.method = "covering";
-  if (empty_intersection(s, s.tree.root)) {
+  if (s.tree.nodes.empty() || empty_intersection(s, s.tree.root)) {  // no leaf: the empty set
     r.volume = 0;
     r.area = 0;
     return r;

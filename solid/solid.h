@@ -39,8 +39,11 @@ struct CsgTree {
   std::vector<CsgNode> nodes;
   uint32_t root = 0;
 
-  /// Evaluates membership given each leaf's membership (inside[leaf]).
-  bool evaluate(std::span<const uint8_t> inside) const { return evaluate(root, inside); }
+  /// Evaluates membership given each leaf's membership (inside[leaf]). A tree with no node (the
+  /// Solid with no leaf) is the empty set: false.
+  bool evaluate(std::span<const uint8_t> inside) const {
+    return !nodes.empty() && evaluate(root, inside);
+  }
   bool evaluate(uint32_t node, std::span<const uint8_t> inside) const;
   /// evaluate() for every set of inside leaves among `leaves` (bit l of the index: leaf l
   /// inside), 2^leaves entries: a sweep looks a winding mask up instead of walking the tree.

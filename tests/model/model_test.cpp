@@ -632,5 +632,36 @@ TEST(Model, ParameterErrorsNameTheOptionsField) {
             "--x and --y_z: both");
 }
 
+// The free functions answer a Solid with no leaf (the empty set) as the Model does, without
+// reading its empty CSG tree.
+TEST(FreeFunctions, SolidWithNoLeafIsTheEmptySet) {
+  const Solid none;
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 2, 3}};
+  EXPECT_EQ(classify(none, points),
+            (std::vector<PointClass>{PointClass::kOutside, PointClass::kOutside}));
+  EXPECT_EQ(classify_brute_force(none, points), classify(none, points));
+  EXPECT_EQ(covering_volume(none), 0.0);
+  EXPECT_EQ(covering_inexact_reason(none), std::nullopt);
+  const std::vector<Ray> rays = {{{-1, 0.5, 0.5}, {1, 0, 0}}};
+  const std::vector<RayResult> hits = cast(Bvh(none), none, rays);
+  ASSERT_EQ(hits.size(), 1u);
+  EXPECT_TRUE(hits[0].hits.empty());
+  EXPECT_TRUE(hits[0].spans.empty());
+  EXPECT_EQ(leaf_windings(none, Bvh(none), points).leaves, 0u);
+  EXPECT_EQ(volume(none).volume, 0.0);
+  EXPECT_TRUE(is_bounded(none));
+  VoxelizeOptions vo;
+  vo.resolution = 4;
+  vo.bounds = VoxelBounds{{0, 0, 0}, 1};
+  EXPECT_EQ(voxelize(none, vo).count(), 0u);
+  EXPECT_EQ(evaluate(none).mesh.face_count(), 0u);
+  CameraOptions co;
+  co.width = 8;
+  co.height = 6;
+  const Camera cam = frame_camera(Bbox{{0, 0, 0}, {1, 1, 1}}, co);
+  const Image img = render(none, nullptr, cam, {});
+  for (uint16_t id : img.ids) EXPECT_EQ(id, Image::kBackgroundId);
+}
+
 }  // namespace
 }  // namespace cover
