@@ -14,26 +14,26 @@
 #include "cover/cli/output.h"
 #include "cover/cli/points.h"
 #include "cover/covering/bounds.h"
+#include "cover/model/info.h"
 #include "cover/raster/png.h"
 #include "cover/solid/atomic_file.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/memory_limit.h"
-#include "cover/solid/repair.h"
 #include "cover/solid/scene.h"
-#include "cover/solid/validate.h"
 
 namespace cover::cli {
 namespace {
 
 using nlohmann::json;
 
-json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
-  const Leaf& leaf = s.leaves[l];
+/// One leaf of `cover info --json` (docs/cli.md "info").
+json leaf_json(const LeafInfo& leaf) {
+  const MeshReport& r = leaf.report;
   json j;
   j["name"] = leaf.name;
   if (!leaf.origin.empty()) j["origin"] = leaf.origin;
-  j["vertices"] = leaf.vertex_count;
-  j["faces"] = leaf.face_count;
+  j["vertices"] = leaf.vertices;
+  j["faces"] = leaf.faces;
   j["closed"] = r.closed;
   j["manifold"] = r.manifold;
   j["oriented"] = r.oriented;
@@ -47,20 +47,23 @@ json leaf_json(const Solid& s, uint32_t l, const MeshReport& r) {
   j["self_touching"] = r.self_touching ? json(*r.self_touching) : json(nullptr);
   j["volume"] = r.volume;
   j["bbox"] = to_json(leaf.bbox);
-  return j;
-}
-
-/// The half-edge kernel's view of a leaf (brep/halfedge.h): null when the faces do not form an
-/// oriented surface (an edge used twice in one direction, a face with < 3 vertices).
-json brep_json(const PolygonMesh& mesh) {
-  try {
-    const brep::BrepReport r = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(mesh));
-    return {{"closed", r.closed},         {"manifold", r.manifold},
-            {"euler", r.euler},           {"genus", r.genus >= 0 ? json(r.genus) : json(nullptr)},
-            {"components", r.components}, {"boundary_loops", r.boundary_loops}};
-  } catch (const InputError&) {
-    return nullptr;
+  if (leaf.brep) {
+    const brep::BrepReport& b = *leaf.brep;
+    j["brep"] = {
+        {"closed", b.closed},         {"manifold", b.manifold},
+        {"euler", b.euler},           {"genus", b.genus >= 0 ? json(b.genus) : json(nullptr)},
+        {"components", b.components}, {"boundary_loops", b.boundary_loops}};
+  } else {
+    j["brep"] = nullptr;
   }
+  const RepairReport& rr = leaf.repair;
+  j["repair"] = {{"welded_vertices", rr.welded_vertices},
+                 {"zero_area_faces", rr.zero_area_faces},
+                 {"boundary_edges", rr.boundary_edges},
+                 {"edges", rr.edges}};
+  j["rule"] = rr.rule();
+  j["boundary_edge_fraction"] = rr.boundary_edge_fraction();
+  return j;
 }
 
 json camera_json(const Camera& c) {
@@ -111,30 +114,15 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
   const Model model = load_model(o.input, lo);
   const Solid& s = model.solid();
   timing.lap(Timing::kLoad);
+  const ModelInfo facts = info(model, {.check_self_intersection = o.check_self_intersection});
   json j;
   j["input"] = o.input;
-  j["vertices"] = s.vertices.size();
-  j["faces"] = s.face_count();
-  j["leaves"] = s.leaves.size();
-  j["bbox"] = to_json(s.bbox());
+  j["vertices"] = facts.vertices;
+  j["faces"] = facts.faces;
+  j["leaves"] = facts.leaves.size();
+  j["bbox"] = to_json(facts.bbox);
   j["leaves_info"] = json::array();
-  ValidateOptions vo;
-  vo.check_self_intersection = o.check_self_intersection;
-  for (uint32_t l = 0; l < s.leaves.size(); ++l) {
-    const PolygonMesh mesh = leaf_mesh(s, l);
-    const MeshReport report = validate_mesh(mesh, vo);
-    json leaf = leaf_json(s, l, report);
-    leaf["brep"] = brep_json(mesh);
-    // What loading repairs (solid/repair.h: open leaves only) and the rule the leaf then gets.
-    const RepairReport rr = repair_report(mesh, report);
-    leaf["repair"] = {{"welded_vertices", rr.welded_vertices},
-                      {"zero_area_faces", rr.zero_area_faces},
-                      {"boundary_edges", rr.boundary_edges},
-                      {"edges", rr.edges}};
-    leaf["rule"] = rr.rule();
-    leaf["boundary_edge_fraction"] = rr.boundary_edge_fraction();
-    j["leaves_info"].push_back(std::move(leaf));
-  }
+  for (const LeafInfo& leaf : facts.leaves) j["leaves_info"].push_back(leaf_json(leaf));
   timing.lap(Timing::kKernel);
   timing.put(j);
   if (common.json) {

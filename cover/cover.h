@@ -20,6 +20,7 @@
 #include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
+#include "cover/model/info.h"
 #include "cover/model/model.h"
 #include "cover/octree/octree.h"
 #include "cover/octree/octree_io.h"

@@ -15,6 +15,7 @@
 
 #include "arrays.h"
 #include "cover/brep/halfedge.h"
+#include "cover/model/info.h"
 #include "cover/model/model.h"
 #include "cover/solid/repair.h"
 #include "cover/solid/validate.h"
@@ -404,41 +405,28 @@ py::object bbox_list(const Bbox& b) {
   return box;
 }
 
-py::object brep_dict(const PolygonMesh& mesh) {
-  try {
-    const brep::BrepReport r = brep::validate(brep::HalfedgeMesh::from_polygon_mesh(mesh));
-    return py::dict("closed"_a = r.closed, "manifold"_a = r.manifold, "euler"_a = r.euler,
-                    "genus"_a = r.genus >= 0 ? py::object(py::int_(r.genus)) : py::none(),
-                    "components"_a = r.components, "boundary_loops"_a = r.boundary_loops);
-  } catch (const InputError&) {
-    return py::none();
-  }
+py::object brep_dict(const std::optional<brep::BrepReport>& brep) {
+  if (!brep) return py::none();
+  const brep::BrepReport& r = *brep;
+  return py::dict("closed"_a = r.closed, "manifold"_a = r.manifold, "euler"_a = r.euler,
+                  "genus"_a = r.genus >= 0 ? py::object(py::int_(r.genus)) : py::none(),
+                  "components"_a = r.components, "boundary_loops"_a = r.boundary_loops);
 }
 
+/// Model.info: cover::info (model/info.h) as the dict of `cover info --json`.
 py::dict info_dict(const Model& model, bool self_intersection) {
-  const Solid& s = model.solid();
-  struct LeafReport {
-    PolygonMesh mesh;
-    MeshReport report;
-  };
-  std::vector<LeafReport> reports(s.leaves.size());
+  ModelInfo facts;
   {
     KernelScope scope(std::nullopt);
-    ValidateOptions vo;
-    vo.check_self_intersection = self_intersection;
-    for (uint32_t l = 0; l < s.leaves.size(); ++l) {
-      reports[l].mesh = leaf_mesh(s, l);
-      reports[l].report = validate_mesh(reports[l].mesh, vo);
-    }
+    facts = info(model, {.check_self_intersection = self_intersection});
   }
   py::list leaves;
-  for (uint32_t l = 0; l < s.leaves.size(); ++l) {
-    const Leaf& leaf = s.leaves[l];
-    const MeshReport& r = reports[l].report;
+  for (const LeafInfo& leaf : facts.leaves) {
+    const MeshReport& r = leaf.report;
     py::dict d("name"_a = leaf.name);
     if (!leaf.origin.empty()) d["origin"] = leaf.origin;
-    d["vertices"] = leaf.vertex_count;
-    d["faces"] = leaf.face_count;
+    d["vertices"] = leaf.vertices;
+    d["faces"] = leaf.faces;
     d["closed"] = r.closed;
     d["manifold"] = r.manifold;
     d["oriented"] = r.oriented;
@@ -453,8 +441,8 @@ py::dict info_dict(const Model& model, bool self_intersection) {
     d["self_touching"] = r.self_touching ? py::object(py::bool_(*r.self_touching)) : py::none();
     d["volume"] = r.volume;
     d["bbox"] = bbox_list(leaf.bbox);
-    d["brep"] = brep_dict(reports[l].mesh);
-    const RepairReport rr = repair_report(reports[l].mesh, r);
+    d["brep"] = brep_dict(leaf.brep);
+    const RepairReport& rr = leaf.repair;
     d["repair"] =
         py::dict("welded_vertices"_a = rr.welded_vertices, "zero_area_faces"_a = rr.zero_area_faces,
                  "boundary_edges"_a = rr.boundary_edges, "edges"_a = rr.edges);
@@ -462,8 +450,8 @@ py::dict info_dict(const Model& model, bool self_intersection) {
     d["boundary_edge_fraction"] = rr.boundary_edge_fraction();
     leaves.append(d);
   }
-  return py::dict("vertices"_a = s.vertices.size(), "faces"_a = s.face_count(),
-                  "leaves"_a = s.leaves.size(), "bbox"_a = bbox_list(s.bbox()),
+  return py::dict("vertices"_a = facts.vertices, "faces"_a = facts.faces,
+                  "leaves"_a = facts.leaves.size(), "bbox"_a = bbox_list(facts.bbox),
                   "leaves_info"_a = leaves);
 }
 

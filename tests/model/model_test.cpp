@@ -13,6 +13,7 @@
 #include "cover/covering/bounds.h"
 #include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
+#include "cover/model/info.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/primitives.h"
@@ -661,6 +662,34 @@ TEST(FreeFunctions, SolidWithNoLeafIsTheEmptySet) {
   const Camera cam = frame_camera(Bbox{{0, 0, 0}, {1, 1, 1}}, co);
   const Image img = render(none, nullptr, cam, {});
   for (uint16_t id : img.ids) EXPECT_EQ(id, Image::kBackgroundId);
+}
+
+// cover::info (what `cover info` and Model.info print) against the kernels it summarises,
+// leaf by leaf: validate_mesh, the half-edge kernel and the exact covering volume.
+TEST(Info, EachLeafAgreesWithValidateAndTheHalfEdgeKernel) {
+  const Model m = part();  // (box − sphere) ∪ bar: three closed leaves
+  const ModelInfo facts = info(m);
+  const Solid& s = m.solid();
+  ASSERT_EQ(facts.leaves.size(), s.leaves.size());
+  EXPECT_EQ(facts.vertices, s.vertices.size());
+  EXPECT_EQ(facts.faces, s.face_count());
+  for (uint32_t l = 0; l < s.leaves.size(); ++l) {
+    const LeafInfo& leaf = facts.leaves[l];
+    const PolygonMesh mesh = leaf_mesh(s, l);
+    const MeshReport r = validate_mesh(mesh);
+    EXPECT_EQ(leaf.name, s.leaves[l].name);
+    EXPECT_TRUE(leaf.report.closed && leaf.report.manifold && leaf.report.outward);
+    EXPECT_EQ(leaf.report.genus, r.genus);
+    EXPECT_EQ(leaf.report.volume, r.volume);
+    EXPECT_EQ(leaf.report.self_intersecting, std::optional<bool>(false));
+    ASSERT_TRUE(leaf.brep.has_value());
+    EXPECT_EQ(leaf.brep->euler, 2);  // box, sphere, bar: genus 0
+    EXPECT_EQ(leaf.brep->genus, 0);
+    EXPECT_FALSE(leaf.repair.open());
+  }
+  EXPECT_EQ(info(m, {.check_self_intersection = false}).leaves[0].report.self_intersecting,
+            std::nullopt);
+  EXPECT_TRUE(info(Model()).leaves.empty());
 }
 
 }  // namespace
