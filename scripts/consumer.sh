@@ -33,6 +33,13 @@ expected=$'volume 7.10966\ninside\noutside\nface\nvertex\n3206 faces, volume 22.
 if grep -rqE '#include "(solid|covering|boolean|brep|raster|octree|model)/' "$prefix/include/cover"; then
   echo "consumer: an installed header includes another without the cover/ prefix"; exit 1
 fi
+# Every installed header includes only installed headers (the internals stay in the tree).
+for h in $(cd "$prefix/include" && find cover -name '*.h'); do
+  for inc in $(grep -oE '#include "cover/[^"]+"' "$prefix/include/$h" | sed -E 's/#include "(.*)"/\1/'); do
+    [ -f "$prefix/include/$inc" ] || { echo "consumer: installed $h includes $inc, not installed"; exit 1; }
+  done
+done
+echo "consumer: $(cd "$prefix/include" && find cover -name '*.h' | wc -l) installed headers"
 # No Cover definition of a C library or C++ runtime symbol reaches the consumer: Cover's own
 # pthread_once (solid/call_once.cpp) stays in Cover's programs, so the consumer's std::call_once
 # binds to the C library's, and the consumer defines no pthread_, malloc/free or operator new.

@@ -301,8 +301,8 @@ TEST(Decompose, BoxWithACavity) {
 
 // An L-shaped block with a spherical cavity away from its notch. With one candidate edge per cut,
 // the planes through the notch (the most reflex edge) miss the cavity, which is then a separate
-// inward component of one half: it stays with the component around it (such a cut used to be
-// invalid, leaving the block uncut for the slow whole-shell fallback).
+// inward component of one half: it stays with the component around it, so the cut is valid
+// and the block does not fall back to the slow whole-shell path.
 TEST(Decompose, ACavityStaysWithItsShellWhenACutMissesIt) {
   const Model m =
       (box({0, 0, 0}, {4, 1, 1}) | box({0, 0, 0}, {1, 4, 1})) - sphere({3.25, 0.5, 0.5}, 0.3, 12);
@@ -352,15 +352,15 @@ TEST(Decompose, PiecesAreConvexAsWritten) {
   }
 }
 
-// A box minus a cylinder united with a torus (its evaluated result used to crash the cap).
+// A box minus a cylinder united with a torus (its evaluated result stresses the cap).
 TEST(Decompose, BoxMinusCylinderUnionTorus) {
   const Model torus = load(source_dir() / "models" / "torus.off");
   const Model m = (box({-3, -3, -1}, {3, 3, 1}) - cylinder({0, 0, -2}, {0, 0, 2}, 1, 32)) | torus;
   expect_valid_decomposition(m.decompose(), m.evaluate().volume, "box - cylinder | torus");
 }
 
-// The README's part: rounding leaves a piece non-convex, which the exact fallback redoes (it
-// used to be refused). Slow (Nef polyhedra): not in the checked build.
+// The README's part: rounding leaves a piece non-convex, which the exact fallback redoes rather
+// than refusing. Slow (Nef polyhedra): not in the checked build.
 TEST(Decompose, ReadmePartUsesTheExactFallback) {
 #ifdef COVER_SANITIZED
   GTEST_SKIP() << "slow under sanitizers";
@@ -403,8 +403,8 @@ TEST(Decompose, ANonConvexPieceIsRedoneAloneNotWithItsShell) {
 #endif
 }
 
-// libcgal-demo meshes that used to crash (cheese: the rounded cap triangulation) or end in an
-// internal error (fandisk). Minutes each in Release (cheese: 9,750 pieces, 146 s on 2 cores),
+// libcgal-demo meshes that stress the rounded cap triangulation (cheese) and the internal
+// invariants (fandisk). Minutes each in Release (cheese: 9,750 pieces, 146 s on 2 cores),
 // so outside the suite: run it with --gtest_also_run_disabled_tests (ctest lists it as
 // disabled).
 TEST(Decompose, DISABLED_CheeseAndFandisk) {

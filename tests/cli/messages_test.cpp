@@ -50,7 +50,7 @@ class CliMessages : public ::testing::Test {
 };
 
 TEST_F(CliMessages, RenderRefusesUnknownExtension) {
-  // PNG bytes used to be written to any name.
+  // PNG bytes are written only to a .png name.
   for (const std::string name : {"pic.jpg", "pic"}) {
     const auto r = run_cover("render " + box() + " --size 16x12 -o " + q(dir_ / name));
     expect_error_with(r,
@@ -153,7 +153,7 @@ TEST_F(CliMessages, ErrorsNameTheFile) {
                    R"({"complement": {"box": {"min": [0,0,0], "max": [1,1,1]}}})");
   const std::string comp = (dir_ / "comp.json").string();
   expect_error_with(run_cover("volume " + q(comp)), {comp + ": the result is unbounded"});
-  // clip: an unbounded solid used to be clipped as if it were its leaf (exit 0).
+  // clip: an unbounded solid is refused, not clipped as if it were its leaf.
   expect_error_with(run_cover("clip " + q(comp) + " --plane 0,0,1,0.5 -o " + q(dir_ / "a.off")),
                     {comp + ": the result is unbounded"});
   test::write_file(dir_ / "cut.json",
@@ -221,7 +221,8 @@ TEST_F(CliMessages, OptionMessages) {
 }
 
 TEST_F(CliMessages, OctreeTouchingCellsEmpty) {
-  // Cells beside a box face used to be partial (occupancy 0 or 1) down to the maximum depth.
+  // Cells beside a box face are empty or full where they touch it, not partial (occupancy 0
+  // or 1) down to the maximum depth.
   const auto r = run_cover("octree " + box() + " --depth 4 --bounds -1,-1,-1,4 --json -o " +
                            q(dir_ / "o.json"));
   ASSERT_EQ(r.status, 0) << r.err;

@@ -1115,8 +1115,8 @@ TEST_F(OctreeFiles, ErrorsNameTheFileAndLeaveNothingBehind) {
             1);
 }
 
-// A solid with no leaf (the empty set) gives the root alone, empty, with or without a BVH; it
-// used to read past the end of the empty CSG tree.
+// A solid with no leaf (the empty set) gives the root alone, empty, with or without a BVH,
+// without reading its empty CSG tree.
 TEST(Octree, SolidWithNoLeafIsOneEmptyRoot) {
   const Solid none;
   const VoxelBounds cube{{-1, -1, -1}, 2};

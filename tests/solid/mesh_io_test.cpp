@@ -851,8 +851,8 @@ TEST(MeshIoTest, BinaryStlTrailingBytesWarns) {
 }
 
 TEST(MeshIoTest, NumberRuleSameInEveryReader) {
-  // A leading '+' and an underflowing literal (→ 0) are accepted everywhere; 1e-400 used to be
-  // refused as out of range. Overflow is "out-of-range <axis> coordinate" in every format.
+  // A leading '+' and an underflowing literal (1e-400 → 0) are accepted everywhere, not refused
+  // as out of range. Overflow is "out-of-range <axis> coordinate" in every format.
   const PolygonMesh off = cover::read_mesh(data_file("plus_and_underflow.off"));
   expect_tetrahedron(off);
   EXPECT_EQ(off.vertices[0], (Vec3{0, 0, 0}));
