@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
     cover::ThreadLimit limit(1);
     const auto t5 = Clock::now();
     const cover::Bvh bvh(solid);
-    const std::vector<cover::RayResult> all = cover::cast(bvh, solid, rays);
+    const std::vector<cover::RayResult> all = cover::cast(solid, bvh, rays);
     for (size_t i = 0; i < rays.size(); ++i) {
       const auto f = cover::first_hit(bvh, all[i]);
       batch_disagree += (f.hit ? f.t : -1) != t_ours[i];

@@ -454,7 +454,7 @@ FirstHit first_hit(const Bvh& bvh, const RayResult& result) {
   return f;
 }
 
-std::vector<RayResult> cast(const Bvh& bvh, const Solid& solid, std::span<const Ray> rays,
+std::vector<RayResult> cast(const Solid& solid, const Bvh& bvh, std::span<const Ray> rays,
                             const CastOptions& options) {
   std::vector<RayResult> out(rays.size());
   if (bvh.nodes().empty()) return out;

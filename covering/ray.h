@@ -106,7 +106,7 @@ void open_spans(RayResult& result, const Solid& solid, const GwnForest& forest, 
 /// Casts many rays in parallel; results[i] belongs to rays[i]. Open leaves: open_spans().
 /// \pre every ray has a finite origin and a finite, non-zero direction
 /// (Model::cast checks).
-std::vector<RayResult> cast(const Bvh& bvh, const Solid& solid, std::span<const Ray> rays,
+std::vector<RayResult> cast(const Solid& solid, const Bvh& bvh, std::span<const Ray> rays,
                             const CastOptions& options = {});
 
 }  // namespace cover

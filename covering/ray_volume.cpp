@@ -282,7 +282,7 @@ RayVolume ray_volume(const Solid& s, const Bvh& bvh, const Bbox& box,
         rays.push_back(ray_at(next[i].u0 + 0.5 * next[i].side, next[i].v0 + 0.5 * next[i].side));
         ray_cell.push_back(i);
       }
-    const std::vector<RayResult> results = cast(bvh, s, rays);
+    const std::vector<RayResult> results = cast(s, bvh, rays);
     out.rays += rays.size();
     std::vector<double> value(next.size(), 0);
     for (size_t r = 0; r < results.size(); ++r) {

@@ -354,7 +354,7 @@ std::vector<RayResult> Model::cast(std::span<const Ray> rays, const CastOptions&
   if (empty()) return std::vector<RayResult>(rays.size());
   CastOptions o = options;
   if (o.gwn == nullptr) o.gwn = gwn();
-  return cover::cast(bvh(), solid(), rays, o);
+  return cover::cast(solid(), bvh(), rays, o);
 }
 
 std::vector<FirstHit> Model::first_hits(std::span<const Ray> rays,

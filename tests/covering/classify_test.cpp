@@ -202,7 +202,7 @@ TEST(Classify, TetrahedronWholeBvhIsOneLeaf) {
   // Rays: the batch cast() walks the same one-leaf tree.
   std::vector<Ray> rays;
   for (int i = 0; i < 40; ++i) rays.push_back({{-1, 0.02 * i, 0.1}, {1, 0.01 * i, 0.05}});
-  const std::vector<RayResult> batch = cast(bvh, s, rays);
+  const std::vector<RayResult> batch = cast(s, bvh, rays);
   for (size_t i = 0; i < rays.size(); ++i) {
     const RayResult single = cast_depth_first(bvh, s.tree, s.leaves.size(), rays[i]);
     ASSERT_EQ(batch[i].hits.size(), single.hits.size()) << i;

@@ -164,7 +164,7 @@ TEST(RandomCsg, BatchCastEqualsSingleRays) {
     }
     for (const size_t grain : {size_t{0}, size_t{1}, size_t{97}, size_t{256}}) {
       const std::vector<RayResult> batch =
-          grain == 0 ? single : cast(bvh, s, rays, CastOptions{grain});
+          grain == 0 ? single : cast(s, bvh, rays, CastOptions{grain});
       ASSERT_EQ(batch.size(), rays.size());
       for (size_t i = 0; i < rays.size(); ++i) {
         const RayResult& one = want[i];

@@ -85,7 +85,7 @@ TEST(Ray, BatchSingleAndDepthFirstAgree) {
   std::uniform_real_distribution<double> u(-2, 2);
   std::vector<Ray> rays;
   for (int i = 0; i < 500; ++i) rays.push_back({{u(rng), u(rng), -3}, {u(rng), u(rng), 1}});
-  const std::vector<RayResult> batch = cast(bvh, s, rays, CastOptions{64});
+  const std::vector<RayResult> batch = cast(s, bvh, rays, CastOptions{64});
   for (size_t i = 0; i < rays.size(); ++i) {
     const RayResult single = cast(bvh, s.tree, s.leaves.size(), rays[i]);
     const RayResult depth = cast_depth_first(bvh, s.tree, s.leaves.size(), rays[i]);

@@ -362,7 +362,7 @@ TEST(Model, CastAndFirstHitsEqualTheKernel) {
   for (const Vec3& o : random_points(500, -1, 4, 5)) rays.push_back({o, {1, 0.25, 0.125}});
   const std::vector<RayResult> all = m.cast(rays);
   const Bvh bvh(m.solid());
-  const std::vector<RayResult> direct = cast(bvh, m.solid(), rays);
+  const std::vector<RayResult> direct = cast(m.solid(), bvh, rays);
   const std::vector<FirstHit> first = m.first_hits(rays);
   ASSERT_EQ(all.size(), rays.size());
   size_t hits = 0;
@@ -644,7 +644,7 @@ TEST(FreeFunctions, SolidWithNoLeafIsTheEmptySet) {
   EXPECT_EQ(covering_volume(none), 0.0);
   EXPECT_EQ(covering_inexact_reason(none), std::nullopt);
   const std::vector<Ray> rays = {{{-1, 0.5, 0.5}, {1, 0, 0}}};
-  const std::vector<RayResult> hits = cast(Bvh(none), none, rays);
+  const std::vector<RayResult> hits = cast(none, Bvh(none), rays);
   ASSERT_EQ(hits.size(), 1u);
   EXPECT_TRUE(hits[0].hits.empty());
   EXPECT_TRUE(hits[0].spans.empty());
