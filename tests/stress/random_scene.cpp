@@ -37,7 +37,9 @@ std::string vec(double x, double y, double z) {
 /// A random unit-ish axis (never zero).
 Vec3 axis(Draw& d) {
   for (;;) {
-    const Vec3 a{d.real(-1, 1), d.real(-1, 1), d.real(-1, 1)};
+    // z, y, x: the order every recorded seed's scene was drawn in.
+    const double z = d.real(-1, 1), y = d.real(-1, 1), x = d.real(-1, 1);
+    const Vec3 a{x, y, z};
     if (std::sqrt(dot(a, a)) > 0.1) return a;
   }
 }
@@ -75,9 +77,11 @@ Leaf mesh_leaf(Draw& d, const MeshEntry& m) {
   Vec3 scale{2 * size / ext, 2 * size / ext, 2 * size / ext};
   if (d.chance(1, 3))  // a braced list is evaluated left to right: x, y, z draw in order
     scale = {scale.x * d.real(0.6, 1.4), scale.y * d.real(0.6, 1.4), scale.z * d.real(0.6, 1.4)};
-  const Vec3 centre{d.real(-0.5, 0.5), d.real(-0.5, 0.5), d.real(-0.5, 0.5)};
-  const Transform matrix = Transform::trs(scale, axis(d), d.real(0, 360), centre) *
-                           Transform::translation({-c.x, -c.y, -c.z});
+  const double cz = d.real(-0.5, 0.5), cy = d.real(-0.5, 0.5), cx = d.real(-0.5, 0.5);
+  const Vec3 centre{cx, cy, cz};          // drawn z, y, x (as above)
+  const double degrees = d.real(0, 360);  // before the axis, as every recorded seed drew them
+  const Transform matrix =
+      Transform::trs(scale, axis(d), degrees, centre) * Transform::translation({-c.x, -c.y, -c.z});
   std::string json = "{\"mesh\": \"" + m.path.string() + "\", \"transform\": {\"matrix\": [";
   for (int i = 0; i < 16; ++i)
     json += (i ? ", " : "") + num(i < 12 ? matrix.rows[i / 4][i % 4] : (i == 15 ? 1.0 : 0.0));
