@@ -90,16 +90,17 @@ std::optional<json> clipped_node(const CsgTree& tree, uint32_t node,
 /// `where`: the input file, and a leaf's JSON path in a scene.
 template <typename Clip>
 brep::ClipResult clip_named(Clip&& clip, const std::string& where) {
-  const auto named = [&](const char* what) {  // once: a leaf's own message may start with it
-    return std::string_view(what).starts_with(where + ": ") ? std::string(what)
-                                                            : where + ": " + what;
+  const std::string prefix = where + ": ";
+  // Once: a leaf's own message may already start with it.
+  const auto named = [&](const std::exception& e) {
+    return std::string_view(e.what()).starts_with(prefix);
   };
   try {
     return clip();
   } catch (const InputError& e) {
-    throw std::string_view(e.what()).starts_with(where + ": ") ? e : e.prefixed(where + ": ");
+    throw named(e) ? e : e.prefixed(prefix);
   } catch (const NotComputable& e) {
-    throw NotComputable(named(e.what()));
+    throw named(e) ? e : NotComputable(prefix + e.what());
   }
 }
 
