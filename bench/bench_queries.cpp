@@ -79,7 +79,7 @@ void BM_BvhBuild(benchmark::State& state) {  // NOLINT(readability-identifier-na
 }
 
 /// Nodes a depth-first walk tests when `meets` decides which nodes it enters (each node reached
-/// is tested once, as in covering/detail/bvh_walk.h's walk and walk_batch).
+/// is tested once, as in covering/bvh_walk.h's walk and walk_batch).
 template <typename Meets>
 size_t nodes_tested(const cover::Bvh& bvh, Meets&& meets) {
   size_t tested = 0;

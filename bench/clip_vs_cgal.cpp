@@ -23,8 +23,8 @@
 
 #include "bench_cli.h"
 #include "cover/brep/clip.h"
+#include "cover/io/mesh_io.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/mesh_io.h"
 #include "cover/solid/parallel.h"
 
 namespace {

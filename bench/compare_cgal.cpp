@@ -21,8 +21,8 @@
 #include "cgal_query_types.h"
 #include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
+#include "cover/io/scene.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/scene.h"
 
 namespace {
 

@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "cover/brep/decompose.h"
+#include "cover/io/mesh_io.h"
+#include "cover/mesh/triangulate.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/mesh_io.h"
-#include "cover/solid/triangulate.h"
 #include "cover/solid/union_find.h"
 
 namespace {

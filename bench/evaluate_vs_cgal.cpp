@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "cover/boolean/evaluate.h"
-#include "cover/solid/mesh_io.h"
+#include "cover/io/mesh_io.h"
 #include "cover/solid/transform.h"
 
 namespace {

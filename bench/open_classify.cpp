@@ -19,8 +19,8 @@
 #include "bench_models.h"
 #include "cover/covering/classify.h"
 #include "cover/covering/gwn.h"
+#include "cover/io/scene.h"
 #include "cover/model/model.h"
-#include "cover/solid/scene.h"
 
 namespace {
 

@@ -20,10 +20,10 @@
 #include "cover/cli/points.h"
 #include "cover/covering/bvh.h"
 #include "cover/covering/classify.h"
+#include "cover/io/npy.h"
+#include "cover/io/scene.h"
 #include "cover/solid/memory_limit.h"
-#include "cover/solid/npy.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/scene.h"
 
 namespace {
 

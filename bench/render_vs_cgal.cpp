@@ -3,7 +3,7 @@
 // process on the same machine:
 //   Cover: make_leaf + CSG concatenation + render() (iso orthographic camera framed on
 //          result_bounds, 1024×1024, 2 threads; the BVH only where the render walks one: not for
-//          this view, raster/object_order.h); then a second frame (refresh).
+//          this view, render/object_order.h); then a second frame (refresh).
 //   CGAL:  the same expression evaluated with PMP::corefine_and_compute_union / _intersection /
 //          _difference (Epick, 1 thread: corefinement is serial), n-ary nodes folded left to right.
 // Every mesh is transformed once, by Cover, before either side sees it: both get the same doubles.
@@ -33,9 +33,9 @@
 #include "bench_cli.h"
 #include "cover/covering/bounds.h"
 #include "cover/covering/volume.h"
-#include "cover/raster/png.h"
-#include "cover/raster/render.h"
-#include "cover/solid/mesh_io.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/png.h"
+#include "cover/render/render.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/transform.h"
 
@@ -239,7 +239,7 @@ int main(int argc, char** argv) {
     const cover::Camera camera =
         cover::frame_camera(cover::result_bounds(solid).value_or(solid.bbox()), camera_options);
     // The BVH only where the render walks one (not for closed leaves:
-    // the object-order path, raster/object_order.h).
+    // the object-order path, render/object_order.h).
     std::optional<cover::Bvh> bvh;
     if (!cover::renders_in_object_order(solid, camera, {})) bvh.emplace(solid);
     bvh_s = since(t0) - csg_s;

@@ -46,9 +46,9 @@
 #include <vector>
 
 #include "bench_cli.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/png.h"
 #include "cover/model/model.h"
-#include "cover/raster/png.h"
-#include "cover/solid/mesh_io.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/transform.h"
 

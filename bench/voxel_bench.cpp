@@ -31,11 +31,11 @@
 #include <vector>
 
 #include "bench_cli.h"
+#include "cover/io/scene.h"
 #include "cover/octree/octree.h"
-#include "cover/raster/voxelize.h"
 #include "cover/solid/large_vector.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/scene.h"
+#include "cover/voxel/voxelize.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // build_arrangement() (boolean/detail/arrangement.h), steps 1–3 of evaluate(): step 1 (leaf
-// triangulation, solid/triangulate.h) and the global point identity here, step 2 in
+// triangulation, mesh/triangulate.h) and the global point identity here, step 2 in
 // intersect.cpp, step 3 in split.cpp. The exactness scheme is described in
 // boolean/detail/arrangement.h, the notation in boolean/detail/arrangement_steps.h.
 #include <algorithm>
@@ -10,9 +10,9 @@
 #include <span>
 
 #include "cover/boolean/detail/arrangement_steps.h"
+#include "cover/mesh/triangulate.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/triangulate.h"
 
 namespace cover::boolean_detail {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "cover/boolean/detail/arrangement.h"
 #include "cover/covering/bounds.h"
+#include "cover/mesh/rounding_repair.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/rounding_repair.h"
 #include "cover/solid/union_find.h"
 
 namespace cover {
@@ -44,7 +44,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   std::vector<uint8_t> rounded;
   r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf, &rounded, &grouped);
   r.seconds.assemble = since(t);
-  // Contacts made by rounding the constructed points independently (solid/rounding_repair.h).
+  // Contacts made by rounding the constructed points independently (mesh/rounding_repair.h).
   t = Clock::now();
   const RoundingRepair repair = repair_rounding(r.mesh, rounded);
   if (repair.changed()) {

@@ -19,7 +19,7 @@
 //      split per fan, so the output is a 2-manifold; exact points are rounded to nearest doubles;
 //   7. faces that the independent rounding made touch or cross (distinct exact points a few
 //      ulps apart, or on one double point) are found exactly among the faces with a rounded
-//      vertex, and repaired by collapsing rounding-scale edges (solid/rounding_repair.h).
+//      vertex, and repaired by collapsing rounding-scale edges (mesh/rounding_repair.h).
 
 #include <cstdint>
 #include <optional>

@@ -9,10 +9,10 @@
 #include <compare>
 
 #include "cover/boolean/detail/arrangement_steps.h"
-#include "cover/solid/box_pairs.h"
+#include "cover/mesh/box_pairs.h"
+#include "cover/mesh/validate.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
-#include "cover/solid/validate.h"
 
 namespace cover::boolean_detail {
 namespace {
@@ -215,7 +215,7 @@ Hit coplanar_hit(const Tri& a, const Tri& b, const std::vector<Point>& pts) {
 }  // namespace
 
 /// Tri pairs of different leaves whose closed double boxes meet, sorted: one grid pass over all
-/// tris coloured by leaf (solid/box_pairs.h), cells of one leaf skipped: one pass for all leaves,
+/// tris coloured by leaf (mesh/box_pairs.h), cells of one leaf skipped: one pass for all leaves,
 /// where CGAL's box intersection would sweep each leaf against the later ones in x-slabs.
 namespace {
 /// Each tri's double box and its leaf (the colour for box_pairs_between).

@@ -10,8 +10,8 @@
 #include <unordered_map>
 
 #include "cover/boolean/detail/arrangement_steps.h"
+#include "cover/mesh/triangulate.h"
 #include "cover/solid/predicates.h"
-#include "cover/solid/triangulate.h"
 
 namespace cover::boolean_detail {
 namespace {

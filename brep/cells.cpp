@@ -33,11 +33,11 @@
 #include <utility>
 
 #include "cover/brep/detail/cells_check.h"
+#include "cover/mesh/rounding_repair.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/memory_limit.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/rounding_repair.h"
 
 namespace cover::brep {
 namespace {

@@ -26,7 +26,7 @@
 // itself there. After gluing (which uses the pieces as cut), each piece is checked exactly for
 // faces that meet, among the faces with a vertex on one of its walls (every constructed vertex
 // lies on a wall), and such contacts are removed by collapsing rounding-scale edges
-// (solid/rounding_repair.h). A repaired piece may then differ from its neighbour by that
+// (mesh/rounding_repair.h). A repaired piece may then differ from its neighbour by that
 // collapsed edge on their common wall.
 
 #include <array>

@@ -11,9 +11,9 @@
 #include <cstdint>
 
 #include "cover/brep/cells.h"
+#include "cover/mesh/triangulate.h"
+#include "cover/mesh/validate.h"
 #include "cover/solid/predicates.h"
-#include "cover/solid/triangulate.h"
-#include "cover/solid/validate.h"
 
 namespace cover::brep::detail {
 namespace {

@@ -25,9 +25,9 @@
 
 #include "cover/brep/detail/clip_internal.h"
 #include "cover/brep/detail/ear_clip.h"
+#include "cover/mesh/triangulate.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/triangulate.h"
 
 namespace cover::brep {
 namespace {

@@ -1,7 +1,7 @@
 // Convex decomposition by reflex-edge plane cuts (decompose.h; [Erleben2006 §7 Fig. 20]).
 //
 // Notation
-//   T        the input triangles (faces triangulated exactly, solid/triangulate.h)
+//   T        the input triangles (faces triangulated exactly, mesh/triangulate.h)
 //   R        the input reflex edges: per edge, its two vertices a, b, its triangles f (holding
 //            a → b) and g, and its bend (angle between the rounded unit normals: the cut order)
 //   piece    a polygon mesh with, per face, its triangle in T (kNoFace for a cap)
@@ -32,13 +32,13 @@
 #include "cover/brep/detail/nef_parts.h"
 #include "cover/brep/detail/shells.h"
 #include "cover/brep/halfedge.h"
+#include "cover/mesh/triangulate.h"
+#include "cover/mesh/validate.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
-#include "cover/solid/triangulate.h"
 #include "cover/solid/union_find.h"
-#include "cover/solid/validate.h"
 
 namespace cover::brep {
 namespace {

@@ -13,11 +13,11 @@
 #include "cover/cli/commands.h"
 #include "cover/cli/output.h"
 #include "cover/covering/bounds.h"
-#include "cover/solid/atomic_file.h"
+#include "cover/io/atomic_file.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/scene.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/mesh_io.h"
-#include "cover/solid/scene.h"
 
 namespace cover::cli {
 namespace {
@@ -44,7 +44,7 @@ void add(HalfSummary& s, const brep::ClipHalf& h) {
   s.closed = s.closed && r.closed && r.manifold;
 }
 
-/// Writes text atomically (solid/atomic_file.h).
+/// Writes text atomically (io/atomic_file.h).
 void write_text(const std::filesystem::path& path, const std::string& text) {
   write_atomically(
       path,

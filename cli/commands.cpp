@@ -14,12 +14,12 @@
 #include "cover/cli/output.h"
 #include "cover/cli/points.h"
 #include "cover/covering/bounds.h"
+#include "cover/io/atomic_file.h"
+#include "cover/io/png.h"
+#include "cover/io/scene.h"
 #include "cover/model/info.h"
-#include "cover/raster/png.h"
-#include "cover/solid/atomic_file.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/memory_limit.h"
-#include "cover/solid/scene.h"
 
 namespace cover::cli {
 namespace {

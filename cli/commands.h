@@ -2,16 +2,16 @@
 // The `cover` subcommands (docs/cli.md#commands). Each returns the process exit status and
 // throws InputError / NotComputable for bad input (exit 2, handled in main.cpp). Conventions:
 // a command estimates what it allocates and refuses estimates over --max-memory first
-// (solid/memory_limit.h); one OutputBatch (solid/atomic_file.h) holds all of its output files,
+// (solid/memory_limit.h); one OutputBatch (io/atomic_file.h) holds all of its output files,
 // committed after the last one is written and before anything is printed, so a failure leaves
 // every existing file as it was.
 
 #include <cstdint>
 #include <string>
 
+#include "cover/io/scene.h"
 #include "cover/model/model.h"
 #include "cover/solid/memory_limit.h"
-#include "cover/solid/scene.h"
 
 namespace cover::cli {
 

@@ -16,11 +16,11 @@
 #include "cover/cli/commands.h"
 #include "cover/cli/output.h"
 #include "cover/covering/bounds.h"
-#include "cover/solid/atomic_file.h"
+#include "cover/io/atomic_file.h"
+#include "cover/io/mesh_io.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/memory_limit.h"
-#include "cover/solid/mesh_io.h"
 
 namespace cover::cli {
 namespace {

@@ -13,7 +13,7 @@
 #include <string_view>
 
 #include "cover/cli/commands.h"
-#include "cover/solid/atomic_file.h"
+#include "cover/io/atomic_file.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
 

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "cover/io/mesh_io.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/mesh_io.h"
 
 namespace cover::cli {
 

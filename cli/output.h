@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "cover/solid/atomic_file.h"
+#include "cover/io/atomic_file.h"
 #include "cover/solid/types.h"
 
 namespace cover::cli {
@@ -37,7 +37,7 @@ nlohmann::json to_json(const Bbox& b);
 std::vector<double> parse_numbers(const std::string& text, const std::string& option, size_t count,
                                   const char* separators);
 
-/// The output folder of `--pieces DIR` and `decompose -o DIR` (solid/atomic_file.h OutputFolder):
+/// The output folder of `--pieces DIR` and `decompose -o DIR` (io/atomic_file.h OutputFolder):
 /// built beside DIR and swapped in whole at the batch's commit. An existing DIR is replaced only
 /// when it is empty or a pieces folder Cover wrote: pieces.json, and only regular files named
 /// pieces.json, piece_N.EXT or cell_I_J_K.EXT (EXT a mesh extension); anything else is refused.

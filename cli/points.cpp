@@ -23,12 +23,12 @@
 #include <filesystem>
 #include <iostream>
 
-#include "cover/solid/atomic_file.h"
-#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/io/atomic_file.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/npy.h"
+#include "cover/io/parse.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/memory_limit.h"
-#include "cover/solid/mesh_io.h"
-#include "cover/solid/npy.h"
 #include "cover/solid/parallel.h"
 
 namespace cover::cli {

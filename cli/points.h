@@ -3,10 +3,10 @@
 // `cover classify`).
 // Points, text: one point per line, "x y z" separated by spaces, tabs or commas; '#' starts a
 // comment; blank lines are skipped; "-" is stdin. Numbers, the byte order mark and errors follow
-// the mesh readers' rule (solid/detail/mesh_io_detail.h). The text is parsed in parallel, in
+// the mesh readers' rule (io/parse.h). The text is parsed in parallel, in
 // chunks of whole lines; the points and the error (the first bad line in file order) do not
 // depend on the thread count.
-// Points, NumPy (solid/npy.h): a file named *.npy (any case), or any input whose bytes start with
+// Points, NumPy (io/npy.h): a file named *.npy (any case), or any input whose bytes start with
 // the .npy magic (stdin included); dtype float64 or float32 ('<f8', '<f4', '>f8', '>f4'), shape
 // (N, 3), C or Fortran order; the data exactly fills the rest of the file.
 // Every coordinate must be finite and within ±kMaxCoordinate (solid/types.h).

@@ -12,17 +12,17 @@
 #include "cover/cli/commands.h"
 #include "cover/cli/output.h"
 #include "cover/covering/bounds.h"
+#include "cover/io/atomic_file.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/octree_io.h"
+#include "cover/io/scene.h"
+#include "cover/io/vdb_io.h"
+#include "cover/io/voxel_io.h"
+#include "cover/io/zarr_io.h"
 #include "cover/octree/octree.h"
-#include "cover/octree/octree_io.h"
-#include "cover/raster/vdb_io.h"
-#include "cover/raster/voxel_io.h"
-#include "cover/raster/voxel_surface.h"
-#include "cover/raster/zarr_io.h"
-#include "cover/solid/atomic_file.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/memory_limit.h"
-#include "cover/solid/mesh_io.h"
-#include "cover/solid/scene.h"
+#include "cover/voxel/voxel_surface.h"
 
 namespace cover::cli {
 namespace {
@@ -183,7 +183,7 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   oo.progress = [&progress](double done) {
     progress.update(static_cast<size_t>(done * 1000), 1000);
   };
-  // A .bt's cube lies on OctoMap's grid (octree/octree_io.h); given --bounds are checked there.
+  // A .bt's cube lies on OctoMap's grid (io/octree_io.h); given --bounds are checked there.
   const bool bt = lower_extension(o.output) == ".bt";
   VoxelBounds bounds;
   if (bt && o.bounds.empty() && o.depth >= 1 && model.bounded())

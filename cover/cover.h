@@ -4,11 +4,14 @@
 // or build primitives, combine with | & - ~, and call a method per kernel. Underneath, the
 // kernels are free functions on a Solid ([Segura2004]; docs/design.md), by module:
 //   model/     the cover::Model facade
-//   solid/     the non-evaluated solid, CSG operators, primitives, transforms, mesh and scene I/O,
-//              exact predicates, face triangulation
+//   solid/     the core: value types, the non-evaluated solid, CSG operators, primitives,
+//              transforms, measures, exact predicates, errors
+//   mesh/      the mesh toolkit: validation, orientation, repair, face triangulation
 //   covering/  BVH, classification, rays, volume, bounds
-//   raster/    voxelization, voxel formats, rendering
-//   octree/    direct octrees and their formats
+//   render/    cameras and ray-cast images
+//   voxel/     voxelization, voxel grids, blocky boundary meshes
+//   octree/    direct octrees
+//   io/        every file format: meshes, scenes, PNG, .npy, voxel grids, octrees
 //   brep/      plane clip and patch, the half-edge kernel
 //   boolean/   evaluation of the CSG result to a closed 2-manifold mesh
 
@@ -20,29 +23,29 @@
 #include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/npy.h"
+#include "cover/io/octree_io.h"
+#include "cover/io/png.h"
+#include "cover/io/scene.h"
+#include "cover/io/voxel_io.h"
+#include "cover/io/zarr_io.h"
+#include "cover/mesh/orient.h"
+#include "cover/mesh/triangulate.h"
+#include "cover/mesh/validate.h"
 #include "cover/model/info.h"
 #include "cover/model/model.h"
 #include "cover/octree/octree.h"
-#include "cover/octree/octree_io.h"
-#include "cover/raster/camera.h"
-#include "cover/raster/png.h"
-#include "cover/raster/render.h"
-#include "cover/raster/voxel_grid.h"
-#include "cover/raster/voxel_io.h"
-#include "cover/raster/voxel_surface.h"
-#include "cover/raster/voxelize.h"
-#include "cover/raster/zarr_io.h"
+#include "cover/render/camera.h"
+#include "cover/render/render.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/mesh_io.h"
-#include "cover/solid/npy.h"
-#include "cover/solid/orient.h"
 #include "cover/solid/polygon_mesh.h"
 #include "cover/solid/predicates.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 #include "cover/solid/solid.h"
 #include "cover/solid/transform.h"
-#include "cover/solid/triangulate.h"
-#include "cover/solid/validate.h"
 #include "cover/solid/voxel_bounds.h"
+#include "cover/voxel/voxel_grid.h"
+#include "cover/voxel/voxel_surface.h"
+#include "cover/voxel/voxelize.h"

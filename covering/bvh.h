@@ -32,7 +32,7 @@ struct BvhOptions {
 
 class Bvh {
  public:
-  /// Traversals (walk, walk_batch, for_each_triangle) are internal: covering/detail/bvh_walk.h.
+  /// Traversals (walk, walk_batch, for_each_triangle) are internal: covering/bvh_walk.h.
   /// Bound on a traversal stack (of node ids, or node ids with intervals): a depth-first stack
   /// holds at most depth + 1 entries, and the depth is ≤ 64 (SAH) + 32 (median splits of at most
   /// 2^32 triangles) + 1 (bvh.cpp).

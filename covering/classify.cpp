@@ -8,14 +8,14 @@
 #include <mutex>
 #include <optional>
 
-#include "cover/covering/detail/bvh_walk.h"
+#include "cover/covering/bvh_walk.h"
 #include "cover/covering/detail/cell_grid.h"
 #include "cover/covering/detail/float_bounds.h"
 #include "cover/covering/detail/local.h"
-#include "cover/covering/detail/simd.h"
 #include "cover/covering/detail/triangles.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
+#include "cover/solid/simd.h"
 
 namespace cover {
 namespace {

@@ -6,11 +6,11 @@
 #include <cstring>
 #include <optional>
 
-#include "cover/covering/detail/bvh_walk.h"
-#include "cover/covering/detail/ray_detail.h"
-#include "cover/covering/detail/simd.h"
+#include "cover/covering/bvh_walk.h"
+#include "cover/covering/ray_steps.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
+#include "cover/solid/simd.h"
 
 namespace cover {
 namespace detail {

@@ -7,10 +7,10 @@
 #include "cover/covering/bounds.h"
 #include "cover/covering/detail/ray_volume.h"
 #include "cover/covering/ray.h"
+#include "cover/mesh/validate.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/validate.h"
 
 namespace cover {
 namespace {

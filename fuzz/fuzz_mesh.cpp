@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string_view>
 
-#include "cover/solid/detail/mesh_io_detail.h"
+#include "cover/io/parse.h"
+#include "cover/io/scene.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include "cover/io/scene.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "cover/brep/halfedge.h"
+#include "cover/mesh/repair.h"
+#include "cover/mesh/validate.h"
 #include "cover/model/model.h"
-#include "cover/solid/repair.h"
 #include "cover/solid/types.h"
-#include "cover/solid/validate.h"
 
 namespace cover {
 
@@ -26,11 +26,11 @@ struct LeafInfo {
   std::string origin;  ///< the leaf's JSON path in its scene; empty for a single mesh
   uint32_t vertices = 0, faces = 0;
   Bbox bbox;
-  MeshReport report;  ///< validate_mesh of the leaf's faces (solid/validate.h)
+  MeshReport report;  ///< validate_mesh of the leaf's faces (mesh/validate.h)
   /// The half-edge kernel's view (brep/halfedge.h); nullopt where the faces do not form an
   /// oriented surface (an edge used twice in one direction, a face with fewer than 3 vertices).
   std::optional<brep::BrepReport> brep;
-  RepairReport repair;  ///< what loading repairs and what is left (solid/repair.h)
+  RepairReport repair;  ///< what loading repairs and what is left (mesh/repair.h)
 };
 
 struct ModelInfo {

@@ -10,10 +10,10 @@
 #include <utility>
 
 #include "cover/covering/bounds.h"
-#include "cover/covering/detail/bvh_walk.h"
+#include "cover/covering/bvh_walk.h"
+#include "cover/io/serialize.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/serialize.h"
 
 namespace cover {
 

@@ -36,15 +36,15 @@
 #include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
+#include "cover/io/scene.h"
+#include "cover/io/zarr_io.h"
 #include "cover/octree/octree.h"
-#include "cover/raster/camera.h"
-#include "cover/raster/render.h"
-#include "cover/raster/voxelize.h"
-#include "cover/raster/zarr_io.h"
+#include "cover/render/camera.h"
+#include "cover/render/render.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/scene.h"
 #include "cover/solid/solid.h"
 #include "cover/solid/transform.h"
+#include "cover/voxel/voxelize.h"
 
 namespace cover {
 
@@ -100,7 +100,7 @@ class Model {
   Model rotated(Vec3 axis, double degrees) const;
   Model mirrored(Vec3 normal) const;
 
-  /// The solid as bytes (solid/serialize.h): how a Model travels to another process (pickling,
+  /// The solid as bytes (io/serialize.h): how a Model travels to another process (pickling,
   /// Dask workers) with the same doubles and expression; load warnings are not kept.
   std::string to_bytes() const;
   /// The Model of to_bytes(). \throws InputError naming `what` for bytes that are not a solid.
@@ -143,18 +143,18 @@ class Model {
   VolumeResult volume(const VolumeOptions& options = {}) const;
 
   /// The default grid cube of voxelize() and octree() for n cells per side: the result's box made
-  /// cubic with one cell of margin per side (n < 3 gets the margin of n = 3; raster/voxel_grid.h).
+  /// cubic with one cell of margin per side (n < 3 gets the margin of n = 3; voxel/voxel_grid.h).
   /// \throws InputError for an unbounded result (give explicit bounds instead).
   VoxelBounds voxel_bounds(int n) const;
 
-  /// The global grid voxelize(options) covers (raster/voxelize.h voxel_lattice): cubic from
+  /// The global grid voxelize(options) covers (voxel/voxelize.h voxel_lattice): cubic from
   /// resolution and bounds, or from voxel_size / dims over options.bounds or the result's box.
   /// Bricks of it are voxelize_brick's input. \throws InputError for a resolution out of
   /// 1..kMaxVoxelDims (16384), an unbounded result without options.bounds, bad voxel_size or
   /// dims (voxel_lattice).
   VoxelLattice voxel_lattice(const VoxelizeOptions& options = {}) const;
 
-  /// Presence-buffer voxelization of the whole lattice (raster/voxelize.h). \throws InputError
+  /// Presence-buffer voxelization of the whole lattice (voxel/voxelize.h). \throws InputError
   /// as voxel_lattice(), and for a cubic resolution above 4096 (use voxelize_to_zarr or bricks).
   VoxelGrid voxelize(const VoxelizeOptions& options = {}) const;
 
@@ -176,7 +176,7 @@ class Model {
   std::vector<PointClass> classify_brick(const VoxelLattice& lattice, const IndexBox& box,
                                          const ClassifyOptions& options = {}) const;
 
-  /// Voxelizes voxel_lattice(options) straight into a Zarr v2 store (raster/zarr_io.h), brick
+  /// Voxelizes voxel_lattice(options) straight into a Zarr v2 store (io/zarr_io.h), brick
   /// by brick (chunk columns; memory bounded by the bricks in flight), so N up to 16384 fits
   /// one machine. options.progress is not used (zarr.progress is). \throws InputError as
   /// voxel_lattice() and write_zarr().
@@ -191,7 +191,7 @@ class Model {
 
   /// The camera that frames the result's box (every leaf's when unbounded) from options.view.
   Camera camera(const CameraOptions& options = {}) const;
-  /// Ray-cast preview (raster/render.h) through camera(camera_options).
+  /// Ray-cast preview (render/render.h) through camera(camera_options).
   /// \throws InputError for an image size out of 1..16384 or a zero section normal.
   Image render(const CameraOptions& camera_options = {}, const RenderOptions& options = {}) const;
   /// The same through a given camera.
@@ -250,7 +250,7 @@ Model union_all(std::span<const Model> models);
 Model intersection_all(std::span<const Model> models);
 
 /// Loads a mesh (one leaf) or a JSON scene (docs/cli.md#input), repaired as the CLI does.
-/// \throws InputError naming the file and the place (solid/scene.h load_input).
+/// \throws InputError naming the file and the place (io/scene.h load_input).
 Model load(const std::filesystem::path& path, const LoadOptions& options = {});
 
 /// Primitives as closed, outward leaves (solid/primitives.h).
@@ -261,7 +261,7 @@ Model sphere(Vec3 center, double radius, int segments = 32);
 Model cylinder(Vec3 base, Vec3 top, double radius, int segments = 32);
 
 /// A leaf from a triangle mesh given as arrays (outward or inside-out; repaired as a loaded file,
-/// solid/scene.h prepare_leaf). \throws InputError for an index out of range, a non-finite
+/// io/scene.h prepare_leaf). \throws InputError for an index out of range, a non-finite
 /// coordinate, an open mesh (options.require_closed), a non-orientable surface, naming `name`.
 Model mesh(std::span<const Vec3> vertices, std::span<const std::array<uint32_t, 3>> triangles,
            const std::string& name = "mesh", const LoadOptions& options = {});

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cover/mesh/triangulate.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/triangulate.h"
 
 namespace cover::python {
 
@@ -104,7 +104,7 @@ py::array_t<double> vertices_array(const std::vector<Vec3>& vertices) {
 }
 
 py::array_t<int64_t> triangles_array(const PolygonMesh& mesh) {
-  // The project's one face triangulation (solid/triangulate.h: exact, fans for convex faces).
+  // The project's one face triangulation (mesh/triangulate.h: exact, fans for convex faces).
   std::vector<std::array<uint32_t, 3>> tris;
   tris.reserve(mesh.face_count());
   const std::span<const Vec3> points(mesh.vertices.data(), mesh.vertices.size());

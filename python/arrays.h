@@ -89,7 +89,7 @@ class Interrupt {
 py::array_t<double> vertices_array(const std::vector<Vec3>& vertices);
 
 /// Faces as int64 (m, 3) triangles: a triangle as it is, any other face by triangulate_face
-/// (solid/triangulate.h: exact; a convex face as a fan from its first vertex; orientation kept,
+/// (mesh/triangulate.h: exact; a convex face as a fan from its first vertex; orientation kept,
 /// so outward triangles stay outward).
 py::array_t<int64_t> triangles_array(const PolygonMesh& mesh);
 

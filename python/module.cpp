@@ -15,10 +15,10 @@
 
 #include "arrays.h"
 #include "cover/brep/halfedge.h"
+#include "cover/mesh/repair.h"
+#include "cover/mesh/validate.h"
 #include "cover/model/info.h"
 #include "cover/model/model.h"
-#include "cover/solid/repair.h"
-#include "cover/solid/validate.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;

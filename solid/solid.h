@@ -59,7 +59,7 @@ struct Leaf {
   uint32_t first_vertex = 0, vertex_count = 0;
   Bbox bbox;
   bool flipped = false;  ///< the input was inside-out and its faces were reversed on load
-  /// Boundary edges of the leaf as loaded (solid/validate.h). 0: a closed leaf, inside by the
+  /// Boundary edges of the leaf as loaded (mesh/validate.h). 0: a closed leaf, inside by the
   /// exact nonzero rule; > 0: an open leaf, inside where its generalized winding number has
   /// |w| > 1/2 (covering/gwn.h). Only what the loader found: serialize keeps 0 / nonzero.
   int64_t boundary_edges = 0;

@@ -36,7 +36,7 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
 
 /// The plane normal·x = offset (normal need not be unit length; functions taking a Plane say
 /// whether it may be zero). Its positive side is {x : normal·x > offset}: a clip's `above` half
-/// (brep/clip.h), the half-space a render section removes (raster/render.h).
+/// (brep/clip.h), the half-space a render section removes (render/render.h).
 struct Plane {
   Vec3 normal;
   double offset = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// The cube a voxel grid (raster/voxel_grid.h) or an octree (octree/octree.h) subdivides.
+// The cube a voxel grid (voxel/voxel_grid.h) or an octree (octree/octree.h) subdivides.
 
 #include "cover/solid/types.h"
 

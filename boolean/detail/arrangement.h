@@ -7,7 +7,7 @@
 //                deduplicated by exact double value (shared by every leaf), the rest are
 //                constructed points (exact, CGAL Epeck).
 //   tri          a triangle of one leaf (the leaf faces triangulated by triangulate_face,
-//                solid/triangulate.h: fan when convex in the face's dominant projection, else a
+//                mesh/triangulate.h: fan when convex in the face's dominant projection, else a
 //                constrained triangulation of its loops), vertices in the LEAF's own orientation
 //                (outward); collinear ones are dropped.
 //   piece        a triangle of the arrangement: a sub-triangle of one tri (the whole tri when no
@@ -157,7 +157,7 @@ struct Arrangement {
 /// Steps 1–3 of evaluate(): triangulation, exact pairwise intersections, per-tri constrained
 /// triangulations, global point identity. Deterministic for any thread count. With
 /// `check_leaves`, `self` gets one flag per leaf: set when the leaf intersects itself (a tile
-/// pair of different faces meeting by self_intersects()' rules, solid/validate.h, tested in the
+/// pair of different faces meeting by self_intersects()' rules, mesh/validate.h, tested in the
 /// same grid pass as the candidate pairs, or a face that does not tile simply); such leaves also
 /// have their own tri pairs intersected (self_pairs.cpp). Without it `self` is left empty (no
 /// leaf intersects itself, by the caller's word). Throws InputError naming the leaf and face

@@ -46,7 +46,7 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const std::vector<Tri
 
 /// candidate_pairs(), and in the same grid pass the leaf self-intersection test: self[l] (one
 /// flag per leaf, already set for leaves known to intersect themselves) is set when two tris of
-/// leaf l from different faces meet by self_intersects()' rules (solid/validate.h: tiles_meet,
+/// leaf l from different faces meet by self_intersects()' rules (mesh/validate.h: tiles_meet,
 /// exact). Shared vertices are decided by point id, i.e. by exact value.
 std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs_and_self(const std::vector<Tri>& tris,
                                                                     const std::vector<Vec3>& pos,

@@ -10,7 +10,7 @@
 namespace cover::brep::detail {
 
 /// Replaces every face of more than 3 vertices whose vertices do not all share one coordinate
-/// value (a face on a wall does) by the triangles solid/triangulate.h tiles it with: a rounded
+/// value (a face on a wall does) by the triangles mesh/triangulate.h tiles it with: a rounded
 /// constructed point leaves a split face generally not planar, and its triangles are then what
 /// the file means (and what the exact self-intersection test checks). `kinds` (one entry per
 /// face, or empty) follows the faces. A face whose tiling drops a collinear triangle or crosses

@@ -24,7 +24,7 @@ def cube_mesh():
 
 
 def layout(data):
-    """Byte offsets of a one-leaf solid's parts (format in solid/serialize.h)."""
+    """Byte offsets of a one-leaf solid's parts (format in io/serialize.h)."""
     nv, nf, ni, nl, nn = struct.unpack_from("<5Q", data, 12)
     at = 12 + 40 + 4
     out = {"vertices": at}

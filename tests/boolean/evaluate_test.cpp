@@ -21,13 +21,13 @@
 #include "brep/cells_checks.h"
 #include "cover/brep/halfedge.h"
 #include "cover/covering/volume.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/scene.h"
+#include "cover/mesh/validate.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/mesh_io.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 #include "cover/solid/transform.h"
-#include "cover/solid/validate.h"
 #include "helpers.h"
 
 namespace cover {

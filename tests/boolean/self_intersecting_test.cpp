@@ -1,6 +1,6 @@
 // evaluate() on self-intersecting leaves (boolean/evaluate.h): each leaf is its nonzero-winding
 // set, as in classify(). Every result must be a closed, outward 2-manifold without
-// self-intersections (brep validate + the exact self_intersects of solid/validate.h) that agrees
+// self-intersections (brep validate + the exact self_intersects of mesh/validate.h) that agrees
 // with classify() of the non-evaluated scene on 20,000 random points (0 disagreements off the
 // boundary); the procedural leaves also have known volumes. Scenes: libcgal-demo meshes that
 // intersect themselves (cow, camel, bull, bones, man, elk) with boxes, spheres and each other; two
@@ -17,17 +17,17 @@
 #include "cover/brep/halfedge.h"
 #include "cover/covering/classify.h"
 #include "cover/covering/volume.h"
-#include "cover/solid/mesh_io.h"
+#include "cover/io/mesh_io.h"
+#include "cover/mesh/repair.h"
+#include "cover/mesh/validate.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/repair.h"
 #include "cover/solid/transform.h"
-#include "cover/solid/validate.h"
 #include "helpers.h"
 
 namespace cover {
 namespace {
 
-/// The mesh with vertices of equal coordinates merged (solid/repair.h): where the result
+/// The mesh with vertices of equal coordinates merged (mesh/repair.h): where the result
 /// touches itself (two lobes of a figure-eight meeting along a line) evaluate() duplicates
 /// vertices per fan, and the touching faces then share indices, so a self-intersection test
 /// counts only crossings.

@@ -10,9 +10,9 @@
 
 #include "cover/boolean/evaluate.h"
 #include "cover/covering/volume.h"
+#include "cover/io/scene.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 
 namespace cover {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "cover/brep/clip.h"
 #include "cover/brep/halfedge.h"
+#include "cover/mesh/validate.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/validate.h"
 
 namespace cover::test {
 

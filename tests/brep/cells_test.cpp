@@ -9,13 +9,13 @@
 
 #include "cells_checks.h"
 #include "cover/boolean/evaluate.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/scene.h"
 #include "cover/model/model.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/mesh_io.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 #include "cover/solid/transform.h"
 #include "helpers.h"
 

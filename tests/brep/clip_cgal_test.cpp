@@ -14,7 +14,7 @@
 
 #include "brep_checks.h"
 #include "cover/brep/clip.h"
-#include "cover/solid/mesh_io.h"
+#include "cover/io/mesh_io.h"
 #include "helpers.h"
 
 namespace cover::brep {

@@ -8,8 +8,8 @@
 #include <random>
 
 #include "brep_checks.h"
+#include "cover/io/mesh_io.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/mesh_io.h"
 #include "cover/solid/predicates.h"
 #include "helpers.h"
 

@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include "cover/io/mesh_io.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/mesh_io.h"
 #include "helpers.h"
 
 namespace cover::brep {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "cover/solid/mesh_io.h"
+#include "cover/io/mesh_io.h"
 #include "cover/solid/primitives.h"
 #include "helpers.h"
 
@@ -435,7 +435,7 @@ TEST_F(Cli, VoxelizeZarrVdbAndNonCubicGrids) {
     EXPECT_EQ(lines(r.err).size(), 1u) << args << " " << r.err;
     EXPECT_NE(r.err.find(word), std::string::npos) << args << " " << r.err;
   }
-  // The OpenVDB plugin (raster/vdb_plugin.h) when COVER_PLUGIN_DIR names a file that is not
+  // The OpenVDB plugin (io/vdb_plugin.h) when COVER_PLUGIN_DIR names a file that is not
   // one: one line naming the output and the plugin, exit 2, the existing .vdb intact.
   std::filesystem::create_directories(dir_ / "plugins");
   test::write_file(dir_ / "plugins" / "cover_vdb.so", "not a shared object");

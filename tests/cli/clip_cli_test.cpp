@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cover/io/mesh_io.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/mesh_io.h"
 #include "helpers.h"
 
 namespace cover {

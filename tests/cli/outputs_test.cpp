@@ -292,12 +292,13 @@ TEST_F(Outputs, PiecesFolderOfOtherFilesIsRefused) {
 }
 
 TEST_F(Outputs, ConcurrentRunsIntoOnePiecesFolderDoNotMix) {
-  // Two runs writing the same folder at once: it ends as one run's output, whole.
+  // Two runs writing the same folder at once: it ends as one run's output, whole, and neither
+  // run refuses the folder for the other's entries vanishing while it checks them.
   const fs::path pieces = dir_ / "p";
   test::write_file(dir_ / "l.json", R"({"difference": [
       {"box": {"min": [0, 0, 0], "max": [2, 2, 2]}},
       {"box": {"min": [1, 1, 1], "max": [3, 3, 3]}}]})");
-  for (int round = 0; round < 3; ++round) {
+  for (int round = 0; round < 12; ++round) {
     std::vector<pid_t> pids;
     for (const fs::path& in : {dir_ / "l.json", box_})
       pids.push_back(start_cover({"evaluate", in.string(), "-o",

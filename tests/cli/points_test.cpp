@@ -176,7 +176,7 @@ TEST(Points, CoordinatesOutsideTheSupportedRangeAreRefused) {
 
 // ---- .npy ----
 
-/// An .npy file written by hand (independently of solid/npy.cpp): `header` is the dict text.
+/// An .npy file written by hand (independently of io/npy.cpp): `header` is the dict text.
 std::string npy_file(const std::string& header, const std::string& data, int major = 1) {
   std::string h = header;
   const size_t preamble = major == 1 ? 10 : 12;

@@ -10,9 +10,9 @@
 #include <cstring>
 #include <tuple>
 
-#include "cover/covering/detail/bvh_walk.h"
+#include "cover/covering/bvh_walk.h"
 #include "cover/covering/detail/triangles.h"
-#include "cover/solid/mesh_io.h"
+#include "cover/io/mesh_io.h"
 #include "cover/solid/predicates.h"
 #include "cover/solid/primitives.h"
 #include "cover/solid/transform.h"

@@ -10,7 +10,7 @@
 
 #include "cover/covering/classify.h"
 #include "cover/covering/volume.h"
-#include "cover/solid/scene.h"
+#include "cover/io/scene.h"
 #include "helpers.h"
 
 namespace cover {

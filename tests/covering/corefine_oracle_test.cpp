@@ -14,7 +14,7 @@
 
 #include "cover/covering/classify.h"
 #include "cover/covering/volume.h"
-#include "cover/solid/mesh_io.h"
+#include "cover/io/mesh_io.h"
 #include "cover/solid/transform.h"
 #include "helpers.h"
 

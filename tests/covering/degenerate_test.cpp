@@ -9,8 +9,8 @@
 #include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
+#include "cover/io/scene.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 #include "helpers.h"
 
 namespace cover {

@@ -11,10 +11,10 @@
 
 #include "cover/covering/classify.h"
 #include "cover/covering/detail/triangles.h"
+#include "cover/io/scene.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 #include "helpers.h"
 
 namespace cover {

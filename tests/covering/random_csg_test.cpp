@@ -16,10 +16,10 @@
 #include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/scene.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/mesh_io.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 #include "cover/solid/transform.h"
 #include "helpers.h"
 

@@ -1,4 +1,4 @@
-// Octrees (octree/octree.h, octree/octree_io.h): every full / empty leaf checked against the
+// Octrees (octree/octree.h, io/octree_io.h): every full / empty leaf checked against the
 // brute-force classification, partial leaves crossed by a surface (CGAL's exact overlap test as
 // the oracle), volume bounds, occupancy re-derived point by point, thread independence, and the
 // .htg / .bt / .json files read back independently (XML scan, liboctomap, nlohmann_json).
@@ -25,13 +25,13 @@
 #include "cover/covering/bvh.h"
 #include "cover/covering/classify.h"
 #include "cover/covering/volume.h"
+#include "cover/io/octree_io.h"
+#include "cover/io/scene.h"
 #include "cover/octree/detail/box_overlap.h"
-#include "cover/octree/octree_io.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
 #include "cover/solid/primitives.h"
-#include "cover/solid/scene.h"
 #include "helpers.h"
 
 namespace cover {

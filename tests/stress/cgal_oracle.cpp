@@ -17,7 +17,7 @@
 #include <exception>
 #include <vector>
 
-#include "cover/solid/triangulate.h"
+#include "cover/mesh/triangulate.h"
 
 namespace cover::stress {
 namespace {

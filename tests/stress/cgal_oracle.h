@@ -2,7 +2,7 @@
 // The CGAL side of the random-CSG stress harness (stress_csg.cpp), kept in one translation unit
 // (cgal_oracle.cpp) because CGAL is slow to compile. Everything here is independent of Cover's
 // own Booleans, validity test and convexity test: only cgal_convexity_problem shares the
-// triangulation of polygon faces (solid/triangulate.h, exact).
+// triangulation of polygon faces (mesh/triangulate.h, exact).
 
 #include <optional>
 #include <string>

@@ -14,10 +14,10 @@
 #include "cover/brep/cells.h"
 #include "cover/brep/decompose.h"
 #include "cover/brep/halfedge.h"
+#include "cover/mesh/validate.h"
 #include "cover/model/model.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
-#include "cover/solid/validate.h"
 
 namespace cover::stress {
 namespace {

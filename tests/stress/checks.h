@@ -38,7 +38,7 @@ struct Outcome {
   PolygonMesh evidence;  ///< the output mesh that failed its check (empty when none)
 };
 
-/// The first problem of an output mesh by Cover's exact checks (solid/validate.h validate_mesh
+/// The first problem of an output mesh by Cover's exact checks (mesh/validate.h validate_mesh
 /// with the self-intersection test; brep::validate of its half-edge mesh) and CGAL's
 /// (cgal_oracle.h); kind "ok", "invalid", "degenerate" or "touching".
 Outcome check_mesh(const PolygonMesh& mesh);

@@ -33,10 +33,10 @@
 #include "cgal_oracle.h"
 #include "checks.h"
 #include "cover/boolean/evaluate.h"
+#include "cover/io/mesh_io.h"
+#include "cover/io/scene.h"
 #include "cover/solid/errors.h"
-#include "cover/solid/mesh_io.h"
 #include "cover/solid/parallel.h"
-#include "cover/solid/scene.h"
 #include "random_scene.h"
 #include "summary.h"
 

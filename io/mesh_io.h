@@ -1,0 +1,62 @@
+#pragma once
+// Mesh file reading and writing. Format is chosen by the file extension (case-insensitive):
+//   read:  .obj, .off, .stl (ASCII or binary, detected from content), .ply (ascii,
+//          binary_little_endian, binary_big_endian)
+//   write: .off, .obj, .stl (binary), .ply (binary_little_endian)
+// Readers are hand-written (see mesh_io.cpp for why and the measurement).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cover/solid/memory_limit.h"
+#include "cover/solid/polygon_mesh.h"
+
+namespace cover {
+
+/// Reads a polygon mesh. Faces keep their vertex order; polygons are not triangulated.
+/// STL triangles are welded by exact coordinate equality.
+/// Throws InputError "FILE:LINE: message" (binary formats: "FILE: byte N: ..." or
+/// "FILE: triangle N (byte B): ..."; whole-file problems: "FILE: empty file", "FILE: no faces")
+/// for any malformed input: empty, truncated, wrong counts, indices out of range, NaN/inf
+/// coordinates, absurd sizes (counts that cannot fit the file are refused before allocating),
+/// binary garbage, faces with fewer than 3 vertices, unsupported extension, unreadable file, and
+/// (read_regular_file, solid/memory_limit.h) a FIFO / device / directory ("FILE: not a regular
+/// file") or a file larger than `max_file_bytes` (refused before reading).
+/// Numbers follow one rule in every text format (io/parse.h): a leading '+' is
+/// allowed, overflow (1e400) is an error, underflow rounds to 0. Non-fatal problems (a binary
+/// STL's trailing bytes) are appended to `*warnings` when given, one line each naming the file.
+PolygonMesh read_mesh(const std::filesystem::path& path,
+                      uint64_t max_file_bytes = kDefaultMaxMemoryBytes,
+                      std::vector<std::string>* warnings = nullptr);
+
+/// Writes a mesh atomically (io/atomic_file.h: a temporary beside the target, then rename;
+/// inside an OutputBatch, renamed with the batch's other outputs).
+/// Polygons are fan-triangulated for STL (coordinates rounded to float); .off/.obj/.ply round
+/// trips are exact. Throws InputError on unsupported extension, I/O failure, or a mesh that
+/// cannot be written (index out of range, face with fewer than 3 vertices, non-finite vertex).
+void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh);
+
+/// Per-face labels (e.g. the source leaf of each face of an evaluated mesh) for the formats
+/// that can hold them: .ply gets a face property `int <ply_property>` after vertex_indices;
+/// .obj a line "g <obj_groups[label]>" before each run of faces with the same label (faces keep
+/// their order, so indices match the unlabelled file).
+struct FaceLabels {
+  std::string ply_property = "label";
+  std::vector<uint32_t> labels;         ///< one per face
+  std::vector<std::string> obj_groups;  ///< group name per label value (no whitespace)
+};
+
+/// write_mesh with face labels. Throws InputError as above, for .off / .stl ("cannot carry face
+/// labels"), or when labels.labels does not have one label per face.
+void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh,
+                const FaceLabels& labels);
+
+/// True if the extension names a mesh format read_mesh understands.
+bool is_mesh_extension(const std::filesystem::path& path);
+
+/// The extension of `path` with its dot, ASCII-lowercased (".OFF" → ".off"), or empty: how every
+/// reader and writer picks a format.
+std::string lower_extension(const std::filesystem::path& path);
+
+}  // namespace cover

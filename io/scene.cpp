@@ -1,0 +1,547 @@
+#include "cover/io/scene.h"
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "cover/io/mesh_io.h"
+#include "cover/io/parse.h"
+#include "cover/mesh/orient.h"
+#include "cover/mesh/repair.h"
+#include "cover/mesh/validate.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/transform.h"
+
+namespace cover {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMaxDepth = 256;  // nesting of operations
+
+/// Reads a scene in three steps. plan() walks the JSON in document order, checking its structure
+/// and every primitive and transform, and lists the leaves (their meshes not yet read); the
+/// leaves are then read, transformed and prepared in parallel, one task each (the load of a scene
+/// of many large meshes is mostly reading and validating them); assemble() concatenates them
+/// along the plan. Errors: the first structural error in document order, else the first leaf's
+/// error in document order; warnings in document order. The result does not depend on threads.
+class SceneReader {
+ public:
+  SceneReader(std::filesystem::path scene, LoadOptions options, std::vector<std::string>& warnings)
+      : scene_(std::move(scene)), options_(options), warnings_(warnings) {}
+
+  /// The solid of the scene rooted at `j`.
+  Solid read(const json& j) {
+    const Plan plan = this->plan(j, "", Transform{}, 0);
+    read_files();
+    std::vector<Solid> solids(tasks_.size());
+    std::vector<std::vector<std::string>> warnings(tasks_.size());
+    std::vector<std::exception_ptr> errors(tasks_.size());
+    parallel_for(tasks_.size(), 1, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) {
+        try {
+          solids[t] = run(tasks_[t], warnings[t]);
+        } catch (...) {
+          errors[t] = std::current_exception();
+        }
+      }
+    });
+    for (size_t t = 0; t < tasks_.size(); ++t) {
+      if (errors[t]) std::rethrow_exception(errors[t]);
+      warnings_.insert(warnings_.end(), warnings[t].begin(), warnings[t].end());
+    }
+    return assemble(plan, solids);
+  }
+
+ private:
+  /// One leaf to make: a mesh file (read by read_files()) or a primitive's mesh (built by plan()).
+  struct LeafTask {
+    std::string path;            ///< its JSON path
+    std::filesystem::path file;  ///< mesh leaves: the file; empty for primitives
+    std::string kind;            ///< primitives: box, sphere or cylinder
+    PolygonMesh mesh;            ///< primitives: the mesh (transformed)
+    Transform world;             ///< mesh leaves: the transform to apply
+    size_t read = 0;             ///< mesh leaves: its file's entry in reads_
+  };
+  /// One distinct mesh file, read once however many leaves place it (instances: the 10-leaf
+  /// preview scene reads 6 files for 10 leaves).
+  struct FileRead {
+    std::filesystem::path file;
+    PolygonMesh mesh;                   ///< as read; each leaf transforms a copy
+    std::vector<std::string> warnings;  ///< the reader's own, repeated for every leaf
+    std::exception_ptr error;           ///< InputError of the reader
+    /// validate_mesh of the mesh as read (full_report off): its edge counts and orientation hold
+    /// for every leaf placing it whose loops need no repair (a transform moves vertices only;
+    /// a mirror reverses every face, which keeps them), so the edge table is built once per
+    /// file; each leaf still computes its own volume.
+    MeshReport topology;
+  };
+
+  /// Reads every distinct file of the mesh leaves, in parallel (a file per task; a large OFF
+  /// body is itself parsed in parallel chunks).
+  void read_files() {
+    parallel_for(reads_.size(), 1, [&](size_t begin, size_t end) {
+      for (size_t r = begin; r < end; ++r) {
+        try {
+          reads_[r].mesh = read_mesh(reads_[r].file, options_.max_file_bytes, &reads_[r].warnings);
+          reads_[r].topology = validate_mesh(reads_[r].mesh, leaf_validation());
+        } catch (const InputError&) {
+          reads_[r].error = std::current_exception();
+        }
+      }
+    });
+  }
+  /// The expression: a leaf task, or an operation over plans.
+  struct Plan {
+    CsgOp op = CsgOp::kLeaf;
+    size_t task = 0;
+    std::vector<Plan> children;
+  };
+
+  Plan plan(const json& j, const std::string& path, const Transform& parent, int depth) {
+    if (depth > kMaxDepth) fail(path, "scene nested deeper than " + std::to_string(kMaxDepth));
+    if (!j.is_object()) fail(path, "expected an object (a leaf or an operation)");
+    Transform world = parent;
+    std::string kind;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (it.key() == "transform") {
+        world = parent * transform(it.value(), path + "/transform");
+      } else if (kind.empty()) {
+        kind = it.key();
+      } else {
+        fail(path, "more than one of leaf/operation keys ('" + kind + "', '" + it.key() + "')");
+      }
+    }
+    if (kind.empty())
+      fail(path,
+           "expected one of mesh, box, sphere, cylinder, union, "
+           "intersection, difference, complement");
+    const json& v = j.at(kind);
+    const std::string sub = path + "/" + kind;
+    if (kind == "mesh") {
+      if (!v.is_string()) fail(sub, "expected a file path string");
+      if (v.get_ref<const std::string&>().empty()) fail(sub, "expected a non-empty file path");
+      std::filesystem::path file = v.get<std::string>();
+      if (file.is_relative()) file = scene_.parent_path() / file;
+      if (file.extension() == ".json") fail(sub, "a mesh leaf must be a mesh file, not a scene");
+      const std::string key = file.lexically_normal().string();
+      auto [it, fresh] = read_index_.try_emplace(key, reads_.size());
+      if (fresh) reads_.emplace_back().file = file;
+      tasks_.push_back({sub, std::move(file), {}, {}, world, it->second});
+      return {CsgOp::kLeaf, tasks_.size() - 1, {}};
+    }
+    if (kind == "box" || kind == "sphere" || kind == "cylinder") {
+      PolygonMesh m = primitive(kind, v, sub);
+      apply_transform(world, m);
+      tasks_.push_back({sub, {}, kind, std::move(m), Transform{}});
+      return {CsgOp::kLeaf, tasks_.size() - 1, {}};
+    }
+    if (kind == "complement") return {CsgOp::kComplement, 0, {plan(v, sub, world, depth + 1)}};
+    if (kind == "union" || kind == "intersection" || kind == "difference") {
+      if (!v.is_array() || v.empty()) fail(sub, "expected an array of one or more nodes");
+      if (kind == "difference" && v.size() < 2) fail(sub, "expected two or more nodes");
+      Plan out{kind == "union"          ? CsgOp::kUnion
+               : kind == "intersection" ? CsgOp::kIntersection
+                                        : CsgOp::kDifference,
+               0,
+               {}};
+      for (size_t i = 0; i < v.size(); ++i)
+        out.children.push_back(plan(v[i], sub + "/" + std::to_string(i), world, depth + 1));
+      return out;
+    }
+    fail(path, "unknown key '" + kind + "'");
+  }
+
+  /// Makes the leaf of one task (in parallel with the others; `warnings` are the task's own).
+  /// A mesh file's own errors ("m.off:5: ...", "m.off: cannot open: ...") follow the JSON path.
+  Solid run(LeafTask& task, std::vector<std::string>& warnings) const {
+    if (task.file.empty()) return leaf(std::move(task.mesh), task.kind, task.path, false, warnings);
+    const FileRead& r = reads_[task.read];
+    if (r.error) {
+      try {
+        std::rethrow_exception(r.error);
+      } catch (const InputError& e) {
+        fail(task.path, e.what());
+      }
+    }
+    warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+    PolygonMesh m = r.mesh;
+    apply_transform(task.world, m);
+    return leaf(std::move(m), task.file.string(), task.path, true, warnings, &r.topology);
+  }
+
+  Solid assemble(const Plan& p, std::vector<Solid>& solids) const {
+    if (p.op == CsgOp::kLeaf) return std::move(solids[p.task]);
+    if (p.op == CsgOp::kComplement) return complement(assemble(p.children[0], solids));
+    std::vector<Solid> parts;
+    for (const Plan& c : p.children) parts.push_back(assemble(c, solids));
+    if (p.op == CsgOp::kUnion) return unite(std::move(parts));
+    if (p.op == CsgOp::kIntersection) return intersect(std::move(parts));
+    return subtract(std::move(parts));
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InputError(scene_.string() + ": " + (path.empty() ? "/" : path) + ": " + what);
+  }
+
+  double number(const json& j, const std::string& path) const {
+    if (!j.is_number()) fail(path, "expected a number");
+    const double d = j.get<double>();
+    if (!std::isfinite(d)) fail(path, "expected a finite number");
+    return d;
+  }
+
+  Vec3 vec3(const json& j, const std::string& path) const {
+    if (!j.is_array() || j.size() != 3) fail(path, "expected 3 numbers");
+    return {number(j[0], path + "/0"), number(j[1], path + "/1"), number(j[2], path + "/2")};
+  }
+
+  /// Checks that `j` is an object whose keys are all in `allowed`.
+  void keys(const json& j, const std::string& path,
+            std::initializer_list<const char*> allowed) const {
+    if (!j.is_object()) fail(path, "expected an object");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      bool ok = false;
+      for (const char* a : allowed) ok = ok || it.key() == a;
+      if (!ok) fail(path + "/" + it.key(), "unknown key");
+    }
+  }
+
+  const json& required(const json& j, const std::string& path, const char* key) const {
+    if (!j.contains(key)) fail(path, std::string("missing key '") + key + "'");
+    return j.at(key);
+  }
+
+  int segments(const json& j, const std::string& path, int max) const {
+    if (!j.contains("segments")) return 32;
+    const json& s = j.at("segments");
+    if (!s.is_number_integer() || s.get<int64_t>() < 3 || s.get<int64_t>() > max)
+      fail(path + "/segments", "expected an integer from 3 to " + std::to_string(max));
+    return static_cast<int>(s.get<int64_t>());
+  }
+
+  double positive(const json& j, const std::string& path) const {
+    const double d = number(j, path);
+    if (!(d > 0)) fail(path, "expected a positive number");
+    return d;
+  }
+
+  PolygonMesh primitive(const std::string& kind, const json& v, const std::string& path) const {
+    if (kind == "box") {
+      keys(v, path, {"min", "max"});
+      const Vec3 lo = vec3(required(v, path, "min"), path + "/min");
+      const Vec3 hi = vec3(required(v, path, "max"), path + "/max");
+      if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+        fail(path, "expected min < max on every axis");
+      return make_box(lo, hi);
+    }
+    if (kind == "sphere") {
+      keys(v, path, {"center", "radius", "segments"});
+      const Vec3 c = vec3(required(v, path, "center"), path + "/center");
+      const double r = positive(required(v, path, "radius"), path + "/radius");
+      return make_sphere(c, r, segments(v, path, kMaxSphereSegments));
+    }
+    keys(v, path, {"base", "top", "radius", "segments"});
+    const Vec3 b = vec3(required(v, path, "base"), path + "/base");
+    const Vec3 t = vec3(required(v, path, "top"), path + "/top");
+    const double r = positive(required(v, path, "radius"), path + "/radius");
+    if (b == t) fail(path, "base and top coincide");
+    return make_cylinder(b, t, r, segments(v, path, kMaxCylinderSegments));
+  }
+
+  Transform transform(const json& t, const std::string& path) const {
+    if (!t.is_object()) fail(path, "expected an object");
+    Transform m;
+    if (t.contains("matrix")) {
+      keys(t, path, {"matrix"});
+      const json& a = t.at("matrix");
+      if (!a.is_array() || a.size() != 16)
+        fail(path + "/matrix", "expected 16 numbers (row-major)");
+      std::array<double, 16> rows{};
+      for (int i = 0; i < 16; ++i) rows[i] = number(a[i], path + "/matrix/" + std::to_string(i));
+      if (rows[12] != 0 || rows[13] != 0 || rows[14] != 0 || rows[15] != 1)
+        fail(path + "/matrix", "last row must be 0 0 0 1");
+      m = Transform::from_matrix(rows);
+    } else {
+      keys(t, path, {"scale", "rotate", "translate"});
+      Vec3 scale{1, 1, 1}, axis{0, 0, 1}, translate{0, 0, 0};
+      double degrees = 0;
+      if (t.contains("scale")) {
+        const json& s = t.at("scale");
+        if (s.is_number()) {
+          const double f = number(s, path + "/scale");
+          scale = {f, f, f};
+        } else if (s.is_array() && s.size() == 3) {
+          scale = vec3(s, path + "/scale");
+        } else {
+          fail(path + "/scale", "expected a number or 3 numbers");
+        }
+      }
+      if (t.contains("rotate")) {
+        const std::string rp = path + "/rotate";
+        const json& r = t.at("rotate");
+        keys(r, rp, {"axis", "degrees"});
+        const Vec3 a = vec3(required(r, rp, "axis"), rp + "/axis");
+        if (a == Vec3{}) fail(rp + "/axis", "axis must be non-zero");
+        axis = a;
+        degrees = number(required(r, rp, "degrees"), rp + "/degrees");
+      }
+      if (t.contains("translate")) {
+        translate = vec3(t.at("translate"), path + "/translate");
+      }
+      m = Transform::trs(scale, axis, degrees, translate);
+    }
+    const double det = m.determinant();
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) fail(path, "transform is singular");
+    return m;
+  }
+
+  /// Messages name the scene file and the leaf's JSON path, and a mesh leaf's file before them.
+  Solid leaf(PolygonMesh m, std::string name, const std::string& path, bool from_file,
+             std::vector<std::string>& warnings, const MeshReport* topology = nullptr) const {
+    const std::string at = scene_.string() + ": " + path;
+    const std::string where = from_file ? name + " (" + at + ")" : at;
+    return prepare_leaf(std::move(m), std::move(name), path, where, options_, warnings, topology);
+  }
+
+  /// What loading validates: boundary, orientation and volume only.
+  static ValidateOptions leaf_validation() {
+    ValidateOptions vo;
+    vo.check_self_intersection = false;
+    vo.full_report = false;
+    return vo;
+  }
+
+ public:
+  /// Makes one mesh a leaf (orient.h, docs/cli.md#semantics): coordinates within
+  /// ±kMaxCoordinate; repeated loops read once; a closed leaf re-oriented consistently; an
+  /// inside-out leaf reversed. `where` names the leaf in messages.
+  /// `topology`: validate_mesh of the same index lists before any transform (FileRead), or
+  /// nullptr.
+  static Solid prepare_leaf(PolygonMesh m, std::string name, const std::string& origin,
+                            const std::string& where, const LoadOptions& options,
+                            std::vector<std::string>& warnings,
+                            const MeshReport* topology = nullptr) {
+    check_coordinate_range(m, where);
+    if (options.repair) {
+      size_t first = 0;
+      if (const size_t n = collapse_repeated_loops(m, &first)) {
+        warnings.push_back(where + ": " + std::to_string(n) + " face(s) (first: face " +
+                           std::to_string(first) +
+                           ", counting from 0) repeat one loop several times; read once");
+        topology = nullptr;  // the loops changed
+      }
+    }
+    const ValidateOptions vo = leaf_validation();
+    MeshReport r;
+    if (topology != nullptr) {
+      r = *topology;
+      r.volume = signed_volume(m);
+      r.outward = r.closed && r.oriented && r.volume > 0;
+    } else {
+      r = validate_mesh(m, vo);
+    }
+    if (options.repair && r.boundary_edges > 0) {  // only open leaves are repaired (repair.h)
+      const int64_t before = r.boundary_edges;
+      const size_t welded = weld_duplicate_vertices(m);
+      const size_t dropped = drop_zero_area_faces(m);
+      if (welded > 0)
+        warnings.push_back(where + ": " + std::to_string(welded) +
+                           " duplicate vertices welded (exact coordinates)");
+      if (dropped > 0)
+        warnings.push_back(where + ": " + std::to_string(dropped) + " zero-area face(s) dropped");
+      if (welded > 0 || dropped > 0) {
+        r = validate_mesh(m, vo);
+        if (r.boundary_edges == 0)
+          warnings.push_back(where + ": closed after repair (" + std::to_string(before) +
+                             " boundary edges before)");
+      }
+    }
+    if (options.require_closed && r.boundary_edges > 0)
+      throw InputError(where + ": open mesh: " + std::to_string(r.boundary_edges) +
+                       " boundary edges (a leaf must be a closed solid)");
+    if (r.boundary_edges > 0)
+      warnings.push_back(where + ": open mesh: " + std::to_string(r.boundary_edges) +
+                         " boundary edges; inside where the generalized winding number has "
+                         "|w| > 1/2 (--closed-only refuses)");
+    // A closed leaf whose every edge has two sides of opposite directions (r.oriented, none
+    // non-manifold) is balanced: orient_consistently() would change nothing, so its edge sorts
+    // are skipped (the common case; ~15% of a scene's load).
+    const bool balanced = r.boundary_edges == 0 && r.nonmanifold_edges == 0 && r.oriented;
+    bool reoriented = false;
+    if (options.repair && r.boundary_edges == 0 && !balanced) {
+      const OrientResult o = orient_consistently(m, where);
+      reoriented = o.flipped_faces > 0 || o.dropped_faces > 0;
+      if (o.flipped_faces > 0)
+        warnings.push_back(where + ": faces not consistently oriented; " +
+                           std::to_string(o.flipped_faces) + " face(s) reversed in " +
+                           std::to_string(o.components) + " component(s)");
+      if (o.dropped_faces > 0)
+        warnings.push_back(where + ": " + std::to_string(o.dropped_faces) +
+                           " face(s) spanning edges of three or more faces dropped (an inner "
+                           "membrane) to make the surface closed");
+    }
+    bool flipped = false;
+    // validate_mesh's volume holds unless faces were flipped or dropped since.
+    if (options.orient_outward && (reoriented ? signed_volume(m) : r.volume) < 0) {
+      for (size_t f = 0; f < m.face_count(); ++f)
+        std::reverse(m.face_vertices.begin() + m.face_start[f],
+                     m.face_vertices.begin() + m.face_start[f + 1]);
+      flipped = true;
+      warnings.push_back(where + ": inside-out leaf (negative volume), faces reversed");
+    }
+    Solid s = make_leaf(std::move(m), std::move(name), origin);
+    s.leaves[0].flipped = flipped;
+    s.leaves[0].boundary_edges = r.boundary_edges;
+    return s;
+  }
+
+ private:
+  /// Refuses a vertex outside ±kMaxCoordinate (solid/types.h says why the range).
+  static void check_coordinate_range(const PolygonMesh& m, const std::string& where) {
+    for (size_t v = 0; v < m.vertices.size(); ++v) {
+      const Vec3 p = m.vertices[v];
+      for (int a = 0; a < 3; ++a)
+        if (!(std::abs(p[a]) <= kMaxCoordinate)) {
+          char value[32];
+          std::snprintf(value, sizeof value, "%.17g", p[a]);
+          throw InputError(where + ": vertex " + std::to_string(v) +
+                           " (counting from 0): " + "xyz"[a] + " coordinate " + value +
+                           " is outside the supported range [-2^64, 2^64] (about ±1.8e19)");
+        }
+    }
+  }
+
+ private:
+  std::filesystem::path scene_;
+  LoadOptions options_;
+  std::vector<std::string>& warnings_;
+  std::vector<LeafTask> tasks_;               ///< the leaves, in document order
+  std::vector<FileRead> reads_;               ///< the distinct mesh files, in order of first use
+  std::map<std::string, size_t> read_index_;  ///< a file's (normalized) path → its entry
+};
+
+/// json::parse callback that keeps the JSON pointer of the value being parsed (for errors in the
+/// text itself) and refuses duplicate keys, which nlohmann would silently resolve to the last.
+class JsonPath {
+ public:
+  explicit JsonPath(std::string scene) : scene_(std::move(scene)) {}
+
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
+        break;
+      case json::parse_event_t::key: {
+        Frame& top = frames_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second)
+          throw InputError(scene_ + ": " + pointer(frames_.size() - 1) + ": duplicate key " +
+                           detail::quote(top.key));
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        completed();
+        break;
+      case json::parse_event_t::value:
+        completed();
+        break;
+    }
+    return true;
+  }
+
+  /// The pointer of the value being parsed ("/" at the root).
+  std::string current() const { return pointer(frames_.size()); }
+
+ private:
+  struct Frame {
+    bool array = false;
+    size_t index = 0;            ///< arrays: elements completed so far
+    std::string key;             ///< objects: the last key
+    std::set<std::string> keys;  ///< objects: every key so far
+  };
+
+  /// The pointer through the first `n` open containers ("/" when n = 0).
+  std::string pointer(size_t n) const {
+    std::string out;
+    for (size_t i = 0; i < n; ++i)
+      out += "/" + (frames_[i].array ? std::to_string(frames_[i].index) : frames_[i].key);
+    return out.empty() ? "/" : out;
+  }
+
+  void completed() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+
+  std::string scene_;
+  std::vector<Frame> frames_;
+};
+
+std::string line_of(const std::string& text, size_t byte) {
+  size_t line = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) line += text[i] == '\n';
+  return std::to_string(line);
+}
+
+}  // namespace
+
+Solid prepare_leaf(PolygonMesh mesh, std::string name, const std::string& where,
+                   const LoadOptions& options, std::vector<std::string>& warnings) {
+  return SceneReader::prepare_leaf(std::move(mesh), std::move(name), "", where, options, warnings);
+}
+
+LoadedInput parse_scene(const std::string& text, const std::filesystem::path& scene_path,
+                        const LoadOptions& options) {
+  json j;
+  JsonPath where(scene_path.string());
+  try {
+    j = json::parse(text, [&where](int depth, json::parse_event_t event, json& parsed) {
+      return where(depth, event, parsed);
+    });
+  } catch (const json::exception& e) {
+    std::string what = e.what();
+    if (e.id == 406) {  // "number overflow parsing 'TOKEN'": beyond a double (the number rule)
+      const size_t open = what.find('\''), close = what.rfind('\'');
+      const std::string token = open < close ? what.substr(open + 1, close - open - 1) : "";
+      throw InputError(scene_path.string() + ": " + where.current() + ": out-of-range number " +
+                       detail::quote(token));
+    }
+    // nlohmann: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+    const auto colon = what.find("] ");
+    const auto* parse = dynamic_cast<const json::parse_error*>(&e);
+    const size_t byte = parse && parse->byte > 0 ? parse->byte - 1 : 0;
+    throw InputError(scene_path.string() + ":" + line_of(text, byte) + ": invalid JSON: " +
+                     (colon == std::string::npos ? what : what.substr(colon + 2)));
+  }
+  LoadedInput out;
+  SceneReader reader(scene_path, options, out.warnings);
+  out.solid = reader.read(j);
+  return out;
+}
+
+LoadedInput load_input(const std::filesystem::path& path, const LoadOptions& options) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".json")
+    return parse_scene(std::string(read_regular_file(path, options.max_file_bytes).view()), path,
+                       options);
+  LoadedInput out;
+  PolygonMesh mesh = read_mesh(path, options.max_file_bytes, &out.warnings);
+  out.solid = SceneReader::prepare_leaf(std::move(mesh), path.string(), "", path.string(), options,
+                                        out.warnings);
+  return out;
+}
+
+}  // namespace cover

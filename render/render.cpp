@@ -1,0 +1,252 @@
+#include "cover/render/render.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <thread>
+
+#include "cover/covering/ray.h"
+#include "cover/render/object_order.h"
+#include "cover/solid/errors.h"
+#include "cover/solid/large_vector.h"
+#include "cover/solid/parallel.h"
+
+namespace cover {
+namespace {
+
+/// What a pixel's ray sees first.
+struct Sample {
+  bool hit = false;
+  bool cap = false;
+  double t = 0;
+  Vec3 normal;  ///< unit, facing the camera
+  uint32_t leaf = 0;
+};
+
+Vec3 unit(Vec3 v) {
+  const double l = std::sqrt(dot(v, v));
+  return l > 0 ? (1.0 / l) * v : v;
+}
+
+/// What a pixel shows, from its visible hit (`tri`: the triangle of v.enter when v.hit && !v.cap).
+Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
+                 const std::optional<Plane>& section) {
+  Sample out;
+  if (!v.hit) return out;
+  out.hit = true;
+  out.t = v.t;
+  if (!v.cap) {
+    const Vec3 n = unit(cross(tri->b - tri->a, tri->c - tri->a));
+    // Entering a leaf shows its outward normal; leaving one (a subtrahend) the reverse.
+    out.normal = v.enter.sign < 0 ? n : -1.0 * n;
+    out.leaf = v.enter.leaf;
+  } else {
+    out.cap = true;
+    const Vec3 n = section ? unit(section->normal) : -1.0 * ray.dir;
+    out.normal = dot(n, ray.dir) < 0 ? n : -1.0 * n;
+  }
+  return out;
+}
+
+/// `outside_in_result`: the expression's value with every leaf outside (once per frame).
+/// `open`: the open leaves' trees (gwn.h), or nullptr when every leaf is closed; then spans
+/// come from cast() and open_spans() (membership changes only at surface hits).
+Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
+              const std::optional<Plane>& section, bool outside_in_result, const GwnForest* open) {
+  const auto [lo, hi] = section_window(ray, section);
+  if (lo > hi) return {};
+  VisibleHit v;
+  if (open == nullptr) {
+    v = first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi, outside_in_result);
+  } else {
+    RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
+    open_spans(r, solid, *open, ray);
+    v = first_visible(r, lo, hi);
+  }
+  if (!v.hit || v.cap) return to_sample(v, nullptr, ray, section);
+  const Bvh::Tri t = bvh.triangle(v.enter.tri);
+  return to_sample(v, &t, ray, section);
+}
+
+/// `v` as n copies of `value`, written 16 MiB at a time with step() after each.
+template <typename Vector>
+void fill_in_steps(Vector& v, size_t n, typename Vector::value_type value,
+                   const std::function<void()>& step) {
+  constexpr size_t kStepBytes = size_t{16} << 20;
+  const size_t per_step = std::max<size_t>(1, kStepBytes / sizeof(value));
+  v.clear();
+  reserve_huge(v, n);
+  while (v.size() < n) {
+    v.resize(std::min(n, v.size() + per_step), value);
+    step();
+  }
+}
+
+std::array<uint8_t, 3> hsv(double h, double s, double v) {
+  const double c = v * s, x = c * (1 - std::abs(std::fmod(h * 6, 2.0) - 1)), m = v - c;
+  double r = 0, g = 0, b = 0;
+  switch (static_cast<int>(h * 6) % 6) {
+    case 0:
+      r = c, g = x;
+      break;
+    case 1:
+      r = x, g = c;
+      break;
+    case 2:
+      g = c, b = x;
+      break;
+    case 3:
+      g = x, b = c;
+      break;
+    case 4:
+      r = x, b = c;
+      break;
+    default:
+      r = c, b = x;
+      break;
+  }
+  auto byte = [](double f) {
+    return static_cast<uint8_t>(std::lround(std::clamp(f, 0.0, 1.0) * 255));
+  };
+  return {byte(r + m), byte(g + m), byte(b + m)};
+}
+
+}  // namespace
+
+std::array<uint8_t, 3> leaf_colour(uint32_t leaf) {
+  // Golden-ratio hue steps from a blue start: neighbouring leaf ids get distant hues.
+  const double h = std::fmod(0.58 + 0.6180339887498949 * leaf, 1.0);
+  return hsv(h, 0.55, 0.95);
+}
+
+std::array<uint8_t, 3> cap_colour() { return {214, 48, 49}; }
+
+double render_bytes(int width, int height) {
+  constexpr size_t kPerPixel = 3 * sizeof(uint8_t) + 2 * sizeof(uint16_t) + sizeof(Vec3);
+  return static_cast<double>(width) * height * kPerPixel;
+}
+
+bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/, const RenderOptions& o) {
+  const bool applies = !solid.has_open_leaf();
+  if (o.method == RenderMethod::kObjectOrder && !applies)
+    throw InputError("render: the object-order method needs closed leaves");
+  return o.method == RenderMethod::kObjectOrder || (o.method == RenderMethod::kAuto && applies);
+}
+
+Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const RenderOptions& o) {
+  return render(solid, &bvh, cam, o);
+}
+
+Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const RenderOptions& o) {
+  const bool object_order = renders_in_object_order(solid, cam, o);
+  if (!object_order && bvh == nullptr)
+    throw PreconditionError("render: a BVH is needed for this camera and solid");
+  Image img;
+  img.width = cam.width;
+  img.height = cam.height;
+  const size_t n = static_cast<size_t>(cam.width) * cam.height;
+  const int tile = std::max(1, o.tile);
+  const int tiles_x = (cam.width + tile - 1) / tile, tiles_y = (cam.height + tile - 1) / tile;
+  const size_t tiles = static_cast<size_t>(tiles_x) * tiles_y;
+  // The buffers' first touch is seconds of page faults for a large image (7 bytes a pixel: about
+  // 1 GiB at 12000², ~2.8 ms per MiB on a fresh VM page): filled in steps, with a progress call
+  // (done 0) after each, so that a caller polling for an interrupt gets a say meanwhile.
+  const auto step = [&] {
+    if (o.progress) o.progress(0, tiles);
+  };
+  fill_in_steps(img.rgb, 3 * n, uint8_t{0}, step);
+  fill_in_steps(img.depth, n, Image::kFarDepth, step);
+  fill_in_steps(img.ids, n, Image::kBackgroundId, step);
+  // Unit normals for the outline, written and read only at pixels with a surface (ids not
+  // background): left unfilled, their pages are first touched by the tiles that write them.
+  LargeBuffer<std::array<double, 3>> normals(n);
+  auto normal = [&](size_t i) { return Vec3{normals[i][0], normals[i][1], normals[i][2]}; };
+  // A key light from the upper left of the camera plus a headlight and ambient.
+  const Vec3 key = unit(cam.forward - 0.6 * cam.up + 0.5 * cam.right);
+  auto shade = [&](size_t i, const Ray& ray, const Sample& s) {
+    std::array<uint8_t, 3> c = o.background;
+    if (s.hit) {
+      const std::array<uint8_t, 3> base = s.cap ? cap_colour() : leaf_colour(s.leaf);
+      const double head = std::max(0.0, -dot(s.normal, ray.dir));
+      const double lit = std::max(0.0, -dot(s.normal, key));
+      const double k = 0.28 + 0.47 * head + 0.25 * lit;
+      for (int ch = 0; ch < 3; ++ch)
+        c[ch] = static_cast<uint8_t>(std::lround(std::min(255.0, base[ch] * k)));
+      const double f = (s.t - cam.near) / (cam.far - cam.near);
+      img.depth[i] = static_cast<uint16_t>(std::lround(std::clamp(f, 0.0, 1.0) * 65534));
+      img.ids[i] =
+          s.cap ? Image::kCapId : static_cast<uint16_t>(std::min<uint32_t>(s.leaf + 1, 65534));
+      normals[i] = {s.normal.x, s.normal.y, s.normal.z};
+    }
+    std::copy(c.begin(), c.end(), img.rgb.begin() + 3 * i);
+  };
+  // Progress as in voxelize.cpp: a shared count, reported by the calling thread (which takes part
+  // in the loop) after each of its tiles, so the callback never runs concurrently.
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<size_t> tiles_done{0};
+  auto tile_done = [&](size_t count) {
+    const size_t done = tiles_done.fetch_add(count) + count;
+    if (o.progress && std::this_thread::get_id() == caller && done < tiles) o.progress(done, tiles);
+  };
+  if (object_order) {
+    object_order_visible(
+        solid, cam, o.section, tile,
+        [&](size_t i, const Ray& ray, const VisibleHit& v, const Bvh::Tri* t) {
+          shade(i, ray, to_sample(v, t, ray, o.section));
+        },
+        tile_done);
+  } else {
+    std::optional<GwnForest> own;
+    const GwnForest* open = nullptr;
+    if (solid.has_open_leaf()) {
+      if (o.gwn == nullptr) own = build_gwn(solid);
+      open = o.gwn != nullptr ? o.gwn : &*own;
+    }
+    const bool outside_in_result =
+        !solid.tree.nodes.empty() &&
+        solid.tree.evaluate(std::vector<uint8_t>(solid.leaves.size(), 0));
+    parallel_for(tiles, 1, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) {
+        const int x0 = static_cast<int>(t % tiles_x) * tile,
+                  y0 = static_cast<int>(t / tiles_x) * tile;
+        for (int py = y0; py < std::min(cam.height, y0 + tile); ++py)
+          for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
+            const Ray ray = cam.ray(px, py);
+            shade(static_cast<size_t>(py) * cam.width + px, ray,
+                  sample(solid, *bvh, ray, o.section, outside_in_result, open));
+          }
+      }
+      tile_done(end - begin);
+    });
+  }
+  if (o.progress) o.progress(tiles, tiles);
+  if (!o.outline) return img;
+  // Outline: a pixel whose right or lower neighbour shows another leaf (or background) or a
+  // normal more than ~35° apart (silhouettes, leaf boundaries, creases) is darkened; where one
+  // of the two is background, the surface pixel is. As a pull per pixel (so rows run in
+  // parallel, each writing only its own pixels): surface pixel p is darkened iff it differs from
+  // its right or lower neighbour, or its left or upper neighbour is background.
+  auto differ = [&](size_t i, size_t j) {
+    return img.ids[i] != img.ids[j] || dot(normal(i), normal(j)) < 0.82;
+  };
+  parallel_for(static_cast<size_t>(cam.height), 16, [&](size_t begin, size_t end) {
+    if (o.progress && std::this_thread::get_id() == caller) o.progress(tiles, tiles);
+    for (size_t py = begin; py < end; ++py)
+      for (int px = 0; px < cam.width; ++px) {
+        const size_t i = py * cam.width + px;
+        if (img.ids[i] == Image::kBackgroundId) continue;
+        const bool edge = (px + 1 < cam.width && differ(i, i + 1)) ||
+                          (py + 1 < static_cast<size_t>(cam.height) && differ(i, i + cam.width)) ||
+                          (px > 0 && img.ids[i - 1] == Image::kBackgroundId) ||
+                          (py > 0 && img.ids[i - cam.width] == Image::kBackgroundId);
+        if (edge)
+          for (int ch = 0; ch < 3; ++ch)
+            img.rgb[3 * i + ch] = static_cast<uint8_t>(img.rgb[3 * i + ch] * 0.35);
+      }
+  });
+  return img;
+}
+
+}  // namespace cover
