@@ -42,7 +42,8 @@ constexpr uint64_t kSeed = 20240601;  ///< every random input is seeded
 /// The solid and its BVH for one target size, built once and shared by every benchmark.
 struct Model {
   cover::Solid solid;
-  std::unique_ptr<cover::Bvh> bvh;
+  std::unique_ptr<cover::Prepared> prepared;
+  const cover::Bvh* bvh = nullptr;  ///< prepared->bvh()
 };
 
 const Model& model(int64_t target) {
@@ -50,7 +51,8 @@ const Model& model(int64_t target) {
   Model& m = cache[target];
   if (!m.bvh) {
     m.solid = cover::make_leaf(bench::bumpy_sphere(bench::segments_for(target)), "sphere");
-    m.bvh = std::make_unique<cover::Bvh>(m.solid);
+    m.prepared = std::make_unique<cover::Prepared>(m.solid);
+    m.bvh = &m.prepared->bvh();
   }
   return m;
 }
@@ -130,8 +132,8 @@ void BM_ClassifyPoint(benchmark::State& state) {  // NOLINT(readability-identifi
   cover::ThreadLimit limit(1);
   size_t batch = 0, inside = 0, classified = 0;
   for (auto _ : state) {
-    const auto result = cover::classify(m.solid, *m.bvh,
-                                        std::span(points).subspan(batch * kBatch, kBatch), options);
+    const auto result =
+        cover::classify(*m.prepared, std::span(points).subspan(batch * kBatch, kBatch), options);
     for (const cover::PointClass c : result) inside += c == cover::PointClass::kInside;
     classified += result.size();
     batch = (batch + 1) % kBatches;
@@ -151,8 +153,8 @@ void BM_ClassifyMillion(benchmark::State& state) {  // NOLINT(readability-identi
   const std::vector<cover::Vec3> points = bench::random_points(m.solid, kMillion, kSeed);
   cover::ThreadLimit limit(2);
   for (auto _ : state) {
-    const cover::Bvh bvh(m.solid);
-    const auto result = cover::classify(m.solid, bvh, points);
+    const cover::Prepared prepared(m.solid);
+    const auto result = cover::classify(prepared, points);
     benchmark::DoNotOptimize(result.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(kMillion));
@@ -169,7 +171,7 @@ void BM_ClassifyBulk(benchmark::State& state) {  // NOLINT(readability-identifie
   cover::ClassifyOptions options;
   options.grid_min_points = SIZE_MAX;
   for (auto _ : state) {
-    const auto result = cover::classify(m.solid, *m.bvh, points, options);
+    const auto result = cover::classify(*m.prepared, points, options);
     benchmark::DoNotOptimize(result.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(kMillion));
@@ -216,7 +218,7 @@ void cast_rays(benchmark::State& state, bool batch_api) {
   for (auto _ : state) {
     if (batch_api) {
       const auto results =
-          cover::cast(*m.bvh, m.solid, std::span(rays).subspan(batch * kBatch, kBatch));
+          cover::cast(*m.prepared, std::span(rays).subspan(batch * kBatch, kBatch));
       for (const cover::RayResult& r : results) hits += r.hits.size();
     } else {
       for (size_t i = batch * kBatch; i < (batch + 1) * kBatch; ++i)

@@ -81,9 +81,10 @@ int main(int argc, char** argv) {
     {  // Cover: BVH build + classification on `threads` threads.
       cover::ThreadLimit limit(threads);
       const auto t0 = Clock::now();
-      const cover::Bvh bvh(solid);
+      const cover::Prepared prepared(solid);
+      prepared.bvh();
       cover_builds.push_back(since(t0));
-      ours = cover::classify(solid, bvh, pts);
+      ours = cover::classify(prepared, pts);
       cover_totals.push_back(since(t0));
     }
     // CGAL: tree build + queries on one thread.
@@ -146,8 +147,9 @@ int main(int argc, char** argv) {
   {
     cover::ThreadLimit limit(1);
     const auto t5 = Clock::now();
-    const cover::Bvh bvh(solid);
-    const std::vector<cover::RayResult> all = cover::cast(solid, bvh, rays);
+    const cover::Prepared prepared(solid);
+    const cover::Bvh& bvh = prepared.bvh();
+    const std::vector<cover::RayResult> all = cover::cast(prepared, rays);
     for (size_t i = 0; i < rays.size(); ++i) {
       const auto f = cover::first_hit(bvh, all[i]);
       batch_disagree += (f.hit ? f.t : -1) != t_ours[i];

@@ -42,14 +42,8 @@ struct Operand {
 /// `file` scaled into a cube of side 2·size around `centre`, rotated by `degrees` about `axis`.
 Operand operand(const std::string& file, cover::Vec3 centre, double size, double degrees) {
   cover::PolygonMesh m = cover::read_mesh(g_folder / file);
-  const cover::Bbox b = cover::face_bbox(m);
-  const cover::Vec3 c = 0.5 * (b.min + b.max);
-  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
   cover::apply_transform(
-      cover::Transform::trs(cover::Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext},
-                            {0.3, 1, 0.2}, degrees, {centre.x, centre.y, centre.z}) *
-          cover::Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-      m);
+      cover::Transform::fit(cover::face_bbox(m), centre, size, {0.3, 1, 0.2}, degrees), m);
   Operand o{cover::make_leaf(m, file), {}};
   std::vector<Mesh::Vertex_index> vs;
   for (const cover::Vec3& p : m.vertices)
@@ -157,9 +151,11 @@ int main(int argc, char** argv) {
     const Case& c = cases[i];
     cover::EvaluateOptions fast;
     fast.check_leaves = false;
+    cover::EvaluatePhases last_phases;  // of the last run
+    fast.phases = &last_phases;
     double t_cover = 0;
     const cover::EvaluateResult result = median_run(c.solid, fast, t_cover);
-    phases.emplace_back(c.name, result.seconds);
+    phases.emplace_back(c.name, last_phases);
     const double t_checked = median3([&] {
       const auto t = Clock::now();
       cover::evaluate(c.solid);

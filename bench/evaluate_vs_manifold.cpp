@@ -126,15 +126,8 @@ std::vector<Case> make_cases() {
 /// The leaf placed as specified (same arithmetic as bench/render_vs_cgal.cpp load_leaf).
 cover::PolygonMesh placed(const fs::path& folder, const LeafSpec& s) {
   cover::PolygonMesh m = cover::read_mesh(folder / s.file);
-  const cover::Bbox b = cover::face_bbox(m);
-  const cover::Vec3 c = 0.5 * (b.min + b.max);
-  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
   cover::apply_transform(
-      cover::Transform::trs(
-          cover::Vec3{2 * s.half_size / ext, 2 * s.half_size / ext, 2 * s.half_size / ext},
-          {s.axis.x, s.axis.y, s.axis.z}, s.degrees, {s.centre.x, s.centre.y, s.centre.z}) *
-          cover::Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-      m);
+      cover::Transform::fit(cover::face_bbox(m), s.centre, s.half_size, s.axis, s.degrees), m);
   return m;
 }
 
@@ -163,13 +156,14 @@ Timed run_cover(const Case& c, const fs::path& out) {
     leaves.push_back(cover::make_leaf(cover::read_mesh(c.files[i]), c.leaves[i].file));
   const cover::Solid solid = build_cover(c.expr, leaves);
   const auto t1 = Clock::now();
-  const cover::EvaluateResult e = cover::evaluate(solid);
+  cover::EvaluateOptions options;
+  options.phases = &r.phases;
+  const cover::EvaluateResult e = cover::evaluate(solid, options);
   r.kernel = since(t1);
   cover::write_mesh(out, e.mesh);
   r.whole = since(t0);
   r.volume = e.volume;
   r.faces = e.mesh.face_count();
-  r.phases = e.seconds;
   return r;
 }
 

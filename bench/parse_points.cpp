@@ -90,10 +90,11 @@ int main(int argc, char** argv) {
                                     bytes_per_point) == points;
     seconds[kReadNpy].push_back(since(t));
     t = Clock::now();
-    const cover::Bvh bvh(solid);
+    const cover::Prepared prepared(solid);
+    prepared.bvh();
     seconds[kBvh].push_back(since(t));
     const auto t1 = Clock::now();
-    const std::vector<cover::PointClass> classes = cover::classify(solid, bvh, points);
+    const std::vector<cover::PointClass> classes = cover::classify(prepared, points);
     seconds[kClassify].push_back(since(t1));
     seconds[kBvhClassify].push_back(since(t));
     if (classes.size() != n) return 1;

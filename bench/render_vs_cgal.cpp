@@ -90,15 +90,8 @@ const char* op_name(Op op) {
 
 cover::PolygonMesh load_leaf(const std::filesystem::path& folder, const LeafSpec& s) {
   cover::PolygonMesh m = cover::read_mesh(folder / s.file);
-  const cover::Bbox b = cover::face_bbox(m);
-  const cover::Vec3 c = 0.5 * (b.min + b.max);
-  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
   cover::apply_transform(
-      cover::Transform::trs(
-          cover::Vec3{2 * s.half_size / ext, 2 * s.half_size / ext, 2 * s.half_size / ext},
-          {s.axis.x, s.axis.y, s.axis.z}, s.degrees, {s.centre.x, s.centre.y, s.centre.z}) *
-          cover::Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-      m);
+      cover::Transform::fit(cover::face_bbox(m), s.centre, s.half_size, s.axis, s.degrees), m);
   return m;
 }
 
@@ -240,13 +233,13 @@ int main(int argc, char** argv) {
         cover::frame_camera(cover::result_bounds(solid).value_or(solid.bbox()), camera_options);
     // The BVH only where the render walks one (not for closed leaves:
     // the object-order path, render/object_order.h).
-    std::optional<cover::Bvh> bvh;
-    if (!cover::renders_in_object_order(solid, camera, {})) bvh.emplace(solid);
+    const cover::Prepared prepared(solid);
+    if (!cover::renders_in_object_order(solid, camera, {})) prepared.bvh();
     bvh_s = since(t0) - csg_s;
-    image = cover::render(solid, bvh ? &*bvh : nullptr, camera);
+    image = cover::render(prepared, camera);
     first_s = since(t0);
     const auto t1 = Clock::now();
-    const cover::Image again = cover::render(solid, bvh ? &*bvh : nullptr, camera);
+    const cover::Image again = cover::render(prepared, camera);
     refresh_s = since(t1);
     refresh_identical = again.rgb == image.rgb;
   }

@@ -44,7 +44,8 @@ constexpr size_t kBatch = 1000;       ///< queries per Cover call in the batch c
 /// One size: the Cover solid and BVH, the same mesh in CGAL with both peer structures, queries.
 struct Size {
   cover::Solid solid;
-  std::unique_ptr<cover::Bvh> bvh;
+  std::unique_ptr<cover::Prepared> prepared;
+  const cover::Bvh* bvh = nullptr;  ///< prepared->bvh()
   Mesh mesh;
   std::unique_ptr<Tree> tree;
   std::unique_ptr<CGAL::Side_of_triangle_mesh<Mesh, K>> side;
@@ -58,7 +59,8 @@ std::unique_ptr<Size> make_size(int64_t target, size_t queries) {
   auto s = std::make_unique<Size>();
   const cover::PolygonMesh poly = bench::bumpy_sphere(bench::segments_for(target));
   s->solid = cover::make_leaf(poly, "sphere");
-  s->bvh = std::make_unique<cover::Bvh>(s->solid);
+  s->prepared = std::make_unique<cover::Prepared>(s->solid);
+  s->bvh = &s->prepared->bvh();
   std::vector<Mesh::Vertex_index> v;
   v.reserve(poly.vertices.size());
   for (const cover::Vec3& p : poly.vertices)
@@ -113,7 +115,7 @@ int main(int argc, char** argv) {
          size_t inside = 0;
          for (size_t b = 0; b + kBatch <= s.points.size(); b += kBatch)
            for (const cover::PointClass c :
-                cover::classify(s.solid, *s.bvh, std::span(s.points).subspan(b, kBatch), no_grid))
+                cover::classify(*s.prepared, std::span(s.points).subspan(b, kBatch), no_grid))
              inside += c == cover::PointClass::kInside;
          return inside;
        },
@@ -138,7 +140,7 @@ int main(int argc, char** argv) {
          size_t hits = 0;
          for (size_t b = 0; b + kBatch <= s.rays.size(); b += kBatch)
            for (const cover::RayResult& r :
-                cover::cast(*s.bvh, s.solid, std::span(s.rays).subspan(b, kBatch)))
+                cover::cast(*s.prepared, std::span(s.rays).subspan(b, kBatch)))
              hits += r.hits.size();
          return hits;
        },

@@ -21,6 +21,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
   EvaluateResult r;
+  EvaluatePhases seconds;
   if (!is_bounded(solid))
     throw NotComputable(
         "evaluate: the result is unbounded (a complement at the root); a B-rep "
@@ -31,19 +32,19 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   std::vector<uint8_t> self;
   const size_t grain = options.grain == 0 ? 1 : options.grain;
   const boolean_detail::Arrangement arr =
-      boolean_detail::build_arrangement(solid, options.check_leaves, grain, r.seconds, self);
+      boolean_detail::build_arrangement(solid, options.check_leaves, grain, seconds, self);
   r.candidate_pairs = arr.candidate_pairs;
   r.intersecting_pairs = arr.intersecting_pairs;
   auto t = Clock::now();
   std::vector<uint32_t> grouped;
   const auto kept =
       boolean_detail::select_pieces(solid, arr, grain, r.face_leaf, r.patches, grouped);
-  r.seconds.select = since(t);
+  seconds.select = since(t);
   t = Clock::now();
   if (options.exact_volume) r.exact_volume = boolean_detail::exact_volume(arr, kept);
   std::vector<uint8_t> rounded;
   r.mesh = boolean_detail::assemble(arr, kept, &r.face_leaf, &rounded, &grouped);
-  r.seconds.assemble = since(t);
+  seconds.assemble = since(t);
   // Contacts made by rounding the constructed points independently (mesh/rounding_repair.h).
   t = Clock::now();
   const RoundingRepair repair = repair_rounding(r.mesh, rounded);
@@ -55,7 +56,7 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
   }
   r.collapsed_edges = repair.collapsed_edges;
   r.rounding_contacts = repair.remaining_pairs;
-  r.seconds.repair = since(t);
+  seconds.repair = since(t);
   t = Clock::now();
   // Volume and area in doubles, relative to the centre o of the mesh's box and scaled by a power
   // of two s (exact) so that |s·(v − o)| ≤ 1: summed about the origin, a solid far from it
@@ -99,7 +100,8 @@ EvaluateResult evaluate(const Solid& solid, const EvaluateOptions& options) {
                         static_cast<int64_t>(r.mesh.face_count()) / 2;
     r.genus = (2 * r.components - chi) / 2;
   }
-  r.seconds.assemble += since(t);
+  seconds.assemble += since(t);
+  if (options.phases != nullptr) *options.phases = seconds;
   return r;
 }
 

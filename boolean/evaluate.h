@@ -30,18 +30,6 @@
 
 namespace cover {
 
-struct EvaluateOptions {
-  /// Find self-intersecting leaves (exact CGAL tests of each leaf's triangle pairs, in the grid
-  /// pass of the candidate pairs) and resolve them in the arrangement; false trusts that no leaf
-  /// intersects itself (a leaf that does then gives an undefined, possibly invalid, result).
-  bool check_leaves = true;
-  size_t grain = 64;  ///< items per parallel chunk (results never depend on it)
-  /// Also compute EvaluateResult::exact_volume (rationals over every kept triangle: slower).
-  /// evaluate() then throws NotComputable when that volume is not 0 but below the normal
-  /// doubles (2.2e-308, a solid of side below about 1e-103): no double states it exactly.
-  bool exact_volume = false;
-};
-
 /// Wall-clock seconds per step of evaluate() (the numbers of the route above), for profiling.
 struct EvaluatePhases {
   double check = 0;        ///< leaf self-intersection test with the candidate pairs of step 2
@@ -55,6 +43,20 @@ struct EvaluatePhases {
   double select = 0;       ///< steps 4–5
   double assemble = 0;     ///< step 6 and the mesh report
   double repair = 0;       ///< step 7: rounding contacts found and repaired
+};
+
+struct EvaluateOptions {
+  /// Find self-intersecting leaves (exact CGAL tests of each leaf's triangle pairs, in the grid
+  /// pass of the candidate pairs) and resolve them in the arrangement; false trusts that no leaf
+  /// intersects itself (a leaf that does then gives an undefined, possibly invalid, result).
+  bool check_leaves = true;
+  size_t grain = 64;  ///< items per parallel chunk (results never depend on it)
+  /// Also compute EvaluateResult::exact_volume (rationals over every kept triangle: slower).
+  /// evaluate() then throws NotComputable when that volume is not 0 but below the normal
+  /// doubles (2.2e-308, a solid of side below about 1e-103): no double states it exactly.
+  bool exact_volume = false;
+  /// When given, receives the wall-clock seconds per step (profiling; the result is the same).
+  EvaluatePhases* phases = nullptr;
 };
 
 struct EvaluateResult {
@@ -76,7 +78,6 @@ struct EvaluateResult {
   size_t patches = 0;             ///< classified patches
   int64_t collapsed_edges = 0;    ///< step 7: rounding-scale edges collapsed (usually 0)
   int64_t rounding_contacts = 0;  ///< step 7: face pairs still meeting (0: none left)
-  EvaluatePhases seconds;         ///< time per step
 };
 
 /// Evaluates `solid` (closed leaves; the nonzero winding rule per leaf) to a B-rep. A

@@ -7,7 +7,7 @@
 //   solid/     the core: value types, the non-evaluated solid, CSG operators, primitives,
 //              transforms, measures, exact predicates, errors
 //   mesh/      the mesh toolkit: validation, orientation, repair, face triangulation
-//   covering/  BVH, classification, rays, volume, bounds
+//   covering/  the prepared solid (BVH, open-leaf trees), classification, rays, volume, bounds
 //   render/    cameras and ray-cast images
 //   voxel/     voxelization, voxel grids, blocky boundary meshes
 //   octree/    direct octrees
@@ -21,6 +21,7 @@
 #include "cover/covering/bounds.h"
 #include "cover/covering/bvh.h"
 #include "cover/covering/classify.h"
+#include "cover/covering/prepared.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
 #include "cover/io/mesh_io.h"

@@ -13,6 +13,7 @@
 #include "cover/covering/detail/float_bounds.h"
 #include "cover/covering/detail/local.h"
 #include "cover/covering/detail/triangles.h"
+#include "cover/covering/detail/windings.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
 #include "cover/solid/simd.h"
@@ -242,8 +243,10 @@ std::string_view to_string(PointClass c) {
   return "?";
 }
 
-std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3> points,
                                  const ClassifyOptions& options) {
+  const Solid& solid = prepared.solid();
+  const Bvh& bvh = prepared.bvh();
   // Per-leaf covering triangles, built on first use (only points on a surface need them).
   std::once_flag once;
   LeafTriangles lazy;
@@ -253,11 +256,9 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
   };
   std::vector<PointClass> out(points.size());
   // Open leaves: their generalized winding number trees (gwn.h).
-  std::optional<GwnForest> own;
   OpenRule open;
   if (solid.has_open_leaf()) {
-    if (options.gwn == nullptr) own = build_gwn(solid, options.gwn_options);
-    open.forest = options.gwn != nullptr ? options.gwn : &*own;
+    open.forest = prepared.gwn();
     open.options = options.gwn_options;
   }
   // Many queries: first label the grid cells no surface touches (exact, see cell_grid.h). With
@@ -333,8 +334,32 @@ std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<c
 
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
                                  const ClassifyOptions& options) {
-  const Bvh bvh(solid);
-  return classify(solid, bvh, points, options);
+  const Prepared prepared(solid, {.gwn = options.gwn_options});
+  return classify(prepared, points, options);
+}
+
+void classify_lattice(const Prepared& prepared, const VoxelLattice& lattice, const IndexBox& box,
+                      const std::function<void(int i, int j, int k)>& member) {
+  const auto d = box.dims();
+  // Whole x slabs, about 2^20 centres at a time: bounded memory, and classify's empty-cell grid
+  // (which settles the cells far from the holes) is built once per batch.
+  const size_t slab = static_cast<size_t>(d[1]) * d[2];
+  const int per_batch =
+      static_cast<int>(std::max<size_t>(1, (size_t{1} << 20) / std::max<size_t>(slab, 1)));
+  std::vector<Vec3> centres;
+  for (int i0 = box.lo[0]; i0 < box.hi[0]; i0 += per_batch) {
+    const int i1 = std::min(box.hi[0], i0 + per_batch);
+    centres.clear();
+    for (int i = i0; i < i1; ++i)
+      for (int j = box.lo[1]; j < box.hi[1]; ++j)
+        for (int k = box.lo[2]; k < box.hi[2]; ++k) centres.push_back(lattice.centre(i, j, k));
+    const std::vector<PointClass> c = classify(prepared, centres);
+    size_t at = 0;
+    for (int i = i0; i < i1; ++i)
+      for (int j = 0; j < d[1]; ++j)
+        for (int k = 0; k < d[2]; ++k)
+          if (c[at++] != PointClass::kOutside) member(i - box.lo[0], j, k);
+  }
 }
 
 std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const Vec3> points,
@@ -362,15 +387,17 @@ std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const
   return out;
 }
 
-LeafWindings leaf_windings(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
-                           const ClassifyOptions& options) {
+namespace detail {
+
+LeafWindings crossing_windings(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+                               size_t grain) {
   LeafWindings out;
   out.leaves = solid.leaves.size();
   out.winding.assign(points.size() * out.leaves, 0);
   out.on_surface.assign(points.size() * out.leaves, 0);
   if (out.leaves == 0 || bvh.nodes().empty()) return out;
   const size_t batch = std::clamp<size_t>(16384 / out.leaves, 1, 256);
-  parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
+  parallel_for(points.size(), grain, [&](size_t begin, size_t end) {
     std::vector<int> winding;
     std::vector<uint8_t> on_surface;
     std::vector<HalfLineQuery> queries;
@@ -384,6 +411,29 @@ LeafWindings leaf_windings(const Solid& solid, const Bvh& bvh, std::span<const V
       std::copy(on_surface.begin(), on_surface.end(), out.on_surface.begin() + b * out.leaves);
     }
   });
+  return out;
+}
+
+}  // namespace detail
+
+LeafWindings leaf_windings(const Prepared& prepared, std::span<const Vec3> points,
+                           const ClassifyOptions& options) {
+  LeafWindings out =
+      detail::crossing_windings(prepared.solid(), prepared.bvh(), points, options.grain);
+  // Open leaves: the crossing count above means nothing; their generalized winding number,
+  // rounded (decided as classify() decides membership).
+  const GwnForest* forest = prepared.gwn();
+  if (forest == nullptr) return out;
+  for (size_t l = 0; l < out.leaves; ++l) {
+    const int32_t k = forest->tree_of_leaf[l];
+    if (k < 0) continue;
+    const std::vector<int32_t> w =
+        open_windings(*forest, static_cast<size_t>(k), points, options.gwn_options);
+    for (size_t i = 0; i < points.size(); ++i) {
+      const size_t at = i * out.leaves + l;
+      out.winding[at] = out.on_surface[at] ? 0 : w[i];
+    }
+  }
   return out;
 }
 

@@ -19,13 +19,16 @@
 // compare against. Both use the same exact per-triangle decision.
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
 #include <vector>
 
 #include "cover/covering/bvh.h"
 #include "cover/covering/gwn.h"
+#include "cover/covering/prepared.h"
 #include "cover/solid/solid.h"
+#include "cover/solid/voxel_bounds.h"
 
 namespace cover {
 
@@ -38,24 +41,31 @@ struct ClassifyOptions {
   size_t grain = 256;              ///< points per parallel chunk (results never depend on it)
   size_t grid_min_points = 20000;  ///< build the empty-cell grid from this many points on
   int grid_max_resolution = 64;    ///< cells per axis of that grid, at most
-  /// Open leaves (Leaf::open) are inside where |generalized winding number| > 1/2 (gwn.h):
-  /// their trees, prebuilt (Model keeps one), or nullptr to build them per call.
-  const GwnForest* gwn = nullptr;
+  /// Open leaves (Leaf::open) are inside where |generalized winding number| > 1/2 (gwn.h),
+  /// evaluated on the Prepared's trees with these options (a one-shot call also builds the
+  /// trees with them).
   GwnOptions gwn_options;
 };
 
-/// Classifies every point with a prebuilt BVH of `solid`. Thread-count independent.
+/// Classifies every point of the prepared solid. Thread-count independent.
 /// Open leaves: membership by the generalized winding number (|w| > 1/2, gwn.h) for points off
 /// their surface; a point on an open leaf's surface is classified by the same local analysis as
 /// on a closed leaf (its faces read as the leaf's boundary there). With open leaves the empty-cell
 /// grid keeps only cells where every closure's cones subtend |w_C| < 0.4 (gwn.h winding_below;
 /// docs/design.md "Open leaves"). \pre points are finite (Model::classify checks).
-std::vector<PointClass> classify(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
 
-/// One-shot: builds the BVH, then classifies.
+/// One-shot: prepares the solid, then classifies.
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
+
+/// The centres (VoxelLattice::centre, global indices) of the index box `box` of `lattice` that
+/// classify() finds not outside, as calls member(i, j, k) with box-local indices, i slowest, on
+/// the calling thread; classified in batches of whole x slabs of about 2^20 centres (bounded
+/// memory). How grids answer open leaves (voxel/voxelize.h, volume()'s winding method).
+void classify_lattice(const Prepared& prepared, const VoxelLattice& lattice, const IndexBox& box,
+                      const std::function<void(int i, int j, int k)>& member);
 
 /// The same classification visiting every covering triangle for every point (reference path;
 /// open leaves by the direct solid-angle sum, generalized_winding_direct).
@@ -72,8 +82,12 @@ struct LeafWindings {
   std::vector<uint8_t> on_surface;
 };
 
-/// Every leaf's winding number at every point, through a prebuilt BVH of `solid`.
-LeafWindings leaf_windings(const Solid& solid, const Bvh& bvh, std::span<const Vec3> points,
+/// Every leaf's winding number at every point: a closed leaf's exact winding number; an open
+/// leaf's generalized winding number w rounded to the nearest integer (gwn.h open_windings): 0
+/// exactly where |w| ≤ 1/2 as classify() decides it, so an entry is nonzero exactly where
+/// classify() counts that leaf inside. Where a point is on leaf l's surface (on_surface) the
+/// entry is undefined: a closed leaf's holds a neighbouring count, an open leaf's 0.
+LeafWindings leaf_windings(const Prepared& prepared, std::span<const Vec3> points,
                            const ClassifyOptions& options = {});
 
 /// Winding number of each leaf at q (exact), for q on no leaf's surface; on_surface[l] is set

@@ -8,6 +8,7 @@
 
 #include "cover/covering/classify.h"
 #include "cover/covering/detail/triangles.h"
+#include "cover/covering/detail/windings.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
 #include "cover/solid/union_find.h"
@@ -364,7 +365,7 @@ std::vector<uint8_t> open_inside(const GwnForest& forest, size_t k, std::span<co
   const GwnClosure& c = forest.closures[k];
   std::vector<uint8_t> inside(points.size(), 0);
   if (tree.nodes.empty()) return inside;
-  const LeafWindings lw = leaf_windings(c.solid, *c.bvh, points);
+  const LeafWindings lw = detail::crossing_windings(c.solid, *c.bvh, points);
   parallel_for(points.size(), 256, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       if (lw.on_surface[i] == 0) {

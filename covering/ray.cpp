@@ -454,16 +454,13 @@ FirstHit first_hit(const Bvh& bvh, const RayResult& result) {
   return f;
 }
 
-std::vector<RayResult> cast(const Solid& solid, const Bvh& bvh, std::span<const Ray> rays,
+std::vector<RayResult> cast(const Prepared& prepared, std::span<const Ray> rays,
                             const CastOptions& options) {
+  const Solid& solid = prepared.solid();
+  const Bvh& bvh = prepared.bvh();
   std::vector<RayResult> out(rays.size());
   if (bvh.nodes().empty()) return out;
-  std::optional<GwnForest> own;
-  const GwnForest* forest = nullptr;
-  if (solid.has_open_leaf()) {
-    if (options.gwn == nullptr) own = build_gwn(solid);
-    forest = options.gwn != nullptr ? options.gwn : &*own;
-  }
+  const GwnForest* forest = prepared.gwn();
   constexpr size_t kBatch = 256;  // rays walking the BVH together (walk_batch)
   parallel_for(rays.size(), options.grain, [&](size_t begin, size_t end) {
     for (size_t b = begin; b < end; b += kBatch) {

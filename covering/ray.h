@@ -17,6 +17,7 @@
 
 #include "cover/covering/bvh.h"
 #include "cover/covering/gwn.h"
+#include "cover/covering/prepared.h"
 #include "cover/solid/solid.h"
 
 namespace cover {
@@ -90,8 +91,6 @@ VisibleHit first_visible(const Bvh& bvh, const CsgTree& tree, size_t leaves, con
 
 struct CastOptions {
   size_t grain = 256;  ///< rays per parallel chunk (results never depend on it)
-  /// Open leaves' trees (gwn.h) for open_spans(); nullptr: built per call when needed.
-  const GwnForest* gwn = nullptr;
 };
 
 /// Open leaves (Leaf::open): recomputes result.spans (hits sorted as cast() leaves them) with
@@ -106,7 +105,7 @@ void open_spans(RayResult& result, const Solid& solid, const GwnForest& forest, 
 /// Casts many rays in parallel; results[i] belongs to rays[i]. Open leaves: open_spans().
 /// \pre every ray has a finite origin and a finite, non-zero direction
 /// (Model::cast checks).
-std::vector<RayResult> cast(const Solid& solid, const Bvh& bvh, std::span<const Ray> rays,
+std::vector<RayResult> cast(const Prepared& prepared, std::span<const Ray> rays,
                             const CastOptions& options = {});
 
 }  // namespace cover

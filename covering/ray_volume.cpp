@@ -201,8 +201,8 @@ CellReport examine(const std::vector<Tri>& tris, const uint32_t* list, size_t co
 
 }  // namespace
 
-RayVolume ray_volume(const Solid& s, const Bvh& bvh, const Bbox& box,
-                     const RayVolumeOptions& options) {
+RayVolume ray_volume(const Prepared& prepared, const Bbox& box, const RayVolumeOptions& options) {
+  const Solid& s = prepared.solid();
   RayVolume out;
   const Frame fr = make_frame(s, box);
   const std::vector<Tri> tris = project_triangles(s, fr);
@@ -282,7 +282,7 @@ RayVolume ray_volume(const Solid& s, const Bvh& bvh, const Bbox& box,
         rays.push_back(ray_at(next[i].u0 + 0.5 * next[i].side, next[i].v0 + 0.5 * next[i].side));
         ray_cell.push_back(i);
       }
-    const std::vector<RayResult> results = cast(s, bvh, rays);
+    const std::vector<RayResult> results = cast(prepared, rays);
     out.rays += rays.size();
     std::vector<double> value(next.size(), 0);
     for (size_t r = 0; r < results.size(); ++r) {

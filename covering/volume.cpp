@@ -1,10 +1,12 @@
 #include "cover/covering/volume.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <optional>
 
 #include "cover/covering/bounds.h"
+#include "cover/covering/classify.h"
 #include "cover/covering/detail/ray_volume.h"
 #include "cover/covering/ray.h"
 #include "cover/mesh/validate.h"
@@ -95,7 +97,8 @@ double face_sum(const Solid& s, PerFace per_face) {
   return total.value();
 }
 
-VolumeResult ray_volume(const Solid& s, const Bvh* prebuilt, const VolumeOptions& options) {
+VolumeResult ray_volume(const Prepared& prepared, const VolumeOptions& options) {
+  const Solid& s = prepared.solid();
   const std::optional<Bbox> box = result_bounds(s);
   if (!box) throw NotComputable("the result is unbounded (a complement at the root)");
   VolumeResult r;
@@ -104,14 +107,12 @@ VolumeResult ray_volume(const Solid& s, const Bvh* prebuilt, const VolumeOptions
   if (box->empty() || box->min.x >= box->max.x || box->min.y >= box->max.y ||
       box->min.z >= box->max.z)
     return r;  // operands' boxes share no interior: empty result
-  std::optional<Bvh> own;
-  const Bvh& bvh = prebuilt ? *prebuilt : own.emplace(s);
   detail::RayVolumeOptions ro;
   ro.target_relative_error = options.target_relative_error;
   ro.max_rays = options.max_rays;
   ro.progress = options.progress;
   if (options.rays > 0) ro.fixed_level = static_cast<int>(std::ceil(std::log2(options.rays)));
-  const detail::RayVolume v = detail::ray_volume(s, bvh, *box, ro);
+  const detail::RayVolume v = detail::ray_volume(prepared, *box, ro);
   r.volume = v.volume;
   r.error_bound = v.error_bound;
   r.rays = v.rays;
@@ -141,8 +142,9 @@ std::optional<std::string> covering_inexact_reason(const Solid& s) {
 
 namespace {
 
-/// volume() with the BVH of the ray method when prebuilt (else built there if needed).
-VolumeResult volume_with(const Solid& s, const Bvh* bvh, const VolumeOptions& options) {
+/// volume() of closed leaves: the covering's value, else the ray method's.
+VolumeResult closed_volume(const Prepared& prepared, const VolumeOptions& options) {
+  const Solid& s = prepared.solid();
   if (!is_bounded(s)) throw NotComputable("the result is unbounded (a complement at the root)");
   VolumeResult r;
   r.method = "covering";
@@ -156,7 +158,7 @@ VolumeResult volume_with(const Solid& s, const Bvh* bvh, const VolumeOptions& op
     if (options.exact)
       throw NotComputable("the covering volume is not exact for this expression (" + *why +
                           "); evaluate() gives the exact volume of its B-rep");
-    return ray_volume(s, bvh, options);
+    return ray_volume(prepared, options);
   }
   // Σ of the contributing leaves' covering volumes (each in its own, outward orientation).
   NeumaierSum vol, area;
@@ -177,14 +179,76 @@ VolumeResult volume_with(const Solid& s, const Bvh* bvh, const VolumeOptions& op
   return r;
 }
 
-}  // namespace
-
-VolumeResult volume(const Solid& s, const VolumeOptions& options) {
-  return volume_with(s, nullptr, options);
+/// Open leaves: the winding method. The centres of an n³ grid over the result's box (default
+/// n = 128; options.rays > 0: n = rays, clamped to 2..1024), classified as classify() does:
+/// volume = h³·(centres not outside); error bound = h³·(voxels whose class differs from a face
+/// neighbour's, or on the grid's border while not outside): each voxel the region's boundary
+/// crosses counts fully, assuming the grid resolves the boundary (no feature thinner than a
+/// voxel between two centres of the same class).
+VolumeResult winding_volume(const Prepared& prepared, const VolumeOptions& options) {
+  VolumeResult r;
+  r.method = "winding";
+  const std::optional<Bbox> box = result_bounds(prepared.solid());
+  if (!box) throw NotComputable("volume: the result is unbounded (a complement at the root)");
+  if (box->empty()) return r;
+  const int n = options.rays > 0 ? std::clamp(options.rays, 2, 1024) : 128;
+  const VoxelLattice lattice = cubic_lattice(default_voxel_bounds(*box, n), n);
+  // One bit per centre, (i·n + j)·n + k.
+  std::vector<uint64_t> bits((static_cast<size_t>(n) * n * n + 63) / 64, 0);
+  const auto at = [n](int i, int j, int k) {
+    return (static_cast<size_t>(i) * n + j) * n + static_cast<size_t>(k);
+  };
+  classify_lattice(prepared, lattice, whole_box(lattice), [&](int i, int j, int k) {
+    const size_t b = at(i, j, k);
+    bits[b / 64] |= uint64_t{1} << (b % 64);
+  });
+  const auto get = [&](int i, int j, int k) {
+    const size_t b = at(i, j, k);
+    return (bits[b / 64] >> (b % 64) & 1) != 0;
+  };
+  const double h3 = lattice.spacing * lattice.spacing * lattice.spacing;
+  size_t in = 0, border = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const bool v = get(i, j, k);
+        in += v;
+        bool differs = false;
+        const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k},
+                              {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
+        for (const auto& q : nb) {
+          if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n || q[1] >= n || q[2] >= n) {
+            differs |= v;
+            continue;
+          }
+          differs |= get(q[0], q[1], q[2]) != v;
+        }
+        border += differs;
+      }
+  r.volume = h3 * static_cast<double>(in);
+  r.error_bound = h3 * static_cast<double>(border);
+  r.rays = static_cast<size_t>(n) * n * n;  // points classified
+  r.target_met = r.error_bound <= options.target_relative_error * std::abs(r.volume);
+  return r;
 }
 
-VolumeResult volume(const Solid& s, const Bvh& bvh, const VolumeOptions& options) {
-  return volume_with(s, &bvh, options);
+}  // namespace
+
+VolumeResult volume(const Prepared& prepared, const VolumeOptions& options) {
+  const Solid& s = prepared.solid();
+  if (s.has_open_leaf()) {
+    if (options.exact)
+      throw InputError(s.open_leaf_message() +
+                       ": no exact volume; the winding method estimates it (without " +
+                       parameter("exact") + ")");
+    return winding_volume(prepared, options);
+  }
+  return closed_volume(prepared, options);
+}
+
+VolumeResult volume(const Solid& s, const VolumeOptions& options) {
+  const Prepared prepared(s);
+  return volume(prepared, options);
 }
 
 }  // namespace cover

@@ -24,6 +24,7 @@
 #include <string>
 
 #include "cover/covering/bvh.h"
+#include "cover/covering/prepared.h"
 #include "cover/solid/solid.h"
 
 namespace cover {
@@ -42,7 +43,7 @@ struct VolumeOptions {
 struct VolumeResult {
   double volume = 0;
   std::optional<double> area;  ///< empty where it would need boundary evaluation
-  std::string method;          ///< "covering" or "rays"
+  std::string method;          ///< "covering", "rays" or "winding" (open leaves)
   size_t rays = 0;             ///< rays cast by the ray method
   double error_bound = 0;      ///< 0 for exact methods; |volume − exact| ≤ error_bound
   bool target_met = true;      ///< ray method: error_bound ≤ target_relative_error·|volume|
@@ -55,13 +56,18 @@ double covering_volume(const Solid& solid);
 /// Empty when the covering volume of `solid` is its volume; otherwise why not (one line).
 std::optional<std::string> covering_inexact_reason(const Solid& solid);
 
-/// Volume (and area where known) of the solid.
+/// Volume (and area where known) of the prepared solid: the covering's value where it is exact,
+/// else the ray method with its bound (method "rays"). With open leaves, the winding method
+/// (method "winding"): the centres of an n³ grid over the result's box classified as classify()
+/// does (n = 128, or options.rays clamped to 2..1024), the volume h³·(centres not outside), the
+/// error bound h³·(voxels whose class differs from a face neighbour's, or on the grid's border
+/// while not outside), which holds where the grid resolves the boundary.
 /// \throws NotComputable for an unbounded result, and with options.exact when the covering is
-/// not exact for this expression (see above; evaluate() is).
-VolumeResult volume(const Solid& solid, const VolumeOptions& options = {});
+/// not exact for this expression (see above; evaluate() is); InputError with options.exact and
+/// an open leaf.
+VolumeResult volume(const Prepared& prepared, const VolumeOptions& options = {});
 
-/// The same with a prebuilt BVH of `solid` (used by the ray method).
-/// \throws as volume() above.
-VolumeResult volume(const Solid& solid, const Bvh& bvh, const VolumeOptions& options = {});
+/// One-shot: prepares the solid, then measures. \throws as above.
+VolumeResult volume(const Solid& solid, const VolumeOptions& options = {});
 
 }  // namespace cover

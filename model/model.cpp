@@ -21,9 +21,9 @@ namespace cover {
 // csg_tree does the same). A leaf state holds its solid; an operator state holds its operation
 // and operands, O(1) to build, and builds its solid on first use: a chain of one operator
 // (m = m | part in a loop) is collected into one n-ary operation over the operands' solids, so it
-// costs O(total size), where building each intermediate solid would copy O(n²). The solid, the
-// BVH and the open-leaf trees are built once under std::call_once (a throwing build leaves the
-// flag unset, so a later call retries).
+// costs O(total size), where building each intermediate solid would copy O(n²). The solid, its
+// Prepared (BVH, open-leaf trees) and its evaluated B-rep are built once under std::call_once (a
+// throwing build leaves the flag unset, so a later call retries).
 struct Model::State {
   CsgOp op = CsgOp::kLeaf;                ///< kLeaf: `solid` is set at construction
   std::shared_ptr<const State> lhs, rhs;  ///< operands (rhs null for kComplement)
@@ -32,10 +32,13 @@ struct Model::State {
   mutable std::atomic<bool> built{false};
   mutable Solid solid;
   mutable std::vector<std::string> warnings;
-  mutable std::once_flag bvh_once;
-  mutable std::optional<Bvh> bvh;
-  mutable std::once_flag gwn_once;
-  mutable std::optional<GwnForest> gwn;  ///< open leaves' winding-number trees (covering/gwn.h)
+  /// The solid's BVH and open-leaf trees, built on first use (covering/prepared.h); used only
+  /// after get() has built the solid.
+  const Prepared prepared{solid};
+  /// evaluate() with its default options, built on first use: what clip(), decompose() and
+  /// evaluate_cells() cut.
+  mutable std::once_flag brep_once;
+  mutable std::optional<EvaluateResult> brep;
 
   State() = default;
   State(const State&) = delete;
@@ -215,28 +218,20 @@ const std::vector<std::string>& Model::warnings() const {
   return state_->warnings;
 }
 
-const Bvh& Model::bvh() const {
-  std::call_once(state_->bvh_once, [this] { state_->bvh.emplace(solid()); });
-  return *state_->bvh;
+const Prepared& Model::prepared() const {
+  state_->get();
+  return state_->prepared;
 }
 
-const GwnForest* Model::gwn() const {
-  if (!solid().has_open_leaf()) return nullptr;
-  std::call_once(state_->gwn_once, [this] { state_->gwn.emplace(build_gwn(solid())); });
-  return &*state_->gwn;
+const Bvh& Model::bvh() const { return prepared().bvh(); }
+
+const GwnForest* Model::gwn() const { return prepared().gwn(); }
+
+const EvaluateResult& Model::evaluated() const {
+  const Solid& s = solid();
+  std::call_once(state_->brep_once, [&] { state_->brep.emplace(cover::evaluate(s)); });
+  return *state_->brep;
 }
-
-namespace {
-
-/// The first open leaf's message prefix: "NAME: open mesh (N boundary edges)".
-std::string open_leaf_message(const Solid& s) {
-  for (const Leaf& l : s.leaves)
-    if (l.open())
-      return l.name + ": open mesh (" + std::to_string(l.boundary_edges) + " boundary edges)";
-  return {};
-}
-
-}  // namespace
 
 // The empty Model (no leaves) is the empty set: it is the identity of union and absorbs
 // intersection; its complement (all of space) has no leaf to carry it.
@@ -323,38 +318,19 @@ std::vector<PointClass> Model::classify(std::span<const Vec3> points,
                                         const ClassifyOptions& options) const {
   check_points(points, "classify");
   if (empty()) return std::vector<PointClass>(points.size(), PointClass::kOutside);
-  ClassifyOptions o = options;
-  if (o.gwn == nullptr) o.gwn = gwn();
-  return cover::classify(solid(), bvh(), points, o);
+  return cover::classify(prepared(), points, options);
 }
 
 LeafWindings Model::windings(std::span<const Vec3> points, const ClassifyOptions& options) const {
   check_points(points, "windings");
   if (empty()) return LeafWindings{};
-  LeafWindings out = leaf_windings(solid(), bvh(), points, options);
-  // Open leaves: the crossing count above means nothing; their generalized winding number,
-  // rounded (decided as classify() decides membership).
-  const GwnForest* forest = options.gwn != nullptr ? options.gwn : gwn();
-  if (forest == nullptr) return out;
-  const GwnOptions& go = options.gwn_options;
-  for (size_t l = 0; l < out.leaves; ++l) {
-    const int32_t k = forest->tree_of_leaf[l];
-    if (k < 0) continue;
-    const std::vector<int32_t> w = open_windings(*forest, static_cast<size_t>(k), points, go);
-    for (size_t i = 0; i < points.size(); ++i) {
-      const size_t at = i * out.leaves + l;
-      out.winding[at] = out.on_surface[at] ? 0 : w[i];
-    }
-  }
-  return out;
+  return leaf_windings(prepared(), points, options);
 }
 
 std::vector<RayResult> Model::cast(std::span<const Ray> rays, const CastOptions& options) const {
   check_rays(rays);
   if (empty()) return std::vector<RayResult>(rays.size());
-  CastOptions o = options;
-  if (o.gwn == nullptr) o.gwn = gwn();
-  return cover::cast(solid(), bvh(), rays, o);
+  return cover::cast(prepared(), rays, options);
 }
 
 std::vector<FirstHit> Model::first_hits(std::span<const Ray> rays,
@@ -375,18 +351,12 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
     r.area = 0.0;
     return r;
   }
-  if (solid().has_open_leaf()) {
-    if (options.exact)
-      throw InputError(open_leaf_message(solid()) +
-                       ": no exact volume; the winding method estimates it (without " +
-                       parameter("exact") + ")");
-    return winding_volume(options);
-  }
+  // Open leaves: the winding method (covering/volume.h), which has no B-rep to fall back on.
+  if (solid().has_open_leaf()) return cover::volume(prepared(), options);
   VolumeResult r;
   bool evaluate_instead = false;
   try {
-    r = cover::volume(solid(), bvh(),
-                      options);  // with exact: NotComputable where only the B-rep is
+    r = cover::volume(prepared(), options);  // with exact: NotComputable where only the B-rep is
     evaluate_instead = !r.target_met && options.rays == 0;
     // A covering or ray volume below the normal doubles, bound included (a solid of side below
     // about 1e-103), has underflowed: the B-rep's exact volume tells 0 from a volume no double
@@ -442,77 +412,8 @@ VoxelGrid Model::voxelize(const VoxelizeOptions& options) const {
   const VoxelLattice lattice = voxel_lattice(options);
   if (empty()) return empty_voxel_grid(lattice, whole_box(lattice));
   VoxelGrid grid;
-  if (solid().has_open_leaf()) {
-    open_voxelize(lattice, whole_box(lattice), grid);
-    return grid;
-  }
-  cover::voxelize_brick(solid(), lattice, whole_box(lattice), nullptr, grid, options.progress);
+  cover::voxelize_brick(prepared(), lattice, whole_box(lattice), grid, options.progress);
   return grid;
-}
-
-void Model::open_voxelize(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const {
-  grid = empty_voxel_grid(lattice, box);
-  const auto d = box.dims();
-  // Whole x slabs, about 2^20 centres at a time: bounded memory, and classify's empty-cell grid
-  // (which settles the cells far from the holes) is built once per batch.
-  const size_t slab = static_cast<size_t>(d[1]) * d[2];
-  const int per_batch =
-      static_cast<int>(std::max<size_t>(1, (size_t{1} << 20) / std::max<size_t>(slab, 1)));
-  std::vector<Vec3> centres;
-  for (int i0 = box.lo[0]; i0 < box.hi[0]; i0 += per_batch) {
-    const int i1 = std::min(box.hi[0], i0 + per_batch);
-    centres.clear();
-    for (int i = i0; i < i1; ++i)
-      for (int j = box.lo[1]; j < box.hi[1]; ++j)
-        for (int k = box.lo[2]; k < box.hi[2]; ++k) centres.push_back(lattice.centre(i, j, k));
-    const std::vector<PointClass> c = classify(centres);
-    size_t at = 0;
-    for (int i = i0; i < i1; ++i)
-      for (int j = 0; j < d[1]; ++j)
-        for (int k = 0; k < d[2]; ++k)
-          if (c[at++] != PointClass::kOutside) grid.set(i - box.lo[0], j, k);
-  }
-}
-
-VolumeResult Model::winding_volume(const VolumeOptions& options) const {
-  // The centres of an n³ grid over the result's box (default n = 128), classified as classify()
-  // does: volume = h³·(centres not outside); error bound = h³·(voxels whose class differs from
-  // a face neighbour's, or on the grid's border while not outside): each voxel the region's
-  // boundary crosses counts fully, assuming the grid resolves the boundary (no feature thinner
-  // than a voxel between two centres of the same class).
-  VolumeResult r;
-  r.method = "winding";
-  const std::optional<Bbox> box = bounds();
-  if (!box) throw NotComputable("volume: the result is unbounded (a complement at the root)");
-  if (box->empty()) return r;
-  const int n = options.rays > 0 ? std::clamp(options.rays, 2, 1024) : 128;
-  const VoxelLattice lattice = cubic_lattice(default_voxel_bounds(*box, n), n);
-  VoxelGrid grid;
-  open_voxelize(lattice, whole_box(lattice), grid);
-  const double h3 = lattice.spacing * lattice.spacing * lattice.spacing;
-  size_t in = 0, border = 0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k) {
-        const bool v = grid.get(i, j, k);
-        in += v;
-        bool differs = false;
-        const int nb[6][3] = {{i - 1, j, k}, {i + 1, j, k}, {i, j - 1, k},
-                              {i, j + 1, k}, {i, j, k - 1}, {i, j, k + 1}};
-        for (const auto& q : nb) {
-          if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n || q[1] >= n || q[2] >= n) {
-            differs |= v;
-            continue;
-          }
-          differs |= grid.get(q[0], q[1], q[2]) != v;
-        }
-        border += differs;
-      }
-  r.volume = h3 * static_cast<double>(in);
-  r.error_bound = h3 * static_cast<double>(border);
-  r.rays = static_cast<size_t>(n) * n * n;  // points classified
-  r.target_met = r.error_bound <= options.target_relative_error * std::abs(r.volume);
-  return r;
 }
 
 namespace {
@@ -543,29 +444,7 @@ void Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box,
     grid = empty_voxel_grid(lattice, box);
     return;
   }
-  if (solid().has_open_leaf()) {
-    open_voxelize(lattice, box, grid);
-    return;
-  }
-  // The faces with a covering triangle whose box may reach the brick's column centres: BVH
-  // nodes whose (outward-rounded) x/y bounds meet [x of the first column, x of the last] × the
-  // same for y, and whose top is not below the brick's lowest centre (a triangle wholly below
-  // every centre of the brick has none of them below it: it adds nothing). Only culling:
-  // voxelize_brick decides every row and column exactly.
-  const double xlo = lattice.centre(box.lo[0], 0, 0).x, xhi = lattice.centre(box.hi[0] - 1, 0, 0).x;
-  const double ylo = lattice.centre(0, box.lo[1], 0).y, yhi = lattice.centre(0, box.hi[1] - 1, 0).y;
-  const double zlo = lattice.centre(0, 0, box.lo[2]).z;
-  std::vector<uint32_t> faces;
-  walk(
-      bvh(),
-      [&](const Bvh::Node& node) {
-        return node.lo[0] <= xhi && node.hi[0] >= xlo && node.lo[1] <= yhi && node.hi[1] >= ylo &&
-               node.hi[2] >= zlo;
-      },
-      [&](const Bvh::Tri& t, uint32_t) { faces.push_back(t.face); });
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  cover::voxelize_brick(solid(), lattice, box, &faces, grid);
+  cover::voxelize_brick(prepared(), lattice, box, grid);
 }
 
 VoxelGrid Model::voxelize_brick(const VoxelLattice& lattice, const IndexBox& box) const {
@@ -601,9 +480,7 @@ Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBoun
   if (empty()) return build_octree(Solid{}, bounds ? *bounds : VoxelBounds{{0, 0, 0}, 1}, options);
   const int depth = std::clamp(options.depth, 0, 30);
   const VoxelBounds b = bounds ? *bounds : voxel_bounds(1 << depth);
-  OctreeOptions o = options;
-  if (o.gwn == nullptr) o.gwn = gwn();
-  return build_octree(solid(), bvh(), b, o);
+  return build_octree(prepared(), b, options);
 }
 
 Camera Model::camera(const CameraOptions& options) const {
@@ -631,30 +508,29 @@ Image Model::render(const Camera& camera, const RenderOptions& options) const {
     if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0)
       throw InputError(parameter("section") + ": the normal must be non-zero");
   }
-  RenderOptions o = options;
-  if (o.gwn == nullptr) o.gwn = gwn();
   // The object-order path needs no BVH: a first frame does not build one.
-  if (renders_in_object_order(solid(), camera, o))
-    return cover::render(solid(), nullptr, camera, o);
-  return cover::render(solid(), bvh(), camera, o);
+  return cover::render(prepared(), camera, options);
 }
 
 EvaluateResult Model::evaluate(const EvaluateOptions& options) const {
   if (empty()) return EvaluateResult{};
   if (solid().has_open_leaf())
-    throw InputError(open_leaf_message(solid()) + ": evaluate needs closed leaves");
+    throw InputError(solid().open_leaf_message() + ": evaluate needs closed leaves");
+  // The default evaluation is kept (grain changes no result); other options evaluate again.
+  if (options.check_leaves && !options.exact_volume && options.phases == nullptr)
+    return evaluated();
   return cover::evaluate(solid(), options);
 }
 
 brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& options) const {
   if (empty()) return brep::ClipResult{};
   if (solid().has_open_leaf())
-    throw InputError(open_leaf_message(solid()) + ": clip needs closed leaves");
+    throw InputError(solid().open_leaf_message() + ": clip needs closed leaves");
   if (!is_bounded(solid()))
     throw NotComputable("clip: the result is unbounded (a complement at the root)");
   const Solid& s = solid();
   const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
-  return brep::clip(one_leaf ? leaf_mesh(s, 0) : cover::evaluate(s).mesh, plane, options);
+  return brep::clip(one_leaf ? leaf_mesh(s, 0) : evaluated().mesh, plane, options);
 }
 
 CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& bounds,
@@ -683,7 +559,7 @@ brep::DecomposeResult Model::decompose(const brep::DecomposeOptions& options) co
     throw NotComputable("decompose: the result is unbounded (a complement at the root)");
   const Solid& s = solid();
   const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
-  return brep::decompose(one_leaf ? leaf_mesh(s, 0) : cover::evaluate(s).mesh, options);
+  return brep::decompose(one_leaf ? leaf_mesh(s, 0) : evaluated().mesh, options);
 }
 
 Model load(const std::filesystem::path& path, const LoadOptions& options) {

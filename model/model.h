@@ -34,6 +34,7 @@
 #include "cover/brep/decompose.h"
 #include "cover/covering/bvh.h"
 #include "cover/covering/classify.h"
+#include "cover/covering/prepared.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
 #include "cover/io/scene.h"
@@ -71,7 +72,10 @@ class Model {
   /// True for the empty Model (no leaf): the empty set.
   bool empty() const { return leaf_count() == 0; }
 
-  /// The BVH of every covering triangle, built on first use (thread-safe) and shared by copies.
+  /// The solid prepared for the kernels (covering/prepared.h): its BVH and open-leaf trees,
+  /// each built on first use (thread-safe) and shared by copies and every query.
+  const Prepared& prepared() const;
+  /// The BVH of every covering triangle (prepared().bvh()).
   const Bvh& bvh() const;
   /// The open leaves' generalized-winding-number trees (covering/gwn.h), built on first use;
   /// nullptr when every leaf is closed. Open leaves (docs/cli.md#semantics): inside where
@@ -199,7 +203,9 @@ class Model {
 
   /// The result as one closed, outward 2-manifold triangle mesh (boolean/evaluate.h), with each
   /// face's source leaf (EvaluateResult::face_leaf, indices into solid().leaves). A
-  /// self-intersecting leaf stands for its nonzero-winding set, as in classify().
+  /// self-intersecting leaf stands for its nonzero-winding set, as in classify(). The evaluation
+  /// with default options (any grain) is built once and kept, as the BVH is, and shared with
+  /// clip(), evaluate_cells() and decompose(); other options evaluate again.
   /// \throws NotComputable for an unbounded result; InputError for a leaf face whose boundary
   /// crosses itself.
   EvaluateResult evaluate(const EvaluateOptions& options = {}) const;
@@ -231,10 +237,8 @@ class Model {
   brep::DecomposeResult decompose(const brep::DecomposeOptions& options = {}) const;
 
  private:
-  /// Open leaves: the voxels of `box` set where classify() of their centre is not outside.
-  void open_voxelize(const VoxelLattice& lattice, const IndexBox& box, VoxelGrid& grid) const;
-  /// Open leaves: volume method "winding" (model.cpp states the estimate and its bound).
-  VolumeResult winding_volume(const VolumeOptions& options) const;
+  /// evaluate() with default options, built once and kept.
+  const EvaluateResult& evaluated() const;
 
   struct State;
   static std::shared_ptr<const State> make_state(Solid solid, std::vector<std::string> warnings);

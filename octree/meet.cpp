@@ -1,9 +1,9 @@
-// (A) of the octree builder (builder.h): the triangles that meet the interior of each cell.
+// (A) of the octree builder (detail/builder.h): the triangles that meet the interior of each cell.
 
 #include <vector>
 
 #include "cover/covering/bvh_walk.h"
-#include "cover/octree/builder.h"
+#include "cover/octree/detail/builder.h"
 #include "cover/solid/parallel.h"
 
 namespace cover::octree_build {

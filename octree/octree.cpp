@@ -3,12 +3,13 @@
 #include <cmath>
 #include <string>
 
-#include "cover/octree/builder.h"
+#include "cover/octree/detail/builder.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/large_vector.h"
 #include "cover/solid/parallel.h"
 
-// (C)–(D) of the builder (builder.h: the notation) and the level loop; the public entry points.
+// (C)–(D) of the builder (detail/builder.h: the notation) and the level loop; the public entry
+// points.
 
 namespace cover {
 namespace octree_build {
@@ -49,24 +50,22 @@ std::string octree_subject(int depth) {
 
 }  // namespace
 
-Builder::Builder(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
-                 const OctreeOptions& options)
-    : solid_(solid),
-      bvh_(bvh),
+Builder::Builder(const Prepared& prepared, const VoxelBounds& bounds, const OctreeOptions& options)
+    : prepared_(prepared),
+      solid_(prepared.solid()),
+      bvh_(prepared.bvh()),
       bounds_(bounds),
       depth_(options.depth),
       samples_(options.samples),
       h_(std::ldexp(bounds.size, -options.depth)),
       max_bytes_(options.max_bytes),
       progress_(options.progress),
-      open_(solid.has_open_leaf()) {
-  if (open_ && options.gwn == nullptr) own_gwn_ = build_gwn(solid);
-  if (solid.leaves.size() <= kTableLeaves) table_ = solid.tree.truth_table(solid.leaves.size());
+      open_(solid_.has_open_leaf()) {
+  if (solid_.leaves.size() <= kTableLeaves) table_ = solid_.tree.truth_table(solid_.leaves.size());
   const int n = samples_;
   for (int p = 0; p < std::min(n * n * n, 64); ++p)
     sub_index_[p] = {static_cast<uint8_t>(p % n), static_cast<uint8_t>(p / n % n),
                      static_cast<uint8_t>(p / n / n)};
-  gwn_ = options.gwn != nullptr ? options.gwn : (own_gwn_ ? &*own_gwn_ : nullptr);
 }
 
 Octree Builder::run() {
@@ -144,9 +143,7 @@ uint32_t Builder::derived_class(const Derived& x, const LeafWindings& windings, 
   winding.assign(windings.winding.begin() + at, windings.winding.begin() + at + leaves);
   for (size_t l = 0; l < leaves; ++l) on_surface |= windings.on_surface[at + l] != 0;
   if (on_surface) {
-    ClassifyOptions options;
-    options.gwn = gwn_;
-    return halves(classify(solid_, bvh_, std::span<const Vec3>(&x.point, 1), options)[0]);
+    return halves(classify(prepared_, std::span<const Vec3>(&x.point, 1))[0]);
   }
   for (uint32_t i = x.delta_begin; i < x.delta_begin + x.delta_count; ++i)
     winding[deltas[i].leaf] += deltas[i].delta;
@@ -210,9 +207,8 @@ void Builder::block(int d, size_t b0, size_t b1, Octree::Node* nodes, size_t nex
   }
   ClassifyOptions options;
   options.grid_min_points = std::numeric_limits<size_t>::max();  // near-surface points only
-  options.gwn = gwn_;
-  const std::vector<PointClass> classes = classify(solid_, bvh_, points, options);
-  const LeafWindings windings = leaf_windings(solid_, bvh_, refs, options);
+  const std::vector<PointClass> classes = classify(prepared_, points, options);
+  const LeafWindings windings = leaf_windings(prepared_, refs, options);
   // (D) States and occupancies (a cell's entries all lie in its own chunk).
   LargeVector<uint32_t> sum(m, 0);
   parallel_for(chunks, 1, [&](size_t begin, size_t end) {
@@ -324,18 +320,16 @@ Octree empty_octree(const VoxelBounds& bounds, const OctreeOptions& options) {
 }
 }  // namespace
 
-Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options) {
-  check_octree_request(solid, bounds, options);
-  if (solid.leaves.empty()) return empty_octree(bounds, options);
-  const Bvh bvh(solid);
-  return Builder(solid, bvh, bounds, options).run();
+Octree build_octree(const Prepared& prepared, const VoxelBounds& bounds,
+                    const OctreeOptions& options) {
+  check_octree_request(prepared.solid(), bounds, options);
+  if (prepared.solid().leaves.empty()) return empty_octree(bounds, options);
+  return Builder(prepared, bounds, options).run();
 }
 
-Octree build_octree(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
-                    const OctreeOptions& options) {
-  check_octree_request(solid, bounds, options);
-  if (solid.leaves.empty()) return empty_octree(bounds, options);
-  return Builder(solid, bvh, bounds, options).run();
+Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options) {
+  const Prepared prepared(solid);
+  return build_octree(prepared, bounds, options);
 }
 
 }  // namespace cover

@@ -15,6 +15,7 @@
 
 #include "cover/covering/bvh.h"
 #include "cover/covering/gwn.h"
+#include "cover/covering/prepared.h"
 #include "cover/solid/memory_limit.h"
 #include "cover/solid/solid.h"
 #include "cover/solid/voxel_bounds.h"
@@ -31,10 +32,6 @@ struct OctreeOptions {
   /// Called on the calling thread after each block of cells with the estimated share of the work
   /// done, 0..1 (levels weighted by 4^d, the growth of crossed cells); default: none.
   std::function<void(double)> progress;
-  /// Open leaves' trees (covering/gwn.h; Model passes its own), or nullptr: built when needed.
-  /// With open leaves, cells the surface does not cross take the class of their own centre
-  /// (the winding-number membership is not constant there: an approximation, docs/design.md).
-  const GwnForest* gwn = nullptr;
 };
 
 /// Nodes in breadth-first order; children of an inner node are 8 consecutive nodes starting at
@@ -80,10 +77,13 @@ struct Octree {
 /// the expected memory exceeds options.max_bytes: before building, from the surface area (a
 /// surface of area A meets about 1.5·A/h² cells of side h), and again before each level from its
 /// exact node count; NotComputable beyond 2^32 nodes.
-Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options);
-
-/// The same with a prebuilt BVH of `solid` (cover::Model passes its own). \throws as above.
-Octree build_octree(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
+/// Open leaves (through the Prepared's trees, covering/gwn.h): cells the surface does not cross
+/// take the class of their own centre (the winding-number membership is not constant there: an
+/// approximation, docs/design.md).
+Octree build_octree(const Prepared& prepared, const VoxelBounds& bounds,
                     const OctreeOptions& options);
+
+/// One-shot: prepares the solid, then builds. \throws as above.
+Octree build_octree(const Solid& solid, const VoxelBounds& bounds, const OctreeOptions& options);
 
 }  // namespace cover

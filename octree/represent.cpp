@@ -1,11 +1,11 @@
-// (B) of the octree builder (builder.h): the points each cell's occupancy is classified at,
+// (B) of the octree builder (detail/builder.h): the points each cell's occupancy is classified at,
 // grouped by their sides of the cell's planes and shared between cells, sibling sets and the
 // sets under one grandparent; the last level's meeting test and grouping in one pass.
 
 #include <cstring>
 #include <vector>
 
-#include "cover/octree/builder.h"
+#include "cover/octree/detail/builder.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
 

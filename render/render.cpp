@@ -135,14 +135,9 @@ bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/, const
   return o.method == RenderMethod::kObjectOrder || (o.method == RenderMethod::kAuto && applies);
 }
 
-Image render(const Solid& solid, const Bvh& bvh, const Camera& cam, const RenderOptions& o) {
-  return render(solid, &bvh, cam, o);
-}
-
-Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const RenderOptions& o) {
+Image render(const Prepared& prepared, const Camera& cam, const RenderOptions& o) {
+  const Solid& solid = prepared.solid();
   const bool object_order = renders_in_object_order(solid, cam, o);
-  if (!object_order && bvh == nullptr)
-    throw PreconditionError("render: a BVH is needed for this camera and solid");
   Image img;
   img.width = cam.width;
   img.height = cam.height;
@@ -198,12 +193,8 @@ Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const Render
         },
         tile_done);
   } else {
-    std::optional<GwnForest> own;
-    const GwnForest* open = nullptr;
-    if (solid.has_open_leaf()) {
-      if (o.gwn == nullptr) own = build_gwn(solid);
-      open = o.gwn != nullptr ? o.gwn : &*own;
-    }
+    const Bvh& bvh = prepared.bvh();
+    const GwnForest* open = prepared.gwn();
     const bool outside_in_result =
         !solid.tree.nodes.empty() &&
         solid.tree.evaluate(std::vector<uint8_t>(solid.leaves.size(), 0));
@@ -215,7 +206,7 @@ Image render(const Solid& solid, const Bvh* bvh, const Camera& cam, const Render
           for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
             const Ray ray = cam.ray(px, py);
             shade(static_cast<size_t>(py) * cam.width + px, ray,
-                  sample(solid, *bvh, ray, o.section, outside_in_result, open));
+                  sample(solid, bvh, ray, o.section, outside_in_result, open));
           }
       }
       tile_done(end - begin);

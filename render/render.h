@@ -13,6 +13,7 @@
 
 #include "cover/covering/bvh.h"
 #include "cover/covering/gwn.h"
+#include "cover/covering/prepared.h"
 #include "cover/render/camera.h"
 
 namespace cover {
@@ -36,10 +37,6 @@ struct RenderOptions {
   /// at the end of the tiles and again during the outline pass; default: none. The image does
   /// not depend on it; an exception thrown from it stops the render (how a caller cancels).
   std::function<void(size_t done, size_t total)> progress;
-  /// Open leaves' trees (covering/gwn.h; Model passes its own), or nullptr: built when needed.
-  /// An open leaf is drawn where its winding-number membership changes at a surface hit
-  /// (covering/ray.h open_spans).
-  const GwnForest* gwn = nullptr;
 };
 
 /// Per-pixel buffers, row-major from the top row, all width × height.
@@ -64,18 +61,15 @@ std::array<uint8_t, 3> cap_colour();
 double render_bytes(int width, int height);
 
 /// Whether render() takes the object-order path for this solid, camera and options (then it
-/// needs no BVH). \throws InputError for kObjectOrder where it does not apply.
+/// builds no BVH). \throws InputError for kObjectOrder where it does not apply.
 bool renders_in_object_order(const Solid& solid, const Camera& camera,
                              const RenderOptions& options);
 
-/// Renders `solid` (with its prebuilt BVH) through `camera`.
-/// \pre closed leaves; camera from frame_camera() with a size of 1..16384 per side; a section
+/// Renders the prepared solid through `camera`: the object-order path where
+/// renders_in_object_order() holds (no BVH built), else rays through the prepared BVH. An open
+/// leaf is drawn where its winding-number membership changes at a surface hit (covering/ray.h
+/// open_spans). \pre a camera from frame_camera() with a size of 1..16384 per side; a section
 /// normal that is finite and non-zero (Model::render checks).
-Image render(const Solid& solid, const Bvh& bvh, const Camera& camera,
-             const RenderOptions& options = {});
-
-/// The same; `bvh` may be nullptr when renders_in_object_order() holds.
-Image render(const Solid& solid, const Bvh* bvh, const Camera& camera,
-             const RenderOptions& options = {});
+Image render(const Prepared& prepared, const Camera& camera, const RenderOptions& options = {});
 
 }  // namespace cover

@@ -38,6 +38,13 @@ bool CsgTree::evaluate(uint32_t node, std::span<const uint8_t> inside) const {
   return false;
 }
 
+std::string Solid::open_leaf_message() const {
+  for (const Leaf& l : leaves)
+    if (l.open())
+      return l.name + ": open mesh (" + std::to_string(l.boundary_edges) + " boundary edges)";
+  return {};
+}
+
 Bbox Solid::bbox() const {
   Bbox box;
   for (const Leaf& leaf : leaves) box.add(leaf.bbox);

@@ -88,6 +88,9 @@ struct Solid {
       if (l.open()) return true;
     return false;
   }
+  /// "NAME: open mesh (N boundary edges)" for the first open leaf, the prefix of the refusals of
+  /// what open leaves do not support; empty when every leaf is closed.
+  std::string open_leaf_message() const;
 };
 
 /// A solid with one leaf. Precondition: the mesh is closed and outward (callers validate).

@@ -48,6 +48,15 @@ Transform Transform::trs(Vec3 scale, Vec3 axis, double degrees, Vec3 translate) 
   return from_eigen(t * r * s);
 }
 
+Transform Transform::fit(const Bbox& box, Vec3 centre, double half_size, Vec3 axis,
+                         double degrees) {
+  const Vec3 c = 0.5 * (box.min + box.max);
+  const double ext =
+      std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+  const double s = 2 * half_size / ext;
+  return trs({s, s, s}, axis, degrees, centre) * translation({-c.x, -c.y, -c.z});
+}
+
 Transform Transform::reflection(Vec3 normal) {
   const Eigen::Vector3d n(normal.x, normal.y, normal.z);
   Matrix4 m = Matrix4::Identity();

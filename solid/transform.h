@@ -29,6 +29,12 @@ struct Transform {
   /// Reflection in the plane through the origin with normal `normal` (non-zero):
   /// L = I − 2·n·nᵀ/|n|² (Householder).
   static Transform reflection(Vec3 normal);
+  /// Places a model: scales `box` uniformly so that its largest extent becomes 2·half_size,
+  /// rotates it by `degrees` about `axis` through its centre and moves that centre to `centre`:
+  /// trs(s, axis, degrees, centre) · translation(−box centre). \pre box not empty, with a
+  /// positive extent.
+  static Transform fit(const Bbox& box, Vec3 centre, double half_size, Vec3 axis = {0, 0, 1},
+                       double degrees = 0);
   /// From a 4×4 matrix, row-major. \throws InputError unless its last row is 0 0 0 1.
   static Transform from_matrix(std::span<const double, 16> row_major);
 

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "cover/covering/bounds.h"
+#include "cover/covering/bvh_walk.h"
+#include "cover/covering/classify.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/large_vector.h"
 #include "cover/solid/parallel.h"
@@ -354,13 +356,14 @@ VoxelLattice voxel_lattice(const Bbox& result_box, const VoxelizeOptions& option
   return lattice;
 }
 
-VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options) {
+VoxelGrid voxelize(const Prepared& prepared, const VoxelizeOptions& options) {
   VoxelGrid g;
-  voxelize(solid, options, g);
+  voxelize(prepared, options, g);
   return g;
 }
 
-void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) {
+void voxelize(const Prepared& prepared, const VoxelizeOptions& options, VoxelGrid& g) {
+  const Solid& solid = prepared.solid();
   VoxelLattice lattice;
   if (options.bounds) {
     lattice = voxel_lattice(Bbox{}, options);
@@ -368,7 +371,46 @@ void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& g) 
     const std::optional<Bbox> box = result_bounds(solid);
     lattice = voxel_lattice(box && !box->empty() ? *box : solid.bbox(), options);
   }
-  voxelize_brick(solid, lattice, whole_box(lattice), nullptr, g, options.progress);
+  voxelize_brick(prepared, lattice, whole_box(lattice), g, options.progress);
+}
+
+VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options) {
+  const Prepared prepared(solid);
+  return voxelize(prepared, options);
+}
+
+void voxelize_brick(const Prepared& prepared, const VoxelLattice& lattice, const IndexBox& box,
+                    VoxelGrid& grid, const std::function<void(double)>& progress) {
+  const Solid& solid = prepared.solid();
+  if (solid.has_open_leaf()) {  // membership is not a sweep of crossings: classify the centres
+    grid = empty_voxel_grid(lattice, box);
+    classify_lattice(prepared, lattice, box, [&](int i, int j, int k) { grid.set(i, j, k); });
+    if (progress) progress(1.0);
+    return;
+  }
+  if (box == whole_box(lattice)) {  // every face: no culling to do
+    voxelize_brick(solid, lattice, box, nullptr, grid, progress);
+    return;
+  }
+  // The faces with a covering triangle whose box may reach the brick's column centres: BVH
+  // nodes whose (outward-rounded) x/y bounds meet [x of the first column, x of the last] × the
+  // same for y, and whose top is not below the brick's lowest centre (a triangle wholly below
+  // every centre of the brick has none of them below it: it adds nothing). Only culling: the
+  // sweep decides every row and column exactly.
+  const double xlo = lattice.centre(box.lo[0], 0, 0).x, xhi = lattice.centre(box.hi[0] - 1, 0, 0).x;
+  const double ylo = lattice.centre(0, box.lo[1], 0).y, yhi = lattice.centre(0, box.hi[1] - 1, 0).y;
+  const double zlo = lattice.centre(0, 0, box.lo[2]).z;
+  std::vector<uint32_t> faces;
+  walk(
+      prepared.bvh(),
+      [&](const Bvh::Node& node) {
+        return node.lo[0] <= xhi && node.hi[0] >= xlo && node.lo[1] <= yhi && node.hi[1] >= ylo &&
+               node.hi[2] >= zlo;
+      },
+      [&](const Bvh::Tri& t, uint32_t) { faces.push_back(t.face); });
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  voxelize_brick(solid, lattice, box, &faces, grid, progress);
 }
 
 void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const IndexBox& box,

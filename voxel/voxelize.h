@@ -21,6 +21,7 @@
 #include <optional>
 #include <vector>
 
+#include "cover/covering/prepared.h"
 #include "cover/solid/solid.h"
 #include "cover/voxel/voxel_grid.h"
 
@@ -62,24 +63,34 @@ struct VoxelizeOptions {
 /// bounds and N < 3 gets the margin of N = 3.
 VoxelLattice voxel_lattice(const Bbox& result_box, const VoxelizeOptions& options);
 
-/// Voxelizes the result of the CSG expression over the whole lattice of `options`.
-/// \pre closed leaves; 1 ≤ resolution ≤ 4096; bounds given or the result bounded; bounds finite
-/// with a positive size (Model::voxelize checks all of these). \throws PreconditionError when the
+/// Voxelizes the result of the prepared CSG expression over the whole lattice of `options`.
+/// Open leaves: each voxel records classify() of its centre (covering/classify.h
+/// classify_lattice), the winding-number membership, instead of the sweep.
+/// \pre 1 ≤ resolution ≤ 4096; bounds given or the result bounded; bounds finite with a
+/// positive size (Model::voxelize checks all of these). \throws PreconditionError when the
 /// default bounds need a resolution below 3 (default_voxel_bounds).
-VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options);
+VoxelGrid voxelize(const Prepared& prepared, const VoxelizeOptions& options);
 
 /// The same into `grid`, reusing its memory (repeated voxelizations, benchmarks).
-void voxelize(const Solid& solid, const VoxelizeOptions& options, VoxelGrid& grid);
+void voxelize(const Prepared& prepared, const VoxelizeOptions& options, VoxelGrid& grid);
+
+/// One-shot: prepares the solid, then voxelizes.
+VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options);
 
 /// Voxelizes the brick `box` of `lattice` into `grid` (grid.lattice = lattice, grid.box = box, its
 /// memory reused): bit-identical to the same region of the whole lattice's grid (the same centre
-/// doubles, the same exact predicates, the same tie rule; docs/scale-out.md#bricks). Cost ∝ the
-/// triangles whose x/y ranges reach the brick's columns plus its voxels: `faces`, when given, lists
-/// the faces to consider (any superset of those whose fan triangles' x/y boxes contain a column
-/// centre of the brick, in any order, e.g. from a BVH query; Model::voxelize_brick); nullptr scans
-/// every face. `progress` as VoxelizeOptions::progress (may be empty).
-/// \pre closed leaves; box inside [0, lattice.dims) and not empty; lattice dims ≤ kMaxVoxelDims;
-/// spacing finite and > 0.
+/// doubles, the same exact predicates, the same tie rule; docs/scale-out.md#bricks), at a cost ∝
+/// the covering triangles whose x/y range reaches the brick's columns (found through the
+/// prepared BVH) plus its voxels; the whole lattice scans every face without the BVH. Open
+/// leaves as voxelize(). `progress` as VoxelizeOptions::progress (may be empty). Thread-safe.
+/// \pre box inside [0, lattice.dims) and not empty; lattice dims ≤ kMaxVoxelDims; spacing
+/// finite and > 0 (Model::voxelize_brick checks).
+void voxelize_brick(const Prepared& prepared, const VoxelLattice& lattice, const IndexBox& box,
+                    VoxelGrid& grid, const std::function<void(double)>& progress = {});
+
+/// The sweep of voxelize_brick() over the faces `faces` lists (any superset of those whose fan
+/// triangles' x/y boxes contain a column centre of the brick, in any order), or every face for
+/// nullptr. \pre closed leaves, and as above.
 void voxelize_brick(const Solid& solid, const VoxelLattice& lattice, const IndexBox& box,
                     const std::vector<uint32_t>* faces, VoxelGrid& grid,
                     const std::function<void(double)>& progress = {});

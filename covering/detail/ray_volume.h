@@ -25,6 +25,7 @@
 #include <functional>
 
 #include "cover/covering/bvh.h"
+#include "cover/covering/prepared.h"
 #include "cover/solid/solid.h"
 
 namespace cover::detail {
@@ -45,7 +46,6 @@ struct RayVolume {
 };
 
 /// Precondition: `box` contains the (bounded) result; closed leaves.
-RayVolume ray_volume(const Solid& solid, const Bvh& bvh, const Bbox& box,
-                     const RayVolumeOptions& options);
+RayVolume ray_volume(const Prepared& prepared, const Bbox& box, const RayVolumeOptions& options);
 
 }  // namespace cover::detail

@@ -64,14 +64,7 @@ Operand operand(const std::string& name, Vec3 centre, double size, Vec3 axis, do
   else
     m = read_mesh(test::cgal_mesh(name + ".off"));
   m = test::triangulate(m);
-  const Bbox b = face_bbox(m);
-  const Vec3 c = 0.5 * (b.min + b.max);
-  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  apply_transform(
-      Transform::trs(Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext}, {axis.x, axis.y, axis.z},
-                     degrees, {centre.x, centre.y, centre.z}) *
-          Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-      m);
+  apply_transform(Transform::fit(face_bbox(m), centre, size, axis, degrees), m);
   return {make_leaf(m, name), to_cgal(m)};
 }
 

@@ -53,13 +53,7 @@ PolygonMesh concat(PolygonMesh a, const PolygonMesh& b, bool reverse = false) {
 /// A libcgal-demo mesh scaled to extent 2·size about `centre`, turned by `degrees` about z.
 PolygonMesh model(const std::string& name, Vec3 centre, double size, double degrees) {
   PolygonMesh m = test::triangulate(read_mesh(test::cgal_mesh(name + ".off")));
-  const Bbox b = face_bbox(m);
-  const Vec3 c = 0.5 * (b.min + b.max);
-  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  apply_transform(Transform::trs(Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext}, {0, 0, 1},
-                                 degrees, {centre.x, centre.y, centre.z}) *
-                      Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-                  m);
+  apply_transform(Transform::fit(face_bbox(m), centre, size, {0, 0, 1}, degrees), m);
   return m;
 }
 

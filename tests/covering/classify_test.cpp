@@ -186,14 +186,15 @@ TEST(Classify, SameResultsWithOneAndTwoThreads) {
 TEST(Classify, TetrahedronWholeBvhIsOneLeaf) {
   // Four triangles: the BVH root is itself a leaf (the batch walk's first case).
   const Solid s = make_leaf(test::unit_tetrahedron(), "tetra");
-  const Bvh bvh(s);
+  const Prepared prepared(s);
+  const Bvh& bvh = prepared.bvh();
   ASSERT_EQ(bvh.nodes().size(), 2u);  // the root and the unused pair padding
   ASSERT_GT(bvh.nodes()[0].count, 0u);
   std::mt19937_64 rng(11);
   std::uniform_int_distribution<int> grid(-1, 5);  // eighths: on faces, edges, vertices too
   std::vector<Vec3> pts(500);
   for (Vec3& p : pts) p = {grid(rng) * 0.25, grid(rng) * 0.25, grid(rng) * 0.25};
-  const std::vector<PC> got = classify(s, bvh, pts);
+  const std::vector<PC> got = classify(prepared, pts);
   EXPECT_EQ(got, classify_brute_force(s, pts));
   EXPECT_EQ(one(s, {0.1, 0.1, 0.1}), PC::kInside);
   EXPECT_EQ(one(s, {0.5, 0.5, 0}), PC::kEdge);
@@ -202,7 +203,7 @@ TEST(Classify, TetrahedronWholeBvhIsOneLeaf) {
   // Rays: the batch cast() walks the same one-leaf tree.
   std::vector<Ray> rays;
   for (int i = 0; i < 40; ++i) rays.push_back({{-1, 0.02 * i, 0.1}, {1, 0.01 * i, 0.05}});
-  const std::vector<RayResult> batch = cast(s, bvh, rays);
+  const std::vector<RayResult> batch = cast(prepared, rays);
   for (size_t i = 0; i < rays.size(); ++i) {
     const RayResult single = cast_depth_first(bvh, s.tree, s.leaves.size(), rays[i]);
     ASSERT_EQ(batch[i].hits.size(), single.hits.size()) << i;

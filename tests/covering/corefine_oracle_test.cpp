@@ -34,13 +34,7 @@ struct Operand {
 
 Operand operand(const std::string& name, Vec3 centre, double size, double degrees) {
   PolygonMesh m = read_mesh(test::cgal_mesh(name));
-  const Bbox b = face_bbox(m);
-  const Vec3 c = 0.5 * (b.min + b.max);
-  const double ext = std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
-  apply_transform(Transform::trs(Vec3{2 * size / ext, 2 * size / ext, 2 * size / ext},
-                                 {0.3, 1, 0.2}, degrees, {centre.x, centre.y, centre.z}) *
-                      Transform::trs({1, 1, 1}, {0, 0, 1}, 0, {-c.x, -c.y, -c.z}),
-                  m);
+  apply_transform(Transform::fit(face_bbox(m), centre, size, {0.3, 1, 0.2}, degrees), m);
   Operand o{make_leaf(m, name), {}};
   std::vector<Mesh::Vertex_index> vs;
   for (const Vec3& p : m.vertices) vs.push_back(o.mesh.add_vertex(K::Point_3(p.x, p.y, p.z)));

@@ -139,7 +139,8 @@ TEST(RandomCsg, BatchCastEqualsSingleRays) {
   size_t hits = 0;
   for (int trial = 0; trial < 12; ++trial) {
     const Solid s = random_tree(rng, knot, 1 + trial % 3);
-    const Bvh bvh(s);
+    const Prepared prepared(s);
+    const Bvh& bvh = prepared.bvh();
     std::vector<Ray> rays(700);
     for (size_t i = 0; i < rays.size(); ++i) {
       Ray& r = rays[i];
@@ -164,7 +165,7 @@ TEST(RandomCsg, BatchCastEqualsSingleRays) {
     }
     for (const size_t grain : {size_t{0}, size_t{1}, size_t{97}, size_t{256}}) {
       const std::vector<RayResult> batch =
-          grain == 0 ? single : cast(s, bvh, rays, CastOptions{grain});
+          grain == 0 ? single : cast(prepared, rays, CastOptions{grain});
       ASSERT_EQ(batch.size(), rays.size());
       for (size_t i = 0; i < rays.size(); ++i) {
         const RayResult& one = want[i];

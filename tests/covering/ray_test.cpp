@@ -80,12 +80,13 @@ TEST(Ray, OriginInsideAndUnboundedSpans) {
 TEST(Ray, BatchSingleAndDepthFirstAgree) {
   const Solid s = unite({make_leaf(make_sphere({0, 0, 0}, 1, 24), "sphere"),
                          box({0.2, -0.5, -0.5}, {1.8, 0.5, 0.5})});
-  const Bvh bvh(s);
+  const Prepared prepared(s);
+  const Bvh& bvh = prepared.bvh();
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-2, 2);
   std::vector<Ray> rays;
   for (int i = 0; i < 500; ++i) rays.push_back({{u(rng), u(rng), -3}, {u(rng), u(rng), 1}});
-  const std::vector<RayResult> batch = cast(s, bvh, rays, CastOptions{64});
+  const std::vector<RayResult> batch = cast(prepared, rays, CastOptions{64});
   for (size_t i = 0; i < rays.size(); ++i) {
     const RayResult single = cast(bvh, s.tree, s.leaves.size(), rays[i]);
     const RayResult depth = cast_depth_first(bvh, s.tree, s.leaves.size(), rays[i]);

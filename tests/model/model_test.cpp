@@ -12,6 +12,7 @@
 
 #include "cover/covering/bounds.h"
 #include "cover/covering/classify.h"
+#include "cover/covering/prepared.h"
 #include "cover/covering/ray.h"
 #include "cover/model/info.h"
 #include "cover/solid/errors.h"
@@ -284,6 +285,88 @@ TEST(Model, WindingOfAnOpenLeafIsItsRoundedGeneralizedWindingNumber) {
   }
 }
 
+// The free kernels on a Prepared (and their one-shot forms on a Solid) answer as the facade
+// does, open leaves included: the winding-number rule lives in the kernels, not in Model.
+TEST(Model, FreeKernelsAnswerAsTheFacadeOnOpenLeaves) {
+  std::vector<std::array<Vec3, 3>> tris;
+  const Model m = mesh(open_cube(1, tris), "open cube") | box({0.25, 0.25, 0.25}, {0.75, 0.75, 2});
+  ASSERT_TRUE(m.solid().has_open_leaf());
+  const Prepared prepared(m.solid());
+  const std::vector<Vec3> points = random_points(3000, -0.5, 1.5, 17);
+  EXPECT_EQ(classify(prepared, points), m.classify(points));
+  EXPECT_EQ(classify(m.solid(), points), m.classify(points));
+  const LeafWindings free_w = leaf_windings(prepared, points), model_w = m.windings(points);
+  EXPECT_EQ(free_w.winding, model_w.winding);
+  EXPECT_EQ(free_w.on_surface, model_w.on_surface);
+  std::vector<Ray> rays;
+  for (const Vec3& o : random_points(200, -1, 2, 18)) rays.push_back({o, {1, 0.3, 0.2}});
+  const std::vector<RayResult> free_r = cast(prepared, rays), model_r = m.cast(rays);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_EQ(free_r[i].spans.size(), model_r[i].spans.size()) << i;
+    for (size_t s = 0; s < free_r[i].spans.size(); ++s) {
+      EXPECT_EQ(free_r[i].spans[s].t0, model_r[i].spans[s].t0);
+      EXPECT_EQ(free_r[i].spans[s].t1, model_r[i].spans[s].t1);
+    }
+  }
+  // Volume: the winding method in both, the same estimate and bound.
+  const VolumeResult fv = volume(m.solid(), {.rays = 32}), mv = m.volume({.rays = 32});
+  EXPECT_EQ(fv.method, "winding");
+  EXPECT_EQ(fv.volume, mv.volume);
+  EXPECT_EQ(fv.error_bound, mv.error_bound);
+  EXPECT_THROW(volume(prepared, {.exact = true}), InputError);
+  // Voxels: each centre classified, whole grid and brick alike, against classify() itself.
+  VoxelizeOptions vo;
+  vo.resolution = 12;
+  const VoxelGrid fg = voxelize(m.solid(), vo), mg = m.voxelize(vo);
+  EXPECT_EQ(fg.bits, mg.bits);
+  const VoxelLattice lattice = m.voxel_lattice(vo);
+  std::vector<Vec3> centres;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j)
+      for (int k = 0; k < 12; ++k) centres.push_back(lattice.centre(i, j, k));
+  const std::vector<PointClass> c = m.classify(centres);
+  size_t at = 0, differ = 0;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j)
+      for (int k = 0; k < 12; ++k) differ += fg.get(i, j, k) != (c[at++] != PointClass::kOutside);
+  EXPECT_EQ(differ, 0u);
+  const IndexBox brick{{2, 3, 4}, {9, 8, 12}};
+  VoxelGrid fb;
+  voxelize_brick(prepared, lattice, brick, fb);
+  EXPECT_EQ(fb.bits, m.voxelize_brick(lattice, brick).bits);
+  // Octree and render through the same Prepared.
+  const VoxelBounds cube = m.voxel_bounds(8);
+  const Octree ft = build_octree(prepared, cube, {.depth = 3}), mt = m.octree({.depth = 3}, cube);
+  ASSERT_EQ(ft.nodes.size(), mt.nodes.size());
+  for (size_t i = 0; i < ft.nodes.size(); ++i) EXPECT_EQ(ft.nodes[i].state, mt.nodes[i].state);
+  CameraOptions co;
+  co.width = 40;
+  co.height = 30;
+  EXPECT_EQ(render(prepared, m.camera(co)).rgb, m.render(co).rgb);
+}
+
+// The evaluated B-rep is built once: evaluate() again, clip() and evaluate_cells() cut the same
+// mesh as the free evaluate() of the solid; options that change the result evaluate again, and
+// EvaluateOptions::phases times the steps without changing the result.
+TEST(Model, EvaluatedBrepIsKeptAndMatchesTheFreeEvaluate) {
+  const Model m = box({0, 0, 0}, {2, 2, 2}) - sphere({2, 2, 2}, 1.2, 24);
+  const EvaluateResult free_e = evaluate(m.solid());
+  const EvaluateResult a = m.evaluate(), b = m.evaluate({.grain = 7});
+  EXPECT_EQ(a.mesh.vertices, free_e.mesh.vertices);
+  EXPECT_EQ(a.mesh.face_vertices, free_e.mesh.face_vertices);
+  EXPECT_EQ(b.mesh.face_vertices, a.mesh.face_vertices);
+  EvaluatePhases phases;
+  const EvaluateResult timed = m.evaluate({.phases = &phases});
+  EXPECT_EQ(timed.mesh.face_vertices, a.mesh.face_vertices);
+  EXPECT_GT(phases.triangulate + phases.intersect + phases.select + phases.assemble, 0.0);
+  EXPECT_EQ(m.evaluate_cells(2).evaluated.mesh.face_vertices, a.mesh.face_vertices);
+  const Model copy = m;  // copies share the kept B-rep
+  EXPECT_EQ(copy.evaluate().mesh.vertices, a.mesh.vertices);
+  const brep::ClipResult cut = m.clip(brep::Plane{{0, 0, 1}, 1});
+  const brep::ClipResult direct = brep::clip(free_e.mesh, brep::Plane{{0, 0, 1}, 1});
+  EXPECT_EQ(cut.below.mesh.vertices, direct.below.mesh.vertices);
+}
+
 TEST(Model, VolumeExactCoveringRaysAndBrep) {
   // Disjoint boxes: the covering is exact.
   const Model two = box({0, 0, 0}, {1, 1, 1}) | box({2, 0, 0}, {3, 2, 1});
@@ -361,8 +444,9 @@ TEST(Model, CastAndFirstHitsEqualTheKernel) {
   std::vector<Ray> rays;
   for (const Vec3& o : random_points(500, -1, 4, 5)) rays.push_back({o, {1, 0.25, 0.125}});
   const std::vector<RayResult> all = m.cast(rays);
-  const Bvh bvh(m.solid());
-  const std::vector<RayResult> direct = cast(m.solid(), bvh, rays);
+  const Prepared prepared(m.solid());
+  const Bvh& bvh = prepared.bvh();
+  const std::vector<RayResult> direct = cast(prepared, rays);
   const std::vector<FirstHit> first = m.first_hits(rays);
   ASSERT_EQ(all.size(), rays.size());
   size_t hits = 0;
@@ -401,7 +485,7 @@ TEST(Model, VoxelizeOctreeRenderAndClipEqualTheKernels) {
   co.width = 64;
   co.height = 48;
   const Image image = m.render(co);
-  const Image direct_image = render(m.solid(), Bvh(m.solid()), m.camera(co), {});
+  const Image direct_image = render(Prepared(m.solid()), m.camera(co), {});
   EXPECT_EQ(image.rgb, direct_image.rgb);
   co.width = 0;
   EXPECT_THROW(m.render(co), InputError);
@@ -644,11 +728,11 @@ TEST(FreeFunctions, SolidWithNoLeafIsTheEmptySet) {
   EXPECT_EQ(covering_volume(none), 0.0);
   EXPECT_EQ(covering_inexact_reason(none), std::nullopt);
   const std::vector<Ray> rays = {{{-1, 0.5, 0.5}, {1, 0, 0}}};
-  const std::vector<RayResult> hits = cast(none, Bvh(none), rays);
+  const std::vector<RayResult> hits = cast(Prepared(none), rays);
   ASSERT_EQ(hits.size(), 1u);
   EXPECT_TRUE(hits[0].hits.empty());
   EXPECT_TRUE(hits[0].spans.empty());
-  EXPECT_EQ(leaf_windings(none, Bvh(none), points).leaves, 0u);
+  EXPECT_EQ(leaf_windings(Prepared(none), points).leaves, 0u);
   EXPECT_EQ(volume(none).volume, 0.0);
   EXPECT_TRUE(is_bounded(none));
   VoxelizeOptions vo;
@@ -660,7 +744,7 @@ TEST(FreeFunctions, SolidWithNoLeafIsTheEmptySet) {
   co.width = 8;
   co.height = 6;
   const Camera cam = frame_camera(Bbox{{0, 0, 0}, {1, 1, 1}}, co);
-  const Image img = render(none, nullptr, cam, {});
+  const Image img = render(Prepared(none), cam, {});
   for (uint16_t id : img.ids) EXPECT_EQ(id, Image::kBackgroundId);
 }
 

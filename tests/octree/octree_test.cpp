@@ -1115,13 +1115,13 @@ TEST_F(OctreeFiles, ErrorsNameTheFileAndLeaveNothingBehind) {
             1);
 }
 
-// A solid with no leaf (the empty set) gives the root alone, empty, with or without a BVH,
+// A solid with no leaf (the empty set) gives the root alone, empty, one-shot or prepared,
 // without reading its empty CSG tree.
 TEST(Octree, SolidWithNoLeafIsOneEmptyRoot) {
   const Solid none;
   const VoxelBounds cube{{-1, -1, -1}, 2};
-  for (const Octree& t : {build_octree(none, cube, {.depth = 4}),
-                          build_octree(none, Bvh(none), cube, {.depth = 4})}) {
+  for (const Octree& t :
+       {build_octree(none, cube, {.depth = 4}), build_octree(Prepared(none), cube, {.depth = 4})}) {
     ASSERT_EQ(t.nodes.size(), 1u);
     EXPECT_EQ(t.nodes[0].state, CellState::kEmpty);
     EXPECT_EQ(t.nodes[0].first_child, 0u);

@@ -24,8 +24,7 @@ namespace {
 Solid box_solid(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
 
 Image draw(const Solid& s, const Camera& cam, const RenderOptions& o = {}) {
-  const Bvh bvh(s);
-  return render(s, bvh, cam, o);
+  return render(Prepared(s), cam, o);
 }
 
 /// The cube [−1, 1]³: every test frames the same region, so pixel sizes are known.
@@ -210,7 +209,8 @@ TEST(Render, EveryPixelIsTheVisiblePointOfTheFullCast) {
        intersect({make_leaf(make_cylinder({0, 0, -1}, {0, 0, 3}, 0.6, 20), "c"),
                   box_solid({-1, -1, 0.5}, {1, 1, 2.5})}),
        make_leaf(make_sphere({1, 1, 1}, 0.3, 12), "inner")});  // hidden inside the box
-  const Bvh bvh(s);
+  const Prepared prepared(s);
+  const Bvh& bvh = prepared.bvh();
   for (bool perspective : {false, true})
     for (bool cut : {false, true}) {
       CameraOptions co;
@@ -220,7 +220,7 @@ TEST(Render, EveryPixelIsTheVisiblePointOfTheFullCast) {
       const Camera cam = frame_camera(s.bbox(), co);
       RenderOptions o;
       if (cut) o.section = Plane{{1, -1, 1}, 1.2};  // faces the iso eye: caps on the box
-      const Image img = render(s, bvh, cam, o);
+      const Image img = render(prepared, cam, o);
       int surface = 0, caps = 0;
       for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
@@ -279,7 +279,7 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
       {&csg, csg.bbox()}, {&grid, unit_frame()}, {&outside, unit_frame()}, {&bunny, bunny.bbox()}};
   int compared = 0;
   for (const Case& c : cases) {
-    const Bvh bvh(*c.solid);
+    const Prepared prepared(*c.solid);
     for (View view : {View::kIso, View::kFront, View::kTop, View::kLeft})
       for (const auto& [w, h, az] : {std::tuple{64, 64, 0.0}, std::tuple{97, 61, 30.0}})
         for (bool cut : {false, true}) {
@@ -295,8 +295,8 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
           objects.method = RenderMethod::kObjectOrder;
           objects.tile = w == 64 ? 32 : 7;
           if (cut) rays.section = objects.section = Plane{{1, -1, 1}, 0.1};
-          const Image a = render(*c.solid, bvh, cam, rays);
-          const Image b = render(*c.solid, nullptr, cam, objects);
+          const Image a = render(prepared, cam, rays);
+          const Image b = render(prepared, cam, objects);
           ASSERT_TRUE(a.ids == b.ids) << to_string(view) << " " << w << " " << cut;
           ASSERT_TRUE(a.depth == b.depth) << to_string(view) << " " << w << " " << cut;
           ASSERT_TRUE(a.rgb == b.rgb) << to_string(view) << " " << w << " " << cut;
@@ -316,14 +316,14 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
   const Solid aligned = unite(
       {subtract({span(o(10, 50), o(40, 20), -0.5, 0.5), span(o(25, 35), o(45, 10), -0.6, 0.2)}),
        span(o(40, 20), o(55, 5), 0.1, 0.3)});  // touches at o(40, 20)
-  const Bvh bvh(aligned);
+  const Prepared prepared(aligned);
   for (bool cut : {false, true}) {
     RenderOptions rays, objects;
     rays.method = RenderMethod::kRays;
     objects.method = RenderMethod::kObjectOrder;
     if (cut) rays.section = objects.section = Plane{{0, 1, 0}, 0};
-    const Image a = render(aligned, bvh, cam, rays);
-    const Image b = render(aligned, nullptr, cam, objects);
+    const Image a = render(prepared, cam, rays);
+    const Image b = render(prepared, cam, objects);
     ASSERT_TRUE(a.ids == b.ids && a.depth == b.depth && a.rgb == b.rgb) << cut;
     EXPECT_NE(a.ids[at(a, 10, 35)], Image::kBackgroundId);  // on the big box's face x = lo.x
   }
@@ -340,9 +340,9 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
     RenderOptions rays, objects;
     rays.method = RenderMethod::kRays;
     objects.method = RenderMethod::kObjectOrder;
-    const Bvh bvh(csg);
-    const Image a = render(csg, bvh, cam, rays);
-    const Image b = render(csg, nullptr, cam, objects);
+    const Prepared prepared(csg);
+    const Image a = render(prepared, cam, rays);
+    const Image b = render(prepared, cam, objects);
     ASSERT_TRUE(a.ids == b.ids && a.depth == b.depth && a.rgb == b.rgb) << eye.y;
     EXPECT_GT(std::count_if(a.ids.begin(), a.ids.end(),
                             [](uint16_t id) { return id != Image::kBackgroundId; }),
@@ -359,7 +359,7 @@ TEST(Render, ObjectOrderEqualsRaysByteForByte) {
   ASSERT_TRUE(open_solid.has_open_leaf());
   RenderOptions objects;
   objects.method = RenderMethod::kObjectOrder;
-  EXPECT_THROW(render(open_solid, nullptr, frame_camera(open_solid.bbox(), {}), objects),
+  EXPECT_THROW(render(Prepared(open_solid), frame_camera(open_solid.bbox(), {}), objects),
                InputError);
 }
 

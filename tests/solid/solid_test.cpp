@@ -5,11 +5,27 @@
 
 #include "cover/solid/measure.h"
 #include "cover/solid/primitives.h"
+#include "cover/solid/transform.h"
 
 namespace cover {
 namespace {
 
 Solid box(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
+
+// Transform::fit: the box's centre to `centre`, its largest extent to 2·half_size, the rotation
+// about its centre; checked on points whose images are known exactly.
+TEST(Solid, TransformFitPlacesTheBoxCentreAndLargestExtent) {
+  const Bbox box{{1, 2, 3}, {5, 3, 4}};  // centre (3, 2.5, 3.5), largest extent 4 (x)
+  const Transform t = Transform::fit(box, {10, 0, -1}, 0.5);
+  EXPECT_EQ(t(Vec3{3, 2.5, 3.5}), (Vec3{10, 0, -1}));
+  EXPECT_EQ(t(Vec3{5, 2.5, 3.5}), (Vec3{10.5, 0, -1}));
+  EXPECT_EQ(t(Vec3{3, 3, 3.5}), (Vec3{10, 0.125, -1}));
+  // A half turn about z through the centre: +x goes to −x.
+  const Vec3 p = Transform::fit(box, {0, 0, 0}, 2, {0, 0, 1}, 180)(Vec3{5, 2.5, 3.5});
+  EXPECT_NEAR(p.x, -2, 1e-15);
+  EXPECT_NEAR(p.y, 0, 1e-15);
+  EXPECT_EQ(p.z, 0);
+}
 
 TEST(Solid, UnionConcatenatesVerticesFacesAndLeaves) {
   const Solid u = unite({box({0, 0, 0}, {1, 1, 1}), box({2, 0, 0}, {3, 1, 1})});

@@ -235,8 +235,7 @@ inline uint32_t halves(PointClass c) {
 
 class Builder {
  public:
-  Builder(const Solid& solid, const Bvh& bvh, const VoxelBounds& bounds,
-          const OctreeOptions& options);
+  Builder(const Prepared& prepared, const VoxelBounds& bounds, const OctreeOptions& options);
 
   Octree run();
 
@@ -369,6 +368,7 @@ class Builder {
   void block(int d, size_t b0, size_t b1, Octree::Node* nodes, size_t next_start,
              LargeVector<Coord>& next, Lists& next_lists);
 
+  const Prepared& prepared_;
   const Solid& solid_;
   const Bvh& bvh_;
   VoxelBounds bounds_;
@@ -377,12 +377,10 @@ class Builder {
   double h_;
   uint64_t max_bytes_;
   std::function<void(double)> progress_;
-  bool open_ = false;                 ///< some leaf is open: no shared centres
-  std::optional<GwnForest> own_gwn_;  ///< built here when options.gwn is null
+  bool open_ = false;           ///< some leaf is open: no shared centres
   std::vector<uint8_t> table_;  ///< membership per set of inside leaves (≤ kTableLeaves leaves)
   /// Sub-point p = (k·n + j)·n + i of a cell (samples³ ≤ 64): (i, j, k), without divisions.
   std::array<std::array<uint8_t, 3>, 64> sub_index_{};
-  const GwnForest* gwn_ = nullptr;
   LargeVector<Coord> parents_;  ///< crossed cells of the previous level, by rank
   Lists parent_lists_;          ///< their triangles, by rank
   /// Levels d ≥ 2: per parent (by rank), its own parent's rank at level d − 2, and the

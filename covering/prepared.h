@@ -1,0 +1,47 @@
+#pragma once
+// A solid prepared for queries: the solid and the structures its queries share — the BVH of its
+// covering triangles (bvh.h) and, when some leaf is open, the generalized-winding trees of the
+// open leaves (gwn.h). Each is built on its first use, once (thread-safe: std::call_once), and
+// then shared by every query. Every kernel over a solid takes a Prepared first: classify,
+// leaf_windings, cast and volume (covering/), render (render/render.h), voxelize and
+// voxelize_brick (voxel/voxelize.h), build_octree (octree/octree.h); each also has a one-shot
+// form on a Solid that prepares it for the one call. A new kind of leaf brings its prepared
+// structure here, where every kernel asks for it.
+
+#include <mutex>
+#include <optional>
+
+#include "cover/covering/bvh.h"
+#include "cover/covering/gwn.h"
+#include "cover/solid/solid.h"
+
+namespace cover {
+
+struct PrepareOptions {
+  BvhOptions bvh;  ///< the BVH's build
+  GwnOptions gwn;  ///< the open leaves' trees' build (leaf_size); queries pass their own
+};
+
+class Prepared {
+ public:
+  /// Refers to `solid`, which must outlive the Prepared and not change; builds nothing yet.
+  explicit Prepared(const Solid& solid, const PrepareOptions& options = {});
+  Prepared(Solid&&, const PrepareOptions& = {}) = delete;  // would refer to a temporary
+  Prepared(const Prepared&) = delete;
+  Prepared& operator=(const Prepared&) = delete;
+
+  const Solid& solid() const { return *solid_; }
+  /// The BVH over every covering triangle, built on first use.
+  const Bvh& bvh() const;
+  /// The open leaves' trees, built on first use; nullptr when every leaf is closed.
+  const GwnForest* gwn() const;
+
+ private:
+  const Solid* solid_;
+  PrepareOptions options_;
+  mutable std::once_flag bvh_once_, gwn_once_;
+  mutable std::optional<Bvh> bvh_;
+  mutable std::optional<GwnForest> gwn_;
+};
+
+}  // namespace cover
