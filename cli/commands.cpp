@@ -92,6 +92,15 @@ json camera_json(const Camera& c) {
 
 }  // namespace
 
+std::string flag_of(std::string_view name) {
+  if (name == "resolution") return "--res";
+  if (name == "width, height") return "--size";
+  if (name == "require_closed") return "--closed-only";
+  std::string out = "--" + std::string(name);
+  std::replace(out.begin(), out.end(), '_', '-');
+  return out;
+}
+
 Model load_model(const std::string& input, const LoadOptions& options,
                  const std::string& closed_needed) {
   Model model = load(input, options);
@@ -100,7 +109,7 @@ Model load_model(const std::string& input, const LoadOptions& options,
       if (l.open())
         throw InputError(l.name + ": open mesh (" + std::to_string(l.boundary_edges) +
                          " boundary edges): " + closed_needed);
-  for (const std::string& w : model.warnings())
+  for (const std::string& w : model.warnings(flag_of))
     std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   return model;
 }

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "cover/io/scene.h"
 #include "cover/model/model.h"
@@ -113,6 +114,11 @@ struct DecomposeCommandOptions {
   std::string output;        ///< -o DIR: piece_NNNN.EXT and pieces.json
   std::string ext = ".off";  ///< --ext: the pieces' mesh format
 };
+
+/// A library parameter's flag, for InputError messages and warnings (InputError::text,
+/// Model::warnings): "--" and the name with '-' for '_', where the flag is not shorter or named
+/// otherwise.
+std::string flag_of(std::string_view name);
 
 int run_info(const InfoOptions& o, const CommonOptions& common);
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);

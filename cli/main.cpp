@@ -24,16 +24,6 @@ int fail(int status, const std::string& what) {
   return status;
 }
 
-/// A library parameter's flag, for InputError messages (InputError::text): "--" and the name with
-/// '-' for '_', where the flag is not shorter.
-std::string flag_of(std::string_view name) {
-  if (name == "resolution") return "--res";
-  if (name == "width, height") return "--size";
-  std::string out = "--" + std::string(name);
-  std::replace(out.begin(), out.end(), '_', '-');
-  return out;
-}
-
 /// A command-line value for a message: in single quotes, control bytes as '?' (one line).
 std::string shown(std::string text) {
   for (char& c : text)
@@ -330,7 +320,7 @@ int main(int argc, char** argv) {
     if (dec_cmd->parsed()) return cover::cli::run_decompose(dec, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
-    return fail(2, e.text(flag_of));
+    return fail(2, e.text(cover::cli::flag_of));
   } catch (const cover::NotComputable& e) {
     return fail(2, e.what());
   } catch (const std::bad_alloc&) {

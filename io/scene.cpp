@@ -371,7 +371,8 @@ class SceneReader {
     if (r.boundary_edges > 0)
       warnings.push_back(where + ": open mesh: " + std::to_string(r.boundary_edges) +
                          " boundary edges; inside where the generalized winding number has "
-                         "|w| > 1/2 (--closed-only refuses)");
+                         "|w| > 1/2 (" +
+                         parameter("require_closed") + " refuses)");
     // A closed leaf whose every edge has two sides of opposite directions (r.oriented, none
     // non-manifold) is balanced: orient_consistently() would change nothing, so its edge sorts
     // are skipped (the common case; ~15% of a scene's load).

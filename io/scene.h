@@ -26,7 +26,9 @@ struct LoadOptions {
 
 struct LoadedInput {
   Solid solid;
-  std::vector<std::string> warnings;  ///< one line each, e.g. leaf flipped
+  /// One line each, e.g. leaf flipped; parameters marked as in InputError messages
+  /// (show_parameters, solid/errors.h, renders them).
+  std::vector<std::string> warnings;
 };
 
 /// Loads a mesh (by extension, see mesh_io.h) or a `.json` scene.

@@ -213,9 +213,12 @@ const Solid& Model::solid() const { return state_->get(); }
 
 size_t Model::leaf_count() const { return state_->leaves; }
 
-const std::vector<std::string>& Model::warnings() const {
+std::vector<std::string> Model::warnings(
+    const std::function<std::string(std::string_view)>& name_of) const {
   state_->get();
-  return state_->warnings;
+  std::vector<std::string> out;
+  for (const std::string& w : state_->warnings) out.push_back(show_parameters(w, name_of));
+  return out;
 }
 
 const Prepared& Model::prepared() const {
@@ -298,7 +301,8 @@ Model Model::mirrored(Vec3 normal) const {
 
 Model Model::transformed(const Transform& m) const {
   Solid s = transform_solid(m, solid());
-  return Model(std::move(s), warnings());
+  state_->get();
+  return Model(std::move(s), state_->warnings);
 }
 
 std::string Model::to_bytes() const { return solid_to_bytes(solid()); }

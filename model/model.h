@@ -66,8 +66,11 @@ class Model {
   explicit Model(Solid solid, std::vector<std::string> warnings = {});
 
   const Solid& solid() const;
-  /// One line each, from loading and repairs (a leaf re-oriented, an open leaf, ...).
-  const std::vector<std::string>& warnings() const;
+  /// One line each, from loading and repairs (a leaf re-oriented, an open leaf, ...); a
+  /// parameter is named by `name_of` (a front end's flag or keyword), else as C++ spells it
+  /// (solid/errors.h show_parameters).
+  std::vector<std::string> warnings(
+      const std::function<std::string(std::string_view)>& name_of = {}) const;
   size_t leaf_count() const;
   /// True for the empty Model (no leaf): the empty set.
   bool empty() const { return leaf_count() == 0; }

@@ -54,6 +54,7 @@ std::optional<VoxelBounds> bounds_arg(const py::object& bounds) {
 /// A C++ parameter's Python keyword, for InputError messages (InputError::text).
 std::string keyword(std::string_view name) {
   if (name == "resolution") return "res";
+  if (name == "require_closed") return "closed_only";
   return std::string(name);
 }
 
@@ -457,7 +458,7 @@ py::dict info_dict(const Model& model, bool self_intersection) {
 
 /// `model` after issuing each of its warnings as a Python UserWarning (with the GIL).
 Model warned(Model model) {
-  for (const std::string& w : model.warnings())
+  for (const std::string& w : model.warnings(keyword))
     if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 2) != 0) throw py::error_already_set();
   return model;
 }
@@ -507,7 +508,8 @@ PYBIND11_MODULE(_cover, m) {
       .def_property_readonly("leaves", &Model::leaf_count, doc::kLeaves)
       .def_property_readonly("empty", &Model::empty, doc::kEmpty)
       .def_property_readonly("bounded", &Model::bounded, doc::kBounded)
-      .def_property_readonly("warnings", &Model::warnings, doc::kWarnings)
+      .def_property_readonly(
+          "warnings", [](const Model& m) { return m.warnings(keyword); }, doc::kWarnings)
       .def("__repr__",
            [](const Model& a) {
              return "<cover.Model: " + std::to_string(a.leaf_count()) + " leaves, " +

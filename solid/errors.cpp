@@ -6,7 +6,7 @@ namespace {
 // (messages show control bytes of user text as '?').
 constexpr char kMark = '\x1f';
 
-std::string render(const std::string& marked,
+std::string render(std::string_view marked,
                    const std::function<std::string(std::string_view)>& name_of) {
   std::string out;
   out.reserve(marked.size());
@@ -28,6 +28,11 @@ std::string own_name(std::string_view name) { return std::string(name); }
 }  // namespace
 
 std::string parameter(std::string_view name) { return kMark + std::string(name) + kMark; }
+
+std::string show_parameters(std::string_view marked,
+                            const std::function<std::string(std::string_view)>& name_of) {
+  return name_of ? render(marked, name_of) : render(marked, own_name);
+}
 
 InputError::InputError(const std::string& message)
     : std::runtime_error(render(message, own_name)),

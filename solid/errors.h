@@ -32,6 +32,11 @@ namespace cover {
 /// InputError message so that each front end can show its own name for it (InputError::text).
 std::string parameter(std::string_view name);
 
+/// `marked` with every parameter() mark shown as `name_of(name)`, or as its C++ name when
+/// `name_of` is empty: how a front end shows a warning (Model::warnings) or an error's text.
+std::string show_parameters(std::string_view marked,
+                            const std::function<std::string(std::string_view)>& name_of = {});
+
 /// Invalid input; the message names the file and the place in it, or the parameter.
 class InputError : public std::runtime_error {
  public:

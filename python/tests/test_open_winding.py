@@ -38,6 +38,7 @@ def test_winding_of_an_open_leaf_is_its_rounded_generalized_winding_number():
     V, F = open_box()
     m = cover.mesh(V, F)
     assert m.warnings and "open mesh" in m.warnings[0]
+    assert "(closed_only refuses)" in m.warnings[0]  # the keyword that refuses it
     P = lattice_points()
     w = m.winding(P)[:, 0]
     ref = solid_angle_sum(V, F, P)

@@ -61,6 +61,8 @@ TEST_F(OpenMeshes, EveryCommandAcceptsThemAndClosedOnlyRefuses) {
                 std::string::npos)
           << c << "\n"
           << r.err;
+      // The warning names the flag that refuses the leaf (the library's require_closed).
+      if (!closes) EXPECT_NE(r.err.find("(--closed-only refuses)"), std::string::npos) << r.err;
     }
     if (closes) continue;
     // --closed-only: today's refusal, naming the file and its boundary edges.

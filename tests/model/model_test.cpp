@@ -678,7 +678,15 @@ TEST(Model, LoadAndMeshFromArrays) {
   LoadOptions closed_only;
   closed_only.require_closed = true;
   EXPECT_THROW(mesh(v, open, "tet", closed_only), InputError);
-  EXPECT_TRUE(mesh(v, open, "tet").solid().leaves[0].open());  // accepted: winding-number rule
+  // Accepted: the winding-number rule. The warning names the option that refuses it, as each
+  // front end spells it.
+  const Model open_tet = mesh(v, open, "tet");
+  EXPECT_TRUE(open_tet.solid().leaves[0].open());
+  ASSERT_EQ(open_tet.warnings().size(), 1u);
+  EXPECT_NE(open_tet.warnings()[0].find("(require_closed refuses)"), std::string::npos)
+      << open_tet.warnings()[0];
+  const auto flag = [](std::string_view name) { return "--" + std::string(name); };
+  EXPECT_NE(open_tet.warnings(flag)[0].find("(--require_closed refuses)"), std::string::npos);
   EXPECT_THROW(box({0, 0, 0}, {0, 1, 1}), InputError);
   EXPECT_THROW(sphere({0, 0, 0}, -1), InputError);
   EXPECT_THROW(cylinder({0, 0, 0}, {0, 0, 0}, 1), InputError);
