@@ -5,8 +5,14 @@
 // then shared by every query. Every kernel over a solid takes a Prepared first: classify,
 // leaf_windings, cast and volume (covering/), render (render/render.h), voxelize and
 // voxelize_brick (voxel/voxelize.h), build_octree (octree/octree.h); each also has a one-shot
-// form on a Solid that prepares it for the one call. A new kind of leaf brings its prepared
-// structure here, where every kernel asks for it.
+// form on a Solid that prepares it for the one call.
+// Where a new kind of leaf plugs in: a leaf that is not a closed mesh is answered through its
+// prepared structure here. Open meshes today: classify() and leaf_windings() take their
+// membership from gwn(), cast() their spans (open_spans); voxelize, voxelize_brick and
+// build_octree answer a solid with such leaves by classify() of their points (voxel centres,
+// cells' sample points), and render() by the rays' spans. A field or point-set leaf adds its
+// structure beside gwn() and its membership and spans in those two places; the grids and images
+// follow.
 
 #include <mutex>
 #include <optional>
