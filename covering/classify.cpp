@@ -334,7 +334,9 @@ std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3>
 
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
                                  const ClassifyOptions& options) {
-  const Prepared prepared(solid, {.gwn = options.gwn_options});
+  PrepareOptions prepare;
+  prepare.gwn = options.gwn_options;  // the trees built as this call evaluates them
+  const Prepared prepared(solid, prepare);
   return classify(prepared, points, options);
 }
 
