@@ -10,7 +10,6 @@
 #include <utility>
 
 #include "cover/covering/bounds.h"
-#include "cover/covering/bvh_walk.h"
 #include "cover/io/serialize.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
