@@ -27,11 +27,42 @@ namespace {
 using nlohmann::json;
 
 /// One leaf of `cover info --json` (docs/cli.md "info").
+/// A field leaf's entry: kind "field", threshold, support box and primitives.
+json field_json(const LeafInfo& leaf) {
+  json j;
+  j["name"] = leaf.name;
+  if (!leaf.origin.empty()) j["origin"] = leaf.origin;
+  j["kind"] = "field";
+  j["threshold"] = leaf.threshold;
+  j["bbox"] = to_json(leaf.bbox);  // the support box
+  json& prims = j["primitives"] = json::array();
+  for (const FieldPrimitive& p : leaf.field->primitives) {
+    json pj;
+    pj["skeleton"] = std::string(to_string(p.kind));
+    if (p.kind == SkeletonKind::kCircle) {
+      pj["center"] = to_json(p.points[0]);
+      pj["normal"] = to_json(p.points[1]);
+      pj["circle_radius"] = p.circle_radius;
+    } else {
+      pj["points"] = json::array();
+      for (const Vec3& v : p.points) pj["points"].push_back(to_json(v));
+    }
+    pj["radius"] = p.radius;
+    pj["influence"] = p.influence;
+    pj["exponent"] = p.exponent;
+    pj["weight"] = p.weight;
+    prims.push_back(std::move(pj));
+  }
+  return j;
+}
+
 json leaf_json(const LeafInfo& leaf) {
+  if (leaf.field) return field_json(leaf);
   const MeshReport& r = leaf.report;
   json j;
   j["name"] = leaf.name;
   if (!leaf.origin.empty()) j["origin"] = leaf.origin;
+  j["kind"] = "mesh";
   j["vertices"] = leaf.vertices;
   j["faces"] = leaf.faces;
   j["closed"] = r.closed;
@@ -102,16 +133,32 @@ std::string flag_of(std::string_view name) {
 }
 
 Model load_model(const std::string& input, const LoadOptions& options,
-                 const std::string& closed_needed) {
+                 const std::string& closed_needed, const std::string& field_reason) {
   Model model = load(input, options);
   if (!closed_needed.empty())
     for (const Leaf& l : model.solid().leaves)
       if (l.open())
         throw InputError(l.name + ": open mesh (" + std::to_string(l.boundary_edges) +
                          " boundary edges): " + closed_needed);
+  if (!closed_needed.empty())
+    for (const Leaf& l : model.solid().leaves)
+      if (l.is_field()) {
+        std::string reason = field_reason.empty() ? closed_needed : field_reason;
+        if (const size_t at = reason.find("closed leaves"); at != std::string::npos)
+          reason.replace(at, 13, "closed mesh leaves");
+        throw InputError(input + ": " + l.origin + ": field leaf: " + reason);
+      }
   for (const std::string& w : model.warnings(flag_of))
     std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   return model;
+}
+
+void refuse_field_leaves(const Model& model, const std::string& input, const std::string& what) {
+  for (const Leaf& l : model.solid().leaves)
+    if (l.is_field())
+      throw InputError(input + ": " + l.origin + ": field leaf: " + what +
+                       " does not take field leaves (classify, field, cast, render, voxelize, "
+                       "volume and info do)");
 }
 
 int run_info(const InfoOptions& o, const CommonOptions& common) {
@@ -149,6 +196,17 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
     std::printf(
         "leaf %s%s\n", leaf["name"].get<std::string>().c_str(),
         leaf.contains("origin") ? (" at " + leaf["origin"].get<std::string>()).c_str() : "");
+    if (leaf["kind"] == "field") {
+      const json& sb = leaf["bbox"];
+      std::printf("  field: %zu primitive(s), threshold %.17g, support box %s\n",
+                  leaf["primitives"].size(), leaf["threshold"].get<double>(), sb.dump().c_str());
+      for (const json& p : leaf["primitives"])
+        std::printf("    %s weight %+d: radius %.17g, influence %.17g, exponent %d\n",
+                    p["skeleton"].get<std::string>().c_str(), p["weight"].get<int>(),
+                    p["radius"].get<double>(), p["influence"].get<double>(),
+                    p["exponent"].get<int>());
+      continue;
+    }
     std::printf("  closed %s, manifold %s, oriented %s, outward %s\n", yes("closed"),
                 yes("manifold"), yes("oriented"), yes("outward"));
     std::printf(
@@ -187,12 +245,14 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
   Timing timing;
   const Model model = load_model(
       o.input, common.load_options(),
-      o.exact ? "no exact volume; the winding method estimates it (without --exact)" : "");
+      o.exact ? "no exact volume; the winding method estimates it (without --exact)" : "",
+      "no exact volume; the bracket method bounds it (without --exact)");
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
   VolumeOptions vo;
   vo.rays = static_cast<int>(o.rays);
   vo.exact = o.exact;
+  if (o.tolerance) vo.target_relative_error = vo.bracket_relative_error = *o.tolerance;
   Progress progress("volume", common.quiet);
   vo.progress = [&](double fraction) {
     progress.update(static_cast<size_t>(1000 * fraction), 1000);
@@ -212,12 +272,22 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common) {
                  "cover: warning: %s: the ray volume's proven error bound %g is above the target "
                  "(relative %g) after %zu rays, and B-rep evaluation is not available for it\n",
                  o.input.c_str(), r.error_bound, vo.target_relative_error, r.rays);
+  if (!r.target_met && r.method == "bracket")
+    std::fprintf(stderr,
+                 "cover: warning: %s: the bracket's certified half-width %g is above the target "
+                 "(relative %g) after %zu cells (the cell budget)\n",
+                 o.input.c_str(), r.error_bound, vo.bracket_relative_error, r.rays);
   json j;
   j["volume"] = r.volume;
   j["area"] = r.area ? json(*r.area) : json(nullptr);
   j["method"] = r.method;
   j["error_bound"] = r.error_bound;
   if (r.method == "rays") j["rays"] = r.rays;
+  if (r.method == "bracket") {
+    j["cells"] = r.rays;
+    j["tolerance"] = vo.bracket_relative_error;
+    j["target_met"] = r.target_met;
+  }
   timing.put(j);
   if (common.json) {
     std::cout << j.dump() << "\n";
@@ -246,11 +316,14 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
   constexpr size_t kBatch = 1 << 20;
   std::vector<PointClass> classes;
   classes.reserve(points.size());
+  size_t uncertain = 0;
   Progress progress("classify", common.quiet);
   for (size_t begin = 0; begin < points.size(); begin += kBatch) {
     const size_t n = std::min(kBatch, points.size() - begin);
-    const auto part = model.classify(std::span<const Vec3>(points.data() + begin, n));
-    classes.insert(classes.end(), part.begin(), part.end());
+    const Classification part =
+        model.classify_counted(std::span<const Vec3>(points.data() + begin, n));
+    classes.insert(classes.end(), part.classes.begin(), part.classes.end());
+    uncertain += part.uncertain;
     progress.update(begin + n, points.size());
   }
   progress.finish();
@@ -272,6 +345,7 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
     json& cj = j["counts"];
     for (size_t k = 0; k < counts.size(); ++k)
       cj[std::string(to_string(static_cast<PointClass>(k)))] = counts[k];
+    j["uncertain"] = uncertain;
     timing.lap(Timing::kWrite);
     timing.put(j);
     out = j.dump() + "\n";
@@ -285,6 +359,56 @@ int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common) {
     out.reserve(classes.size() * 8);
     for (PointClass c : classes) {
       out += to_string(c);
+      out += '\n';
+    }
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  return 0;
+}
+
+int run_field(const FieldCommandOptions& o, const CommonOptions& common) {
+  Timing timing;
+  const Model model = load_model(o.input, common.load_options());
+  const size_t leaves = std::count_if(model.solid().leaves.begin(), model.solid().leaves.end(),
+                                      [](const Leaf& l) { return l.is_field(); });
+  if (leaves == 0) throw InputError(o.input + ": no field leaf (field and blend nodes)");
+  // Per point: the point, and per field leaf its value (32 bytes) and a printed line or JSON
+  // numbers (~100 bytes).
+  const std::vector<Vec3> points =
+      read_points(o.points, common.max_memory_bytes(), sizeof(Vec3) + leaves * 132);
+  timing.lap(Timing::kLoad);
+  const Model::FieldValues f = model.field(points);
+  timing.lap(Timing::kKernel);
+  std::string out;
+  if (common.json) {
+    json j;
+    j["leaves"] = json::array();
+    for (uint32_t l : f.leaves) j["leaves"].push_back(model.solid().leaves[l].origin);
+    json& values = j["field"] = json::array();
+    json& gradients = j["gradient"] = json::array();
+    for (size_t i = 0; i < points.size(); ++i) {
+      json v = json::array(), g = json::array();
+      for (size_t k = 0; k < leaves; ++k) {
+        const field::FieldValue& x = f.values[i * leaves + k];
+        v.push_back(x.value);
+        g.push_back({x.gradient.x, x.gradient.y, x.gradient.z});
+      }
+      values.push_back(leaves == 1 ? v[0] : v);
+      gradients.push_back(leaves == 1 ? g[0] : g);
+    }
+    timing.lap(Timing::kWrite);
+    timing.put(j);
+    out = j.dump() + "\n";
+  } else {
+    // One line per point: f gx gy gz for each field leaf in turn (%.17g: the doubles themselves).
+    char buf[128];
+    for (size_t i = 0; i < points.size(); ++i) {
+      for (size_t k = 0; k < leaves; ++k) {
+        const field::FieldValue& x = f.values[i * leaves + k];
+        std::snprintf(buf, sizeof buf, "%s%.17g %.17g %.17g %.17g", k ? " " : "", x.value,
+                      x.gradient.x, x.gradient.y, x.gradient.z);
+        out += buf;
+      }
       out += '\n';
     }
   }

@@ -7,6 +7,7 @@
 // every existing file as it was.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -36,9 +37,15 @@ struct CommonOptions {
 /// Loads INPUT as every command does (cover::load with the --max-memory file limit, or `options`)
 /// and prints its warnings on stderr ("cover: warning: ..."). For a command that refuses open
 /// leaves, `closed_needed` gives the reason: an open leaf is then refused at once with InputError
-/// "LEAF: open mesh (N boundary edges): REASON", and no warning is printed.
+/// "LEAF: open mesh (N boundary edges): REASON", and no warning is printed; so is a field leaf
+/// ("INPUT: /json/path: field leaf: REASON", "closed leaves" reading "closed mesh leaves"), or
+/// with `field_reason` where that is given.
 Model load_model(const std::string& input, const LoadOptions& options,
-                 const std::string& closed_needed = {});
+                 const std::string& closed_needed = {}, const std::string& field_reason = {});
+
+/// Refuses a model with field leaves for `what`: InputError "INPUT: /json/path: field leaf: WHAT
+/// does not take field leaves (classify, field, cast, render, voxelize, volume and info do)".
+void refuse_field_leaves(const Model& model, const std::string& input, const std::string& what);
 
 struct InfoOptions {
   std::string input;
@@ -49,12 +56,19 @@ struct VolumeCommandOptions {
   std::string input;
   bool exact = false;  ///< --exact
   long rays = 0;       ///< --rays N (ray-integration resolution; 0 = default)
+  /// --tolerance t: relative target of the ray and bracket methods (default 1e-4 and 1e-2)
+  std::optional<double> tolerance;
 };
 
 struct ClassifyCommandOptions {
   std::string input;
   std::string points;  ///< file or "-"
   std::string output;  ///< --output OUT.npy: the classes as uint8 codes instead of words on stdout
+};
+
+struct FieldCommandOptions {
+  std::string input;
+  std::string points;  ///< file or "-"
 };
 
 struct RenderCommandOptions {
@@ -123,6 +137,7 @@ std::string flag_of(std::string_view name);
 int run_info(const InfoOptions& o, const CommonOptions& common);
 int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
+int run_field(const FieldCommandOptions& o, const CommonOptions& common);
 int run_render(const RenderCommandOptions& o, const CommonOptions& common);
 int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common);
 /// `cover clip`: ABOVE = solid ∩ {n·x ≥ d}, BELOW = solid ∩ {n·x ≤ d}, capped.

@@ -140,22 +140,36 @@ int main(int argc, char** argv) {
                    "Ray integration with fixed finest cells: 1/N of the square (N rounded up to a "
                    "power of two)")
       ->transform(whole_number(1, 2048));
+  vol_cmd
+      ->add_option("--tolerance", vol.tolerance,
+                   "Relative error target of the ray and bracket (field leaves) methods")
+      ->check(real_number(1e-12, 1));
   add_common(vol_cmd, common);
 
+  // The points of classify and field (cli/points.h reads them).
+  const auto add_points_option = [](CLI::App* cmd, std::string& points) {
+    cmd->add_option(
+           "--points", points,
+           "Points: text (x y z per line; - for stdin) or .npy (float64/float32, shape (N, 3))")
+        ->required();
+  };
   cover::cli::ClassifyCommandOptions cls;
   CLI::App* cls_cmd =
       app.add_subcommand("classify", "Classify points: inside/outside/face/edge/vertex");
   cls_cmd->add_option("INPUT", cls.input, "Mesh or scene")->required();
-  cls_cmd
-      ->add_option(
-          "--points", cls.points,
-          "Points: text (x y z per line; - for stdin) or .npy (float64/float32, shape (N, 3))")
-      ->required();
+  add_points_option(cls_cmd, cls.points);
   cls_cmd->add_option(
       "--output", cls.output,
       "Write the classes to OUT.npy (uint8 (N,): outside 0, inside 1, face 2, edge 3, "
       "vertex 4) instead of printing them; --json then prints counts and seconds only");
   add_common(cls_cmd, common);
+
+  cover::cli::FieldCommandOptions fld;
+  CLI::App* fld_cmd =
+      app.add_subcommand("field", "Field value f and gradient of each field leaf at points");
+  fld_cmd->add_option("INPUT", fld.input, "Scene with field leaves")->required();
+  add_points_option(fld_cmd, fld.points);
+  add_common(fld_cmd, common);
 
   cover::cli::RenderCommandOptions ren;
   CLI::App* ren_cmd =
@@ -312,6 +326,7 @@ int main(int argc, char** argv) {
     if (info_cmd->parsed()) return cover::cli::run_info(info, common);
     if (vol_cmd->parsed()) return cover::cli::run_volume(vol, common);
     if (cls_cmd->parsed()) return cover::cli::run_classify(cls, common);
+    if (fld_cmd->parsed()) return cover::cli::run_field(fld, common);
     if (ren_cmd->parsed()) return cover::cli::run_render(ren, common);
     if (vox_cmd->parsed()) return cover::cli::run_voxelize(vox, common);
     if (oct_cmd->parsed()) return cover::cli::run_octree(oct, common);

@@ -1,6 +1,7 @@
 #include "cover/covering/classify.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "cover/covering/detail/local.h"
 #include "cover/covering/detail/triangles.h"
 #include "cover/covering/detail/windings.h"
+#include "cover/field/field.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
 #include "cover/solid/simd.h"
@@ -178,13 +180,77 @@ struct OpenRule {
   std::vector<std::vector<uint8_t>> bulk;
 };
 
+/// Field leaves (solid/field_leaf.h): membership by the certified sign of f − T (field.h).
+/// `uncertain` counts the points a circle skeleton's enclosure leaves undecided (then the double
+/// evaluation's sign decides: f > T inside) and those where several surfaces meet at a point in
+/// a way the tree does not settle (then `face`); shared by the threads.
+struct FieldRule {
+  const Solid* solid = nullptr;  ///< nullptr: no field leaf
+  std::vector<uint32_t> leaves;  ///< the field leaves' ids
+  std::atomic<size_t>* uncertain = nullptr;
+};
+
+/// The class of q, on the surface of the field leaves `on_field` (and of the mesh leaves marked
+/// in on_surface, if any), from the tree over every membership those leaves can take near q.
+/// One field surface and no mesh surface: face where the tree's value changes across it, else
+/// that value; q is a regular point of a field's surface unless ∇f(q) = 0, which a double point
+/// on a blend's surface meets only by coincidence (docs/design.md "Fields"). Several surfaces at
+/// q: the common class when every combination gives inside or every one outside; otherwise face,
+/// counted uncertain.
+PointClass field_surface_class(const Vec3& q, const CsgTree& tree,
+                               std::span<const uint8_t> on_surface, std::vector<uint8_t>& inside,
+                               std::span<const uint32_t> on_field,
+                               const std::function<const LeafTriangles&()>& triangles,
+                               const FieldRule& rule) {
+  const bool mesh_on =
+      std::any_of(on_surface.begin(), on_surface.end(), [](uint8_t o) { return o != 0; });
+  const size_t k = on_field.size();
+  bool all_in = true, all_out = true;
+  for (uint32_t mask = 0; mask < (1u << k); ++mask) {
+    for (size_t i = 0; i < k; ++i) inside[on_field[i]] = (mask >> i) & 1;
+    PointClass c;
+    if (mesh_on) {
+      c = detail::classify_on_surface(triangles(), tree, q, on_surface, inside);
+    } else {
+      c = tree.evaluate(inside) ? PointClass::kInside : PointClass::kOutside;
+    }
+    all_in &= c == PointClass::kInside;
+    all_out &= c == PointClass::kOutside;
+  }
+  if (all_in) return PointClass::kInside;
+  if (all_out) return PointClass::kOutside;
+  if (on_field.size() > 1 || mesh_on) rule.uncertain->fetch_add(1, std::memory_order_relaxed);
+  return PointClass::kFace;
+}
+
 PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> winding,
                   std::span<const uint8_t> on_surface, std::vector<uint8_t>& inside,
                   const std::function<const LeafTriangles&()>& triangles, const OpenRule& open = {},
-                  size_t point = 0) {
+                  size_t point = 0, const FieldRule& fields = {}) {
   inside.resize(winding.size());
   bool any_on = false;
+  constexpr size_t kMaxOn = 12;  // 2^12 combinations at most; more surfaces at q: face, uncertain
+  uint32_t on_field_store[kMaxOn];
+  size_t on_fields = 0, on_total = 0;
+  for (uint32_t l : fields.leaves) {
+    const Leaf& leaf = fields.solid->leaves[l];
+    field::Sign s = field::Sign::kOutside;
+    if (leaf.bbox.contains(q)) s = field::sign(fields.solid->fields[leaf.field], q);
+    if (s == field::Sign::kUndecided) {
+      fields.uncertain->fetch_add(1, std::memory_order_relaxed);
+      const field::FieldValue v = field::evaluate(fields.solid->fields[leaf.field], q);
+      s = v.value > field::threshold(fields.solid->fields[leaf.field]) ? field::Sign::kInside
+                                                                       : field::Sign::kOutside;
+    }
+    inside[l] = s == field::Sign::kInside;
+    if (s == field::Sign::kOn && on_total++ < kMaxOn) on_field_store[on_fields++] = l;
+  }
+  if (on_total > kMaxOn) {
+    fields.uncertain->fetch_add(1, std::memory_order_relaxed);
+    return PointClass::kFace;
+  }
   for (size_t l = 0; l < winding.size(); ++l) {
+    if (fields.solid != nullptr && fields.solid->leaves[l].is_field()) continue;
     inside[l] = winding[l] != 0;
     any_on |= on_surface[l] != 0;
     if (open.forest == nullptr || open.forest->tree_of_leaf[l] < 0 || on_surface[l]) continue;
@@ -198,8 +264,22 @@ PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> windi
       inside[l] = gwn_inside(t, q, open.options);
     }
   }
+  if (on_fields > 0)
+    return field_surface_class(q, tree, on_surface, inside,
+                               std::span<const uint32_t>(on_field_store, on_fields), triangles,
+                               fields);
   if (!any_on) return tree.evaluate(inside) ? PointClass::kInside : PointClass::kOutside;
   return detail::classify_on_surface(triangles(), tree, q, on_surface, inside);
+}
+
+FieldRule field_rule(const Solid& solid, std::atomic<size_t>& uncertain) {
+  FieldRule rule;
+  if (!solid.has_field_leaf()) return rule;
+  rule.solid = &solid;
+  rule.uncertain = &uncertain;
+  for (uint32_t l = 0; l < solid.leaves.size(); ++l)
+    if (solid.leaves[l].is_field()) rule.leaves.push_back(l);
+  return rule;
 }
 
 /// Orders `ids` bucket by bucket over a 32³ grid of `box` (counting sort, O(n), stable):
@@ -245,7 +325,14 @@ std::string_view to_string(PointClass c) {
 
 std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3> points,
                                  const ClassifyOptions& options) {
+  return classify_counted(prepared, points, options).classes;
+}
+
+Classification classify_counted(const Prepared& prepared, std::span<const Vec3> points,
+                                const ClassifyOptions& options) {
   const Solid& solid = prepared.solid();
+  std::atomic<size_t> uncertain{0};
+  const FieldRule fields = field_rule(solid, uncertain);
   const Bvh& bvh = prepared.bvh();
   // Per-leaf covering triangles, built on first use (only points on a surface need them).
   std::once_flag once;
@@ -269,11 +356,18 @@ std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3>
   if (points.size() >= options.grid_min_points) {
     const int res = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(points.size()))), 8,
                                options.grid_max_resolution);
+    // Field leaves: a cell is settled where every field's enclosure over it excludes T (the
+    // sign of f − T is then constant on the closed cell, and equal across a shared face).
     std::function<bool(const Bbox&)> settled;
-    if (open.forest != nullptr)
+    if (open.forest != nullptr || fields.solid != nullptr)
       settled = [&](const Bbox& box) {
-        for (const GwnClosure& c : open.forest->closures)
-          if (!winding_below(c.cone, box, kSettledCone)) return false;
+        if (open.forest != nullptr)
+          for (const GwnClosure& c : open.forest->closures)
+            if (!winding_below(c.cone, box, kSettledCone)) return false;
+        for (uint32_t l : fields.leaves) {
+          const field::Range r = field::bound(solid.fields[solid.leaves[l].field], box);
+          if (!(r.lo > 0 || r.hi < 0)) return false;
+        }
         return true;
       };
     grid.emplace(
@@ -282,7 +376,8 @@ std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3>
           std::vector<int> w(solid.leaves.size());
           std::vector<uint8_t> on(solid.leaves.size()), in;
           bvh_windings(bvh, c, w, on);
-          return finish(c, solid.tree, w, on, in, triangles, open) == PointClass::kInside;
+          return finish(c, solid.tree, w, on, in, triangles, open, 0, fields) ==
+                 PointClass::kInside;
         },
         settled);
   }
@@ -326,10 +421,10 @@ std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3>
         out[ids[j]] = finish(points[ids[j]], solid.tree,
                              std::span<const int>(winding).subspan(j * leaves, leaves),
                              std::span<const uint8_t>(on_surface).subspan(j * leaves, leaves),
-                             inside, triangles, open, b + j);
+                             inside, triangles, open, b + j, fields);
     }
   });
-  return out;
+  return {std::move(out), uncertain.load()};
 }
 
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,
@@ -377,13 +472,16 @@ std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const
     open.forest = &*forest;
     open.direct = true;
   }
+  std::atomic<size_t> uncertain{0};
+  const FieldRule fields = field_rule(solid, uncertain);
   std::vector<PointClass> out(points.size());
   parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
     std::vector<int> winding;
     std::vector<uint8_t> on_surface, inside;
     for (size_t i = begin; i < end; ++i) {
       brute_windings(lt, points[i], winding, on_surface);
-      out[i] = finish(points[i], solid.tree, winding, on_surface, inside, triangles, open);
+      out[i] =
+          finish(points[i], solid.tree, winding, on_surface, inside, triangles, open, 0, fields);
     }
   });
   return out;
@@ -422,6 +520,25 @@ LeafWindings leaf_windings(const Prepared& prepared, std::span<const Vec3> point
                            const ClassifyOptions& options) {
   LeafWindings out =
       detail::crossing_windings(prepared.solid(), prepared.bvh(), points, options.grain);
+  // Field leaves: 1 inside, 0 outside, on_surface on the surface (certified sign; an undecided
+  // point of a circle skeleton by the double evaluation, as classify() decides it).
+  const Solid& solid = prepared.solid();
+  for (size_t l = 0; l < out.leaves; ++l) {
+    const Leaf& leaf = solid.leaves[l];
+    if (!leaf.is_field()) continue;
+    const FieldLeaf& f = solid.fields[leaf.field];
+    parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        field::Sign s =
+            leaf.bbox.contains(points[i]) ? field::sign(f, points[i]) : field::Sign::kOutside;
+        if (s == field::Sign::kUndecided)
+          s = field::evaluate(f, points[i]).value > field::threshold(f) ? field::Sign::kInside
+                                                                        : field::Sign::kOutside;
+        out.winding[i * out.leaves + l] = s == field::Sign::kInside;
+        out.on_surface[i * out.leaves + l] = s == field::Sign::kOn;
+      }
+    });
+  }
   // Open leaves: the crossing count above means nothing; their generalized winding number,
   // rounded (decided as classify() decides membership).
   const GwnForest* forest = prepared.gwn();

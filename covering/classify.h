@@ -48,6 +48,9 @@ struct ClassifyOptions {
 };
 
 /// Classifies every point of the prepared solid. Thread-count independent.
+/// Field leaves (solid/field_leaf.h): inside where the certified sign of f − T is positive
+/// (field/field.h sign); a point on a field's surface is classified from the tree over the
+/// memberships that leaf takes on either side (face where they differ).
 /// Open leaves: membership by the generalized winding number (|w| > 1/2, gwn.h) for points off
 /// their surface; a point on an open leaf's surface is classified by the same local analysis as
 /// on a closed leaf (its faces read as the leaf's boundary there). With open leaves the empty-cell
@@ -55,6 +58,17 @@ struct ClassifyOptions {
 /// docs/design.md "Open leaves"). \pre points are finite (Model::classify checks).
 std::vector<PointClass> classify(const Prepared& prepared, std::span<const Vec3> points,
                                  const ClassifyOptions& options = {});
+
+/// classify() and the number of points it could not certify (`uncertain`): points where a
+/// circle skeleton's interval enclosure of f − T contains 0 (decided by the double evaluation's
+/// sign: inside when f > T) and points where several surfaces meet in a way the tree does not
+/// settle (reported face). Always 0 for solids of meshes and polynomial fields off such points.
+struct Classification {
+  std::vector<PointClass> classes;
+  size_t uncertain = 0;
+};
+Classification classify_counted(const Prepared& prepared, std::span<const Vec3> points,
+                                const ClassifyOptions& options = {});
 
 /// One-shot: prepares the solid, then classifies.
 std::vector<PointClass> classify(const Solid& solid, std::span<const Vec3> points,

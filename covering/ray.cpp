@@ -8,6 +8,7 @@
 
 #include "cover/covering/bvh_walk.h"
 #include "cover/covering/ray_steps.h"
+#include "cover/field/field.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/predicates.h"
 #include "cover/solid/simd.h"
@@ -440,7 +441,8 @@ FirstHit first_hit(const Bvh& bvh, const RayResult& result) {
   for (const Span& s : result.spans) {
     if (s.enter == Span::kNone) continue;  // starts at the origin: no visible surface
     const RayHit& h = result.hits[s.enter];
-    const Bvh::Tri t = bvh.triangle(h.tri);
+    // A field leaf's crossing has no triangle: its normal is the caller's (field_normal).
+    const Bvh::Tri t = h.tri == Span::kNone ? Bvh::Tri{} : bvh.triangle(h.tri);
     const Vec3 n = cross(t.b - t.a, t.c - t.a);
     f.hit = true;
     f.t = s.t0;
@@ -454,11 +456,40 @@ FirstHit first_hit(const Bvh& bvh, const RayResult& result) {
   return f;
 }
 
+Vec3 field_normal(const Solid& solid, const RayHit& hit, const Ray& ray) {
+  const FieldLeaf& f = solid.fields[solid.leaves[hit.leaf].field];
+  const Vec3 g = field::evaluate(f, ray.origin + hit.t * ray.dir).gradient;
+  // f grows inward: −∇f is the leaf's outward normal; a leaving hit shows the reverse.
+  return hit.sign < 0 ? -1.0 * g : g;
+}
+
+void field_spans(RayResult& result, const Solid& solid, const Ray& ray, const GwnForest* open) {
+  for (uint32_t l = 0; l < solid.leaves.size(); ++l)
+    if (solid.leaves[l].is_field()) result.uncertain += field_crossings(solid, l, ray, result.hits);
+  result.spans.clear();
+  if (open != nullptr) {
+    std::sort(result.hits.begin(), result.hits.end(), detail::hit_before);
+    open_spans(result, solid, *open, ray);
+  } else {
+    detail::sweep_spans(result, solid.tree, solid.leaves.size());
+  }
+}
+
 std::vector<RayResult> cast(const Prepared& prepared, std::span<const Ray> rays,
                             const CastOptions& options) {
   const Solid& solid = prepared.solid();
   const Bvh& bvh = prepared.bvh();
   std::vector<RayResult> out(rays.size());
+  if (solid.has_field_leaf()) {
+    const GwnForest* forest = prepared.gwn();
+    parallel_for(rays.size(), options.grain, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        out[i] = cast(bvh, solid.tree, solid.leaves.size(), rays[i]);
+        field_spans(out[i], solid, rays[i], forest);
+      }
+    });
+    return out;
+  }
   if (bvh.nodes().empty()) return out;
   const GwnForest* forest = prepared.gwn();
   constexpr size_t kBatch = 256;  // rays walking the BVH together (walk_batch)

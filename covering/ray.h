@@ -47,6 +47,9 @@ struct Span {
 struct RayResult {
   std::vector<RayHit> hits;  ///< sorted by t (ties: by leaf, then face, then triangle index)
   std::vector<Span> spans;   ///< disjoint, increasing, non-empty
+  /// Field leaves: pieces of the ray where bisection could not certify the crossings (field_spans);
+  /// 0 for solids of meshes.
+  uint32_t uncertain = 0;
 };
 
 /// The first surface point of the result along the ray.
@@ -76,6 +79,7 @@ RayResult cast(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ra
 RayResult cast_depth_first(const Bvh& bvh, const CsgTree& tree, size_t leaves, const Ray& ray);
 
 /// First entry into the result (the start of the first span that does not begin at the origin).
+/// At a field leaf's hit (tri Span::kNone) the normal is zero: field_normal() gives it.
 FirstHit first_hit(const Bvh& bvh, const RayResult& result);
 
 /// The visible point of `result`'s spans within [lo, hi].
@@ -102,7 +106,27 @@ struct CastOptions {
 void open_spans(RayResult& result, const Solid& solid, const GwnForest& forest, const Ray& ray,
                 const GwnOptions& options = {});
 
-/// Casts many rays in parallel; results[i] belongs to rays[i]. Open leaves: open_spans().
+/// Field leaves (solid/field_leaf.h): the crossings of field leaf `leaf`'s surface along the ray,
+/// appended to `hits` (tri and face Span::kNone; sign +1 leaving, −1 entering; alternating, so
+/// the leaf's signs sum to its membership at the origin), found by certified interval bisection
+/// to 2^-20 of the ray's run through the support box: each t is within that of a crossing of
+/// the true ray (covering/field_ray.cpp). Returns the pieces it could not certify (a tangency or
+/// a film thinner than a piece, undecided ends).
+uint32_t field_crossings(const Solid& solid, uint32_t leaf, const Ray& ray,
+                         std::vector<RayHit>& hits);
+
+/// The normal a field hit shows (as FirstHit::normal: outward when entering, reversed when
+/// leaving; unnormalized): −∇f at the hit's point, or ∇f for a leaving hit.
+Vec3 field_normal(const Solid& solid, const RayHit& hit, const Ray& ray);
+
+/// Adds every field leaf's crossings to result.hits and sweeps the spans again (open leaves, if
+/// any, by open_spans()); adds the uncertain pieces to result.uncertain. Used by cast() and
+/// render for solids with field leaves.
+void field_spans(RayResult& result, const Solid& solid, const Ray& ray,
+                 const GwnForest* open = nullptr);
+
+/// Casts many rays in parallel; results[i] belongs to rays[i]. Open leaves: open_spans(); field
+/// leaves: field_spans().
 /// \pre every ray has a finite origin and a finite, non-zero direction
 /// (Model::cast checks).
 std::vector<RayResult> cast(const Prepared& prepared, std::span<const Ray> rays,

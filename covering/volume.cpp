@@ -234,8 +234,22 @@ VolumeResult winding_volume(const Prepared& prepared, const VolumeOptions& optio
 
 }  // namespace
 
+namespace detail {
+VolumeResult bracket_volume(const Prepared& prepared, const VolumeOptions& options);
+}  // namespace detail
+
 VolumeResult volume(const Prepared& prepared, const VolumeOptions& options) {
   const Solid& s = prepared.solid();
+  if (s.has_field_leaf()) {
+    if (options.exact)
+      throw InputError(s.field_leaf_message() +
+                       ": no exact volume; the bracket method bounds it (without " +
+                       parameter("exact") + ")");
+    if (s.has_open_leaf())
+      throw NotComputable(s.open_leaf_message() +
+                          ": the bracket volume of field leaves needs closed mesh leaves");
+    return detail::bracket_volume(prepared, options);
+  }
   if (s.has_open_leaf()) {
     if (options.exact)
       throw InputError(s.open_leaf_message() +

@@ -35,6 +35,10 @@ struct VolumeOptions {
   int rays = 0;  ///< ray method: finest cells 1/2^⌈log2 rays⌉ of the square (0: adaptive)
   double target_relative_error = 1e-4;  ///< adaptive ray method stops once the bound is below
   size_t max_rays = size_t{1} << 22;    ///< adaptive ray method: budget of rays cast
+  /// Bracket method (field leaves): stops once the certified half-width is below this times V.
+  /// Its cells grow as 1/target² (the bracket's width is the boundary's area times the cell
+  /// size), hence a coarser default than the rays'; max_rays bounds the cells of one level.
+  double bracket_relative_error = 1e-2;
   /// Called on the calling thread with the estimated share of the work done, 0..1
   /// (non-decreasing); default: none. The result does not depend on it.
   std::function<void(double fraction)> progress;
@@ -43,10 +47,10 @@ struct VolumeOptions {
 struct VolumeResult {
   double volume = 0;
   std::optional<double> area;  ///< empty where it would need boundary evaluation
-  std::string method;          ///< "covering", "rays" or "winding" (open leaves)
-  size_t rays = 0;             ///< rays cast by the ray method
-  double error_bound = 0;      ///< 0 for exact methods; |volume − exact| ≤ error_bound
-  bool target_met = true;      ///< ray method: error_bound ≤ target_relative_error·|volume|
+  std::string method;      ///< "covering", "rays", "winding" (open leaves) or "bracket" (fields)
+  size_t rays = 0;         ///< rays cast by the ray method; cells settled by the bracket method
+  double error_bound = 0;  ///< 0 for exact methods; |volume − exact| ≤ error_bound
+  bool target_met = true;  ///< ray method: error_bound ≤ target_relative_error·|volume|
 };
 
 /// Signed covering volume Σ over all stored faces (the paper's summed value; see above for
@@ -62,6 +66,12 @@ std::optional<std::string> covering_inexact_reason(const Solid& solid);
 /// does (n = 128, or options.rays clamped to 2..1024), the volume h³·(centres not outside), the
 /// error bound h³·(voxels whose class differs from a face neighbour's, or on the grid's border
 /// while not outside), which holds where the grid resolves the boundary.
+/// With field leaves, the bracket method (method "bracket"): cells of an octree over the result's
+/// box settled by interval bounds of each field over the cell and the exact winding numbers of
+/// mesh leaves no covering triangle's box meets; V_in = the full cells, V_out = V_in + the
+/// undecided ones, both outward rounded, refined until (V_out − V_in)/2 ≤
+/// bracket_relative_error·V or the next level would hold more than max_rays cells; volume = the
+/// midpoint, error_bound = its distance to either end (certified), rays = the cells settled.
 /// \throws NotComputable for an unbounded result, and with options.exact when the covering is
 /// not exact for this expression (see above; evaluate() is); InputError with options.exact and
 /// an open leaf.

@@ -6,8 +6,10 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
+#include "cover/field/field.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/parse.h"
 #include "cover/mesh/orient.h"
@@ -69,6 +71,7 @@ class SceneReader {
     PolygonMesh mesh;            ///< primitives: the mesh (transformed)
     Transform world;             ///< mesh leaves: the transform to apply
     size_t read = 0;             ///< mesh leaves: its file's entry in reads_
+    std::optional<Solid> made;   ///< field leaves: made (validated, placed) by plan()
   };
   /// One distinct mesh file, read once however many leaves place it (instances: the 10-leaf
   /// preview scene reads 6 files for 10 leaves).
@@ -121,7 +124,7 @@ class SceneReader {
     }
     if (kind.empty())
       fail(path,
-           "expected one of mesh, box, sphere, cylinder, union, "
+           "expected one of mesh, box, sphere, cylinder, field, blend, union, "
            "intersection, difference, complement");
     const json& v = j.at(kind);
     const std::string sub = path + "/" + kind;
@@ -134,13 +137,20 @@ class SceneReader {
       const std::string key = file.lexically_normal().string();
       auto [it, fresh] = read_index_.try_emplace(key, reads_.size());
       if (fresh) reads_.emplace_back().file = file;
-      tasks_.push_back({sub, std::move(file), {}, {}, world, it->second});
+      tasks_.push_back({sub, std::move(file), {}, {}, world, it->second, {}});
       return {CsgOp::kLeaf, tasks_.size() - 1, {}};
     }
     if (kind == "box" || kind == "sphere" || kind == "cylinder") {
       PolygonMesh m = primitive(kind, v, sub);
       apply_transform(world, m);
-      tasks_.push_back({sub, {}, kind, std::move(m), Transform{}});
+      tasks_.push_back({sub, {}, kind, std::move(m), Transform{}, 0, {}});
+      return {CsgOp::kLeaf, tasks_.size() - 1, {}};
+    }
+    if (kind == "field" || kind == "blend") {
+      // Made first: a throw inside the braced initializer would unwind a half-built task (GCC 12
+      // destroys some of its members twice).
+      Solid made = field_leaf(j, path, parent, depth);
+      tasks_.push_back({sub, {}, kind, {}, Transform{}, 0, std::move(made)});
       return {CsgOp::kLeaf, tasks_.size() - 1, {}};
     }
     if (kind == "complement") return {CsgOp::kComplement, 0, {plan(v, sub, world, depth + 1)}};
@@ -162,6 +172,7 @@ class SceneReader {
   /// Makes the leaf of one task (in parallel with the others; `warnings` are the task's own).
   /// A mesh file's own errors ("m.off:5: ...", "m.off: cannot open: ...") follow the JSON path.
   Solid run(LeafTask& task, std::vector<std::string>& warnings) const {
+    if (task.made) return std::move(*task.made);
     if (task.file.empty()) return leaf(std::move(task.mesh), task.kind, task.path, false, warnings);
     const FileRead& r = reads_[task.read];
     if (r.error) {
@@ -255,6 +266,135 @@ class SceneReader {
     const double r = positive(required(v, path, "radius"), path + "/radius");
     if (b == t) fail(path, "base and top coincide");
     return make_cylinder(b, t, r, segments(v, path, kMaxCylinderSegments));
+  }
+
+  /// One primitive as written, with its JSON path and the transform to the scene's frame.
+  struct PlacedPrimitive {
+    FieldPrimitive primitive;
+    std::string path;
+    Transform world;
+  };
+
+  /// The field leaf of the field or blend node `j` at `path` under `parent`: its primitives are
+  /// validated as written (one threshold for all, compared exactly), then each is mapped by its
+  /// own transform (a similarity; solid/transform.h), and the blend keeps its first primitive's
+  /// threshold (solid/field_leaf.h).
+  Solid field_leaf(const json& j, const std::string& path, const Transform& parent,
+                   int depth) const {
+    std::vector<PlacedPrimitive> placed;
+    collect_field(j, path, parent, placed, depth);
+    FieldLeaf as_written;
+    for (const PlacedPrimitive& p : placed) as_written.primitives.push_back(p.primitive);
+    if (std::string problem = field::validate(as_written); !problem.empty()) {
+      // "primitive i: ..." → the i-th primitive's JSON path
+      const size_t i = std::strtoull(problem.c_str() + problem.find(' ') + 1, nullptr, 10);
+      fail(i < placed.size() ? placed[i].path : path, problem.substr(problem.find(": ") + 2));
+    }
+    FieldLeaf leaf;
+    for (PlacedPrimitive& p : placed) {
+      if (p.world == Transform{}) {
+        leaf.primitives.push_back(std::move(p.primitive));
+        continue;
+      }
+      FieldLeaf one{{std::move(p.primitive)}};
+      try {
+        Solid mapped = transform_solid(p.world, make_field_leaf(std::move(one), "field", p.path));
+        leaf.primitives.push_back(std::move(mapped.fields[0].primitives[0]));
+      } catch (const InputError& e) {
+        fail(p.path, e.what());
+      }
+    }
+    const std::string kind = j.contains("blend") ? "blend" : "field";
+    return make_field_leaf(std::move(leaf), kind, path + "/" + kind);
+  }
+
+  /// Appends the primitives of the field or blend node `j` at `path` with their transforms (the
+  /// node's own after `parent`); a blend's children are field or blend nodes (a nested blend is
+  /// flattened: Σ is associative).
+  void collect_field(const json& j, const std::string& path, const Transform& parent,
+                     std::vector<PlacedPrimitive>& out, int depth) const {
+    if (depth > kMaxDepth) fail(path, "scene nested deeper than " + std::to_string(kMaxDepth));
+    if (!j.is_object()) fail(path, "expected a field or blend node");
+    Transform world = parent;
+    std::string kind;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (it.key() == "transform")
+        world = parent * transform(it.value(), path + "/transform");
+      else if (kind.empty())
+        kind = it.key();
+      else
+        fail(path, "more than one of leaf/operation keys ('" + kind + "', '" + it.key() + "')");
+    }
+    const std::string sub = path + "/" + kind;
+    if (kind == "field") {
+      out.push_back({field_primitive(j.at(kind), sub), sub, world});
+      return;
+    }
+    if (kind == "blend") {
+      const json& v = j.at(kind);
+      if (!v.is_array() || v.empty()) fail(sub, "expected an array of one or more field nodes");
+      for (size_t i = 0; i < v.size(); ++i)
+        collect_field(v[i], sub + "/" + std::to_string(i), world, out, depth + 1);
+      return;
+    }
+    fail(path, kind.empty() ? "expected a field or blend node"
+                            : "a blend's children are field or blend nodes, not '" + kind + "'");
+  }
+
+  /// A `field` node's object: skeleton, radius (r_T), influence (R), exponent (n, default 2),
+  /// weight (±1, default 1). Ranges are field::validate's.
+  FieldPrimitive field_primitive(const json& v, const std::string& path) const {
+    keys(v, path, {"skeleton", "radius", "influence", "exponent", "weight"});
+    FieldPrimitive p;
+    const std::string sp = path + "/skeleton";
+    const json& sk = required(v, path, "skeleton");
+    if (!sk.is_object() || sk.size() != 1)
+      fail(sp, "expected one of point, segment, triangle, polyline, circle");
+    const std::string kind = sk.begin().key();
+    const json& a = sk.begin().value();
+    const std::string ap = sp + "/" + kind;
+    auto points = [&](size_t lo, size_t hi) {
+      if (!a.is_array() || a.size() < lo || a.size() > hi)
+        fail(ap, lo == hi ? "expected " + std::to_string(lo) + " points"
+                          : "expected " + std::to_string(lo) + " or more points");
+      for (size_t i = 0; i < a.size(); ++i)
+        p.points.push_back(vec3(a[i], ap + "/" + std::to_string(i)));
+    };
+    if (kind == "point") {
+      p.kind = SkeletonKind::kPoint;
+      p.points.push_back(vec3(a, ap));
+    } else if (kind == "segment") {
+      p.kind = SkeletonKind::kSegment;
+      points(2, 2);
+    } else if (kind == "triangle") {
+      p.kind = SkeletonKind::kTriangle;
+      points(3, 3);
+    } else if (kind == "polyline") {
+      p.kind = SkeletonKind::kPolyline;
+      points(2, kMaxPolylinePoints);
+    } else if (kind == "circle") {
+      p.kind = SkeletonKind::kCircle;
+      keys(a, ap, {"center", "normal", "radius"});
+      p.points.push_back(vec3(required(a, ap, "center"), ap + "/center"));
+      p.points.push_back(vec3(required(a, ap, "normal"), ap + "/normal"));
+      p.circle_radius = number(required(a, ap, "radius"), ap + "/radius");
+    } else {
+      fail(sp + "/" + kind,
+           "unknown skeleton (expected point, segment, triangle, polyline, circle)");
+    }
+    p.radius = number(required(v, path, "radius"), path + "/radius");
+    p.influence = number(required(v, path, "influence"), path + "/influence");
+    auto integer = [&](const char* key, int fallback) {
+      if (!v.contains(key)) return fallback;
+      const json& n = v.at(key);
+      if (!n.is_number_integer()) fail(path + "/" + key, "expected an integer");
+      const int64_t k = n.get<int64_t>();
+      if (k < -1000000 || k > 1000000) fail(path + "/" + key, "out of range");
+      return static_cast<int>(k);
+    };
+    p.exponent = integer("exponent", 2);
+    p.weight = integer("weight", 1);
+    return p;
   }
 
   Transform transform(const json& t, const std::string& path) const {

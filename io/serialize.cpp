@@ -90,6 +90,9 @@ class Reader {
 }  // namespace
 
 std::string solid_to_bytes(const Solid& s) {
+  if (s.has_field_leaf())
+    throw InputError(s.field_leaf_message() +
+                     ": the solid format carries mesh leaves only (send the scene instead)");
   Writer w;
   w.put_array(kMagic, 8);
   w.put(kVersion);

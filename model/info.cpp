@@ -1,5 +1,6 @@
 #include "cover/model/info.h"
 
+#include "cover/field/field.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/solid.h"
 
@@ -23,6 +24,12 @@ ModelInfo info(const Model& model, const InfoOptions& options) {
     li.vertices = leaf.vertex_count;
     li.faces = leaf.face_count;
     li.bbox = leaf.bbox;
+    if (leaf.is_field()) {
+      li.field = s.fields[leaf.field];
+      li.threshold = field::threshold(*li.field);
+      out.leaves.push_back(std::move(li));
+      continue;
+    }
     const PolygonMesh mesh = leaf_mesh(s, l);
     li.report = validate_mesh(mesh, vo);
     try {

@@ -31,6 +31,10 @@ struct LeafInfo {
   /// oriented surface (an edge used twice in one direction, a face with fewer than 3 vertices).
   std::optional<brep::BrepReport> brep;
   RepairReport repair;  ///< what loading repairs and what is left (mesh/repair.h)
+  /// A field leaf's blend (solid/field_leaf.h); then vertices, faces and the mesh reports are
+  /// empty and bbox is the support box.
+  std::optional<FieldLeaf> field;
+  double threshold = 0;  ///< field leaves: T (field/field.h threshold)
 };
 
 struct ModelInfo {

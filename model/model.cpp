@@ -317,11 +317,45 @@ std::optional<Bbox> Model::bounds() const {
   return result_bounds(solid());
 }
 
+namespace {
+
+/// Refuses what field leaves do not take (docs/cli.md "Fields" lists what does).
+void refuse_fields(const Solid& solid, const char* what) {
+  if (solid.has_field_leaf())
+    throw NotComputable(solid.field_leaf_message() + ": " + what +
+                        " does not take field leaves (classify, field, cast, render, voxelize, "
+                        "volume and info do)");
+}
+
+}  // namespace
+
 std::vector<PointClass> Model::classify(std::span<const Vec3> points,
                                         const ClassifyOptions& options) const {
+  return classify_counted(points, options).classes;
+}
+
+Classification Model::classify_counted(std::span<const Vec3> points,
+                                       const ClassifyOptions& options) const {
   check_points(points, "classify");
-  if (empty()) return std::vector<PointClass>(points.size(), PointClass::kOutside);
-  return cover::classify(prepared(), points, options);
+  if (empty()) return {std::vector<PointClass>(points.size(), PointClass::kOutside), 0};
+  return cover::classify_counted(prepared(), points, options);
+}
+
+Model::FieldValues Model::field(std::span<const Vec3> points) const {
+  check_points(points, "field");
+  const Solid& s = solid();
+  FieldValues out;
+  for (uint32_t l = 0; l < s.leaves.size(); ++l)
+    if (s.leaves[l].is_field()) out.leaves.push_back(l);
+  if (out.leaves.empty()) throw InputError("field: the solid has no field leaf");
+  const size_t k = out.leaves.size();
+  out.values.resize(points.size() * k);
+  parallel_for(points.size(), 1024, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      for (size_t j = 0; j < k; ++j)
+        out.values[i * k + j] = field::evaluate(s.fields[s.leaves[out.leaves[j]].field], points[i]);
+  });
+  return out;
 }
 
 LeafWindings Model::windings(std::span<const Vec3> points, const ClassifyOptions& options) const {
@@ -342,7 +376,16 @@ std::vector<FirstHit> Model::first_hits(std::span<const Ray> rays,
   std::vector<FirstHit> out(all.size());
   if (empty()) return out;
   parallel_for(all.size(), options.grain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) out[i] = first_hit(bvh(), all[i]);
+    for (size_t i = begin; i < end; ++i) {
+      out[i] = first_hit(bvh(), all[i]);
+      if (!out[i].hit) continue;
+      for (const Span& s : all[i].spans)  // the span first_hit took: a field hit's normal
+        if (s.enter != Span::kNone) {
+          const RayHit& h = all[i].hits[s.enter];
+          if (h.tri == Span::kNone) out[i].normal = field_normal(solid(), h, rays[i]);
+          break;
+        }
+    }
   });
   return out;
 }
@@ -354,8 +397,10 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
     r.area = 0.0;
     return r;
   }
-  // Open leaves: the winding method (covering/volume.h), which has no B-rep to fall back on.
-  if (solid().has_open_leaf()) return cover::volume(prepared(), options);
+  // Open leaves: the winding method (covering/volume.h), field leaves the bracket method;
+  // neither has a B-rep to fall back on.
+  if (solid().has_open_leaf() || solid().has_field_leaf())
+    return cover::volume(prepared(), options);
   VolumeResult r;
   bool evaluate_instead = false;
   try {
@@ -481,6 +526,7 @@ Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBoun
   // The empty set, as evaluate() and voxelize() answer it: an empty octree over the given cube
   // (or the unit cube), built by the same kernel from a solid with no leaf.
   if (empty()) return build_octree(Solid{}, bounds ? *bounds : VoxelBounds{{0, 0, 0}, 1}, options);
+  refuse_fields(solid(), "octree");
   const int depth = std::clamp(options.depth, 0, 30);
   const VoxelBounds b = bounds ? *bounds : voxel_bounds(1 << depth);
   return build_octree(prepared(), b, options);
@@ -519,6 +565,7 @@ EvaluateResult Model::evaluate(const EvaluateOptions& options) const {
   if (empty()) return EvaluateResult{};
   if (solid().has_open_leaf())
     throw InputError(solid().open_leaf_message() + ": evaluate needs closed leaves");
+  refuse_fields(solid(), "evaluate");
   // The default evaluation is kept (grain changes no result); other options evaluate again.
   if (options.check_leaves && !options.exact_volume && options.phases == nullptr)
     return evaluated();
@@ -529,6 +576,7 @@ brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& 
   if (empty()) return brep::ClipResult{};
   if (solid().has_open_leaf())
     throw InputError(solid().open_leaf_message() + ": clip needs closed leaves");
+  refuse_fields(solid(), "clip");
   if (!is_bounded(solid()))
     throw NotComputable("clip: the result is unbounded (a complement at the root)");
   const Solid& s = solid();
@@ -544,6 +592,7 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
       brep::cells_memory_bytes(n), options.max_memory_bytes,
       "evaluate cells: n = " + std::to_string(n) + ": cutting into cells");  // before evaluating
   CellsEvaluation out;
+  refuse_fields(solid(), "evaluate cells");
   if (!empty() && !is_bounded(solid()))
     throw NotComputable("evaluate cells: the result is unbounded (a complement at the root)");
   const VoxelBounds b = bounds ? *bounds : (empty() ? VoxelBounds{{0, 0, 0}, 1} : voxel_bounds(n));
@@ -558,6 +607,7 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
 
 brep::DecomposeResult Model::decompose(const brep::DecomposeOptions& options) const {
   if (empty()) return brep::DecomposeResult{};
+  refuse_fields(solid(), "decompose");
   if (!is_bounded(solid()))
     throw NotComputable("decompose: the result is unbounded (a complement at the root)");
   const Solid& s = solid();

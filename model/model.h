@@ -37,6 +37,7 @@
 #include "cover/covering/prepared.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
+#include "cover/field/field.h"
 #include "cover/io/scene.h"
 #include "cover/io/zarr_io.h"
 #include "cover/octree/octree.h"
@@ -122,6 +123,21 @@ class Model {
   /// or one outside ±kMaxCoordinate, naming its index.
   std::vector<PointClass> classify(std::span<const Vec3> points,
                                    const ClassifyOptions& options = {}) const;
+
+  /// classify() and the count of points it could not certify (covering/classify.h
+  /// Classification: circle skeletons' undecided points, several surfaces meeting at a point).
+  /// \throws InputError as classify().
+  Classification classify_counted(std::span<const Vec3> points,
+                                  const ClassifyOptions& options = {}) const;
+
+  /// The field queries of the HybridTree: per point and field leaf (row-major: point i's value
+  /// for the k-th field leaf at i·leaves.size() + k), f and ∇f in doubles (field/field.h
+  /// evaluate). \throws InputError for a solid without field leaves, and as classify().
+  struct FieldValues {
+    std::vector<uint32_t> leaves;  ///< the field leaves' ids, in solid().leaves order
+    std::vector<field::FieldValue> values;
+  };
+  FieldValues field(std::span<const Vec3> points) const;
 
   /// Every leaf's winding number at every point (covering/classify.h LeafWindings): a closed
   /// leaf's exact winding number; an open leaf's generalized winding number w rounded to the

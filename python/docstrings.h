@@ -83,6 +83,20 @@ result's boundary; a point on a leaf's surface buried in the result is inside / 
 Same classes as `cover classify`. Raises ValueError for a wrong shape, InputError for a
 non-finite point (naming its index).)";
 
+inline constexpr const char* kClassifyCounted =
+    R"(classify() and the number of points it could not certify: (codes, uncertain).
+
+uncertain counts points of circle skeletons whose interval enclosure of f - T holds 0 (decided by
+the double evaluation's sign) and points where several surfaces meet in a way the expression does
+not settle (reported face); 0 for meshes and polynomial fields off such points.)";
+
+inline constexpr const char* kField =
+    R"(Field value and gradient of every field leaf at every point: (f, grad).
+
+f: float64 (n, k), grad: float64 (n, k, 3), for the k field leaves in leaf order (Model.info()
+names them). f is the blend's sum of w_i (1 - d_i^2 / R_i^2)^n_i (inside where f exceeds the
+threshold). Raises InputError when the model has no field leaf.)";
+
 inline constexpr const char* kWinding =
     R"(Every leaf's winding number at every point: int32 (n, leaves).
 
@@ -107,8 +121,10 @@ inline constexpr const char* kVolume = R"(Volume of the result (float), as `cove
 Exact from the covering where the expression allows it; else integrated over parallel rays
 with a proven relative error bound of 1e-4 (or the exact B-rep volume when the bound is not
 met); exact=True requires an exact method (B-rep evaluation); rays=N fixes the ray method's
-finest cells (1..2048). volume_info() returns the method and error bound as well. Raises
-NotComputable for an unbounded result.)";
+finest cells (1..2048). Field leaves: the certified bracket method (midpoint of [V_in, V_out],
+relative half-width 1e-2 by default). tolerance=t sets the relative target of the ray and bracket
+methods. volume_info() returns the method and error bound as well. Raises NotComputable for an
+unbounded result.)";
 
 inline constexpr const char* kVolumeInfo =
     R"(Volume with its provenance: dict with volume (float), area (float or None where

@@ -112,6 +112,52 @@ py::array_t<uint8_t> classify_points(const Model& model, py::handle points, Thre
   return out;
 }
 
+/// Model.field: f (n, k) and ∇f (n, k, 3), float64, for the k field leaves.
+py::tuple field_values(const Model& model, py::handle points, Threads threads) {
+  const Points p = points_arg(points, "points");
+  const std::span<const Vec3> all = p.span();
+  Model::FieldValues f;
+  {
+    KernelScope scope(threads);
+    f = model.field(all);
+  }
+  const size_t n = all.size(), k = f.leaves.size();
+  py::array_t<double> value({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(k)});
+  py::array_t<double> gradient(
+      {static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(k), py::ssize_t{3}});
+  double* v = value.mutable_data();
+  double* g = gradient.mutable_data();
+  for (size_t i = 0; i < n * k; ++i) {
+    v[i] = f.values[i].value;
+    g[3 * i] = f.values[i].gradient.x;
+    g[3 * i + 1] = f.values[i].gradient.y;
+    g[3 * i + 2] = f.values[i].gradient.z;
+  }
+  return py::make_tuple(value, gradient);
+}
+
+/// Model.classify(..., with_uncertain=True): the codes and the uncertain count.
+py::tuple classify_counted_points(const Model& model, py::handle points, Threads threads) {
+  const Points p = points_arg(points, "points");
+  const std::span<const Vec3> all = p.span();
+  check_finite(all, "classify");
+  py::array_t<uint8_t> out(static_cast<py::ssize_t>(all.size()));
+  uint8_t* dst = out.mutable_data();
+  size_t uncertain = 0;
+  {
+    KernelScope scope(threads);
+    Interrupt interrupt;
+    for (size_t begin = 0; begin < all.size(); begin += kBatch) {
+      const Classification part =
+          model.classify_counted(all.subspan(begin, std::min(kBatch, all.size() - begin)));
+      std::memcpy(dst + begin, part.classes.data(), part.classes.size());
+      uncertain += part.uncertain;
+      interrupt.poll();
+    }
+  }
+  return py::make_tuple(out, uncertain);
+}
+
 py::array_t<int32_t> winding_numbers(const Model& model, py::handle points, Threads threads) {
   const Points p = points_arg(points, "points");
   const std::span<const Vec3> all = p.span();
@@ -193,9 +239,15 @@ py::object cast_rays(const Model& model, py::handle origins, py::handle directio
 }
 
 VolumeResult volume_result(const Model& model, bool exact, std::optional<int> rays,
-                           Threads threads) {
+                           std::optional<double> tolerance, Threads threads) {
   VolumeOptions o;
   o.exact = exact;
+  if (tolerance) {
+    if (!(*tolerance >= 1e-12 && *tolerance <= 1))
+      throw InputError("tolerance: expected a number from 1e-12 to 1, got " +
+                       std::to_string(*tolerance));
+    o.target_relative_error = o.bracket_relative_error = *tolerance;
+  }
   if (rays) {
     if (*rays < 1 || *rays > 2048)
       throw InputError("rays: expected a whole number from 1 to 2048, got " +
@@ -426,6 +478,34 @@ py::dict info_dict(const Model& model, bool self_intersection) {
     const MeshReport& r = leaf.report;
     py::dict d("name"_a = leaf.name);
     if (!leaf.origin.empty()) d["origin"] = leaf.origin;
+    if (leaf.field) {  // as `cover info --json` (cli/commands.cpp field_json)
+      d["kind"] = "field";
+      d["threshold"] = leaf.threshold;
+      d["bbox"] = bbox_list(leaf.bbox);
+      py::list prims;
+      for (const FieldPrimitive& p : leaf.field->primitives) {
+        py::dict pd("skeleton"_a = std::string(to_string(p.kind)));
+        auto vec = [](const Vec3& v) { return py::make_tuple(v.x, v.y, v.z); };
+        if (p.kind == SkeletonKind::kCircle) {
+          pd["center"] = py::list(vec(p.points[0]));
+          pd["normal"] = py::list(vec(p.points[1]));
+          pd["circle_radius"] = p.circle_radius;
+        } else {
+          py::list pts;
+          for (const Vec3& v : p.points) pts.append(py::list(vec(v)));
+          pd["points"] = pts;
+        }
+        pd["radius"] = p.radius;
+        pd["influence"] = p.influence;
+        pd["exponent"] = p.exponent;
+        pd["weight"] = p.weight;
+        prims.append(pd);
+      }
+      d["primitives"] = prims;
+      leaves.append(d);
+      continue;
+    }
+    d["kind"] = "mesh";
     d["vertices"] = leaf.vertices;
     d["faces"] = leaf.faces;
     d["closed"] = r.closed;
@@ -565,20 +645,23 @@ PYBIND11_MODULE(_cover, m) {
           "mirror", [](const Model& a, py::handle n) { return a.mirrored(vec3_arg(n, "normal")); },
           py::arg("normal"), doc::kMirror)
       .def("classify", &classify_points, py::arg("points"), py::kw_only(), threads, doc::kClassify)
+      .def("classify_counted", &classify_counted_points, py::arg("points"), py::kw_only(), threads,
+           doc::kClassifyCounted)
+      .def("field", &field_values, py::arg("points"), py::kw_only(), threads, doc::kField)
       .def("winding", &winding_numbers, py::arg("points"), py::kw_only(), threads, doc::kWinding)
       .def("cast", &cast_rays, py::arg("origins"), py::arg("directions"), py::kw_only(), threads,
            doc::kCast)
       .def(
           "volume",
-          [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
-            return volume_result(a, exact, rays, t).volume;
-          },
-          py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
-          doc::kVolume)
+          [](const Model& a, bool exact, std::optional<int> rays, std::optional<double> tol,
+             Threads t) { return volume_result(a, exact, rays, tol, t).volume; },
+          py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(),
+          py::arg("tolerance") = py::none(), threads, doc::kVolume)
       .def(
           "volume_info",
-          [](const Model& a, bool exact, std::optional<int> rays, Threads t) {
-            const VolumeResult r = volume_result(a, exact, rays, t);
+          [](const Model& a, bool exact, std::optional<int> rays, std::optional<double> tol,
+             Threads t) {
+            const VolumeResult r = volume_result(a, exact, rays, tol, t);
             py::dict d("volume"_a = r.volume,
                        "area"_a = r.area ? py::object(py::float_(*r.area)) : py::none(),
                        "method"_a = r.method, "error_bound"_a = r.error_bound);
@@ -586,10 +669,14 @@ PYBIND11_MODULE(_cover, m) {
               d["rays"] = r.rays;
               d["target_met"] = r.target_met;
             }
+            if (r.method == "bracket") {
+              d["cells"] = r.rays;
+              d["target_met"] = r.target_met;
+            }
             return d;
           },
-          py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(), threads,
-          doc::kVolumeInfo)
+          py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(),
+          py::arg("tolerance") = py::none(), threads, doc::kVolumeInfo)
       .def(
           "bounds",
           [](const Model& a) {

@@ -52,13 +52,27 @@ Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
 
 /// `outside_in_result`: the expression's value with every leaf outside (once per frame).
 /// `open`: the open leaves' trees (gwn.h), or nullptr when every leaf is closed; then spans
-/// come from cast() and open_spans() (membership changes only at surface hits).
+/// come from cast() and open_spans() (membership changes only at surface hits). Field leaves:
+/// from cast() and field_spans() (their normals −∇f at the crossing).
 Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
               const std::optional<Plane>& section, bool outside_in_result, const GwnForest* open) {
   const auto [lo, hi] = section_window(ray, section);
   if (lo > hi) return {};
   VisibleHit v;
-  if (open == nullptr) {
+  if (solid.has_field_leaf()) {
+    RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
+    field_spans(r, solid, ray, open);
+    v = first_visible(r, lo, hi);
+    if (v.hit && !v.cap && v.enter.tri == Span::kNone) {  // a field's surface: −∇f outward
+      Sample out;
+      out.hit = true;
+      out.t = v.t;
+      const Vec3 n = unit(field_normal(solid, v.enter, ray));
+      out.normal = dot(n, ray.dir) <= 0 ? n : -1.0 * n;
+      out.leaf = v.enter.leaf;
+      return out;
+    }
+  } else if (open == nullptr) {
     v = first_visible(bvh, solid.tree, solid.leaves.size(), ray, lo, hi, outside_in_result);
   } else {
     RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
@@ -129,9 +143,9 @@ double render_bytes(int width, int height) {
 }
 
 bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/, const RenderOptions& o) {
-  const bool applies = !solid.has_open_leaf();
+  const bool applies = !solid.has_open_leaf() && !solid.has_field_leaf();
   if (o.method == RenderMethod::kObjectOrder && !applies)
-    throw InputError("render: the object-order method needs closed leaves");
+    throw InputError("render: the object-order method needs closed mesh leaves");
   return o.method == RenderMethod::kObjectOrder || (o.method == RenderMethod::kAuto && applies);
 }
 

@@ -45,6 +45,12 @@ std::string Solid::open_leaf_message() const {
   return {};
 }
 
+std::string Solid::field_leaf_message() const {
+  for (const Leaf& l : leaves)
+    if (l.is_field()) return l.name + ": field leaf";
+  return {};
+}
+
 Bbox Solid::bbox() const {
   Bbox box;
   for (const Leaf& leaf : leaves) box.add(leaf.bbox);
@@ -64,6 +70,20 @@ Solid make_leaf(PolygonMesh mesh, std::string name, std::string origin) {
   s.face_vertices = std::move(mesh.face_vertices);
   s.face_leaf.assign(leaf.face_count, 0);
   s.face_sign.assign(leaf.face_count, 1);
+  s.leaves.push_back(std::move(leaf));
+  s.tree.nodes.push_back(CsgNode{CsgOp::kLeaf, 0, {}});
+  s.tree.root = 0;
+  return s;
+}
+
+Solid make_field_leaf(FieldLeaf field, std::string name, std::string origin) {
+  Solid s;
+  Leaf leaf;
+  leaf.name = std::move(name);
+  leaf.origin = std::move(origin);
+  leaf.bbox = field_support_box(field);
+  leaf.field = 0;
+  s.fields.push_back(std::move(field));
   s.leaves.push_back(std::move(leaf));
   s.tree.nodes.push_back(CsgNode{CsgOp::kLeaf, 0, {}});
   s.tree.root = 0;
@@ -153,9 +173,12 @@ Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
         out.face_leaf[f_off + f] = s.face_leaf[f] + l_off;
       }
     });
+    const auto fl_off = static_cast<int32_t>(out.fields.size());
+    for (FieldLeaf& field : s.fields) out.fields.push_back(std::move(field));
     for (Leaf leaf : s.leaves) {
       leaf.first_face += f_off;
       leaf.first_vertex += v_off;
+      if (leaf.is_field()) leaf.field += fl_off;
       out.leaves.push_back(std::move(leaf));
     }
     for (CsgNode node : s.tree.nodes) {

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "cover/solid/field_leaf.h"
 #include "cover/solid/polygon_mesh.h"
 
 namespace cover {
@@ -64,6 +65,10 @@ struct Leaf {
   /// |w| > 1/2 (covering/gwn.h). Only what the loader found: serialize keeps 0 / nonzero.
   int64_t boundary_edges = 0;
   bool open() const { return boundary_edges > 0; }
+  /// A field leaf's index in Solid::fields; −1 for a mesh leaf. A field leaf has no faces and
+  /// no vertices; its bbox is its support box (field/field.h support_box).
+  int32_t field = -1;
+  bool is_field() const { return field >= 0; }
 };
 
 /// A CSG solid with linear storage: vertices + signed faces tagged by leaf, and the tree.
@@ -75,6 +80,7 @@ struct Solid {
   std::vector<uint32_t> face_leaf;      ///< #F leaf id per face
   std::vector<int8_t> face_sign;        ///< #F ±1 (see notation above)
   std::vector<Leaf> leaves;
+  std::vector<FieldLeaf> fields;  ///< the field leaves' blends (Leaf::field indexes it)
   CsgTree tree;
 
   size_t face_count() const { return face_leaf.size(); }
@@ -91,10 +97,19 @@ struct Solid {
   /// "NAME: open mesh (N boundary edges)" for the first open leaf, the prefix of the refusals of
   /// what open leaves do not support; empty when every leaf is closed.
   std::string open_leaf_message() const;
+  /// True when some leaf is a field leaf (Leaf::is_field).
+  bool has_field_leaf() const { return !fields.empty(); }
+  /// "NAME: field leaf" for the first field leaf, the prefix of the refusals of what field leaves
+  /// do not support; empty when there is none.
+  std::string field_leaf_message() const;
 };
 
 /// A solid with one leaf. Precondition: the mesh is closed and outward (callers validate).
 Solid make_leaf(PolygonMesh mesh, std::string name, std::string origin = {});
+
+/// A solid with one field leaf, its box the support box (field_support_box).
+/// Precondition: the leaf is valid (field/field.h validate).
+Solid make_field_leaf(FieldLeaf field, std::string name, std::string origin = {});
 
 /// The leaf's faces in the leaf's OWN orientation, with its own vertex numbering (0-based).
 PolygonMesh leaf_mesh(const Solid& solid, uint32_t leaf);

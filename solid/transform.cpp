@@ -106,6 +106,51 @@ void apply_transform(const Transform& t, PolygonMesh& mesh) {
   }
 }
 
+namespace {
+
+/// Field leaves take similarities only (L = s·Q, Q orthogonal, checked to 1e-9 relative: a
+/// rotation's doubles are orthogonal only to rounding): skeleton points are mapped, lengths
+/// (r_T, R, a circle's radius) multiplied by s = |det L|^(1/3), a circle's normal mapped by L
+/// (L⁻ᵀ ∝ L for a similarity). A blend keeps its first primitive's threshold (solid/field_leaf.h).
+void transform_fields(const Matrix4& m, double det, Solid& solid) {
+  const Eigen::Matrix3d linear = m.topLeftCorner<3, 3>();
+  const double s = std::cbrt(std::abs(det));
+  const Eigen::Matrix3d gram = linear.transpose() * linear / (s * s);
+  if (!gram.isApprox(Eigen::Matrix3d::Identity(), 1e-9))
+    throw InputError(solid.field_leaf_message() +
+                     ": field leaves take rigid motions and uniform scales only (this transform "
+                     "stretches unevenly)");
+  auto map = [&](Vec3& p, double w) {
+    const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, w);
+    p = {q.x(), q.y(), q.z()};
+    for (int a = 0; a < 3; ++a)
+      if (!(std::abs(p[a]) <= kMaxCoordinate))
+        throw InputError(
+            "transform: a field skeleton is mapped outside the supported range "
+            "[-2^64, 2^64]");
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  for (FieldLeaf& field : solid.fields)
+    for (FieldPrimitive& prim : field.primitives) {
+      if (prim.kind == SkeletonKind::kCircle) {
+        map(prim.points[0], 1.0);
+        map(prim.points[1], 0.0);
+        prim.circle_radius *= s;
+      } else {
+        for (Vec3& p : prim.points) map(p, 1.0);
+      }
+      prim.radius *= s;
+      prim.influence *= s;
+      if (!(prim.radius > 0 && prim.radius < prim.influence && prim.influence < inf))
+        throw InputError(solid.field_leaf_message() + ": the transform's scale " +
+                         std::to_string(s) + " takes a field primitive's radii out of range");
+    }
+  for (Leaf& leaf : solid.leaves)
+    if (leaf.is_field()) leaf.bbox = field_support_box(solid.fields[leaf.field]);
+}
+
+}  // namespace
+
 Solid transform_solid(const Transform& t, Solid solid) {
   const Matrix4 m = to_eigen(t);
   if (!m.allFinite()) throw InputError("transform: expected finite numbers");
@@ -137,8 +182,10 @@ Solid transform_solid(const Transform& t, Solid solid) {
     for (size_t f = 0; f < solid.face_count(); ++f)
       std::reverse(solid.face_vertices.begin() + solid.face_start[f],
                    solid.face_vertices.begin() + solid.face_start[f + 1]);
+  if (!solid.fields.empty()) transform_fields(m, det, solid);
   for (Leaf& leaf : solid.leaves) {
-    leaf.bbox = Bbox{};  // over the vertices of its faces, as make_leaf's face_bbox
+    if (leaf.is_field()) continue;  // transform_fields set its support box
+    leaf.bbox = Bbox{};             // over the vertices of its faces, as make_leaf's face_bbox
     for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f)
       for (uint32_t v : solid.face(f)) leaf.bbox.add(solid.vertices[v]);
   }

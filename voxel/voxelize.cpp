@@ -382,7 +382,8 @@ VoxelGrid voxelize(const Solid& solid, const VoxelizeOptions& options) {
 void voxelize_brick(const Prepared& prepared, const VoxelLattice& lattice, const IndexBox& box,
                     VoxelGrid& grid, const std::function<void(double)>& progress) {
   const Solid& solid = prepared.solid();
-  if (solid.has_open_leaf()) {  // membership is not a sweep of crossings: classify the centres
+  // Open and field leaves: membership is not a sweep of crossings: classify the centres.
+  if (solid.has_open_leaf() || solid.has_field_leaf()) {
     grid = empty_voxel_grid(lattice, box);
     classify_lattice(prepared, lattice, box, [&](int i, int j, int k) { grid.set(i, j, k); });
     if (progress) progress(1.0);

@@ -113,7 +113,7 @@ def test_render_equals_cli_png(view, tmp_path):
     assert np.array_equal(image, read_png_rgb(out))
 
 
-@pytest.mark.parametrize("path", [MODELS / "default.json", MODELS / "frame.off",
+@pytest.mark.parametrize("path", [MODELS / "default.json", MODELS / "frame.off", MODELS / "snake.json",
                                   CGAL_MESHES / "bunny00.off"], ids=lambda p: p.name)
 def test_info_equals_cli(path):
     if not path.exists():

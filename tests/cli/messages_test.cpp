@@ -210,9 +210,9 @@ TEST_F(CliMessages, OptionMessages) {
                "--threads: expected a whole number from 1 to 4096, got '0'");
   expect_error(run_cover("bogus"),
                "unknown command 'bogus' (expected info, volume, classify, "
-               "render, voxelize, octree, clip, evaluate, decompose)");
+               "field, render, voxelize, octree, clip, evaluate, decompose)");
   expect_error(run_cover(""),
-               "no command given (expected info, volume, classify, render, "
+               "no command given (expected info, volume, classify, field, render, "
                "voxelize, octree, clip, evaluate, decompose; try --help)");
   // Whole numbers are decimal: a leading zero is not octal, and '+' is allowed.
   const auto r = run_cover("voxelize " + box() + " --res +010 -o " + q(dir_ / "v.npy") + " --json");

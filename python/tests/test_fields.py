@@ -1,0 +1,76 @@
+"""Field leaves from Python (docs/cli.md "Field leaves and blends"): the same classes, field values,
+volumes and pictures as the CLI, and the exact answers the mathematics gives."""
+
+import numpy as np
+import pytest
+
+import cover
+from conftest import MODELS, cli_json, read_png_rgb, run_cli
+
+SNAKE = MODELS / "snake.json"
+
+TWO_POINTS = """{"blend": [
+  {"field": {"skeleton": {"point": [-0.35, 0, 0]}, "radius": 0.5, "influence": 1}},
+  {"field": {"skeleton": {"point": [0.35, 0, 0]}, "radius": 0.5, "influence": 1}}]}"""
+
+
+def test_snake_classify_equals_cli(tmp_path):
+    model = cover.load(SNAKE)
+    rng = np.random.default_rng(4)
+    lo, hi = model.bounds()
+    P = rng.uniform(lo, hi, size=(20000, 3))
+    points = tmp_path / "points.txt"
+    np.savetxt(points, P, fmt="%.17g")
+    report = cli_json("classify", SNAKE, "--points", points)
+    codes, uncertain = model.classify_counted(P)
+    assert [cover.CLASS_NAMES[c] for c in codes] == report["classes"]
+    assert uncertain == report["uncertain"]
+    assert np.array_equal(model.classify(P), codes)
+    assert (codes == 1).sum() > 1000
+
+
+def test_field_values_equal_cli(tmp_path):
+    scene = tmp_path / "two.json"
+    scene.write_text(TWO_POINTS)
+    P = np.array([[0.85, 0, 0], [0, 0, 0], [0.2, 0.3, -0.1]])
+    points = tmp_path / "points.txt"
+    np.savetxt(points, P, fmt="%.17g")
+    report = cli_json("field", scene, "--points", points)
+    f, g = cover.load(scene).field(P)
+    assert f.shape == (3, 1) and g.shape == (3, 1, 3)
+    assert f[:, 0].tolist() == report["field"]
+    assert g[:, 0, :].tolist() == report["gradient"]
+    assert f[0, 0] == 0.5625  # exactly the threshold: (0.85, 0, 0) is on the surface
+    assert cover.CLASS_NAMES[cover.load(scene).classify(P)[0]] == "face"
+
+
+def test_bracket_volume_equals_cli():
+    model = cover.load(SNAKE)
+    info = model.volume_info(tolerance=0.1)
+    report = cli_json("volume", SNAKE, "--tolerance", 0.1)
+    assert info["method"] == "bracket" == report["method"]
+    assert info["volume"] == report["volume"] and info["error_bound"] == report["error_bound"]
+    assert info["target_met"]
+
+
+def test_ball_bracket_contains_its_volume(tmp_path):
+    scene = tmp_path / "ball.json"
+    scene.write_text('{"field": {"skeleton": {"point": [0, 0, 0]}, "radius": 0.5, "influence": 1}}')
+    info = cover.load(scene).volume_info()
+    assert abs(info["volume"] - 4 / 3 * np.pi * 0.125) <= info["error_bound"]
+    assert info["error_bound"] <= 1e-2 * info["volume"]
+
+
+def test_render_equals_cli(tmp_path):
+    out = tmp_path / "snake.png"
+    run_cli("render", SNAKE, "-o", out, "--size", "96x64")
+    image = cover.load(SNAKE).render(96, 64)
+    assert np.array_equal(image, read_png_rgb(out))
+
+
+def test_what_does_not_take_fields_refuses():
+    model = cover.load(SNAKE)
+    with pytest.raises(cover.NotComputable):
+        model.evaluate()
+    with pytest.raises(cover.InputError):
+        cover.load(MODELS / "default.json").field([[0, 0, 0]])

@@ -1,0 +1,106 @@
+// Field leaves through the `cover` program (docs/cli.md "Field leaves and blends", `cover field`):
+// the field query, classify's `uncertain`, the bracket volume, info, and one-line refusals naming
+// the file and the leaf's JSON path for the commands that do not take field leaves.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "helpers.h"
+
+namespace cover {
+namespace {
+
+using nlohmann::json;
+using test::run_cover;
+
+std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+class FieldsCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::temp_dir("fields_cli");
+    scene_ = dir_ / "two.json";
+    test::write_file(scene_, R"({"union": [{"blend": [
+      {"field": {"skeleton": {"point": [-0.35, 0, 0]}, "radius": 0.5, "influence": 1}},
+      {"field": {"skeleton": {"point": [0.35, 0, 0]}, "radius": 0.5, "influence": 1}}]},
+      {"box": {"min": [2, 2, 2], "max": [3, 3, 3]}}]})");
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_, scene_;
+};
+
+TEST_F(FieldsCli, FieldPrintsValueAndGradientPerPoint) {
+  const auto r = run_cover("field " + q(scene_) + " --points -", "0.85 0 0\n0 0 0\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // f(0.85, 0, 0) = (1 − 0.5²)² = 0.5625 exactly, ∇f = −4·0.75·(0.5, 0, 0)... = (−1.5, 0, 0).
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), "0.5625 -1.5 0 0");
+  const auto j = run_cover("field " + q(scene_) + " --points - --json", "0.85 0 0\n");
+  ASSERT_EQ(j.status, 0) << j.err;
+  const json out = json::parse(j.out);
+  EXPECT_EQ(out["field"][0], 0.5625);
+  EXPECT_EQ(out["leaves"][0], "/union/0/blend");
+}
+
+TEST_F(FieldsCli, ClassifyReportsFaceAndUncertain) {
+  const auto r = run_cover("classify " + q(scene_) + " --points - --json", "0.85 0 0\n0 0 0\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json out = json::parse(r.out);
+  EXPECT_EQ(out["classes"][0], "face");
+  EXPECT_EQ(out["classes"][1], "inside");
+  EXPECT_EQ(out["uncertain"], 0);
+}
+
+TEST_F(FieldsCli, VolumeIsACertifiedBracket) {
+  const auto r = run_cover("volume " + q(scene_) + " --json --tolerance 0.02");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json out = json::parse(r.out);
+  EXPECT_EQ(out["method"], "bracket");
+  EXPECT_TRUE(out["target_met"].get<bool>());
+  EXPECT_LE(out["error_bound"].get<double>(), 0.02 * out["volume"].get<double>());
+  const auto e = run_cover("volume " + q(scene_) + " --exact");
+  EXPECT_EQ(e.status, 2);
+  EXPECT_NE(e.err.find("bracket"), std::string::npos) << e.err;
+}
+
+TEST_F(FieldsCli, InfoDescribesFieldLeaves) {
+  const auto r = run_cover("info " + q(scene_) + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json leaf = json::parse(r.out)["leaves_info"][0];
+  EXPECT_EQ(leaf["kind"], "field");
+  EXPECT_EQ(leaf["threshold"], 0.5625);
+  EXPECT_EQ(leaf["primitives"].size(), 2u);
+  EXPECT_EQ(leaf["primitives"][1]["skeleton"], "point");
+}
+
+TEST_F(FieldsCli, CommandsThatDoNotTakeFieldsRefuseInOneLine) {
+  const std::string at = scene_.string() + ": /union/0/blend: field leaf: ";
+  for (const std::string& cmd : {"octree " + q(scene_) + " --depth 3 -o " + q(dir_ / "o.bt"),
+                                 "evaluate " + q(scene_) + " -o " + q(dir_ / "e.off"),
+                                 "clip " + q(scene_) + " --plane 0,0,1,0 -o " + q(dir_ / "c.off"),
+                                 "decompose " + q(scene_) + " -o " + q(dir_ / "d")}) {
+    const auto r = run_cover(cmd);
+    EXPECT_EQ(r.status, 2) << cmd;
+    EXPECT_EQ(r.err.rfind("cover: error: " + at, 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "e.off"));
+}
+
+TEST_F(FieldsCli, BadFieldNodeNamesTheFileAndPath) {
+  const auto bad = dir_ / "bad.json";
+  test::write_file(bad, R"({"field": {"skeleton": {"point": [0, 0, 0]}, "radius": 1,
+                            "influence": 1, "exponent": 1}})");
+  const auto r = run_cover("classify " + q(bad) + " --points -", "0 0 0\n");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("cover: error: " + bad.string() + ": /field: ", 0), 0u) << r.err;
+}
+
+TEST_F(FieldsCli, RenderDrawsTheBlend) {
+  const auto r = run_cover("render " + q(scene_) + " -o " + q(dir_ / "f.png") + " --size 48x32");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "f.png"));
+}
+
+}  // namespace
+}  // namespace cover
