@@ -152,7 +152,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     if (s.has_field_leaf())
       throw NotComputable(o.input + ": " + s.field_leaf_message() +
                           ": clip does not take field leaves (classify, field, cast, render, "
-                          "voxelize, volume and info do)");
+                          "voxelize, octree, volume and info do)");
     for (uint32_t l = 0; l < s.leaves.size(); ++l) {
       const std::string& origin = s.leaves[l].origin;
       clipped.push_back(clip_named([&] { return brep::clip(leaf_mesh(s, l), plane, co); },

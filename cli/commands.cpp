@@ -153,14 +153,6 @@ Model load_model(const std::string& input, const LoadOptions& options,
   return model;
 }
 
-void refuse_field_leaves(const Model& model, const std::string& input, const std::string& what) {
-  for (const Leaf& l : model.solid().leaves)
-    if (l.is_field())
-      throw InputError(input + ": " + l.origin + ": field leaf: " + what +
-                       " does not take field leaves (classify, field, cast, render, voxelize, "
-                       "volume and info do)");
-}
-
 int run_info(const InfoOptions& o, const CommonOptions& common) {
   Timing timing;
   LoadOptions lo = common.load_options();

@@ -43,10 +43,6 @@ struct CommonOptions {
 Model load_model(const std::string& input, const LoadOptions& options,
                  const std::string& closed_needed = {}, const std::string& field_reason = {});
 
-/// Refuses a model with field leaves for `what`: InputError "INPUT: /json/path: field leaf: WHAT
-/// does not take field leaves (classify, field, cast, render, voxelize, volume and info do)".
-void refuse_field_leaves(const Model& model, const std::string& input, const std::string& what);
-
 struct InfoOptions {
   std::string input;
   bool check_self_intersection = true;  ///< --no-self-intersection skips the (exact) check

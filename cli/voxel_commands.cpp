@@ -175,7 +175,6 @@ int run_octree(const OctreeCommandOptions& o, const CommonOptions& common) {
   if (!is_octree_extension(o.output))
     throw InputError(o.output + ": unsupported octree format (expected .htg, .bt, .json)");
   const Model model = load_model(o.input, common.load_options());
-  refuse_field_leaves(model, o.input, "octree");
   timing.lap(Timing::kLoad);
   OctreeOptions oo;
   oo.depth = o.depth;

@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 #include "cover/field/detail/closest.h"
 
@@ -131,10 +132,14 @@ I circle_d2(const IV& p, const Vec3& c, const Vec3& normal, double r) {
 
 /// Enclosure of f − T over the probe box [lo, hi] (a point when lo = hi); *circle is set when
 /// a circle primitive's support box meets the probe. Needs the rounding guard.
-I enclose(const FieldLeaf& leaf, const Vec3& lo, const Vec3& hi, bool* circle) {
+/// `subset` (not empty): only those primitives (the caller knows the others vanish there).
+I enclose(const FieldLeaf& leaf, const Vec3& lo, const Vec3& hi, bool* circle,
+          std::span<const uint32_t> subset = {}) {
   const IV p{I(lo.x, hi.x), I(lo.y, hi.y), I(lo.z, hi.z)};
   I f(0);
-  for (const FieldPrimitive& prim : leaf.primitives) {
+  const size_t count = subset.empty() ? leaf.primitives.size() : subset.size();
+  for (size_t s = 0; s < count; ++s) {
+    const FieldPrimitive& prim = leaf.primitives[subset.empty() ? s : subset[s]];
     const double R = prim.influence;
     const Vec3* q = prim.points.data();
     I d2;
@@ -364,6 +369,14 @@ std::string validate(const FieldLeaf& leaf) {
   return "";
 }
 
+std::string validate_placed(const FieldLeaf& leaf) {
+  if (leaf.primitives.empty()) return "a field needs at least one primitive";
+  for (size_t i = 0; i < leaf.primitives.size(); ++i)
+    if (std::string problem = primitive_problem(leaf.primitives[i]); !problem.empty())
+      return "primitive " + std::to_string(i) + ": " + problem;
+  return "";
+}
+
 Bbox support_box(const FieldLeaf& leaf) { return field_support_box(leaf); }
 
 double threshold(const FieldLeaf& leaf) {
@@ -457,6 +470,19 @@ Range bound(const FieldLeaf& leaf, const Bbox& box) {
   bool circle = false;
   CGAL::Protect_FPU_rounding<true> rounding;
   const I e = enclose(leaf, box.min, box.max, &circle);
+  if (std::isnan(e.inf()) || std::isnan(e.sup())) return {-kInf, kInf};
+  return {e.inf(), e.sup()};
+}
+
+Range bound(const FieldLeaf& leaf, std::span<const uint32_t> primitives, const Bbox& box) {
+  if (primitives.empty()) {  // f = 0 on the box
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const I e = I(0) - threshold_interval(leaf.primitives[0]);
+    return {e.inf(), e.sup()};
+  }
+  bool circle = false;
+  CGAL::Protect_FPU_rounding<true> rounding;
+  const I e = enclose(leaf, box.min, box.max, &circle, primitives);
   if (std::isnan(e.inf()) || std::isnan(e.sup())) return {-kInf, kInf};
   return {e.inf(), e.sup()};
 }

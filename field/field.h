@@ -28,6 +28,10 @@ namespace cover::field {
 /// polyline pieces of positive length; triangles not collinear; circles with a non-zero normal
 /// and a finite radius > 0; the same threshold T for every primitive, compared exactly).
 std::string validate(const FieldLeaf& leaf);
+/// validate() without the one-threshold rule: a blend whose primitives a transform rescaled
+/// (their r_T, R rounded apart) keeps its first primitive's threshold (solid/field_leaf.h), and
+/// the solid format (io/serialize.h) carries it as it is.
+std::string validate_placed(const FieldLeaf& leaf);
 
 /// The union of the positive primitives' support boxes (solid/field_leaf.h field_support_box).
 Bbox support_box(const FieldLeaf& leaf);
@@ -62,5 +66,8 @@ struct Range {
   double lo = 0, hi = 0;
 };
 Range bound(const FieldLeaf& leaf, const Bbox& box);
+/// The same summing only `primitives` (indices into leaf.primitives): sound when every other
+/// primitive's support misses the box (rays pass the ones whose support box they cross).
+Range bound(const FieldLeaf& leaf, std::span<const uint32_t> primitives, const Bbox& box);
 
 }  // namespace cover::field

@@ -9,6 +9,7 @@
 #include <tuple>
 #include <utility>
 
+#include "cover/field/field.h"
 #include "cover/mesh/validate.h"
 #include "cover/solid/errors.h"
 
@@ -18,6 +19,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "the format is little-endian");
 constexpr char kMagic[8] = {'C', 'O', 'V', 'E', 'R', 'S', 'O', 'L'};
 constexpr uint32_t kVersion = 1;
+constexpr uint32_t kFieldVersion = 2;  ///< solids with field leaves (format in serialize.h)
 
 class Writer {
  public:
@@ -90,12 +92,9 @@ class Reader {
 }  // namespace
 
 std::string solid_to_bytes(const Solid& s) {
-  if (s.has_field_leaf())
-    throw InputError(s.field_leaf_message() +
-                     ": the solid format carries mesh leaves only (send the scene instead)");
   Writer w;
   w.put_array(kMagic, 8);
-  w.put(kVersion);
+  w.put(s.has_field_leaf() ? kFieldVersion : kVersion);
   w.put(static_cast<uint64_t>(s.vertices.size()));
   w.put(static_cast<uint64_t>(s.face_count()));
   w.put(static_cast<uint64_t>(s.face_vertices.size()));
@@ -114,13 +113,32 @@ std::string solid_to_bytes(const Solid& s) {
     w.put(leaf.face_count);
     w.put(leaf.first_vertex);
     w.put(leaf.vertex_count);
-    w.put(static_cast<uint8_t>((leaf.flipped ? 1 : 0) | (leaf.open() ? 2 : 0)));
+    w.put(static_cast<uint8_t>((leaf.flipped ? 1 : 0) | (leaf.open() ? 2 : 0) |
+                               (leaf.is_field() ? 4 : 0)));
   }
   for (const CsgNode& node : s.tree.nodes) {
     w.put(static_cast<uint8_t>(node.op));
     w.put(node.leaf);
     w.put(static_cast<uint32_t>(node.children.size()));
     w.put_array(node.children.data(), node.children.size());
+  }
+  if (!s.has_field_leaf()) return w.take();
+  // Field leaves, in the order of their leaves (Leaf::field is that order: concatenation and
+  // scenes number them so).
+  for (const Leaf& leaf : s.leaves) {
+    if (!leaf.is_field()) continue;
+    const FieldLeaf& f = s.fields[leaf.field];
+    w.put(static_cast<uint32_t>(f.primitives.size()));
+    for (const FieldPrimitive& p : f.primitives) {
+      w.put(static_cast<uint8_t>(p.kind));
+      w.put(static_cast<uint32_t>(p.points.size()));
+      w.put_array(p.points.data(), p.points.size());
+      w.put(p.circle_radius);
+      w.put(p.radius);
+      w.put(p.influence);
+      w.put(static_cast<int32_t>(p.exponent));
+      w.put(static_cast<int32_t>(p.weight));
+    }
   }
   return w.take();
 }
@@ -179,6 +197,29 @@ double volume_rounding_bound(const PolygonMesh& mesh) {
          diagonal * diagonal;
 }
 
+/// A field leaf's primitives (format in serialize.h), checked as field::validate_placed does.
+void read_field(Reader& r, FieldLeaf& f, const std::string& label) {
+  const uint32_t n = r.get<uint32_t>();
+  r.need(1 + 4 + 8 * 3 + 4 * 2, n, "truncated field");
+  f.primitives.resize(n);
+  for (FieldPrimitive& p : f.primitives) {
+    const uint8_t kind = r.get<uint8_t>();
+    if (kind > static_cast<uint8_t>(SkeletonKind::kCircle))
+      r.fail_here(label + ": an unknown skeleton");
+    p.kind = static_cast<SkeletonKind>(kind);
+    const uint32_t points = r.get<uint32_t>();
+    if (points > kMaxPolylinePoints) r.fail_here(label + ": too many skeleton points");
+    r.get_array(p.points, points);
+    p.circle_radius = r.get<double>();
+    p.radius = r.get<double>();
+    p.influence = r.get<double>();
+    p.exponent = r.get<int32_t>();
+    p.weight = r.get<int32_t>();
+  }
+  if (const std::string problem = field::validate_placed(f); !problem.empty())
+    r.fail(label + ": " + problem);
+}
+
 /// The checks of one leaf that loading makes (io/scene.h prepare_leaf, validate_mesh with
 /// the loader's options): the open flag must be what the faces say (boundary edges), and a
 /// closed leaf must be a consistently oriented 2-cycle (every edge balanced) with a signed
@@ -215,7 +256,9 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
   r.need(1, 8, "truncated");
   if (std::memcmp(bytes.data(), kMagic, 8) != 0) r.fail("wrong magic (the first 8 bytes)");
   r.get<uint64_t>();  // the magic
-  if (r.get<uint32_t>() != kVersion) r.fail("unsupported version (bytes 8 to 11)");
+  const uint32_t version = r.get<uint32_t>();
+  if (version != kVersion && version != kFieldVersion)
+    r.fail("unsupported version (bytes 8 to 11)");
   const uint64_t nv = r.get<uint64_t>(), nf = r.get<uint64_t>(), ni = r.get<uint64_t>(),
                  nl = r.get<uint64_t>(), nn = r.get<uint64_t>();
   const uint32_t root = r.get<uint32_t>();
@@ -259,9 +302,16 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
     leaf.vertex_count = r.get<uint32_t>();
     const uint8_t flags = r.get<uint8_t>();
     const std::string label = "leaf " + num(l) + " (at byte " + num(at) + ")";
-    if (flags > 3) r.fail(label + ": flags other than 0..3");
+    if (flags > (version == kFieldVersion ? 4 : 3))
+      r.fail(label + ": flags other than 0..3" + (version == kFieldVersion ? " or 4" : ""));
     leaf.flipped = (flags & 1) != 0;
     flagged_open[l] = (flags & 2) != 0;
+    if (flags == 4) {
+      if (leaf.face_count != 0 || leaf.vertex_count != 0)
+        r.fail(label + ": a field leaf with faces or vertices");
+      leaf.field = static_cast<int32_t>(s.fields.size());
+      s.fields.emplace_back();  // read after the nodes
+    }
     if (leaf.first_face != next_face || uint64_t{leaf.first_face} + leaf.face_count > nf ||
         leaf.first_vertex != next_vertex || uint64_t{leaf.first_vertex} + leaf.vertex_count > nv)
       r.fail(label + ": faces or vertices that do not follow the previous leaf's");
@@ -304,6 +354,12 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
       }
     }
   }
+  for (uint64_t l = 0; l < nl; ++l) {
+    Leaf& leaf = s.leaves[l];
+    if (!leaf.is_field()) continue;
+    read_field(r, s.fields[leaf.field], "leaf " + num(l));
+    leaf.bbox = field_support_box(s.fields[leaf.field]);
+  }
   if (!r.done()) r.fail_here("trailing bytes");
   if (nn == 0 ? nl != 0 : root >= nn) r.fail("no root");
   for (uint64_t l = 0; l < nl; ++l)
@@ -333,7 +389,8 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
       r.fail("face " + num(f) + ": sign " + std::to_string(s.face_sign[f]) +
              ", but its leaf's place in the expression gives " +
              std::to_string(leaf_sign[s.face_leaf[f]]));
-  for (uint64_t l = 0; l < nl; ++l) check_leaf(s, l, flagged_open[l] != 0, r);
+  for (uint64_t l = 0; l < nl; ++l)
+    if (!s.leaves[l].is_field()) check_leaf(s, l, flagged_open[l] != 0, r);
   return s;
 }
 

@@ -12,6 +12,11 @@
 //             first_vertex, vertex_count, u8 flags (1: flipped, 2: open; boxes are recomputed
 //             on reading)
 //   per node: u8 op, u32 leaf, u32 children, u32[children]
+// Version 2, written only for solids with field leaves (solid/field_leaf.h), adds leaf flag 4 (a
+// field leaf: no faces, no vertices) and, after the nodes, per field leaf in leaf order:
+//   u32 primitives; per primitive: u8 skeleton kind, u32 points, f64[3·points],
+//   f64 circle_radius, radius, influence, i32 exponent, i32 weight
+// checked as field::validate_placed checks a leaf (its box is recomputed).
 // Reading checks everything a kernel relies on (solid.h notation), as loading checks a file:
 //   layout     counts against the byte length before anything is allocated; offsets
 //              non-decreasing and in range; every face at least 3 vertices; indices below their

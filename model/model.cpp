@@ -324,7 +324,7 @@ void refuse_fields(const Solid& solid, const char* what) {
   if (solid.has_field_leaf())
     throw NotComputable(solid.field_leaf_message() + ": " + what +
                         " does not take field leaves (classify, field, cast, render, voxelize, "
-                        "volume and info do)");
+                        "octree, volume and info do)");
 }
 
 }  // namespace
@@ -526,7 +526,6 @@ Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBoun
   // The empty set, as evaluate() and voxelize() answer it: an empty octree over the given cube
   // (or the unit cube), built by the same kernel from a solid with no leaf.
   if (empty()) return build_octree(Solid{}, bounds ? *bounds : VoxelBounds{{0, 0, 0}, 1}, options);
-  refuse_fields(solid(), "octree");
   const int depth = std::clamp(options.depth, 0, 30);
   const VoxelBounds b = bounds ? *bounds : voxel_bounds(1 << depth);
   return build_octree(prepared(), b, options);

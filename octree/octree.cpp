@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cover/octree/detail/builder.h"
+#include "cover/octree/detail/field_octree.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/large_vector.h"
 #include "cover/solid/parallel.h"
@@ -43,12 +44,11 @@ double expected_nodes(double area, double size, int depth) {
   return nodes;
 }
 
-/// "--depth D: the octree", the subject of the memory refusals.
+}  // namespace
+
 std::string octree_subject(int depth) {
   return parameter("depth") + " " + std::to_string(depth) + ": the octree";
 }
-
-}  // namespace
 
 Builder::Builder(const Prepared& prepared, const VoxelBounds& bounds, const OctreeOptions& options)
     : prepared_(prepared),
@@ -324,6 +324,12 @@ Octree build_octree(const Prepared& prepared, const VoxelBounds& bounds,
                     const OctreeOptions& options) {
   check_octree_request(prepared.solid(), bounds, options);
   if (prepared.solid().leaves.empty()) return empty_octree(bounds, options);
+  if (prepared.solid().has_field_leaf()) {
+    if (prepared.solid().has_open_leaf())
+      throw NotComputable(prepared.solid().open_leaf_message() +
+                          ": the octree of field leaves needs closed mesh leaves");
+    return octree_build::build_field_octree(prepared, bounds, options);
+  }
   return Builder(prepared, bounds, options).run();
 }
 

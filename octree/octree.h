@@ -77,6 +77,9 @@ struct Octree {
 /// the expected memory exceeds options.max_bytes: before building, from the surface area (a
 /// surface of area A meets about 1.5·A/h² cells of side h), and again before each level from its
 /// exact node count; NotComputable beyond 2^32 nodes.
+/// Field leaves: cells full / empty only where covering/box_states.h certifies them (interval
+/// bounds of each field over the closed cell), undecided cells split and, at the depth, sampled
+/// (octree/detail/field_octree.h); NotComputable with open leaves beside them.
 /// Open leaves (through the Prepared's trees, covering/gwn.h): cells the surface does not cross
 /// take the class of their own centre (the winding-number membership is not constant there: an
 /// approximation, docs/design.md).

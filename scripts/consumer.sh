@@ -30,7 +30,7 @@ expected=$'volume 7.10966\ninside\noutside\nface\nvertex\n3206 faces, volume 22.
 # Cover's headers are included as "cover/<module>/..." and ignore the consumer's own
 # own/solid/types.h (its build above would fail otherwise): check the installed layout too.
 [ -f "$prefix/include/cover/solid/types.h" ] || { echo "consumer: no include/cover/solid/types.h"; exit 1; }
-if grep -rqE '#include "(solid|mesh|covering|render|voxel|octree|io|boolean|brep|model)/' "$prefix/include/cover"; then
+if grep -rqE '#include "(solid|field|mesh|covering|render|voxel|octree|io|boolean|brep|model)/' "$prefix/include/cover"; then
   echo "consumer: an installed header includes another without the cover/ prefix"; exit 1
 fi
 # Every installed header includes only installed headers (the internals stay in the tree).

@@ -47,7 +47,7 @@ std::string Solid::open_leaf_message() const {
 
 std::string Solid::field_leaf_message() const {
   for (const Leaf& l : leaves)
-    if (l.is_field()) return l.name + ": field leaf";
+    if (l.is_field()) return (l.origin.empty() ? l.name : l.origin) + ": field leaf";
   return {};
 }
 

@@ -99,8 +99,8 @@ struct Solid {
   std::string open_leaf_message() const;
   /// True when some leaf is a field leaf (Leaf::is_field).
   bool has_field_leaf() const { return !fields.empty(); }
-  /// "NAME: field leaf" for the first field leaf, the prefix of the refusals of what field leaves
-  /// do not support; empty when there is none.
+  /// "ORIGIN: field leaf" (its JSON path, else its name) for the first field leaf, the prefix of
+  /// the refusals of what field leaves do not support; empty when there is none.
   std::string field_leaf_message() const;
 };
 

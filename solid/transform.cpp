@@ -117,9 +117,9 @@ void transform_fields(const Matrix4& m, double det, Solid& solid) {
   const double s = std::cbrt(std::abs(det));
   const Eigen::Matrix3d gram = linear.transpose() * linear / (s * s);
   if (!gram.isApprox(Eigen::Matrix3d::Identity(), 1e-9))
-    throw InputError(solid.field_leaf_message() +
-                     ": field leaves take rigid motions and uniform scales only (this transform "
-                     "stretches unevenly)");
+    throw InputError(
+        "transform: field leaves take rigid motions and uniform scales only (this one stretches "
+        "unevenly)");
   auto map = [&](Vec3& p, double w) {
     const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, w);
     p = {q.x(), q.y(), q.z()};
@@ -142,8 +142,8 @@ void transform_fields(const Matrix4& m, double det, Solid& solid) {
       prim.radius *= s;
       prim.influence *= s;
       if (!(prim.radius > 0 && prim.radius < prim.influence && prim.influence < inf))
-        throw InputError(solid.field_leaf_message() + ": the transform's scale " +
-                         std::to_string(s) + " takes a field primitive's radii out of range");
+        throw InputError("transform: the scale " + std::to_string(s) +
+                         " takes a field primitive's radii out of range");
     }
   for (Leaf& leaf : solid.leaves)
     if (leaf.is_field()) leaf.bbox = field_support_box(solid.fields[leaf.field]);

@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "cover/covering/bvh.h"
@@ -78,6 +79,9 @@ constexpr size_t kBlock = size_t{1} << 18;  // cells per classification batch (m
 constexpr double kBytesPerNode = 32;
 
 using Coord = std::array<uint32_t, 3>;
+
+/// "--depth D: the octree", the subject of the memory refusals.
+std::string octree_subject(int depth);
 
 /// One list of triangle indices per cell (compressed rows).
 struct Lists {

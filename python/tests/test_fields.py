@@ -74,3 +74,20 @@ def test_what_does_not_take_fields_refuses():
         model.evaluate()
     with pytest.raises(cover.InputError):
         cover.load(MODELS / "default.json").field([[0, 0, 0]])
+
+
+def test_pickle_keeps_field_leaves():
+    import pickle
+
+    model = cover.load(SNAKE)
+    back = pickle.loads(pickle.dumps(model))
+    P = np.random.default_rng(2).uniform(-3, 3, size=(5000, 3))
+    assert np.array_equal(back.classify(P), model.classify(P))
+    assert back.info() == model.info()
+
+
+def test_octree_of_field_leaves_equals_cli(tmp_path):
+    out = tmp_path / "snake.json"
+    report = cli_json("octree", SNAKE, "--depth", 5, "-o", out)
+    leaves = report["leaves"]
+    assert leaves["full"] > 0 and leaves["empty"] > 0 and leaves["partial"] > 0

@@ -75,8 +75,7 @@ TEST_F(FieldsCli, InfoDescribesFieldLeaves) {
 
 TEST_F(FieldsCli, CommandsThatDoNotTakeFieldsRefuseInOneLine) {
   const std::string at = scene_.string() + ": /union/0/blend: field leaf: ";
-  for (const std::string& cmd : {"octree " + q(scene_) + " --depth 3 -o " + q(dir_ / "o.bt"),
-                                 "evaluate " + q(scene_) + " -o " + q(dir_ / "e.off"),
+  for (const std::string& cmd : {"evaluate " + q(scene_) + " -o " + q(dir_ / "e.off"),
                                  "clip " + q(scene_) + " --plane 0,0,1,0 -o " + q(dir_ / "c.off"),
                                  "decompose " + q(scene_) + " -o " + q(dir_ / "d")}) {
     const auto r = run_cover(cmd);
@@ -94,6 +93,13 @@ TEST_F(FieldsCli, BadFieldNodeNamesTheFileAndPath) {
   const auto r = run_cover("classify " + q(bad) + " --points -", "0 0 0\n");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("cover: error: " + bad.string() + ": /field: ", 0), 0u) << r.err;
+}
+
+TEST_F(FieldsCli, OctreeOfTheBlend) {
+  const auto r =
+      run_cover("octree " + q(scene_) + " --depth 4 -o " + q(dir_ / "o.json") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "o.json"));
 }
 
 TEST_F(FieldsCli, RenderDrawsTheBlend) {

@@ -16,6 +16,7 @@
 #include "cover/model/model.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
+#include "cover/solid/transform.h"
 
 namespace cover {
 namespace {
@@ -307,8 +308,6 @@ TEST(Fields, WhatDoesNotTakeFieldsRefuses) {
   const Model m = scene(mixed_scene());
   EXPECT_THROW(m.evaluate(), NotComputable);
   EXPECT_THROW(m.decompose(), NotComputable);
-  EXPECT_THROW(m.octree(), NotComputable);
-  EXPECT_THROW(m.to_bytes(), InputError);
   VolumeOptions exact;
   exact.exact = true;
   EXPECT_THROW(m.volume(exact), InputError);
@@ -370,6 +369,65 @@ TEST(Fields, RenderShowsTheBlend) {
   // The centre pixel sees the blend; a corner sees the background.
   EXPECT_NE(img.ids[32 * 64 + 32], Image::kBackgroundId);
   EXPECT_EQ(img.ids[0], Image::kBackgroundId);
+}
+
+TEST(Fields, OctreeClaimsFullAndEmptyOnlyWhereDenseSamplingAgrees) {
+  const Model m = scene(mixed_scene());
+  OctreeOptions o;
+  o.depth = 5;
+  const Octree t = m.octree(o);
+  const std::array<uint64_t, 3> counts = t.leaf_counts();
+  EXPECT_GT(counts[0], 100u);
+  EXPECT_GT(counts[1], 10u);
+  EXPECT_GT(counts[2], 100u);
+  // Every full / empty leaf: 5³ points over its closed box (corners included) classify inside /
+  // outside (never the other side; a point on the surface only where a face touches the box).
+  std::vector<Vec3> pts;
+  std::vector<uint8_t> want;
+  for (const Octree::Node& n : t.nodes) {
+    if (n.first_child != 0 || n.state == CellState::kPartial) continue;
+    const Bbox b = t.box(n);
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; j <= 4; ++j)
+        for (int k = 0; k <= 4; ++k) {
+          pts.push_back({b.min.x + (b.max.x - b.min.x) * i / 4,
+                         b.min.y + (b.max.y - b.min.y) * j / 4,
+                         b.min.z + (b.max.z - b.min.z) * k / 4});
+          want.push_back(n.state == CellState::kFull);
+        }
+  }
+  const std::vector<PointClass> c = m.classify(pts);
+  size_t wrong = 0;
+  for (size_t i = 0; i < pts.size(); ++i)
+    wrong += want[i] ? c[i] == PointClass::kOutside : c[i] == PointClass::kInside;
+  EXPECT_EQ(wrong, 0u);
+  // Thread-count independent, and the occupancy of the root is close to the volume's share.
+  Octree t1;
+  {
+    ThreadLimit limit(1);
+    t1 = m.octree(o);
+  }
+  ASSERT_EQ(t1.nodes.size(), t.nodes.size());
+  for (size_t i = 0; i < t.nodes.size(); ++i) {
+    ASSERT_EQ(t1.nodes[i].state, t.nodes[i].state);
+    ASSERT_EQ(t1.nodes[i].occupancy, t.nodes[i].occupancy);
+  }
+  const VolumeResult v = m.volume();
+  const double cube = t.bounds.size * t.bounds.size * t.bounds.size;
+  EXPECT_NEAR(t.nodes[0].occupancy * cube, v.volume, v.error_bound + 0.05 * v.volume);
+}
+
+TEST(Fields, BytesRoundTripKeepsTheFields) {
+  const Model m = scene(mixed_scene()).transformed(Transform::rotation({1, 2, 3}, 30));
+  const Model back = Model::from_bytes(m.to_bytes());
+  ASSERT_EQ(back.solid().fields.size(), 1u);
+  EXPECT_EQ(back.solid().leaves[0].bbox.min, m.solid().leaves[0].bbox.min);
+  const std::vector<Vec3> pts = random_points(20000, {-1.5, -1.5, -1.5}, {1.5, 1.5, 1.5}, 8);
+  EXPECT_EQ(back.classify(pts), m.classify(pts));
+  // A damaged field section is refused in one line.
+  std::string bytes = m.to_bytes();
+  bytes.resize(bytes.size() - 3);
+  EXPECT_THROW(Model::from_bytes(bytes), InputError);
 }
 
 TEST(Fields, FieldQueryAndInfo) {

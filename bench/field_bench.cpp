@@ -1,0 +1,222 @@
+// Field leaves against plain doubles and against the peers' route to a picture (one process, one
+// machine, the same thread count):
+//   classify   Model::classify of N random points over the support box of a blend of P point
+//              primitives (certified: interval filter, then exact rationals), against a plain
+//              double evaluation of the same sum with the same support-box pruning and the same
+//              parallel loop (`f > T` per point: no certificate)
+//   render     Model::render of a W×W picture of a blend of Q segment and point primitives
+//              (crossings by certified bisection), against the peers' route: sample the same
+//              field on a dense n³ grid (the level set's input; OpenVDB FloatGrid, dense
+//              sampling), tools::volumeToMesh at the threshold, then a render of that mesh
+//              (Cover's own mesh render, the fastest mesh renderer at hand), summed
+// Usage: field_bench [--points N] [--primitives P] [--render W] [--blend Q] [--grid n]
+//                    [--threads T]
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bench_cli.h"
+#include "cover/field/field.h"
+#include "cover/model/model.h"
+#include "cover/solid/measure.h"
+#include "cover/solid/parallel.h"
+#include "cover/solid/primitives.h"
+
+namespace {
+
+using bench::Clock;
+using bench::since;
+using cover::FieldLeaf;
+using cover::FieldPrimitive;
+using cover::SkeletonKind;
+using cover::Vec3;
+
+/// P point primitives with centres uniform in [−2, 2]³, R = 1, r_T = 0.5, n = 2.
+FieldLeaf point_blend(int p, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-2, 2);
+  FieldLeaf f;
+  for (int i = 0; i < p; ++i) {
+    FieldPrimitive prim;
+    prim.kind = SkeletonKind::kPoint;
+    prim.points = {{u(rng), u(rng), u(rng)}};
+    prim.radius = 0.5;
+    prim.influence = 1;
+    f.primitives.push_back(prim);
+  }
+  return f;
+}
+
+/// A chain of Q − Q/5 segments on a helix and Q/5 points beside it (r_T/R = 1/2, n = 2).
+FieldLeaf chain_blend(int q) {
+  FieldLeaf f;
+  const int points = q / 5, segments = q - points;
+  auto helix = [](double t) { return Vec3{1.5 * std::cos(t), 1.5 * std::sin(t), 0.25 * t - 1.5}; };
+  for (int i = 0; i < segments; ++i) {
+    FieldPrimitive s;
+    s.kind = SkeletonKind::kSegment;
+    s.points = {helix(0.3 * i), helix(0.3 * (i + 1))};
+    s.radius = 0.25;
+    s.influence = 0.5;
+    f.primitives.push_back(s);
+  }
+  for (int i = 0; i < points; ++i) {
+    FieldPrimitive p;
+    p.kind = SkeletonKind::kPoint;
+    const Vec3 c = helix(0.3 * segments * (i + 0.5) / points);
+    p.points = {{c.x * 1.25, c.y * 1.25, c.z}};
+    p.radius = 0.375;
+    p.influence = 0.75;
+    f.primitives.push_back(p);
+  }
+  return f;
+}
+
+/// The plain double sum with the support-box test the kernels use (a term is 0 beyond R of its
+/// skeleton's box along an axis): what an uncertified evaluation costs.
+double plain_f(const FieldLeaf& f, const Vec3& p) {
+  double sum = 0;
+  for (const FieldPrimitive& prim : f.primitives) {
+    const Vec3& c = prim.points[0];
+    const double R = prim.influence;
+    if ((std::abs(p.x - c.x) > R) | (std::abs(p.y - c.y) > R) | (std::abs(p.z - c.z) > R)) continue;
+    const double d2 =
+        (p.x - c.x) * (p.x - c.x) + (p.y - c.y) * (p.y - c.y) + (p.z - c.z) * (p.z - c.z);
+    if (d2 >= R * R) continue;
+    const double x = 1 - d2 / (R * R);
+    double g = x;
+    for (int k = 1; k < prim.exponent; ++k) g *= x;
+    sum += prim.weight * g;
+  }
+  return sum;
+}
+
+cover::Model field_model(FieldLeaf f, const std::string& name) {
+  return cover::Model(cover::make_field_leaf(std::move(f), name, "/" + name));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const long n_points = bench::arg(argc, argv, "--points", 1000000);
+  const int prims = static_cast<int>(bench::arg(argc, argv, "--primitives", 100));
+  const int width = static_cast<int>(bench::arg(argc, argv, "--render", 1024));
+  const int blend = static_cast<int>(bench::arg(argc, argv, "--blend", 50));
+  const int grid = static_cast<int>(bench::arg(argc, argv, "--grid", 256));
+  const int threads = static_cast<int>(bench::arg(argc, argv, "--threads", 2));
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  std::printf("threads %d\n", threads);
+
+  // --- classify: certified against plain doubles, interleaved, best of 3 each -----------------
+  {
+    const FieldLeaf f = point_blend(prims, 7);
+    const cover::Model model = field_model(f, "blend");
+    const cover::Bbox box = model.solid().leaves[0].bbox;
+    std::mt19937_64 rng(1);
+    std::vector<Vec3> pts(static_cast<size_t>(n_points));
+    for (Vec3& p : pts)
+      p = {std::uniform_real_distribution<double>(box.min.x, box.max.x)(rng),
+           std::uniform_real_distribution<double>(box.min.y, box.max.y)(rng),
+           std::uniform_real_distribution<double>(box.min.z, box.max.z)(rng)};
+    const double T = cover::field::threshold(f);
+    double best_cert = 1e300, best_plain = 1e300;
+    size_t in_cert = 0, in_plain = 0;
+    for (int round = 0; round < 3; ++round) {
+      auto t0 = Clock::now();
+      const auto classes = model.classify(pts);
+      best_cert = std::min(best_cert, since(t0));
+      in_cert = static_cast<size_t>(
+          std::count(classes.begin(), classes.end(), cover::PointClass::kInside));
+      t0 = Clock::now();
+      std::vector<uint8_t> inside(pts.size());
+      cover::parallel_for(pts.size(), 256, [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) inside[i] = plain_f(f, pts[i]) > T;
+      });
+      best_plain = std::min(best_plain, since(t0));
+      in_plain = static_cast<size_t>(std::count(inside.begin(), inside.end(), 1));
+    }
+    std::printf(
+        "classify %ld points, blend of %d points: certified %.3f s, plain double %.3f s, ratio "
+        "%.2f (inside: %zu certified, %zu plain)\n",
+        n_points, prims, best_cert, best_plain, best_cert / best_plain, in_cert, in_plain);
+  }
+
+  // --- render: Cover's certified rays against dense sampling + volumeToMesh + a mesh render ---
+  {
+    const FieldLeaf f = chain_blend(blend);
+    const cover::Model model = field_model(f, "chain");
+    cover::CameraOptions co;
+    co.width = co.height = width;
+    const cover::Camera cam = model.camera(co);
+    auto t0 = Clock::now();
+    const cover::Image img = model.render(cam);
+    const double cover_s = since(t0);
+    size_t covered = 0;
+    for (uint16_t id : img.ids) covered += id != cover::Image::kBackgroundId;
+
+    openvdb::initialize();
+    const cover::Bbox box = model.solid().leaves[0].bbox;
+    const double side =
+        std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+    const double h = side / grid;
+    t0 = Clock::now();
+    const float T = static_cast<float>(cover::field::threshold(f));
+    auto fgrid = openvdb::FloatGrid::create(T);  // background: f = 0, outside
+    fgrid->setTransform(openvdb::math::Transform::createLinearTransform(h));
+    // Dense sampling of f − T (the level set's input), slab by slab in parallel into per-slab
+    // grids, merged (the accessor is not thread-safe). Values T − f: negative inside, as
+    // OpenVDB's level sets; voxels where f = 0 keep the background.
+    std::vector<openvdb::FloatGrid::Ptr> slabs(grid);
+    cover::parallel_for(static_cast<size_t>(grid), 1, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) {
+        slabs[i] = openvdb::FloatGrid::create(T);
+        auto acc = slabs[i]->getAccessor();
+        for (int j = 0; j < grid; ++j)
+          for (int k = 0; k < grid; ++k) {
+            const Vec3 p{box.min.x + (i + 0.5) * h, box.min.y + (j + 0.5) * h,
+                         box.min.z + (k + 0.5) * h};
+            const float v = static_cast<float>(cover::field::evaluate(f, p).value) - T;
+            if (v != -T) acc.setValue(openvdb::Coord(static_cast<int>(i), j, k), -v);
+          }
+      }
+    });
+    for (auto& s : slabs) fgrid->tree().merge(s->tree());
+    const double sample_s = since(t0);
+    t0 = Clock::now();
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> tris;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(*fgrid, points, tris, quads, 0.0);
+    const double mesh_s = since(t0);
+    cover::PolygonMesh mesh;
+    // World points: voxel (i, j, k) is at (i, j, k)·h, sampled at box.min + (i + ½)·h.
+    for (const auto& p : points)
+      mesh.vertices.push_back(
+          {box.min.x + p.x() + 0.5 * h, box.min.y + p.y() + 0.5 * h, box.min.z + p.z() + 0.5 * h});
+    for (const auto& t : tris) mesh.add_face({t[0], t[1], t[2]});
+    for (const auto& q : quads) mesh.add_face({q[0], q[1], q[2], q[3]});
+    if (cover::signed_volume(mesh) < 0)
+      for (size_t fi = 0; fi < mesh.face_count(); ++fi)
+        std::reverse(mesh.face_vertices.begin() + mesh.face_start[fi],
+                     mesh.face_vertices.begin() + mesh.face_start[fi + 1]);
+    const cover::Model meshed(cover::make_leaf(std::move(mesh), "level set"));
+    t0 = Clock::now();
+    const cover::Image mesh_img = meshed.render(cam);
+    const double mesh_render_s = since(t0);
+    const double peer_s = sample_s + mesh_s + mesh_render_s;
+    std::printf(
+        "render %dx%d, blend of %d (segments and points): cover %.3f s (%zu pixels on the "
+        "surface); peer route at %d^3: sample %.3f s + volumeToMesh %.3f s (%zu quads, %zu "
+        "triangles) + mesh render %.3f s = %.3f s; ratio %.2f\n",
+        width, width, blend, cover_s, covered, grid, sample_s, mesh_s, quads.size(), tris.size(),
+        mesh_render_s, peer_s, cover_s / peer_s);
+  }
+  return 0;
+}
