@@ -180,6 +180,20 @@ struct OpenRule {
   std::vector<std::vector<uint8_t>> bulk;
 };
 
+/// Field leaf `leaf`'s certified sign of f − T at q (field.h sign; outside its support box:
+/// outside). The tie rule: where a circle skeleton's enclosure leaves it undecided, the double
+/// evaluation's sign decides (f > T inside), counted in `uncertain` when given.
+field::Sign field_member(const Solid& solid, const Leaf& leaf, const Vec3& q,
+                         std::atomic<size_t>* uncertain = nullptr) {
+  if (!leaf.bbox.contains(q)) return field::Sign::kOutside;
+  const FieldLeaf& f = solid.fields[leaf.field];
+  const field::Sign s = field::sign(f, q);
+  if (s != field::Sign::kUndecided) return s;
+  if (uncertain != nullptr) uncertain->fetch_add(1, std::memory_order_relaxed);
+  return field::evaluate(f, q).value > field::threshold(f) ? field::Sign::kInside
+                                                           : field::Sign::kOutside;
+}
+
 /// Field leaves (solid/field_leaf.h): membership by the certified sign of f − T (field.h).
 /// `uncertain` counts the points a circle skeleton's enclosure leaves undecided (then the double
 /// evaluation's sign decides: f > T inside) and those where several surfaces meet at a point in
@@ -233,15 +247,7 @@ PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> windi
   uint32_t on_field_store[kMaxOn];
   size_t on_fields = 0, on_total = 0;
   for (uint32_t l : fields.leaves) {
-    const Leaf& leaf = fields.solid->leaves[l];
-    field::Sign s = field::Sign::kOutside;
-    if (leaf.bbox.contains(q)) s = field::sign(fields.solid->fields[leaf.field], q);
-    if (s == field::Sign::kUndecided) {
-      fields.uncertain->fetch_add(1, std::memory_order_relaxed);
-      const field::FieldValue v = field::evaluate(fields.solid->fields[leaf.field], q);
-      s = v.value > field::threshold(fields.solid->fields[leaf.field]) ? field::Sign::kInside
-                                                                       : field::Sign::kOutside;
-    }
+    const field::Sign s = field_member(*fields.solid, fields.solid->leaves[l], q, fields.uncertain);
     inside[l] = s == field::Sign::kInside;
     if (s == field::Sign::kOn && on_total++ < kMaxOn) on_field_store[on_fields++] = l;
   }
@@ -526,14 +532,9 @@ LeafWindings leaf_windings(const Prepared& prepared, std::span<const Vec3> point
   for (size_t l = 0; l < out.leaves; ++l) {
     const Leaf& leaf = solid.leaves[l];
     if (!leaf.is_field()) continue;
-    const FieldLeaf& f = solid.fields[leaf.field];
     parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
-        field::Sign s =
-            leaf.bbox.contains(points[i]) ? field::sign(f, points[i]) : field::Sign::kOutside;
-        if (s == field::Sign::kUndecided)
-          s = field::evaluate(f, points[i]).value > field::threshold(f) ? field::Sign::kInside
-                                                                        : field::Sign::kOutside;
+        const field::Sign s = field_member(solid, leaf, points[i]);
         out.winding[i * out.leaves + l] = s == field::Sign::kInside;
         out.on_surface[i * out.leaves + l] = s == field::Sign::kOn;
       }

@@ -67,10 +67,9 @@ std::pair<double, double> clip(const Ray& ray, const Bbox& box) {
   return {std::max(0.0, t0 - pad), t1 + pad};
 }
 
-/// The primitives the ray passes: each one's parameter run through its support box (skeleton
-/// box grown by R, a circle's centre by its radius + R, as solid/field_leaf.h grows them),
-/// padded as clip().
-/// Outside its run a primitive's term is exactly 0 on the ray.
+/// The primitives the ray passes: each one's parameter run through its support box
+/// (solid/field_leaf.h primitive_support_box), padded as clip(). Outside its run a primitive's
+/// term is exactly 0 on the ray.
 struct Active {
   uint32_t primitive;
   double t0, t1;
@@ -81,20 +80,7 @@ void active_primitives(const FieldLeaf& f, const Ray& ray, std::vector<Active>& 
   out.clear();
   for (uint32_t i = 0; i < f.primitives.size(); ++i) {
     const FieldPrimitive& p = f.primitives[i];
-    Bbox box;
-    const bool circle = p.kind == SkeletonKind::kCircle;
-    const double grow = circle ? std::nextafter(p.circle_radius + p.influence, kInf) : p.influence;
-    Bbox skeleton;
-    if (circle)
-      skeleton.add(p.points[0]);
-    else
-      for (const Vec3& v : p.points) skeleton.add(v);
-    box.min = {std::nextafter(skeleton.min.x - grow, -kInf),
-               std::nextafter(skeleton.min.y - grow, -kInf),
-               std::nextafter(skeleton.min.z - grow, -kInf)};
-    box.max = {std::nextafter(skeleton.max.x + grow, kInf),
-               std::nextafter(skeleton.max.y + grow, kInf),
-               std::nextafter(skeleton.max.z + grow, kInf)};
+    const Bbox box = primitive_support_box(p);
     const auto [t0, t1] = clip(ray, box);
     if (t0 <= t1) out.push_back({i, t0, t1, p.weight > 0});
   }

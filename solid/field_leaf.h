@@ -58,6 +58,10 @@ struct FieldLeaf {
   std::vector<FieldPrimitive> primitives;
 };
 
+/// One primitive's support box: the skeleton's box grown by R (a circle's centre by its radius
+/// + R), rounded outward; every point where its g > 0 is inside, whatever its weight.
+Bbox primitive_support_box(const FieldPrimitive& prim);
+
 /// The union of the positive primitives' support boxes (the skeleton's box grown by R; a
 /// circle's centre by its radius + R), rounded outward: every point where some positive g_i > 0
 /// is inside. Empty when no primitive is positive (then the leaf is empty).
