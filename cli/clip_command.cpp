@@ -149,8 +149,8 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     // Intersection with a half-space distributes over union, intersection and difference: clip
     // every leaf and keep the expression. Leaf meshes are written beside each scene.
     std::vector<brep::ClipResult> clipped;
-    if (s.has_field_leaf())
-      throw NotComputable(o.input + ": " + s.field_leaf_message() +
+    if (s.has_implicit_leaf())
+      throw NotComputable(o.input + ": " + s.implicit_leaf_message() +
                           ": clip does not take field leaves (classify, field, cast, render, "
                           "voxelize, octree, volume and info do)");
     for (uint32_t l = 0; l < s.leaves.size(); ++l) {

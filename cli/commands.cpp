@@ -56,8 +56,32 @@ json field_json(const LeafInfo& leaf) {
   return j;
 }
 
+/// A warp leaf's entry: kind "warp", the warp, its axis and parameters, its box and the child's
+/// leaf count.
+json warp_json(const LeafInfo& leaf) {
+  const WarpLeaf& w = *leaf.warp;
+  json j;
+  j["name"] = leaf.name;
+  if (!leaf.origin.empty()) j["origin"] = leaf.origin;
+  j["kind"] = "warp";
+  j["warp"] = std::string(to_string(w.kind));
+  j["axis"] = {{"point", to_json(w.point)}, {"direction", to_json(w.direction)}};
+  if (w.kind == WarpKind::kTwist) j["degrees_per_unit"] = w.degrees_per_unit;
+  if (w.kind != WarpKind::kTwist) j["range"] = {w.range[0], w.range[1]};
+  if (w.kind == WarpKind::kTaper) j["scale"] = {w.scale[0], w.scale[1]};
+  if (w.kind == WarpKind::kBend) {
+    j["toward"] = to_json(w.toward);
+    j["center"] = w.center;
+    j["radius"] = w.radius;
+  }
+  j["bbox"] = to_json(leaf.bbox);
+  j["child_leaves"] = leaf.child_leaves;
+  return j;
+}
+
 json leaf_json(const LeafInfo& leaf) {
   if (leaf.field) return field_json(leaf);
+  if (leaf.warp) return warp_json(leaf);
   const MeshReport& r = leaf.report;
   json j;
   j["name"] = leaf.name;
@@ -142,11 +166,12 @@ Model load_model(const std::string& input, const LoadOptions& options,
                          " boundary edges): " + closed_needed);
   if (!closed_needed.empty())
     for (const Leaf& l : model.solid().leaves)
-      if (l.is_field()) {
+      if (l.is_implicit()) {
         std::string reason = field_reason.empty() ? closed_needed : field_reason;
         if (const size_t at = reason.find("closed leaves"); at != std::string::npos)
           reason.replace(at, 13, "closed mesh leaves");
-        throw InputError(input + ": " + l.origin + ": field leaf: " + reason);
+        throw InputError(input + ": " + l.origin +
+                         (l.is_field() ? ": field leaf: " : ": warp leaf: ") + reason);
       }
   for (const std::string& w : model.warnings(flag_of))
     std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
@@ -188,6 +213,11 @@ int run_info(const InfoOptions& o, const CommonOptions& common) {
     std::printf(
         "leaf %s%s\n", leaf["name"].get<std::string>().c_str(),
         leaf.contains("origin") ? (" at " + leaf["origin"].get<std::string>()).c_str() : "");
+    if (leaf["kind"] == "warp") {
+      std::printf("  warp: %s of %zu leaf(s), box %s\n", leaf["warp"].get<std::string>().c_str(),
+                  leaf["child_leaves"].get<size_t>(), leaf["bbox"].dump().c_str());
+      continue;
+    }
     if (leaf["kind"] == "field") {
       const json& sb = leaf["bbox"];
       std::printf("  field: %zu primitive(s), threshold %.17g, support box %s\n",
@@ -362,7 +392,7 @@ int run_field(const FieldCommandOptions& o, const CommonOptions& common) {
   Timing timing;
   const Model model = load_model(o.input, common.load_options());
   const size_t leaves = std::count_if(model.solid().leaves.begin(), model.solid().leaves.end(),
-                                      [](const Leaf& l) { return l.is_field(); });
+                                      [](const Leaf& l) { return l.is_implicit(); });
   if (leaves == 0) throw InputError(o.input + ": no field leaf (field and blend nodes)");
   // Per point: the point, and per field leaf its value (32 bytes) and a printed line or JSON
   // numbers (~100 bytes).

@@ -6,7 +6,8 @@
 //   model/     the cover::Model facade
 //   solid/     the core: value types, the non-evaluated solid, CSG operators, primitives,
 //              transforms, measures, exact predicates, errors
-//   field/     field leaves (skeletal primitives, blends): certified sign, bounds, value
+//   field/     field leaves (skeletal primitives, blends): certified sign, bounds, value;
+//              warp leaves (twist, taper, bend): the maps, their inverses, sound enclosures
 //   mesh/      the mesh toolkit: validation, orientation, repair, face triangulation
 //   covering/  the prepared solid (BVH, open-leaf trees), classification, rays, volume, bounds
 //   render/    cameras and ray-cast images
@@ -26,6 +27,7 @@
 #include "cover/covering/ray.h"
 #include "cover/covering/volume.h"
 #include "cover/field/field.h"
+#include "cover/field/warp.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/npy.h"
 #include "cover/io/octree_io.h"

@@ -6,9 +6,10 @@
 
 #include "cover/covering/bvh_walk.h"
 #include "cover/covering/classify.h"
+#include "cover/covering/detail/implicit.h"
 #include "cover/covering/detail/windings.h"
-#include "cover/field/field.h"
 #include "cover/solid/parallel.h"
+#include "cover/solid/predicates.h"
 
 namespace cover {
 namespace {
@@ -56,7 +57,31 @@ uint8_t evaluate3(const CsgTree& tree, uint32_t node, std::span<const uint8_t> s
   return kUnknown;
 }
 
-/// Marks in `crossed` the mesh leaves with a covering triangle whose box meets the closed box.
+/// True when triangle abc may meet the closed box: their boxes overlap and the triangle's plane
+/// does not leave all 8 corners strictly on one side (exact orient3d): 4 of the 13 separating
+/// axes of the exact test (octree/detail/box_overlap.h), enough to clear the small boxes of
+/// rays and points near a surface.
+bool may_meet(const Vec3& a, const Vec3& b, const Vec3& c, const Bbox& box) {
+  Bbox tb;
+  tb.add(a);
+  tb.add(b);
+  tb.add(c);
+  if (!(tb.min.x <= box.max.x && tb.max.x >= box.min.x && tb.min.y <= box.max.y &&
+        tb.max.y >= box.min.y && tb.min.z <= box.max.z && tb.max.z >= box.min.z))
+    return false;
+  int above = 0, below = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 p{k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y,
+                 k & 4 ? box.max.z : box.min.z};
+    const int o = orient3d(a, b, c, p);
+    above += o > 0;
+    below += o < 0;
+    if (above < k + 1 && below < k + 1) return true;
+  }
+  return false;
+}
+
+/// Marks in `crossed` the mesh leaves with a covering triangle that may meet the closed box.
 void crossed_leaves(const Bvh& bvh, const Bbox& box, std::vector<uint8_t>& crossed) {
   walk(
       bvh,
@@ -65,47 +90,49 @@ void crossed_leaves(const Bvh& bvh, const Bbox& box, std::vector<uint8_t>& cross
                n.hi[1] >= box.min.y && n.lo[2] <= box.max.z && n.hi[2] >= box.min.z;
       },
       [&](const Bvh::Tri& t, uint32_t) {
-        if (crossed[t.leaf]) return;
-        Bbox tb;
-        tb.add(t.a);
-        tb.add(t.b);
-        tb.add(t.c);
-        if (tb.min.x <= box.max.x && tb.max.x >= box.min.x && tb.min.y <= box.max.y &&
-            tb.max.y >= box.min.y && tb.min.z <= box.max.z && tb.max.z >= box.min.z)
-          crossed[t.leaf] = 1;
+        if (!crossed[t.leaf] && may_meet(t.a, t.b, t.c, box)) crossed[t.leaf] = 1;
       });
+}
+
+/// The state of one box; leaf_state and crossed are scratch of one entry per leaf.
+uint8_t state_of(const Prepared& prepared, const Bbox& box, std::vector<uint8_t>& leaf_state,
+                 std::vector<uint8_t>& crossed) {
+  const Solid& s = prepared.solid();
+  if (s.tree.nodes.empty()) return kOut;
+  const size_t leaves = s.leaves.size();
+  leaf_state.assign(leaves, kOut);
+  crossed.assign(leaves, 0);
+  if (!prepared.bvh().nodes().empty()) crossed_leaves(prepared.bvh(), box, crossed);
+  const Vec3 centre[1] = {0.5 * (box.min + box.max)};
+  LeafWindings w;
+  for (size_t l = 0; l < leaves; ++l) {
+    const Leaf& leaf = s.leaves[l];
+    if (leaf.is_implicit()) {
+      leaf_state[l] = detail::implicit_box_state(prepared, static_cast<uint32_t>(l), box);
+    } else if (crossed[l]) {
+      leaf_state[l] = kUnknown;
+    } else {
+      if (w.leaves == 0) w = detail::crossing_windings(s, prepared.bvh(), centre, 1);
+      leaf_state[l] = w.winding[l] != 0 ? kIn : kOut;
+    }
+  }
+  return evaluate3(s.tree, s.tree.root, leaf_state);
 }
 
 }  // namespace
 
+uint8_t box_state(const Prepared& prepared, const Bbox& box) {
+  std::vector<uint8_t> leaf_state, crossed;
+  return state_of(prepared, box, leaf_state, crossed);
+}
+
 std::vector<uint8_t> box_states(const Prepared& prepared, std::span<const Bbox> boxes) {
-  const Solid& s = prepared.solid();
-  const Bvh& bvh = prepared.bvh();
-  const size_t leaves = s.leaves.size();
+  prepared.bvh();  // built once, before the threads
   std::vector<uint8_t> state(boxes.size());
   parallel_for(boxes.size(), 64, [&](size_t begin, size_t end) {
-    std::vector<uint8_t> leaf_state(leaves), crossed(leaves);
-    std::vector<Vec3> centre(1);
-    for (size_t c = begin; c < end; ++c) {
-      const Bbox& box = boxes[c];
-      std::fill(crossed.begin(), crossed.end(), 0);
-      crossed_leaves(bvh, box, crossed);
-      centre[0] = 0.5 * (box.min + box.max);
-      LeafWindings w;
-      for (size_t l = 0; l < leaves; ++l) {
-        const Leaf& leaf = s.leaves[l];
-        if (leaf.is_field()) {
-          const field::Range b = field::bound(s.fields[leaf.field], box);
-          leaf_state[l] = b.lo > 0 ? kIn : (b.hi < 0 ? kOut : kUnknown);
-        } else if (crossed[l]) {
-          leaf_state[l] = kUnknown;
-        } else {
-          if (w.leaves == 0) w = detail::crossing_windings(s, bvh, centre, 1);
-          leaf_state[l] = w.winding[l] != 0 ? kIn : kOut;
-        }
-      }
-      state[c] = s.tree.nodes.empty() ? kOut : evaluate3(s.tree, s.tree.root, leaf_state);
-    }
+    std::vector<uint8_t> leaf_state, crossed;
+    for (size_t c = begin; c < end; ++c)
+      state[c] = state_of(prepared, boxes[c], leaf_state, crossed);
   });
   return state;
 }

@@ -9,9 +9,11 @@
 #include <mutex>
 #include <optional>
 
+#include "cover/covering/box_states.h"
 #include "cover/covering/bvh_walk.h"
 #include "cover/covering/detail/cell_grid.h"
 #include "cover/covering/detail/float_bounds.h"
+#include "cover/covering/detail/implicit.h"
 #include "cover/covering/detail/local.h"
 #include "cover/covering/detail/triangles.h"
 #include "cover/covering/detail/windings.h"
@@ -180,27 +182,13 @@ struct OpenRule {
   std::vector<std::vector<uint8_t>> bulk;
 };
 
-/// Field leaf `leaf`'s certified sign of f − T at q (field.h sign; outside its support box:
-/// outside). The tie rule: where a circle skeleton's enclosure leaves it undecided, the double
-/// evaluation's sign decides (f > T inside), counted in `uncertain` when given.
-field::Sign field_member(const Solid& solid, const Leaf& leaf, const Vec3& q,
-                         std::atomic<size_t>* uncertain = nullptr) {
-  if (!leaf.bbox.contains(q)) return field::Sign::kOutside;
-  const FieldLeaf& f = solid.fields[leaf.field];
-  const field::Sign s = field::sign(f, q);
-  if (s != field::Sign::kUndecided) return s;
-  if (uncertain != nullptr) uncertain->fetch_add(1, std::memory_order_relaxed);
-  return field::evaluate(f, q).value > field::threshold(f) ? field::Sign::kInside
-                                                           : field::Sign::kOutside;
-}
-
-/// Field leaves (solid/field_leaf.h): membership by the certified sign of f − T (field.h).
-/// `uncertain` counts the points a circle skeleton's enclosure leaves undecided (then the double
-/// evaluation's sign decides: f > T inside) and those where several surfaces meet at a point in
-/// a way the tree does not settle (then `face`); shared by the threads.
+/// Field and warp leaves: membership by covering/detail/implicit.h (a field's certified sign of
+/// f − T, a warp's child at the preimage). `uncertain` counts the points those leave undecided
+/// (then their tie rules decide) and those where several surfaces meet at a point in a way the
+/// tree does not settle (then `face`); shared by the threads.
 struct FieldRule {
-  const Solid* solid = nullptr;  ///< nullptr: no field leaf
-  std::vector<uint32_t> leaves;  ///< the field leaves' ids
+  const Prepared* prepared = nullptr;  ///< nullptr: no field or warp leaf
+  std::vector<uint32_t> leaves;        ///< the field and warp leaves' ids
   std::atomic<size_t>* uncertain = nullptr;
 };
 
@@ -247,7 +235,7 @@ PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> windi
   uint32_t on_field_store[kMaxOn];
   size_t on_fields = 0, on_total = 0;
   for (uint32_t l : fields.leaves) {
-    const field::Sign s = field_member(*fields.solid, fields.solid->leaves[l], q, fields.uncertain);
+    const field::Sign s = detail::implicit_member(*fields.prepared, l, q, fields.uncertain);
     inside[l] = s == field::Sign::kInside;
     if (s == field::Sign::kOn && on_total++ < kMaxOn) on_field_store[on_fields++] = l;
   }
@@ -256,7 +244,7 @@ PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> windi
     return PointClass::kFace;
   }
   for (size_t l = 0; l < winding.size(); ++l) {
-    if (fields.solid != nullptr && fields.solid->leaves[l].is_field()) continue;
+    if (fields.prepared != nullptr && fields.prepared->solid().leaves[l].is_implicit()) continue;
     inside[l] = winding[l] != 0;
     any_on |= on_surface[l] != 0;
     if (open.forest == nullptr || open.forest->tree_of_leaf[l] < 0 || on_surface[l]) continue;
@@ -278,13 +266,14 @@ PointClass finish(const Vec3& q, const CsgTree& tree, std::span<const int> windi
   return detail::classify_on_surface(triangles(), tree, q, on_surface, inside);
 }
 
-FieldRule field_rule(const Solid& solid, std::atomic<size_t>& uncertain) {
+FieldRule field_rule(const Prepared& prepared, std::atomic<size_t>& uncertain) {
   FieldRule rule;
-  if (!solid.has_field_leaf()) return rule;
-  rule.solid = &solid;
+  const Solid& solid = prepared.solid();
+  if (!solid.has_implicit_leaf()) return rule;
+  rule.prepared = &prepared;
   rule.uncertain = &uncertain;
   for (uint32_t l = 0; l < solid.leaves.size(); ++l)
-    if (solid.leaves[l].is_field()) rule.leaves.push_back(l);
+    if (solid.leaves[l].is_implicit()) rule.leaves.push_back(l);
   return rule;
 }
 
@@ -338,7 +327,7 @@ Classification classify_counted(const Prepared& prepared, std::span<const Vec3> 
                                 const ClassifyOptions& options) {
   const Solid& solid = prepared.solid();
   std::atomic<size_t> uncertain{0};
-  const FieldRule fields = field_rule(solid, uncertain);
+  const FieldRule fields = field_rule(prepared, uncertain);
   const Bvh& bvh = prepared.bvh();
   // Per-leaf covering triangles, built on first use (only points on a surface need them).
   std::once_flag once;
@@ -362,18 +351,17 @@ Classification classify_counted(const Prepared& prepared, std::span<const Vec3> 
   if (points.size() >= options.grid_min_points) {
     const int res = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(points.size()))), 8,
                                options.grid_max_resolution);
-    // Field leaves: a cell is settled where every field's enclosure over it excludes T (the
-    // sign of f − T is then constant on the closed cell, and equal across a shared face).
+    // Field and warp leaves: a cell is settled where each one's state on it is certain (a
+    // field's enclosure excludes T: the sign of f − T is constant on the closed cell, and equal
+    // across a shared face).
     std::function<bool(const Bbox&)> settled;
-    if (open.forest != nullptr || fields.solid != nullptr)
+    if (open.forest != nullptr || fields.prepared != nullptr)
       settled = [&](const Bbox& box) {
         if (open.forest != nullptr)
           for (const GwnClosure& c : open.forest->closures)
             if (!winding_below(c.cone, box, kSettledCone)) return false;
-        for (uint32_t l : fields.leaves) {
-          const field::Range r = field::bound(solid.fields[solid.leaves[l].field], box);
-          if (!(r.lo > 0 || r.hi < 0)) return false;
-        }
+        for (uint32_t l : fields.leaves)
+          if (detail::implicit_box_state(prepared, l, box) == kBoxUndecided) return false;
         return true;
       };
     grid.emplace(
@@ -479,7 +467,8 @@ std::vector<PointClass> classify_brute_force(const Solid& solid, std::span<const
     open.direct = true;
   }
   std::atomic<size_t> uncertain{0};
-  const FieldRule fields = field_rule(solid, uncertain);
+  const Prepared prepared(solid);  // field and warp leaves' structures (warp children)
+  const FieldRule fields = field_rule(prepared, uncertain);
   std::vector<PointClass> out(points.size());
   parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
     std::vector<int> winding;
@@ -526,15 +515,16 @@ LeafWindings leaf_windings(const Prepared& prepared, std::span<const Vec3> point
                            const ClassifyOptions& options) {
   LeafWindings out =
       detail::crossing_windings(prepared.solid(), prepared.bvh(), points, options.grain);
-  // Field leaves: 1 inside, 0 outside, on_surface on the surface (certified sign; an undecided
-  // point of a circle skeleton by the double evaluation, as classify() decides it).
+  // Field and warp leaves: 1 inside, 0 outside, on_surface on the surface (as classify()
+  // decides them, tie rules included).
   const Solid& solid = prepared.solid();
   for (size_t l = 0; l < out.leaves; ++l) {
     const Leaf& leaf = solid.leaves[l];
-    if (!leaf.is_field()) continue;
+    if (!leaf.is_implicit()) continue;
     parallel_for(points.size(), options.grain, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
-        const field::Sign s = field_member(solid, leaf, points[i]);
+        const field::Sign s =
+            detail::implicit_member(prepared, static_cast<uint32_t>(l), points[i]);
         out.winding[i * out.leaves + l] = s == field::Sign::kInside;
         out.on_surface[i * out.leaves + l] = s == field::Sign::kOn;
       }

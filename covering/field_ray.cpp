@@ -20,15 +20,18 @@
 #include <span>
 #include <vector>
 
+#include "cover/covering/detail/implicit.h"
 #include "cover/covering/ray.h"
 #include "cover/covering/ray_steps.h"
 #include "cover/field/field.h"
 
 namespace cover {
-namespace {
 
-constexpr int kDepth = 20;  // finest piece: 2^-20 of the run through the support box
+namespace detail {
+
+namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
 
 /// The box of the ray's points for t in [a, b]. Each coordinate o + t·d is rounded twice (the
 /// product, the sum): within 2^-52·(|o| + |t·d|) of the true point, which the padding covers
@@ -66,6 +69,15 @@ std::pair<double, double> clip(const Ray& ray, const Bbox& box) {
   if (t0 - pad > t1 + pad) return {1, 0};
   return {std::max(0.0, t0 - pad), t1 + pad};
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::clip;
+using detail::piece_box;
+
+constexpr int kDepth = 20;  // finest piece: 2^-20 of the run through the support box
 
 /// The primitives the ray passes: each one's parameter run through its support box
 /// (solid/field_leaf.h primitive_support_box), padded as clip(). Outside its run a primitive's

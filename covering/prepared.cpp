@@ -16,4 +16,15 @@ const GwnForest* Prepared::gwn() const {
   return &*gwn_;
 }
 
+const Prepared& Prepared::warp_child(size_t warp) const {
+  std::call_once(children_once_, [this] {
+    child_once_ = std::make_unique<std::once_flag[]>(solid_->warps.size());
+    children_.resize(solid_->warps.size());
+  });
+  std::call_once(child_once_[warp], [this, warp] {
+    children_[warp] = std::make_unique<Prepared>(*solid_->warps[warp].child, options_);
+  });
+  return *children_[warp];
+}
+
 }  // namespace cover

@@ -12,10 +12,13 @@
 // build_octree answer a solid with such leaves by classify() of their points (voxel centres,
 // cells' sample points), and render() by the rays' spans. A field or point-set leaf adds its
 // structure beside gwn() and its membership and spans in those two places; the grids and images
-// follow.
+// follow. Field and warp leaves are answered through covering/detail/implicit.h (a warp leaf by
+// its child's Prepared, warp_child()).
 
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <vector>
 
 #include "cover/covering/bvh.h"
 #include "cover/covering/gwn.h"
@@ -41,6 +44,9 @@ class Prepared {
   const Bvh& bvh() const;
   /// The open leaves' trees, built on first use; nullptr when every leaf is closed.
   const GwnForest* gwn() const;
+  /// The prepared child of warp leaf `warp` (an index into Solid::warps), built on first use
+  /// with this Prepared's options; its queries answer the warp leaf's (covering/detail/implicit.h).
+  const Prepared& warp_child(size_t warp) const;
 
  private:
   const Solid* solid_;
@@ -48,6 +54,10 @@ class Prepared {
   mutable std::once_flag bvh_once_, gwn_once_;
   mutable std::optional<Bvh> bvh_;
   mutable std::optional<GwnForest> gwn_;
+  // Sized on first use (the solid may be built after this Prepared: model/model.cpp).
+  mutable std::once_flag children_once_;
+  mutable std::unique_ptr<std::once_flag[]> child_once_;
+  mutable std::vector<std::unique_ptr<Prepared>> children_;
 };
 
 }  // namespace cover

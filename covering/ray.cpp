@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "cover/covering/bvh_walk.h"
+#include "cover/covering/detail/implicit.h"
 #include "cover/covering/ray_steps.h"
 #include "cover/field/field.h"
 #include "cover/solid/parallel.h"
@@ -456,18 +457,20 @@ FirstHit first_hit(const Bvh& bvh, const RayResult& result) {
   return f;
 }
 
-Vec3 field_normal(const Solid& solid, const RayHit& hit, const Ray& ray) {
-  const FieldLeaf& f = solid.fields[solid.leaves[hit.leaf].field];
-  const Vec3 g = field::evaluate(f, ray.origin + hit.t * ray.dir).gradient;
-  // f grows inward: −∇f is the leaf's outward normal; a leaving hit shows the reverse.
-  return hit.sign < 0 ? -1.0 * g : g;
+Vec3 field_normal(const Prepared& prepared, const RayHit& hit, const Ray& ray) {
+  return detail::implicit_normal(prepared, hit, ray);
 }
 
-void field_spans(RayResult& result, const Solid& solid, const Ray& ray, const GwnForest* open) {
-  for (uint32_t l = 0; l < solid.leaves.size(); ++l)
-    if (solid.leaves[l].is_field()) result.uncertain += field_crossings(solid, l, ray, result.hits);
+void field_spans(RayResult& result, const Prepared& prepared, const Ray& ray) {
+  const Solid& solid = prepared.solid();
+  for (uint32_t l = 0; l < solid.leaves.size(); ++l) {
+    if (solid.leaves[l].is_field())
+      result.uncertain += field_crossings(solid, l, ray, result.hits);
+    else if (solid.leaves[l].is_warp())
+      result.uncertain += detail::warp_crossings(prepared, l, ray, result.hits);
+  }
   result.spans.clear();
-  if (open != nullptr) {
+  if (const GwnForest* open = prepared.gwn(); open != nullptr) {
     std::sort(result.hits.begin(), result.hits.end(), detail::hit_before);
     open_spans(result, solid, *open, ray);
   } else {
@@ -480,12 +483,12 @@ std::vector<RayResult> cast(const Prepared& prepared, std::span<const Ray> rays,
   const Solid& solid = prepared.solid();
   const Bvh& bvh = prepared.bvh();
   std::vector<RayResult> out(rays.size());
-  if (solid.has_field_leaf()) {
-    const GwnForest* forest = prepared.gwn();
+  if (solid.has_implicit_leaf()) {
+    prepared.gwn();
     parallel_for(rays.size(), options.grain, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
         out[i] = cast(bvh, solid.tree, solid.leaves.size(), rays[i]);
-        field_spans(out[i], solid, rays[i], forest);
+        field_spans(out[i], prepared, rays[i]);
       }
     });
     return out;

@@ -115,15 +115,14 @@ void open_spans(RayResult& result, const Solid& solid, const GwnForest& forest, 
 uint32_t field_crossings(const Solid& solid, uint32_t leaf, const Ray& ray,
                          std::vector<RayHit>& hits);
 
-/// The normal a field hit shows (as FirstHit::normal: outward when entering, reversed when
-/// leaving; unnormalized): −∇f at the hit's point, or ∇f for a leaving hit.
-Vec3 field_normal(const Solid& solid, const RayHit& hit, const Ray& ray);
+/// The normal a field or warp leaf's hit shows (as FirstHit::normal: facing the ray; not unit):
+/// a field's −∇f at the hit (∇f leaving), a warp's Jᵀ·n (covering/detail/implicit.h).
+Vec3 field_normal(const Prepared& prepared, const RayHit& hit, const Ray& ray);
 
-/// Adds every field leaf's crossings to result.hits and sweeps the spans again (open leaves, if
-/// any, by open_spans()); adds the uncertain pieces to result.uncertain. Used by cast() and
-/// render for solids with field leaves.
-void field_spans(RayResult& result, const Solid& solid, const Ray& ray,
-                 const GwnForest* open = nullptr);
+/// Adds every field and warp leaf's crossings to result.hits and sweeps the spans again (open
+/// leaves, if any, by open_spans()); adds the uncertain pieces to result.uncertain. Used by
+/// cast() and render for solids with such leaves.
+void field_spans(RayResult& result, const Prepared& prepared, const Ray& ray);
 
 /// Casts many rays in parallel; results[i] belongs to rays[i]. Open leaves: open_spans(); field
 /// leaves: field_spans().

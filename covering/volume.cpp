@@ -240,9 +240,9 @@ VolumeResult bracket_volume(const Prepared& prepared, const VolumeOptions& optio
 
 VolumeResult volume(const Prepared& prepared, const VolumeOptions& options) {
   const Solid& s = prepared.solid();
-  if (s.has_field_leaf()) {
+  if (s.has_implicit_leaf()) {
     if (options.exact)
-      throw InputError(s.field_leaf_message() +
+      throw InputError(s.implicit_leaf_message() +
                        ": no exact volume; the bracket method bounds it (without " +
                        parameter("exact") + ")");
     if (s.has_open_leaf())

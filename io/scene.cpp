@@ -10,6 +10,7 @@
 #include <set>
 
 #include "cover/field/field.h"
+#include "cover/field/warp.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/parse.h"
 #include "cover/mesh/orient.h"
@@ -103,9 +104,16 @@ class SceneReader {
   }
   /// The expression: a leaf task, or an operation over plans.
   struct Plan {
+    Plan(CsgOp o = CsgOp::kLeaf, size_t t = 0, std::vector<Plan> c = {})
+        : op(o), task(t), children(std::move(c)) {}
     CsgOp op = CsgOp::kLeaf;
     size_t task = 0;
     std::vector<Plan> children;
+    /// A warp node: its warp (parameters as written, in the node's frame), children[0] its
+    /// child planned in that frame, `world` the node's transform, `path` its JSON path.
+    std::optional<WarpLeaf> warp;
+    Transform world;
+    std::string path;
   };
 
   Plan plan(const json& j, const std::string& path, const Transform& parent, int depth) {
@@ -124,8 +132,8 @@ class SceneReader {
     }
     if (kind.empty())
       fail(path,
-           "expected one of mesh, box, sphere, cylinder, field, blend, union, "
-           "intersection, difference, complement");
+           "expected one of mesh, box, sphere, cylinder, field, blend, twist, taper, bend, "
+           "union, intersection, difference, complement");
     const json& v = j.at(kind);
     const std::string sub = path + "/" + kind;
     if (kind == "mesh") {
@@ -152,6 +160,15 @@ class SceneReader {
       Solid made = field_leaf(j, path, parent, depth);
       tasks_.push_back({sub, {}, kind, {}, Transform{}, 0, std::move(made)});
       return {CsgOp::kLeaf, tasks_.size() - 1, {}};
+    }
+    if (kind == "twist" || kind == "taper" || kind == "bend") {
+      Plan out;
+      out.warp = warp_params(kind, v, sub);
+      out.world = world;
+      out.path = sub;
+      out.children.push_back(
+          plan(required(v, sub, "child"), sub + "/child", Transform{}, depth + 1));
+      return out;
     }
     if (kind == "complement") return {CsgOp::kComplement, 0, {plan(v, sub, world, depth + 1)}};
     if (kind == "union" || kind == "intersection" || kind == "difference") {
@@ -189,6 +206,7 @@ class SceneReader {
   }
 
   Solid assemble(const Plan& p, std::vector<Solid>& solids) const {
+    if (p.warp) return warp_leaf(p, assemble(p.children[0], solids));
     if (p.op == CsgOp::kLeaf) return std::move(solids[p.task]);
     if (p.op == CsgOp::kComplement) return complement(assemble(p.children[0], solids));
     std::vector<Solid> parts;
@@ -266,6 +284,62 @@ class SceneReader {
     const double r = positive(required(v, path, "radius"), path + "/radius");
     if (b == t) fail(path, "base and top coincide");
     return make_cylinder(b, t, r, segments(v, path, kMaxCylinderSegments));
+  }
+
+  /// The warp leaf of warp node `p` over its assembled child (in the node's frame), validated
+  /// against the child's box, then placed by the node's transform (a similarity).
+  Solid warp_leaf(const Plan& p, Solid child) const {
+    WarpLeaf w = *p.warp;
+    const Bbox box = child.bbox();
+    if (box.empty()) fail(p.path + "/child", "the warped child is empty");
+    if (std::string problem = field::validate(w, box); !problem.empty()) fail(p.path, problem);
+    w.child = std::make_shared<const Solid>(std::move(child));
+    const Bbox image = field::forward_box(w, box);
+    Solid s = make_warp_leaf(std::move(w), image, std::string(to_string(p.warp->kind)), p.path);
+    if (p.world == Transform{}) return s;
+    try {
+      return transform_solid(p.world, std::move(s));
+    } catch (const InputError& e) {
+      fail(p.path, e.what());
+    }
+  }
+
+  /// A twist, taper or bend node's object (solid/warp_leaf.h): "axis": {"point", "direction"}
+  /// (point default the origin), then per kind: twist "degrees_per_unit"; taper "range",
+  /// "scale"; bend "toward", "range", "center" (default range[0]), "radius"; and "child".
+  WarpLeaf warp_params(const std::string& kind, const json& v, const std::string& path) const {
+    WarpLeaf w;
+    if (kind == "twist") {
+      w.kind = WarpKind::kTwist;
+      keys(v, path, {"axis", "degrees_per_unit", "child"});
+      w.degrees_per_unit =
+          number(required(v, path, "degrees_per_unit"), path + "/degrees_per_unit");
+    } else if (kind == "taper") {
+      w.kind = WarpKind::kTaper;
+      keys(v, path, {"axis", "range", "scale", "child"});
+    } else {
+      w.kind = WarpKind::kBend;
+      keys(v, path, {"axis", "toward", "range", "center", "radius", "child"});
+      w.toward = vec3(required(v, path, "toward"), path + "/toward");
+      w.radius = number(required(v, path, "radius"), path + "/radius");
+    }
+    const json& axis = required(v, path, "axis");
+    keys(axis, path + "/axis", {"point", "direction"});
+    if (axis.contains("point")) w.point = vec3(axis.at("point"), path + "/axis/point");
+    w.direction = vec3(required(axis, path + "/axis", "direction"), path + "/axis/direction");
+    auto pair = [&](const char* key, double(&out)[2]) {
+      const json& a = required(v, path, key);
+      const std::string at = path + "/" + key;
+      if (!a.is_array() || a.size() != 2) fail(at, "expected 2 numbers");
+      out[0] = number(a[0], at + "/0");
+      out[1] = number(a[1], at + "/1");
+    };
+    if (w.kind != WarpKind::kTwist) pair("range", w.range);
+    if (w.kind == WarpKind::kTaper) pair("scale", w.scale);
+    if (w.kind == WarpKind::kBend)
+      w.center = v.contains("center") ? number(v.at("center"), path + "/center") : w.range[0];
+    if (std::string problem = field::make_frame(w); !problem.empty()) fail(path, problem);
+    return w;
   }
 
   /// One primitive as written, with its JSON path and the transform to the scene's frame.

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <tuple>
 #include <utility>
 
 #include "cover/field/field.h"
+#include "cover/field/warp.h"
 #include "cover/mesh/validate.h"
 #include "cover/solid/errors.h"
 
@@ -81,6 +83,8 @@ class Reader {
     if (count > left / size) fail_here(why);
   }
   bool done() const { return pos_ == in_.size(); }
+  /// Skips n bytes (checked by need() before).
+  void skip(size_t n) { pos_ += n; }
   size_t pos() const { return pos_; }
 
  private:
@@ -94,7 +98,7 @@ class Reader {
 std::string solid_to_bytes(const Solid& s) {
   Writer w;
   w.put_array(kMagic, 8);
-  w.put(s.has_field_leaf() ? kFieldVersion : kVersion);
+  w.put(s.has_implicit_leaf() ? kFieldVersion : kVersion);
   w.put(static_cast<uint64_t>(s.vertices.size()));
   w.put(static_cast<uint64_t>(s.face_count()));
   w.put(static_cast<uint64_t>(s.face_vertices.size()));
@@ -114,7 +118,7 @@ std::string solid_to_bytes(const Solid& s) {
     w.put(leaf.first_vertex);
     w.put(leaf.vertex_count);
     w.put(static_cast<uint8_t>((leaf.flipped ? 1 : 0) | (leaf.open() ? 2 : 0) |
-                               (leaf.is_field() ? 4 : 0)));
+                               (leaf.is_field() ? 4 : 0) | (leaf.is_warp() ? 8 : 0)));
   }
   for (const CsgNode& node : s.tree.nodes) {
     w.put(static_cast<uint8_t>(node.op));
@@ -122,7 +126,7 @@ std::string solid_to_bytes(const Solid& s) {
     w.put(static_cast<uint32_t>(node.children.size()));
     w.put_array(node.children.data(), node.children.size());
   }
-  if (!s.has_field_leaf()) return w.take();
+  if (!s.has_implicit_leaf()) return w.take();
   // Field leaves, in the order of their leaves (Leaf::field is that order: concatenation and
   // scenes number them so).
   for (const Leaf& leaf : s.leaves) {
@@ -139,6 +143,19 @@ std::string solid_to_bytes(const Solid& s) {
       w.put(static_cast<int32_t>(p.exponent));
       w.put(static_cast<int32_t>(p.weight));
     }
+  }
+  for (const Leaf& leaf : s.leaves) {
+    if (!leaf.is_warp()) continue;
+    const WarpLeaf& x = s.warps[leaf.warp];
+    w.put(static_cast<uint8_t>(x.kind));
+    for (const Vec3& v : {x.point, x.direction, x.toward, x.frame[0], x.frame[1], x.frame[2]})
+      w.put(v);
+    for (double d :
+         {x.degrees_per_unit, x.range[0], x.range[1], x.scale[0], x.scale[1], x.center, x.radius})
+      w.put(d);
+    const std::string child = solid_to_bytes(*x.child);
+    w.put(static_cast<uint64_t>(child.size()));
+    w.put_array(child.data(), child.size());
   }
   return w.take();
 }
@@ -251,7 +268,53 @@ void check_leaf(Solid& s, uint64_t l, bool flagged_open, const Reader& r) {
 
 }  // namespace
 
+namespace {
+
+constexpr int kMaxWarpNesting = 64;
+
+Solid read_solid(std::string_view bytes, const std::string& what, int depth);
+
+/// A warp leaf (format in serialize.h), checked as field::validate checks it; its child read
+/// by read_solid one level deeper. Returns the leaf's box.
+Bbox read_warp(Reader& r, WarpLeaf& x, const std::string& label, const std::string& what,
+               std::string_view bytes, int depth) {
+  const uint8_t kind = r.get<uint8_t>();
+  if (kind > static_cast<uint8_t>(WarpKind::kBend)) r.fail_here(label + ": an unknown warp");
+  x.kind = static_cast<WarpKind>(kind);
+  for (Vec3* v : {&x.point, &x.direction, &x.toward, &x.frame[0], &x.frame[1], &x.frame[2]})
+    *v = r.get<Vec3>();
+  for (double* d : {&x.degrees_per_unit, &x.range[0], &x.range[1], &x.scale[0], &x.scale[1],
+                    &x.center, &x.radius})
+    *d = r.get<double>();
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double g = dot(x.frame[i], x.frame[k]);
+      if (!(std::abs(g - (i == k ? 1.0 : 0.0)) <= 1e-6))
+        r.fail(label + ": a warp frame that is not orthonormal");
+    }
+  const uint64_t n = r.get<uint64_t>();
+  r.need(1, n, "truncated warp child");
+  if (depth >= kMaxWarpNesting) r.fail(label + ": warps nested more than 64 deep");
+  const size_t at = r.pos();
+  Solid child = read_solid(bytes.substr(at, n), what + " (" + label + "'s child)", depth + 1);
+  r.skip(n);
+  const Bbox box = child.bbox();
+  if (box.empty()) r.fail(label + ": a warp of an empty child");
+  if (const std::string problem = field::validate(x, box); !problem.empty())
+    r.fail(label + ": " + problem);
+  x.child = std::make_shared<const Solid>(std::move(child));
+  return field::forward_box(x, box);
+}
+
+}  // namespace
+
 Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
+  return read_solid(bytes, what, 0);
+}
+
+namespace {
+
+Solid read_solid(std::string_view bytes, const std::string& what, int depth) {
   Reader r(bytes, what);
   r.need(1, 8, "truncated");
   if (std::memcmp(bytes.data(), kMagic, 8) != 0) r.fail("wrong magic (the first 8 bytes)");
@@ -302,8 +365,8 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
     leaf.vertex_count = r.get<uint32_t>();
     const uint8_t flags = r.get<uint8_t>();
     const std::string label = "leaf " + num(l) + " (at byte " + num(at) + ")";
-    if (flags > (version == kFieldVersion ? 4 : 3))
-      r.fail(label + ": flags other than 0..3" + (version == kFieldVersion ? " or 4" : ""));
+    if (version == kFieldVersion ? (flags > 3 && flags != 4 && flags != 8) : flags > 3)
+      r.fail(label + ": flags other than 0..3" + (version == kFieldVersion ? ", 4 or 8" : ""));
     leaf.flipped = (flags & 1) != 0;
     flagged_open[l] = (flags & 2) != 0;
     if (flags == 4) {
@@ -311,6 +374,12 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
         r.fail(label + ": a field leaf with faces or vertices");
       leaf.field = static_cast<int32_t>(s.fields.size());
       s.fields.emplace_back();  // read after the nodes
+    }
+    if (flags == 8) {
+      if (leaf.face_count != 0 || leaf.vertex_count != 0)
+        r.fail(label + ": a warp leaf with faces or vertices");
+      leaf.warp = static_cast<int32_t>(s.warps.size());
+      s.warps.emplace_back();  // read after the fields
     }
     if (leaf.first_face != next_face || uint64_t{leaf.first_face} + leaf.face_count > nf ||
         leaf.first_vertex != next_vertex || uint64_t{leaf.first_vertex} + leaf.vertex_count > nv)
@@ -360,6 +429,11 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
     read_field(r, s.fields[leaf.field], "leaf " + num(l));
     leaf.bbox = field_support_box(s.fields[leaf.field]);
   }
+  for (uint64_t l = 0; l < nl; ++l) {
+    Leaf& leaf = s.leaves[l];
+    if (leaf.is_warp())
+      leaf.bbox = read_warp(r, s.warps[leaf.warp], "leaf " + num(l), what, bytes, depth);
+  }
   if (!r.done()) r.fail_here("trailing bytes");
   if (nn == 0 ? nl != 0 : root >= nn) r.fail("no root");
   for (uint64_t l = 0; l < nl; ++l)
@@ -390,8 +464,10 @@ Solid solid_from_bytes(std::string_view bytes, const std::string& what) {
              ", but its leaf's place in the expression gives " +
              std::to_string(leaf_sign[s.face_leaf[f]]));
   for (uint64_t l = 0; l < nl; ++l)
-    if (!s.leaves[l].is_field()) check_leaf(s, l, flagged_open[l] != 0, r);
+    if (!s.leaves[l].is_implicit()) check_leaf(s, l, flagged_open[l] != 0, r);
   return s;
 }
+
+}  // namespace
 
 }  // namespace cover

@@ -16,7 +16,13 @@
 // field leaf: no faces, no vertices) and, after the nodes, per field leaf in leaf order:
 //   u32 primitives; per primitive: u8 skeleton kind, u32 points, f64[3·points],
 //   f64 circle_radius, radius, influence, i32 exponent, i32 weight
-// checked as field::validate_placed checks a leaf (its box is recomputed).
+// checked as field::validate_placed checks a leaf (its box is recomputed); and leaf flag 8 (a
+// warp leaf: no faces, no vertices, solid/warp_leaf.h) with, after the fields, per warp leaf
+// in leaf order:
+//   u8 kind, f64[3] point, direction, toward, f64[9] frame rows, f64 degrees_per_unit,
+//   range[2], scale[2], center, radius, u64 child bytes, the child as a solid in this format
+// checked as field::validate checks a warp against its child's box (frame rows finite and
+// orthonormal to 1e-6; children nested at most 64 deep); its box is recomputed.
 // Reading checks everything a kernel relies on (solid.h notation), as loading checks a file:
 //   layout     counts against the byte length before anything is allocated; offsets
 //              non-decreasing and in range; every face at least 3 vertices; indices below their

@@ -30,6 +30,12 @@ ModelInfo info(const Model& model, const InfoOptions& options) {
       out.leaves.push_back(std::move(li));
       continue;
     }
+    if (leaf.is_warp()) {
+      li.warp = s.warps[leaf.warp];
+      li.child_leaves = li.warp->child->leaves.size();
+      out.leaves.push_back(std::move(li));
+      continue;
+    }
     const PolygonMesh mesh = leaf_mesh(s, l);
     li.report = validate_mesh(mesh, vo);
     try {

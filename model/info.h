@@ -35,6 +35,10 @@ struct LeafInfo {
   /// empty and bbox is the support box.
   std::optional<FieldLeaf> field;
   double threshold = 0;  ///< field leaves: T (field/field.h threshold)
+  /// A warp leaf (solid/warp_leaf.h); then vertices, faces and the mesh reports are empty, bbox
+  /// encloses the warped child and child_leaves counts the child's leaves.
+  std::optional<WarpLeaf> warp;
+  size_t child_leaves = 0;
 };
 
 struct ModelInfo {

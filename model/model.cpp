@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "cover/covering/bounds.h"
+#include "cover/field/warp.h"
 #include "cover/io/serialize.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
@@ -319,12 +321,12 @@ std::optional<Bbox> Model::bounds() const {
 
 namespace {
 
-/// Refuses what field leaves do not take (docs/cli.md "Fields" lists what does).
+/// Refuses what field and warp leaves do not take (docs/cli.md lists what does).
 void refuse_fields(const Solid& solid, const char* what) {
-  if (solid.has_field_leaf())
-    throw NotComputable(solid.field_leaf_message() + ": " + what +
-                        " does not take field leaves (classify, field, cast, render, voxelize, "
-                        "octree, volume and info do)");
+  if (solid.has_implicit_leaf())
+    throw NotComputable(solid.implicit_leaf_message() + ": " + what +
+                        " does not take field or warp leaves (classify, field, cast, render, "
+                        "voxelize, octree, volume and info do)");
 }
 
 }  // namespace
@@ -341,19 +343,51 @@ Classification Model::classify_counted(std::span<const Vec3> points,
   return cover::classify_counted(prepared(), points, options);
 }
 
+namespace {
+
+/// A leaf's field where it has one: a field leaf's f, or a warp leaf's f∘w⁻¹ with gradient
+/// Jᵀ·∇f (field/warp.h) when its child is one such leaf. nullopt otherwise.
+std::optional<field::FieldValue> leaf_field(const Solid& s, uint32_t leaf, const Vec3& p) {
+  const Leaf& l = s.leaves[leaf];
+  if (l.is_field()) return field::evaluate(s.fields[l.field], p);
+  if (!l.is_warp()) return std::nullopt;
+  const WarpLeaf& w = s.warps[l.warp];
+  if (w.child->leaves.size() != 1) return std::nullopt;
+  const Vec3 q = field::inverse(w, p);
+  if (!(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)))
+    return field::FieldValue{};  // no preimage (bend): outside every support
+  std::optional<field::FieldValue> v = leaf_field(*w.child, 0, q);
+  if (!v) return v;
+  const field::Mat3 j = field::inverse_jacobian(w, p);
+  const Vec3 g = v->gradient;
+  v->gradient = g.x * j.row[0] + g.y * j.row[1] + g.z * j.row[2];
+  return v;
+}
+
+/// True when leaf_field answers the leaf.
+bool has_field(const Solid& s, uint32_t leaf) {
+  const Leaf& l = s.leaves[leaf];
+  if (l.is_field()) return true;
+  if (!l.is_warp()) return false;
+  const Solid& child = *s.warps[l.warp].child;
+  return child.leaves.size() == 1 && has_field(child, 0);
+}
+
+}  // namespace
+
 Model::FieldValues Model::field(std::span<const Vec3> points) const {
   check_points(points, "field");
   const Solid& s = solid();
   FieldValues out;
   for (uint32_t l = 0; l < s.leaves.size(); ++l)
-    if (s.leaves[l].is_field()) out.leaves.push_back(l);
+    if (has_field(s, l)) out.leaves.push_back(l);
   if (out.leaves.empty()) throw InputError("field: the solid has no field leaf");
   const size_t k = out.leaves.size();
   out.values.resize(points.size() * k);
   parallel_for(points.size(), 1024, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i)
       for (size_t j = 0; j < k; ++j)
-        out.values[i * k + j] = field::evaluate(s.fields[s.leaves[out.leaves[j]].field], points[i]);
+        out.values[i * k + j] = *leaf_field(s, out.leaves[j], points[i]);
   });
   return out;
 }
@@ -382,7 +416,7 @@ std::vector<FirstHit> Model::first_hits(std::span<const Ray> rays,
       for (const Span& s : all[i].spans)  // the span first_hit took: a field hit's normal
         if (s.enter != Span::kNone) {
           const RayHit& h = all[i].hits[s.enter];
-          if (h.tri == Span::kNone) out[i].normal = field_normal(solid(), h, rays[i]);
+          if (h.tri == Span::kNone) out[i].normal = field_normal(prepared(), h, rays[i]);
           break;
         }
     }
@@ -399,7 +433,7 @@ VolumeResult Model::volume(const VolumeOptions& options) const {
   }
   // Open leaves: the winding method (covering/volume.h), field leaves the bracket method;
   // neither has a B-rep to fall back on.
-  if (solid().has_open_leaf() || solid().has_field_leaf())
+  if (solid().has_open_leaf() || solid().has_implicit_leaf())
     return cover::volume(prepared(), options);
   VolumeResult r;
   bool evaluate_instead = false;

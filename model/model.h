@@ -132,7 +132,9 @@ class Model {
 
   /// The field queries of the HybridTree: per point and field leaf (row-major: point i's value
   /// for the k-th field leaf at i·leaves.size() + k), f and ∇f in doubles (field/field.h
-  /// evaluate). \throws InputError for a solid without field leaves, and as classify().
+  /// evaluate). A warp leaf whose child is one field leaf (or a warp of one) counts as a field
+  /// leaf: f∘w⁻¹ and Jᵀ·∇f (field/warp.h). \throws InputError for a solid without field
+  /// leaves, and as classify().
   struct FieldValues {
     std::vector<uint32_t> leaves;  ///< the field leaves' ids, in solid().leaves order
     std::vector<field::FieldValue> values;

@@ -324,7 +324,7 @@ Octree build_octree(const Prepared& prepared, const VoxelBounds& bounds,
                     const OctreeOptions& options) {
   check_octree_request(prepared.solid(), bounds, options);
   if (prepared.solid().leaves.empty()) return empty_octree(bounds, options);
-  if (prepared.solid().has_field_leaf()) {
+  if (prepared.solid().has_implicit_leaf()) {
     if (prepared.solid().has_open_leaf())
       throw NotComputable(prepared.solid().open_leaf_message() +
                           ": the octree of field leaves needs closed mesh leaves");

@@ -478,6 +478,25 @@ py::dict info_dict(const Model& model, bool self_intersection) {
     const MeshReport& r = leaf.report;
     py::dict d("name"_a = leaf.name);
     if (!leaf.origin.empty()) d["origin"] = leaf.origin;
+    auto vec = [](const Vec3& v) { return py::list(py::make_tuple(v.x, v.y, v.z)); };
+    if (leaf.warp) {  // as `cover info --json` (cli/commands.cpp warp_json)
+      const WarpLeaf& w = *leaf.warp;
+      d["kind"] = "warp";
+      d["warp"] = std::string(to_string(w.kind));
+      d["axis"] = py::dict("point"_a = vec(w.point), "direction"_a = vec(w.direction));
+      if (w.kind == WarpKind::kTwist) d["degrees_per_unit"] = w.degrees_per_unit;
+      if (w.kind != WarpKind::kTwist) d["range"] = py::list(py::make_tuple(w.range[0], w.range[1]));
+      if (w.kind == WarpKind::kTaper) d["scale"] = py::list(py::make_tuple(w.scale[0], w.scale[1]));
+      if (w.kind == WarpKind::kBend) {
+        d["toward"] = vec(w.toward);
+        d["center"] = w.center;
+        d["radius"] = w.radius;
+      }
+      d["bbox"] = bbox_list(leaf.bbox);
+      d["child_leaves"] = leaf.child_leaves;
+      leaves.append(d);
+      continue;
+    }
     if (leaf.field) {  // as `cover info --json` (cli/commands.cpp field_json)
       d["kind"] = "field";
       d["threshold"] = leaf.threshold;

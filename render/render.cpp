@@ -52,22 +52,23 @@ Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
 
 /// `outside_in_result`: the expression's value with every leaf outside (once per frame).
 /// `open`: the open leaves' trees (gwn.h), or nullptr when every leaf is closed; then spans
-/// come from cast() and open_spans() (membership changes only at surface hits). Field leaves:
-/// from cast() and field_spans() (their normals −∇f at the crossing).
-Sample sample(const Solid& solid, const Bvh& bvh, const Ray& ray,
+/// come from cast() and open_spans() (membership changes only at surface hits). Field and warp
+/// leaves: from cast() and field_spans() (their normals from field_normal).
+Sample sample(const Prepared& prepared, const Bvh& bvh, const Ray& ray,
               const std::optional<Plane>& section, bool outside_in_result, const GwnForest* open) {
+  const Solid& solid = prepared.solid();
   const auto [lo, hi] = section_window(ray, section);
   if (lo > hi) return {};
   VisibleHit v;
-  if (solid.has_field_leaf()) {
+  if (solid.has_implicit_leaf()) {
     RayResult r = cast(bvh, solid.tree, solid.leaves.size(), ray);
-    field_spans(r, solid, ray, open);
+    field_spans(r, prepared, ray);
     v = first_visible(r, lo, hi);
-    if (v.hit && !v.cap && v.enter.tri == Span::kNone) {  // a field's surface: −∇f outward
+    if (v.hit && !v.cap && v.enter.tri == Span::kNone) {  // a field's or a warp's surface
       Sample out;
       out.hit = true;
       out.t = v.t;
-      const Vec3 n = unit(field_normal(solid, v.enter, ray));
+      const Vec3 n = unit(field_normal(prepared, v.enter, ray));
       out.normal = dot(n, ray.dir) <= 0 ? n : -1.0 * n;
       out.leaf = v.enter.leaf;
       return out;
@@ -143,7 +144,7 @@ double render_bytes(int width, int height) {
 }
 
 bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/, const RenderOptions& o) {
-  const bool applies = !solid.has_open_leaf() && !solid.has_field_leaf();
+  const bool applies = !solid.has_open_leaf() && !solid.has_implicit_leaf();
   if (o.method == RenderMethod::kObjectOrder && !applies)
     throw InputError("render: the object-order method needs closed mesh leaves");
   return o.method == RenderMethod::kObjectOrder || (o.method == RenderMethod::kAuto && applies);
@@ -220,7 +221,7 @@ Image render(const Prepared& prepared, const Camera& cam, const RenderOptions& o
           for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
             const Ray ray = cam.ray(px, py);
             shade(static_cast<size_t>(py) * cam.width + px, ray,
-                  sample(solid, bvh, ray, o.section, outside_in_result, open));
+                  sample(prepared, bvh, ray, o.section, outside_in_result, open));
           }
       }
       tile_done(end - begin);

@@ -51,6 +51,14 @@ std::string Solid::field_leaf_message() const {
   return {};
 }
 
+std::string Solid::implicit_leaf_message() const {
+  for (const Leaf& l : leaves)
+    if (l.is_implicit())
+      return (l.origin.empty() ? l.name : l.origin) +
+             (l.is_field() ? ": field leaf" : ": warp leaf");
+  return {};
+}
+
 Bbox Solid::bbox() const {
   Bbox box;
   for (const Leaf& leaf : leaves) box.add(leaf.bbox);
@@ -76,17 +84,36 @@ Solid make_leaf(PolygonMesh mesh, std::string name, std::string origin) {
   return s;
 }
 
-Solid make_field_leaf(FieldLeaf field, std::string name, std::string origin) {
+namespace {
+
+/// A solid of one leaf without faces (a field or warp leaf: `leaf` says which).
+Solid faceless_leaf(Leaf leaf, std::string name, std::string origin) {
   Solid s;
-  Leaf leaf;
   leaf.name = std::move(name);
   leaf.origin = std::move(origin);
-  leaf.bbox = field_support_box(field);
-  leaf.field = 0;
-  s.fields.push_back(std::move(field));
   s.leaves.push_back(std::move(leaf));
   s.tree.nodes.push_back(CsgNode{CsgOp::kLeaf, 0, {}});
   s.tree.root = 0;
+  return s;
+}
+
+}  // namespace
+
+Solid make_field_leaf(FieldLeaf field, std::string name, std::string origin) {
+  Leaf leaf;
+  leaf.bbox = field_support_box(field);
+  leaf.field = 0;
+  Solid s = faceless_leaf(std::move(leaf), std::move(name), std::move(origin));
+  s.fields.push_back(std::move(field));
+  return s;
+}
+
+Solid make_warp_leaf(WarpLeaf warp, Bbox box, std::string name, std::string origin) {
+  Leaf leaf;
+  leaf.bbox = box;
+  leaf.warp = 0;
+  Solid s = faceless_leaf(std::move(leaf), std::move(name), std::move(origin));
+  s.warps.push_back(std::move(warp));
   return s;
 }
 
@@ -175,10 +202,13 @@ Solid concatenate(std::vector<Solid> parts, CsgOp op, bool flip_rest) {
     });
     const auto fl_off = static_cast<int32_t>(out.fields.size());
     for (FieldLeaf& field : s.fields) out.fields.push_back(std::move(field));
+    const auto wl_off = static_cast<int32_t>(out.warps.size());
+    for (WarpLeaf& warp : s.warps) out.warps.push_back(std::move(warp));
     for (Leaf leaf : s.leaves) {
       leaf.first_face += f_off;
       leaf.first_vertex += v_off;
       if (leaf.is_field()) leaf.field += fl_off;
+      if (leaf.is_warp()) leaf.warp += wl_off;
       out.leaves.push_back(std::move(leaf));
     }
     for (CsgNode node : s.tree.nodes) {

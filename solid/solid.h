@@ -22,6 +22,7 @@
 
 #include "cover/solid/field_leaf.h"
 #include "cover/solid/polygon_mesh.h"
+#include "cover/solid/warp_leaf.h"
 
 namespace cover {
 
@@ -69,6 +70,12 @@ struct Leaf {
   /// no vertices; its bbox is its support box (field/field.h support_box).
   int32_t field = -1;
   bool is_field() const { return field >= 0; }
+  /// A warp leaf's index in Solid::warps; −1 otherwise. A warp leaf has no faces and no
+  /// vertices; its bbox encloses the warped child (field/warp.h forward_box).
+  int32_t warp = -1;
+  bool is_warp() const { return warp >= 0; }
+  /// A field or warp leaf: membership from a function of the point, not from faces.
+  bool is_implicit() const { return field >= 0 || warp >= 0; }
 };
 
 /// A CSG solid with linear storage: vertices + signed faces tagged by leaf, and the tree.
@@ -81,6 +88,7 @@ struct Solid {
   std::vector<int8_t> face_sign;        ///< #F ±1 (see notation above)
   std::vector<Leaf> leaves;
   std::vector<FieldLeaf> fields;  ///< the field leaves' blends (Leaf::field indexes it)
+  std::vector<WarpLeaf> warps;    ///< the warp leaves (Leaf::warp indexes it)
   CsgTree tree;
 
   size_t face_count() const { return face_leaf.size(); }
@@ -102,6 +110,11 @@ struct Solid {
   /// "ORIGIN: field leaf" (its JSON path, else its name) for the first field leaf, the prefix of
   /// the refusals of what field leaves do not support; empty when there is none.
   std::string field_leaf_message() const;
+  /// True when some leaf is a field or a warp leaf (Leaf::is_implicit): the queries answer it
+  /// by its membership function, the B-rep commands refuse it.
+  bool has_implicit_leaf() const { return !fields.empty() || !warps.empty(); }
+  /// "ORIGIN: field leaf" or "ORIGIN: warp leaf" for the first implicit leaf; empty when none.
+  std::string implicit_leaf_message() const;
 };
 
 /// A solid with one leaf. Precondition: the mesh is closed and outward (callers validate).
@@ -110,6 +123,10 @@ Solid make_leaf(PolygonMesh mesh, std::string name, std::string origin = {});
 /// A solid with one field leaf, its box the support box (field_support_box).
 /// Precondition: the leaf is valid (field/field.h validate).
 Solid make_field_leaf(FieldLeaf field, std::string name, std::string origin = {});
+
+/// A solid with one warp leaf whose box is `box` (field/warp.h forward_box of the child's box).
+/// Precondition: the warp is valid for its child (field/warp.h validate).
+Solid make_warp_leaf(WarpLeaf warp, Bbox box, std::string name, std::string origin = {});
 
 /// The leaf's faces in the leaf's OWN orientation, with its own vertex numbering (0-based).
 PolygonMesh leaf_mesh(const Solid& solid, uint32_t leaf);

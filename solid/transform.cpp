@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <string>
 
@@ -108,18 +109,24 @@ void apply_transform(const Transform& t, PolygonMesh& mesh) {
 
 namespace {
 
-/// Field leaves take similarities only (L = s·Q, Q orthogonal, checked to 1e-9 relative: a
-/// rotation's doubles are orthogonal only to rounding): skeleton points are mapped, lengths
-/// (r_T, R, a circle's radius) multiplied by s = |det L|^(1/3), a circle's normal mapped by L
-/// (L⁻ᵀ ∝ L for a similarity). A blend keeps its first primitive's threshold (solid/field_leaf.h).
-void transform_fields(const Matrix4& m, double det, Solid& solid) {
+/// The scale s = |det L|^(1/3) of a similarity L = s·Q (Q orthogonal, checked to 1e-9 relative:
+/// a rotation's doubles are orthogonal only to rounding); throws naming `kind` otherwise.
+double similarity_scale(const Matrix4& m, double det, const char* kind) {
   const Eigen::Matrix3d linear = m.topLeftCorner<3, 3>();
   const double s = std::cbrt(std::abs(det));
   const Eigen::Matrix3d gram = linear.transpose() * linear / (s * s);
   if (!gram.isApprox(Eigen::Matrix3d::Identity(), 1e-9))
-    throw InputError(
-        "transform: field leaves take rigid motions and uniform scales only (this one stretches "
-        "unevenly)");
+    throw InputError(std::string("transform: ") + kind +
+                     " leaves take rigid motions and uniform scales only (this one stretches "
+                     "unevenly)");
+  return s;
+}
+
+/// Field leaves take similarities only (similarity_scale): skeleton points are mapped, lengths
+/// (r_T, R, a circle's radius) multiplied by s = |det L|^(1/3), a circle's normal mapped by L
+/// (L⁻ᵀ ∝ L for a similarity). A blend keeps its first primitive's threshold (solid/field_leaf.h).
+void transform_fields(const Matrix4& m, double det, Solid& solid) {
+  const double s = similarity_scale(m, det, "field");
   auto map = [&](Vec3& p, double w) {
     const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, w);
     p = {q.x(), q.y(), q.z()};
@@ -147,6 +154,47 @@ void transform_fields(const Matrix4& m, double det, Solid& solid) {
     }
   for (Leaf& leaf : solid.leaves)
     if (leaf.is_field()) leaf.bbox = field_support_box(solid.fields[leaf.field]);
+}
+
+/// Warp leaves take similarities only, as field leaves: M∘w∘M⁻¹ is the warp of the same kind
+/// whose frame rows are mapped by Q = L/s (E'(M·p) = s·E(p)), axis point mapped, lengths
+/// (ranges, centre, radius) multiplied by s and the twist rate divided by s; the child is
+/// transformed by M. The leaf's box: the corners of the old box mapped, the result padded by
+/// 1e-9 of its extent plus magnitude (the rounding of the mapped frame and parameters moves the
+/// surface by a few ulps of those, far less than the pad).
+void transform_warps(const Transform& t, const Matrix4& m, double det, Solid& solid) {
+  const double s = similarity_scale(m, det, "warp");
+  auto map = [&](const Vec3& p, double w, double scale) {
+    const Eigen::Vector4d q = m * Eigen::Vector4d(p.x, p.y, p.z, w) / scale;
+    return Vec3{q.x(), q.y(), q.z()};
+  };
+  for (WarpLeaf& warp : solid.warps) {
+    warp.point = map(warp.point, 1.0, 1.0);
+    warp.direction = map(warp.direction, 0.0, s);
+    warp.toward = map(warp.toward, 0.0, s);
+    for (Vec3& row : warp.frame) row = map(row, 0.0, s);
+    warp.degrees_per_unit /= s;
+    for (double& r : warp.range) r *= s;
+    warp.center *= s;
+    warp.radius *= s;
+    warp.child = std::make_shared<const Solid>(transform_solid(t, *warp.child));
+  }
+  for (Leaf& leaf : solid.leaves) {
+    if (!leaf.is_warp() || leaf.bbox.empty()) continue;
+    Bbox box;
+    for (int c = 0; c < 8; ++c)
+      box.add(
+          map({c & 1 ? leaf.bbox.max.x : leaf.bbox.min.x, c & 2 ? leaf.bbox.max.y : leaf.bbox.min.y,
+               c & 4 ? leaf.bbox.max.z : leaf.bbox.min.z},
+              1.0, 1.0));
+    double pad = 0;
+    for (int a = 0; a < 3; ++a)
+      pad = std::max(
+          pad, box.max[a] - box.min[a] + std::max(std::abs(box.min[a]), std::abs(box.max[a])));
+    pad *= 1e-9;
+    leaf.bbox.min = box.min - Vec3{pad, pad, pad};
+    leaf.bbox.max = box.max + Vec3{pad, pad, pad};
+  }
 }
 
 }  // namespace
@@ -183,9 +231,10 @@ Solid transform_solid(const Transform& t, Solid solid) {
       std::reverse(solid.face_vertices.begin() + solid.face_start[f],
                    solid.face_vertices.begin() + solid.face_start[f + 1]);
   if (!solid.fields.empty()) transform_fields(m, det, solid);
+  if (!solid.warps.empty()) transform_warps(t, m, det, solid);
   for (Leaf& leaf : solid.leaves) {
-    if (leaf.is_field()) continue;  // transform_fields set its support box
-    leaf.bbox = Bbox{};             // over the vertices of its faces, as make_leaf's face_bbox
+    if (leaf.is_implicit()) continue;  // transform_fields / transform_warps set its box
+    leaf.bbox = Bbox{};                // over the vertices of its faces, as make_leaf's face_bbox
     for (uint32_t f = leaf.first_face; f < leaf.first_face + leaf.face_count; ++f)
       for (uint32_t v : solid.face(f)) leaf.bbox.add(solid.vertices[v]);
   }

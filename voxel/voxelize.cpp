@@ -383,7 +383,7 @@ void voxelize_brick(const Prepared& prepared, const VoxelLattice& lattice, const
                     VoxelGrid& grid, const std::function<void(double)>& progress) {
   const Solid& solid = prepared.solid();
   // Open and field leaves: membership is not a sweep of crossings: classify the centres.
-  if (solid.has_open_leaf() || solid.has_field_leaf()) {
+  if (solid.has_open_leaf() || solid.has_implicit_leaf()) {
     grid = empty_voxel_grid(lattice, box);
     classify_lattice(prepared, lattice, box, [&](int i, int j, int k) { grid.set(i, j, k); });
     if (progress) progress(1.0);

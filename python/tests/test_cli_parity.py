@@ -114,7 +114,8 @@ def test_render_equals_cli_png(view, tmp_path):
 
 
 @pytest.mark.parametrize("path", [MODELS / "default.json", MODELS / "frame.off", MODELS / "snake.json",
-                                  CGAL_MESHES / "bunny00.off"], ids=lambda p: p.name)
+                                  MODELS / "warped_part.json", CGAL_MESHES / "bunny00.off"],
+                         ids=lambda p: p.name)
 def test_info_equals_cli(path):
     if not path.exists():
         pytest.skip(f"missing {path}")

@@ -108,5 +108,34 @@ TEST_F(FieldsCli, RenderDrawsTheBlend) {
   EXPECT_TRUE(std::filesystem::exists(dir_ / "f.png"));
 }
 
+TEST_F(FieldsCli, WarpsClassifyInfoAndRefuse) {
+  const std::filesystem::path taper = dir_ / "taper.json";
+  test::write_file(taper, R"({"taper": {"axis": {"direction": [0, 1, 0]}, "range": [-0.5, 0.5],
+    "scale": [1, 0.5], "child": {"box": {"min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]}}}})");
+  // y = 0.25: s = 5/8, so (0.3125, 0.25, 0.3125) maps exactly onto the box's edge.
+  const auto r = run_cover("classify " + q(taper) + " --points - --json",
+                           "0.3125 0.25 0.3125\n0.3 0.25 0\n0.32 0.25 0\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json out = json::parse(r.out);
+  EXPECT_EQ(out["classes"], json({"face", "inside", "outside"}));
+  EXPECT_EQ(out["uncertain"], 0);
+  const auto i = run_cover("info " + q(taper) + " --json");
+  ASSERT_EQ(i.status, 0) << i.err;
+  const json leaf = json::parse(i.out)["leaves_info"][0];
+  EXPECT_EQ(leaf["kind"], "warp");
+  EXPECT_EQ(leaf["warp"], "taper");
+  EXPECT_EQ(leaf["child_leaves"], 1);
+  const auto e = run_cover("evaluate " + q(taper) + " -o " + q(dir_ / "out.off"));
+  EXPECT_EQ(e.status, 2);
+  EXPECT_NE(e.err.find("/taper: warp leaf:"), std::string::npos) << e.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.off"));
+  test::write_file(taper, R"({"taper": {"axis": {"direction": [0, 1, 0]}, "range": [1, 0],
+    "scale": [1, 0.5], "child": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}}}})");
+  const auto bad = run_cover("classify " + q(taper) + " --points -", "0 0 0\n");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("taper.json: /taper: taper: range must be increasing"), std::string::npos)
+      << bad.err;
+}
+
 }  // namespace
 }  // namespace cover

@@ -14,6 +14,7 @@
 #include "cover/io/scene.h"
 #include "cover/model/info.h"
 #include "cover/model/model.h"
+#include "model/octree_check.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/transform.h"
@@ -380,27 +381,7 @@ TEST(Fields, OctreeClaimsFullAndEmptyOnlyWhereDenseSamplingAgrees) {
   EXPECT_GT(counts[0], 100u);
   EXPECT_GT(counts[1], 10u);
   EXPECT_GT(counts[2], 100u);
-  // Every full / empty leaf: 5³ points over its closed box (corners included) classify inside /
-  // outside (never the other side; a point on the surface only where a face touches the box).
-  std::vector<Vec3> pts;
-  std::vector<uint8_t> want;
-  for (const Octree::Node& n : t.nodes) {
-    if (n.first_child != 0 || n.state == CellState::kPartial) continue;
-    const Bbox b = t.box(n);
-    for (int i = 0; i <= 4; ++i)
-      for (int j = 0; j <= 4; ++j)
-        for (int k = 0; k <= 4; ++k) {
-          pts.push_back({b.min.x + (b.max.x - b.min.x) * i / 4,
-                         b.min.y + (b.max.y - b.min.y) * j / 4,
-                         b.min.z + (b.max.z - b.min.z) * k / 4});
-          want.push_back(n.state == CellState::kFull);
-        }
-  }
-  const std::vector<PointClass> c = m.classify(pts);
-  size_t wrong = 0;
-  for (size_t i = 0; i < pts.size(); ++i)
-    wrong += want[i] ? c[i] == PointClass::kOutside : c[i] == PointClass::kInside;
-  EXPECT_EQ(wrong, 0u);
+  EXPECT_EQ(test::certified_cells_wrong(m, t, 4), 0u);
   // Thread-count independent, and the occupancy of the root is close to the volume's share.
   Octree t1;
   {
