@@ -17,10 +17,10 @@
 #include "cover/io/scene.h"
 #include "cover/model/info.h"
 #include "cover/model/model.h"
-#include "model/octree_check.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/transform.h"
+#include "model/octree_check.h"
 
 namespace cover {
 namespace {
