@@ -9,13 +9,22 @@
 //              field on a dense n³ grid (the level set's input; OpenVDB FloatGrid, dense
 //              sampling), tools::volumeToMesh at the threshold, then a render of that mesh
 //              (Cover's own mesh render, the fastest mesh renderer at hand), summed
+//   octree     (only with --octree D) Model::octree of the same blend at depth D (cells full /
+//              empty where interval bounds certify them), against OpenVDB's level set of the same
+//              field at the matching resolution: f − T by field::evaluate (doubles) at every voxel
+//              centre of the (2^D)³ lattice over the octree's cube into a tools::Dense array,
+//              tools::copyFromDense into a FloatGrid, tools::levelSetRebuild (narrow band, half
+//              width 3); interleaved, median of 3 each, wall clock
 // Usage: field_bench [--points N] [--primitives P] [--render W] [--blend Q] [--grid n]
-//                    [--threads T]
+//                    [--octree D] [--threads T]
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
+#include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -110,6 +119,7 @@ int main(int argc, char** argv) {
   const int width = static_cast<int>(bench::arg(argc, argv, "--render", 1024));
   const int blend = static_cast<int>(bench::arg(argc, argv, "--blend", 50));
   const int grid = static_cast<int>(bench::arg(argc, argv, "--grid", 256));
+  const int octree_depth = static_cast<int>(bench::arg(argc, argv, "--octree", 0));
   const int threads = static_cast<int>(bench::arg(argc, argv, "--threads", 2));
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   std::printf("threads %d\n", threads);
@@ -217,6 +227,107 @@ int main(int argc, char** argv) {
         "triangles) + mesh render %.3f s = %.3f s; ratio %.2f\n",
         width, width, blend, cover_s, covered, grid, sample_s, mesh_s, quads.size(), tris.size(),
         mesh_render_s, peer_s, cover_s / peer_s);
+  }
+
+  // --- octree: Cover's certified octree against OpenVDB's level set by dense sampling ----------
+  if (octree_depth > 0) {
+    const FieldLeaf f = chain_blend(blend);
+    const cover::Model model = field_model(f, "chain");
+    const int n = 1 << octree_depth;
+    const cover::VoxelBounds cube = model.voxel_bounds(n);  // Model::octree's default cube
+    const double h = cube.size / n;
+    cover::OctreeOptions options;
+    options.depth = octree_depth;
+
+    openvdb::initialize();
+    const double T = cover::field::threshold(f);
+    const float background = static_cast<float>(T);  // T − f where f = 0: outside
+    // Index (i, j, k) ↔ the voxel centre cube.min + (i + ½, j + ½, k + ½)·h, Cover's depth-D cell.
+    const auto xform = openvdb::math::Transform::createLinearTransform(h);
+    xform->postTranslate({cube.min.x + 0.5 * h, cube.min.y + 0.5 * h, cube.min.z + 0.5 * h});
+    const openvdb::CoordBBox lattice(openvdb::Coord(0), openvdb::Coord(n - 1));
+
+    struct PeerRun {
+      double sample = 0, copy = 0, rebuild = 0;
+      double total() const { return sample + copy + rebuild; }
+    };
+    std::vector<double> cover_runs;
+    std::vector<PeerRun> peer_runs;
+    cover::Octree tree;
+    openvdb::FloatGrid::Ptr level_set;
+    openvdb::Index64 sparse_bytes = 0;
+    for (int round = 0; round < 3; ++round) {
+      // Cover: the whole build (levels, certified cell states, partial leaves' occupancy).
+      auto t0 = Clock::now();
+      cover::Octree built = model.octree(options, cube);
+      cover_runs.push_back(since(t0));
+      tree = std::move(built);
+
+      // OpenVDB. Sampling: the dense array's allocation and T − f (negative inside, as OpenVDB's
+      // level sets) at every voxel centre, x slabs in parallel (z fastest: Dense's layout).
+      PeerRun run;
+      t0 = Clock::now();
+      openvdb::tools::Dense<float> dense(lattice);
+      float* values = dense.data();
+      cover::parallel_for(static_cast<size_t>(n), 1, [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i)
+          for (int j = 0; j < n; ++j)
+            for (int k = 0; k < n; ++k) {
+              const Vec3 p{cube.min.x + (i + 0.5) * h, cube.min.y + (j + 0.5) * h,
+                           cube.min.z + (k + 0.5) * h};
+              values[(i * n + j) * n + k] =
+                  static_cast<float>(T - cover::field::evaluate(f, p).value);
+            }
+      });
+      run.sample = since(t0);
+      // Grid build: the sparse copy (voxels equal to the background stay inactive), then the
+      // narrow-band level set of its zero isosurface (volumeToMesh + meshToVolume inside).
+      t0 = Clock::now();
+      auto sparse = openvdb::FloatGrid::create(background);
+      sparse->setTransform(xform);
+      openvdb::tools::copyFromDense(dense, *sparse, 0.0f);
+      run.copy = since(t0);
+      t0 = Clock::now();
+      openvdb::FloatGrid::Ptr rebuilt = openvdb::tools::levelSetRebuild(*sparse, 0.0f, 3.0f);
+      run.rebuild = since(t0);
+      peer_runs.push_back(run);
+      sparse_bytes = sparse->memUsage();
+      level_set = rebuilt;
+    }
+    // Medians; OpenVDB's split is the one of its median run.
+    std::vector<double> sorted = cover_runs;
+    std::sort(sorted.begin(), sorted.end());
+    const double cover_s = sorted[1];
+    std::vector<PeerRun> by_total = peer_runs;
+    std::sort(by_total.begin(), by_total.end(),
+              [](const PeerRun& a, const PeerRun& b) { return a.total() < b.total(); });
+    const PeerRun peer = by_total[1];
+
+    const std::array<uint64_t, 3> leaves = tree.leaf_counts();  // {empty, full, partial}
+    const uint64_t cover_bytes = tree.nodes.size() * sizeof(cover::Octree::Node);
+    const uint64_t dense_bytes = static_cast<uint64_t>(n) * n * n * sizeof(float);
+    std::printf(
+        "octree depth %d (%d^3 finest cells, cube side %.4f), blend of %d (segments and points), "
+        "median of 3 interleaved:\n",
+        octree_depth, n, cube.size, blend);
+    std::printf(
+        "  cover Model::octree %.3f s (runs %.3f %.3f %.3f): %zu nodes x %zu bytes = %.1f MiB; "
+        "leaves %llu full, %llu empty, %llu partial\n",
+        cover_s, cover_runs[0], cover_runs[1], cover_runs[2], tree.nodes.size(),
+        sizeof(cover::Octree::Node), cover_bytes / 1048576.0,
+        static_cast<unsigned long long>(leaves[1]), static_cast<unsigned long long>(leaves[0]),
+        static_cast<unsigned long long>(leaves[2]));
+    std::printf(
+        "  openvdb (f - T by cover::field::evaluate in doubles at the %d^3 voxel centres -> "
+        "tools::Dense, copyFromDense, levelSetRebuild half width 3): sample %.3f s + "
+        "copyFromDense %.3f s + levelSetRebuild %.3f s = %.3f s (runs %.3f %.3f %.3f); "
+        "level set %llu active voxels, memUsage %.1f MiB (sparse copy %.1f MiB, dense array "
+        "%.1f MiB)\n",
+        n, peer.sample, peer.copy, peer.rebuild, peer.total(), peer_runs[0].total(),
+        peer_runs[1].total(), peer_runs[2].total(),
+        static_cast<unsigned long long>(level_set->activeVoxelCount()),
+        level_set->memUsage() / 1048576.0, sparse_bytes / 1048576.0, dense_bytes / 1048576.0);
+    std::printf("  ratio cover / openvdb %.3f\n", cover_s / peer.total());
   }
   return 0;
 }
