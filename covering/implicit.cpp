@@ -6,6 +6,7 @@
 
 #include "cover/covering/box_states.h"
 #include "cover/covering/classify.h"
+#include "cover/covering/detail/local.h"
 #include "cover/field/warp.h"
 
 namespace cover::detail {
@@ -39,6 +40,8 @@ field::Sign warp_member(const Prepared& prepared, const Leaf& leaf, const Vec3& 
   const uint8_t state = box_state(child, b.box);
   if (state == kBoxOutside) return field::Sign::kOutside;
   if (state == kBoxInside && !b.partial) return field::Sign::kInside;
+  // A rational preimage (taper): the child's exact class there (covering/detail/local.h).
+  if (const std::optional<field::Sign> s = exact_warp_member(prepared, leaf.warp, q)) return *s;
   // The tie rule: the child's class at the rounded preimage.
   if (uncertain != nullptr) uncertain->fetch_add(1, std::memory_order_relaxed);
   const Vec3 p = field::inverse(w, q);

@@ -29,6 +29,7 @@
 #include <span>
 
 #include "cover/field/detail/closest.h"
+#include "cover/field/detail/exact.h"
 
 namespace cover::field {
 namespace {
@@ -203,9 +204,9 @@ Q segment_d2(const QV& p, const Vec3& a, const Vec3& b) {
   return qnorm2(p - detail::closest_on_segment(p, qv(a), qv(b)));
 }
 
-/// The exact sign of f(p) − T, or kUndecided when a circle primitive's support box holds p.
-Sign exact_sign(const FieldLeaf& leaf, const Vec3& p) {
-  const QV P = qv(p);
+/// The exact sign of f(P) − T, or kUndecided when a circle primitive's support box holds P;
+/// [p, hi] is a box of doubles holding P (the pruning tests are sound for boxes).
+Sign exact_sign(const FieldLeaf& leaf, const QV& P, const Vec3& p, const Vec3& hi) {
   Q f(0);
   for (const FieldPrimitive& prim : leaf.primitives) {
     const double R = prim.influence;
@@ -213,21 +214,21 @@ Sign exact_sign(const FieldLeaf& leaf, const Vec3& p) {
     Q d2;
     switch (prim.kind) {
       case SkeletonKind::kPoint:
-        if (far(p, p, q[0], q[0], R)) continue;
+        if (far(p, hi, q[0], q[0], R)) continue;
         d2 = qnorm2(P - qv(q[0]));
         break;
       case SkeletonKind::kSegment:
-        if (far(p, p, vmin(q[0], q[1]), vmax(q[0], q[1]), R)) continue;
+        if (far(p, hi, vmin(q[0], q[1]), vmax(q[0], q[1]), R)) continue;
         d2 = segment_d2(P, q[0], q[1]);
         break;
       case SkeletonKind::kTriangle:
-        if (far(p, p, vmin(q[0], vmin(q[1], q[2])), vmax(q[0], vmax(q[1], q[2])), R)) continue;
+        if (far(p, hi, vmin(q[0], vmin(q[1], q[2])), vmax(q[0], vmax(q[1], q[2])), R)) continue;
         d2 = qnorm2(P - detail::closest_on_triangle(P, qv(q[0]), qv(q[1]), qv(q[2])));
         break;
       case SkeletonKind::kPolyline: {
         bool any = false;
         for (size_t j = 0; j + 1 < prim.points.size(); ++j) {
-          if (far(p, p, vmin(q[j], q[j + 1]), vmax(q[j], q[j + 1]), R)) continue;
+          if (far(p, hi, vmin(q[j], q[j + 1]), vmax(q[j], q[j + 1]), R)) continue;
           const Q dj = segment_d2(P, q[j], q[j + 1]);
           if (!any || dj < d2) d2 = dj;
           any = true;
@@ -236,7 +237,7 @@ Sign exact_sign(const FieldLeaf& leaf, const Vec3& p) {
         break;
       }
       case SkeletonKind::kCircle:
-        if (far(p, p, q[0], q[0], circle_reach(prim))) continue;
+        if (far(p, hi, q[0], q[0], circle_reach(prim))) continue;
         return Sign::kUndecided;
     }
     const Q R2 = Q(R) * Q(R);
@@ -455,10 +456,33 @@ Sign sign(const FieldLeaf& leaf, const Vec3& p) {
   }
   // Rationals, unless a circle primitive's support box holds p (its d needs a square root); a
   // circle elsewhere is pruned alike in both paths and does not stop the exact decision.
-  return circle ? Sign::kUndecided : exact_sign(leaf, p);
+  return circle ? Sign::kUndecided : exact_sign(leaf, qv(p), p, p);
 }
 
-Sign sign_exact(const FieldLeaf& leaf, const Vec3& p) { return exact_sign(leaf, p); }
+Sign sign_exact(const FieldLeaf& leaf, const Vec3& p) { return exact_sign(leaf, qv(p), p, p); }
+
+namespace detail {
+
+Bbox enclosure(const QPoint& p) {
+  const auto [x0, x1] = CGAL::to_interval(p.x);
+  const auto [y0, y1] = CGAL::to_interval(p.y);
+  const auto [z0, z1] = CGAL::to_interval(p.z);
+  return {{x0, y0, z0}, {x1, y1, z1}};
+}
+
+Sign sign_at(const FieldLeaf& leaf, const QPoint& p) {
+  const Bbox box = enclosure(p);
+  bool circle = false;
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const I e = enclose(leaf, box.min, box.max, &circle);
+    if (e.inf() > 0) return Sign::kInside;
+    if (e.sup() < 0) return Sign::kOutside;
+  }
+  return circle ? Sign::kUndecided : exact_sign(leaf, p, box.min, box.max);
+}
+
+}  // namespace detail
 
 bool exact(const FieldLeaf& leaf) {
   return std::none_of(

@@ -38,6 +38,7 @@
 #include <optional>
 
 #include "cover/field/detail/closest.h"
+#include "cover/field/detail/exact.h"
 
 namespace cover::field {
 namespace {
@@ -527,7 +528,22 @@ InverseBox inverse_box(const WarpLeaf& w, const Bbox& world_box) {
 }
 
 bool exact_inverse(const WarpLeaf& w, const Vec3& q, Vec3& out) {
-  const QV y = local(w, qv(q));
+  QV p;
+  if (!detail::rational_inverse(w, qv(q), p)) return false;
+  const Q* c[3] = {&p.x, &p.y, &p.z};
+  double d[3];
+  for (int i = 0; i < 3; ++i) {
+    d[i] = CGAL::to_double(*c[i]);  // exact when *c[i] is a double
+    if (!std::isfinite(d[i]) || Q(d[i]) != *c[i]) return false;
+  }
+  out = {d[0], d[1], d[2]};
+  return true;
+}
+
+namespace detail {
+
+bool rational_inverse(const WarpLeaf& w, const QPoint& q, QPoint& out) {
+  const QV y = local(w, q);
   if (w.kind == WarpKind::kTwist || w.kind == WarpKind::kBend) {  // L = identity where θ = 0
     const bool flat =
         w.kind == WarpKind::kTwist
@@ -540,15 +556,10 @@ bool exact_inverse(const WarpLeaf& w, const Vec3& q, Vec3& out) {
   const Q s = taper_scale(w, std::clamp(y.y, Q(w.range[0]), Q(w.range[1])));
   Q inv[3][3];
   exact_frame_inverse(w, inv);
-  const QV p = world(w, inv, QV{y.x / s, y.y, y.z / s});
-  const Q* c[3] = {&p.x, &p.y, &p.z};
-  double d[3];
-  for (int i = 0; i < 3; ++i) {
-    d[i] = CGAL::to_double(*c[i]);  // exact when *c[i] is a double
-    if (!std::isfinite(d[i]) || Q(d[i]) != *c[i]) return false;
-  }
-  out = {d[0], d[1], d[2]};
+  out = world(w, inv, QV{y.x / s, y.y, y.z / s});
   return true;
 }
+
+}  // namespace detail
 
 }  // namespace cover::field

@@ -8,8 +8,10 @@
 //   point     w⁻¹(p) exact as doubles (field/warp.h exact_inverse: taper mostly, the identity
 //             parts of twist and bend): C's own classification there (exact). Otherwise the
 //             enclosure B of w⁻¹(p) (inverse_box): C's box state on B (box_states.h) when it
-//             is inside or outside. Else the tie rule: C's classification at the rounded
-//             w⁻¹(p), counted uncertain. A point with no preimage (bend) is outside.
+//             is inside or outside. Else, where w⁻¹(p) is rational (taper), C's exact class
+//             at that rational point (covering/detail/local.h exact_warp_member). Else the tie
+//             rule: C's classification at the rounded w⁻¹(p), counted uncertain. A point with
+//             no preimage (bend) is outside.
 //   box       C's box state over the enclosure of the world box's preimage; undecided when
 //             the box may hold points without a preimage and C's state is inside.
 //   ray       certified bisection as for fields (covering/warp_ray.cpp).

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <random>
+#include <span>
 #include <string>
 
 #include "cover/field/warp.h"
@@ -159,6 +160,13 @@ TEST(Warps, TaperedBoxIsItsExactRationalClassification) {
     pts.push_back({0.01, y, s / 2});
     pts.push_back({s / 2, y, s / 2});  // an edge
   }
+  // Their neighbours one ulp off in x and z: preimages a hair inside or outside, never doubles.
+  const size_t built = pts.size();
+  for (size_t i = built - 36; i < built; ++i)
+    for (const double to : {-1.0, 1.0}) {
+      pts.push_back({std::nextafter(pts[i].x, to), pts[i].y, pts[i].z});
+      pts.push_back({pts[i].x, pts[i].y, std::nextafter(pts[i].z, to)});
+    }
   const Classification c = m.classify_counted(pts);
   size_t wrong = 0, on = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -172,8 +180,82 @@ TEST(Warps, TaperedBoxIsItsExactRationalClassification) {
   }
   EXPECT_GE(on, 36u);
   EXPECT_EQ(wrong, 0u);
-  // Only points on the surface whose preimage is not a double are left to the tie rule.
-  EXPECT_LE(c.uncertain, on);
+  // Preimages that are not doubles are classified as rational points: nothing is left to the
+  // tie rule.
+  EXPECT_EQ(c.uncertain, 0u);
+}
+
+/// A tapered convex polyhedron (an octahedron with tilted faces) at points within an ulp or two
+/// of its surface, whose preimages are rational but not doubles: every class equals the exact
+/// plane tests of the rational preimage (x/s, y, z/s), s = 3/4 − y/2, against the child's
+/// faces, and none is left to the tie rule.
+TEST(Warps, TaperedPolyhedronNearItsSurfaceIsItsExactRationalClassification) {
+  using Q = CGAL::Gmpq;
+  PolygonMesh octahedron;
+  octahedron.vertices = {{0.5, 0.03, 0.01},    {-0.41, -0.02, 0.05}, {0.02, 0.44, -0.03},
+                         {-0.03, -0.47, 0.02}, {0.01, 0.04, 0.43},   {0.04, -0.01, -0.46}};
+  for (const int sx : {0, 1})
+    for (const int sy : {0, 1})
+      for (const int sz : {0, 1}) {
+        const uint32_t x = sx, y = 2 + sy, z = 4 + sz;
+        if ((sx + sy + sz) % 2 == 0)
+          octahedron.add_face({x, y, z});
+        else
+          octahedron.add_face({x, z, y});
+      }
+  WarpLeaf w = scene(R"({"taper": {"axis": {"direction": [0, 1, 0]},
+      "range": [-0.5, 0.5], "scale": [1, 0.5],
+      "child": {"box": {"min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]}}}})")
+                   .solid()
+                   .warps[0];
+  w.child = std::make_shared<const Solid>(make_leaf(octahedron, "octahedron"));
+  const Model m(make_warp_leaf(w, field::forward_box(w, w.child->bbox()), "tapered"));
+  const Solid& child = *w.child;
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> pts;
+  for (size_t f = 0; f < child.face_count(); ++f) {
+    const std::span<const uint32_t> face = child.face(f);
+    for (int k = 0; k < 8; ++k) {
+      // A point of the face (a fan triangle's barycentric point), mapped forward in doubles.
+      const size_t i = 1 + rng() % (face.size() - 2);
+      double a = u(rng), b = u(rng);
+      if (a + b > 1) a = 1 - a, b = 1 - b;
+      const Vec3 &p0 = child.vertices[face[0]], &p1 = child.vertices[face[i]],
+                 &p2 = child.vertices[face[i + 1]];
+      const Vec3 p = p0 + a * (p1 - p0) + b * (p2 - p0);
+      const double s = 0.75 - p.y / 2;
+      pts.push_back({p.x * s, p.y, p.z * s});
+    }
+  }
+  size_t wrong = 0, undecided_by_boxes = 0;
+  const Classification c = m.classify_counted(pts);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const Vec3& q = pts[i];
+    const Q s = Q(3, 4) - Q(q.y) / 2;
+    const Q P[3] = {Q(q.x) / s, Q(q.y), Q(q.z) / s};
+    bool out = false, on = false;
+    for (size_t f = 0; f < child.face_count(); ++f) {
+      const std::span<const uint32_t> face = child.face(f);
+      const Vec3 &a = child.vertices[face[0]], &b = child.vertices[face[1]],
+                 &d = child.vertices[face[2]];
+      const Q u0 = Q(b.x) - Q(a.x), u1 = Q(b.y) - Q(a.y), u2 = Q(b.z) - Q(a.z);
+      const Q v0 = Q(d.x) - Q(a.x), v1 = Q(d.y) - Q(a.y), v2 = Q(d.z) - Q(a.z);
+      const Q n0 = u1 * v2 - u2 * v1, n1 = u2 * v0 - u0 * v2, n2 = u0 * v1 - u1 * v0;
+      const Q side = n0 * (P[0] - Q(a.x)) + n1 * (P[1] - Q(a.y)) + n2 * (P[2] - Q(a.z));
+      out |= side > 0;
+      on |= side == 0;
+    }
+    const PointClass want =
+        out ? PointClass::kOutside : (on ? PointClass::kFace : PointClass::kInside);
+    const PointClass got = c.classes[i] == PointClass::kFace ? PointClass::kFace : c.classes[i];
+    wrong += got != want;
+    Vec3 exact;
+    undecided_by_boxes += !field::exact_inverse(m.solid().warps[0], q, exact);
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_EQ(c.uncertain, 0u);
+  EXPECT_GT(undecided_by_boxes, pts.size() / 2);  // the rational path is what decides them
 }
 
 TEST(Warps, VoxelsEqualClassificationOfTheirCentres) {
