@@ -5,10 +5,13 @@
 //              double evaluation of the same sum with the same support-box pruning and the same
 //              parallel loop (`f > T` per point: no certificate)
 //   render     Model::render of a W×W picture of a blend of Q segment and point primitives
-//              (crossings by certified bisection), against the peers' route: sample the same
-//              field on a dense n³ grid (the level set's input; OpenVDB FloatGrid, dense
-//              sampling), tools::volumeToMesh at the threshold, then a render of that mesh
-//              (Cover's own mesh render, the fastest mesh renderer at hand), summed
+//              (crossings by certified bisection), against the peers' routes, each a level set
+//              of the same field at grid spacing h = (box's longest side) / n, its mesh as a
+//              Cover mesh, then a render of that mesh with the same camera (Cover's own mesh
+//              render, the fastest mesh renderer at hand), summed: OpenVDB (dense sampling of the
+//              n³ cell centres into a FloatGrid, tools::volumeToMesh at the threshold) and, when
+//              built with COVER_BENCH_MANIFOLD, Manifold (Manifold::LevelSet of f − T over the
+//              box with edge length h, its MeshGL); interleaved, median of 3 each, wall clock
 //   octree     (only with --octree D) Model::octree of the same blend at depth D (cells full /
 //              empty where interval bounds certify them), against OpenVDB's level set of the same
 //              field at the matching resolution: f − T by field::evaluate (doubles) at every voxel
@@ -22,6 +25,9 @@
 #include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/global_control.h>
+#if COVER_BENCH_MANIFOLD
+#include <manifold/manifold.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -36,6 +42,7 @@
 #include "cover/model/model.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/parallel.h"
+#include "cover/solid/polygon_mesh.h"
 #include "cover/solid/primitives.h"
 
 namespace {
@@ -111,6 +118,43 @@ cover::Model field_model(FieldLeaf f, const std::string& name) {
   return cover::Model(cover::make_field_leaf(std::move(f), name, "/" + name));
 }
 
+/// One run of a peer's route to a picture: seconds per step, and what it made.
+struct PeerRun {
+  double sample = 0;   // the level set: OpenVDB's dense sampling; Manifold's whole LevelSet
+  double mesh = 0;     // OpenVDB's volumeToMesh (inside LevelSet for Manifold)
+  double convert = 0;  // the peer's mesh to a Cover mesh leaf (orientation check included)
+  double render = 0;   // Cover's mesh render
+  size_t quads = 0, triangles = 0, vertices = 0, pixels = 0;
+  double volume = 0;       // signed volume of the Cover mesh
+  double peer_volume = 0;  // the peer's own volume (Manifold::Volume)
+  int status = 0;          // Manifold::Error (0: NoError)
+  double total() const { return sample + mesh + convert + render; }
+};
+
+/// The run of median total among three.
+PeerRun median_run(std::vector<PeerRun> runs) {
+  std::sort(runs.begin(), runs.end(),
+            [](const PeerRun& a, const PeerRun& b) { return a.total() < b.total(); });
+  return runs[runs.size() / 2];
+}
+
+/// A mesh leaf with outward faces (reversed where the signed volume is negative); `volume` gets
+/// the mesh's signed volume before that.
+cover::Model outward_model(cover::PolygonMesh mesh, double& volume) {
+  volume = cover::signed_volume(mesh);
+  if (volume < 0)
+    for (size_t fi = 0; fi < mesh.face_count(); ++fi)
+      std::reverse(mesh.face_vertices.begin() + mesh.face_start[fi],
+                   mesh.face_vertices.begin() + mesh.face_start[fi + 1]);
+  return cover::Model(cover::make_leaf(std::move(mesh), "level set"));
+}
+
+size_t covered_pixels(const cover::Image& img) {
+  size_t covered = 0;
+  for (uint16_t id : img.ids) covered += id != cover::Image::kBackgroundId;
+  return covered;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -158,75 +202,154 @@ int main(int argc, char** argv) {
         n_points, prims, best_cert, best_plain, best_cert / best_plain, in_cert, in_plain);
   }
 
-  // --- render: Cover's certified rays against dense sampling + volumeToMesh + a mesh render ---
+  // --- render: Cover's certified rays against the peers' level set + mesh + mesh render -------
   {
     const FieldLeaf f = chain_blend(blend);
     const cover::Model model = field_model(f, "chain");
     cover::CameraOptions co;
     co.width = co.height = width;
     const cover::Camera cam = model.camera(co);
-    auto t0 = Clock::now();
-    const cover::Image img = model.render(cam);
-    const double cover_s = since(t0);
-    size_t covered = 0;
-    for (uint16_t id : img.ids) covered += id != cover::Image::kBackgroundId;
-
-    openvdb::initialize();
     const cover::Bbox box = model.solid().leaves[0].bbox;
     const double side =
         std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
-    const double h = side / grid;
-    t0 = Clock::now();
-    const float T = static_cast<float>(cover::field::threshold(f));
-    auto fgrid = openvdb::FloatGrid::create(T);  // background: f = 0, outside
-    fgrid->setTransform(openvdb::math::Transform::createLinearTransform(h));
-    // Dense sampling of f − T (the level set's input), slab by slab in parallel into per-slab
-    // grids, merged (the accessor is not thread-safe). Values T − f: negative inside, as
-    // OpenVDB's level sets; voxels where f = 0 keep the background.
-    std::vector<openvdb::FloatGrid::Ptr> slabs(grid);
-    cover::parallel_for(static_cast<size_t>(grid), 1, [&](size_t b, size_t e) {
-      for (size_t i = b; i < e; ++i) {
-        slabs[i] = openvdb::FloatGrid::create(T);
-        auto acc = slabs[i]->getAccessor();
-        for (int j = 0; j < grid; ++j)
-          for (int k = 0; k < grid; ++k) {
-            const Vec3 p{box.min.x + (i + 0.5) * h, box.min.y + (j + 0.5) * h,
-                         box.min.z + (k + 0.5) * h};
-            const float v = static_cast<float>(cover::field::evaluate(f, p).value) - T;
-            if (v != -T) acc.setValue(openvdb::Coord(static_cast<int>(i), j, k), -v);
-          }
+    const double h = side / grid;  // both peers' grid spacing
+    const double T = cover::field::threshold(f);
+    const cover::VolumeResult bracket = model.volume();
+    openvdb::initialize();
+
+    // OpenVDB: dense sampling of f − T on the n³ cell centres of the cube [box.min, box.min +
+    // side], slab by slab in parallel into per-slab grids, merged (the accessor is not
+    // thread-safe); values T − f, negative inside as OpenVDB's level sets; voxels where f = 0
+    // keep the background T. Then volumeToMesh at 0.
+    auto openvdb_route = [&]() {
+      PeerRun run;
+      auto t0 = Clock::now();
+      const float Tf = static_cast<float>(T);
+      auto fgrid = openvdb::FloatGrid::create(Tf);
+      fgrid->setTransform(openvdb::math::Transform::createLinearTransform(h));
+      std::vector<openvdb::FloatGrid::Ptr> slabs(grid);
+      cover::parallel_for(static_cast<size_t>(grid), 1, [&](size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) {
+          slabs[i] = openvdb::FloatGrid::create(Tf);
+          auto acc = slabs[i]->getAccessor();
+          for (int j = 0; j < grid; ++j)
+            for (int k = 0; k < grid; ++k) {
+              const Vec3 p{box.min.x + (i + 0.5) * h, box.min.y + (j + 0.5) * h,
+                           box.min.z + (k + 0.5) * h};
+              const float v = static_cast<float>(cover::field::evaluate(f, p).value) - Tf;
+              if (v != -Tf) acc.setValue(openvdb::Coord(static_cast<int>(i), j, k), -v);
+            }
+        }
+      });
+      for (auto& s : slabs) fgrid->tree().merge(s->tree());
+      run.sample = since(t0);
+      t0 = Clock::now();
+      std::vector<openvdb::Vec3s> points;
+      std::vector<openvdb::Vec3I> tris;
+      std::vector<openvdb::Vec4I> quads;
+      openvdb::tools::volumeToMesh(*fgrid, points, tris, quads, 0.0);
+      run.mesh = since(t0);
+      fgrid.reset();
+      t0 = Clock::now();
+      cover::PolygonMesh mesh;
+      // World points: voxel (i, j, k) is at (i, j, k)·h, sampled at box.min + (i + ½)·h.
+      for (const auto& p : points)
+        mesh.vertices.push_back({box.min.x + p.x() + 0.5 * h, box.min.y + p.y() + 0.5 * h,
+                                 box.min.z + p.z() + 0.5 * h});
+      for (const auto& t : tris) mesh.add_face({t[0], t[1], t[2]});
+      for (const auto& q : quads) mesh.add_face({q[0], q[1], q[2], q[3]});
+      const cover::Model meshed = outward_model(std::move(mesh), run.volume);
+      run.convert = since(t0);
+      run.quads = quads.size();
+      run.triangles = tris.size();
+      t0 = Clock::now();
+      run.pixels = covered_pixels(meshed.render(cam));
+      run.render = since(t0);
+      return run;
+    };
+#if COVER_BENCH_MANIFOLD
+    // Manifold: LevelSet of f − T (positive inside, as LevelSet wants) over the field's box with
+    // edge length h (its body-centred grid: (box / h + 1) nodes per axis plus the cell centres),
+    // its MeshGL (float positions, CCW from outside) to a Cover mesh.
+    const manifold::Box mbox({box.min.x, box.min.y, box.min.z}, {box.max.x, box.max.y, box.max.z});
+    const manifold::vec3 mdim = mbox.Size();
+    const int gx = static_cast<int>(mdim.x / h + 1.0), gy = static_cast<int>(mdim.y / h + 1.0),
+              gz = static_cast<int>(mdim.z / h + 1.0);
+    auto manifold_route = [&]() {
+      PeerRun run;
+      auto t0 = Clock::now();
+      const manifold::Manifold solid = manifold::Manifold::LevelSet(
+          [&f, T](manifold::vec3 p) {
+            return cover::field::evaluate(f, Vec3{p.x, p.y, p.z}).value - T;
+          },
+          mbox, h);
+      run.sample = since(t0);
+      run.status = static_cast<int>(solid.Status());
+      run.triangles = solid.NumTri();
+      run.peer_volume = solid.Volume();
+      t0 = Clock::now();
+      const manifold::MeshGL gl = solid.GetMeshGL();
+      cover::PolygonMesh mesh;
+      mesh.vertices.reserve(gl.NumVert());
+      for (size_t v = 0; v < gl.NumVert(); ++v) {
+        const float* p = gl.vertProperties.data() + v * gl.numProp;
+        mesh.vertices.push_back({p[0], p[1], p[2]});
       }
-    });
-    for (auto& s : slabs) fgrid->tree().merge(s->tree());
-    const double sample_s = since(t0);
-    t0 = Clock::now();
-    std::vector<openvdb::Vec3s> points;
-    std::vector<openvdb::Vec3I> tris;
-    std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(*fgrid, points, tris, quads, 0.0);
-    const double mesh_s = since(t0);
-    cover::PolygonMesh mesh;
-    // World points: voxel (i, j, k) is at (i, j, k)·h, sampled at box.min + (i + ½)·h.
-    for (const auto& p : points)
-      mesh.vertices.push_back(
-          {box.min.x + p.x() + 0.5 * h, box.min.y + p.y() + 0.5 * h, box.min.z + p.z() + 0.5 * h});
-    for (const auto& t : tris) mesh.add_face({t[0], t[1], t[2]});
-    for (const auto& q : quads) mesh.add_face({q[0], q[1], q[2], q[3]});
-    if (cover::signed_volume(mesh) < 0)
-      for (size_t fi = 0; fi < mesh.face_count(); ++fi)
-        std::reverse(mesh.face_vertices.begin() + mesh.face_start[fi],
-                     mesh.face_vertices.begin() + mesh.face_start[fi + 1]);
-    const cover::Model meshed(cover::make_leaf(std::move(mesh), "level set"));
-    t0 = Clock::now();
-    const cover::Image mesh_img = meshed.render(cam);
-    const double mesh_render_s = since(t0);
-    const double peer_s = sample_s + mesh_s + mesh_render_s;
+      mesh.face_vertices.reserve(gl.triVerts.size());
+      mesh.face_start.reserve(gl.NumTri() + 1);
+      for (size_t t = 0; t < gl.NumTri(); ++t)
+        mesh.add_face({gl.triVerts[3 * t], gl.triVerts[3 * t + 1], gl.triVerts[3 * t + 2]});
+      const cover::Model meshed = outward_model(std::move(mesh), run.volume);
+      run.convert = since(t0);
+      run.vertices = gl.NumVert();
+      t0 = Clock::now();
+      run.pixels = covered_pixels(meshed.render(cam));
+      run.render = since(t0);
+      return run;
+    };
+#endif
+
+    // Interleaved rounds (Cover, OpenVDB, Manifold, Cover, ...); medians of 3.
+    std::vector<double> cover_runs;
+    std::vector<PeerRun> vdb_runs, mf_runs;
+    size_t covered = 0;
+    for (int round = 0; round < 3; ++round) {
+      auto t0 = Clock::now();
+      const cover::Image img = model.render(cam);
+      cover_runs.push_back(since(t0));
+      covered = covered_pixels(img);
+      vdb_runs.push_back(openvdb_route());
+#if COVER_BENCH_MANIFOLD
+      mf_runs.push_back(manifold_route());
+#endif
+    }
+    std::vector<double> sorted = cover_runs;
+    std::sort(sorted.begin(), sorted.end());
+    const double cover_s = sorted[1];
     std::printf(
-        "render %dx%d, blend of %d (segments and points): cover %.3f s (%zu pixels on the "
-        "surface); peer route at %d^3: sample %.3f s + volumeToMesh %.3f s (%zu quads, %zu "
-        "triangles) + mesh render %.3f s = %.3f s; ratio %.2f\n",
-        width, width, blend, cover_s, covered, grid, sample_s, mesh_s, quads.size(), tris.size(),
-        mesh_render_s, peer_s, cover_s / peer_s);
+        "render %dx%d, blend of %d (segments and points), median of 3 interleaved: cover %.3f s "
+        "(runs %.3f %.3f %.3f; %zu pixels on the surface; bracket volume %.4f +- %.4f)\n",
+        width, width, blend, cover_s, cover_runs[0], cover_runs[1], cover_runs[2], covered,
+        bracket.volume, bracket.error_bound);
+    const PeerRun vdb = median_run(vdb_runs);
+    std::printf(
+        "  openvdb route at %d^3 (h %.5f): sample %.3f s + volumeToMesh %.3f s (%zu quads, %zu "
+        "triangles) + to a mesh %.3f s + mesh render %.3f s = %.3f s (runs %.3f %.3f %.3f); "
+        "mesh volume %.4f, %zu pixels; ratio cover / openvdb %.2f\n",
+        grid, h, vdb.sample, vdb.mesh, vdb.quads, vdb.triangles, vdb.convert, vdb.render,
+        vdb.total(), vdb_runs[0].total(), vdb_runs[1].total(), vdb_runs[2].total(), vdb.volume,
+        vdb.pixels, cover_s / vdb.total());
+#if COVER_BENCH_MANIFOLD
+    const PeerRun mf = median_run(mf_runs);
+    std::printf(
+        "  manifold route, LevelSet edge %.5f over the box (%dx%dx%d nodes, about %.1fM samples): "
+        "level set %.3f s (status %d, %zu triangles, %zu vertices, volume %.4f) + MeshGL to a "
+        "mesh %.3f s + mesh render %.3f s = %.3f s (runs %.3f %.3f %.3f); mesh volume %.4f, %zu "
+        "pixels; ratio cover / manifold %.2f\n",
+        h, gx, gy, gz, (2.0 * gx * gy * gz) / 1e6, mf.sample, mf.status, mf.triangles, mf.vertices,
+        mf.peer_volume, mf.convert, mf.render, mf.total(), mf_runs[0].total(), mf_runs[1].total(),
+        mf_runs[2].total(), mf.volume, mf.pixels, cover_s / mf.total());
+#endif
   }
 
   // --- octree: Cover's certified octree against OpenVDB's level set by dense sampling ----------
