@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "cover/io/scene.h"
 #include "cover/model/model.h"
@@ -125,6 +126,31 @@ struct DecomposeCommandOptions {
   std::string ext = ".off";  ///< --ext: the pieces' mesh format
 };
 
+struct SubdivideCommandOptions {
+  std::string input;                     ///< a mesh file
+  std::string output;                    ///< -o OUT.(off|obj|stl|ply)
+  std::string scheme = "catmull-clark";  ///< --scheme: catmull-clark, doo-sabin, loop or sqrt3
+  int levels = 1;                        ///< --levels N
+  bool exact_rounding = false;           ///< --exact-rounding
+  bool check_self_intersection = true;   ///< --no-self-intersection skips the (exact) check
+};
+
+/// `cover modify`, `cover pipe`, `cover extrude`: modeling operations on a closed mesh
+/// (modeler/script.h). `modify` applies a recorded script; `pipe` and `extrude` are one-step
+/// scripts built from their flags.
+struct ModifyCommandOptions {
+  std::string input;                    ///< a closed mesh file
+  std::string output;                   ///< -o OUT.(off|obj|stl|ply)
+  std::string ops;                      ///< modify: --ops FILE.json
+  std::vector<int> faces;               ///< pipe: --faces F1,F2; extrude: --face F
+  std::vector<double> near;             ///< --near x,y,z[,x,y,z]: faces by a point near them
+  int segments = 1;                     ///< pipe: --segments
+  double twist = 0;                     ///< pipe: --twist DEG (rounded to whole corners)
+  double distance = 0;                  ///< extrude: --distance
+  std::string kind = "straight";        ///< extrude: --kind (straight, cubical, ...)
+  bool check_self_intersection = true;  ///< --no-self-intersection skips the (exact) check
+};
+
 /// A library parameter's flag, for InputError messages and warnings (InputError::text,
 /// Model::warnings): "--" and the name with '-' for '_', where the flag is not shorter or named
 /// otherwise.
@@ -144,5 +170,10 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
 int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& common);
 /// `cover decompose`: exact convex pieces by reflex-edge plane cuts (brep/decompose.h).
 int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common);
+/// `cover subdivide`: `levels` rounds of a subdivision scheme on a mesh (subdivision/subdivide.h).
+int run_subdivide(const SubdivideCommandOptions& o, const CommonOptions& common);
+/// `cover modify` / `pipe` / `extrude` (`command` names which; modeler/script.h).
+int run_modify(std::string_view command, const ModifyCommandOptions& o,
+               const CommonOptions& common);
 
 }  // namespace cover::cli

@@ -307,6 +307,58 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   add_common(dec_cmd, common);
 
+  cover::cli::SubdivideCommandOptions sub;
+  CLI::App* sub_cmd = app.add_subcommand(
+      "subdivide", "Subdivision surface: Catmull-Clark, Doo-Sabin, Loop or sqrt3 rounds on a mesh");
+  sub_cmd->add_option("INPUT", sub.input, "Mesh (.obj .off .stl .ply)")->required();
+  sub_cmd->add_option("-o,--output", sub.output, "OUT.off, .obj, .stl or .ply")->required();
+  sub_cmd
+      ->add_option("--scheme", sub.scheme,
+                   "catmull-clark (quads), doo-sabin (dual), loop or sqrt3 (triangle meshes)")
+      ->capture_default_str();
+  sub_cmd->add_option("--levels", sub.levels, "Rounds of the scheme (0: the input unchanged)")
+      ->capture_default_str()
+      ->transform(whole_number(0, 30));
+  sub_cmd->add_flag("--exact-rounding", sub.exact_rounding,
+                    "Each new point the correctly rounded value of its exact stencil");
+  sub_cmd->add_flag("!--no-self-intersection", sub.check_self_intersection,
+                    "Skip the exact self-intersection check of the result");
+  add_common(sub_cmd, common);
+
+  // Modeling (modeler/script.h): a recorded script, or one pipe / extrusion from flags.
+  cover::cli::ModifyCommandOptions mod;
+  const auto add_modeling = [&](const char* name, const char* help) {
+    CLI::App* cmd = app.add_subcommand(name, help);
+    cmd->add_option("INPUT", mod.input, "Closed mesh (.obj .off .stl .ply)")->required();
+    cmd->add_option("-o,--output", mod.output, "OUT.off, .obj, .stl or .ply")->required();
+    cmd->add_flag("!--no-self-intersection", mod.check_self_intersection,
+                  "Skip the exact self-intersection check of the result");
+    add_common(cmd, common);
+    return cmd;
+  };
+  CLI::App* mod_cmd = add_modeling("modify", "Apply recorded modeling operations (DLFL) to a mesh");
+  mod_cmd->add_option("--ops", mod.ops, "Operations file (JSON; docs/cli.md \"Modeling\")")
+      ->required();
+  CLI::App* pip_cmd = add_modeling("pipe", "A pipe (handle or tunnel) between two faces");
+  pip_cmd->add_option("--faces", mod.faces, "F1,F2: face ids (input face indices)")->delimiter(',');
+  pip_cmd
+      ->add_option("--near", mod.near,
+                   "x,y,z (twice, or six numbers): the faces whose centroids are nearest")
+      ->delimiter(',');
+  pip_cmd->add_option("--segments", mod.segments, "Edges along the pipe")
+      ->capture_default_str()
+      ->transform(whole_number(1, 4096));
+  pip_cmd->add_option("--twist", mod.twist, "DEG the pipe turns (rounded to whole corners)")
+      ->capture_default_str();
+  CLI::App* ext_cmd = add_modeling("extrude", "Extrude a face along its normal");
+  ext_cmd->add_option("--face", mod.faces, "F: a face id (input face index)")->delimiter(',');
+  ext_cmd->add_option("--near", mod.near, "x,y,z: the face nearest to a point")->delimiter(',');
+  ext_cmd->add_option("--distance", mod.distance, "Distance along the face's normal")->required();
+  ext_cmd
+      ->add_option("--kind", mod.kind,
+                   "straight, cubical (Doo-Sabin), dodecahedral, stellate (a cone) or dome")
+      ->capture_default_str();
+
   if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty())
     return fail(2, unknown);
   try {
@@ -333,6 +385,10 @@ int main(int argc, char** argv) {
     if (eva_cmd->parsed()) return cover::cli::run_evaluate(eva, common);
     if (clp_cmd->parsed()) return cover::cli::run_clip(clp, common);
     if (dec_cmd->parsed()) return cover::cli::run_decompose(dec, common);
+    if (sub_cmd->parsed()) return cover::cli::run_subdivide(sub, common);
+    if (mod_cmd->parsed()) return cover::cli::run_modify("modify", mod, common);
+    if (pip_cmd->parsed()) return cover::cli::run_modify("pipe", mod, common);
+    if (ext_cmd->parsed()) return cover::cli::run_modify("extrude", mod, common);
     return fail(2, "no command given (try --help)");
   } catch (const cover::InputError& e) {
     return fail(2, e.text(cover::cli::flag_of));

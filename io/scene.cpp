@@ -21,13 +21,15 @@
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
 #include "cover/solid/transform.h"
+#include "cover/subdivision/subdivide.h"
 
 namespace cover {
 namespace {
 
 using nlohmann::json;
 
-constexpr int kMaxDepth = 256;  // nesting of operations
+constexpr int kMaxDepth = 256;           // nesting of operations
+constexpr int kMaxSubdivideLevels = 30;  // a subdivide node's "levels" (as `cover subdivide`)
 
 /// Reads a scene in three steps. plan() walks the JSON in document order, checking its structure
 /// and every primitive and transform, and lists the leaves (their meshes not yet read); the
@@ -64,7 +66,15 @@ class SceneReader {
   }
 
  private:
-  /// One leaf to make: a mesh file (read by read_files()) or a primitive's mesh (built by plan()).
+  /// One round of subdivide nodes over a leaf's mesh: subdivide() with `options`, then `world`
+  /// (the node's transform) applied; `path` the node's JSON path, for messages.
+  struct Subdivision {
+    SubdivideOptions options;
+    Transform world;
+    std::string path;
+  };
+  /// One leaf to make: a mesh file (read by read_files()) or a primitive's mesh (built by plan()),
+  /// then refined by the subdivide nodes above it, innermost first.
   struct LeafTask {
     std::string path;            ///< its JSON path
     std::filesystem::path file;  ///< mesh leaves: the file; empty for primitives
@@ -73,6 +83,7 @@ class SceneReader {
     Transform world;             ///< mesh leaves: the transform to apply
     size_t read = 0;             ///< mesh leaves: its file's entry in reads_
     std::optional<Solid> made;   ///< field leaves: made (validated, placed) by plan()
+    std::vector<Subdivision> subdivisions = {};  ///< subdivide nodes: the leaf's mesh refined
   };
   /// One distinct mesh file, read once however many leaves place it (instances: the 10-leaf
   /// preview scene reads 6 files for 10 leaves).
@@ -133,7 +144,7 @@ class SceneReader {
     if (kind.empty())
       fail(path,
            "expected one of mesh, box, sphere, cylinder, field, blend, twist, taper, bend, "
-           "union, intersection, difference, complement");
+           "subdivide, union, intersection, difference, complement");
     const json& v = j.at(kind);
     const std::string sub = path + "/" + kind;
     if (kind == "mesh") {
@@ -170,6 +181,7 @@ class SceneReader {
           plan(required(v, sub, "child"), sub + "/child", Transform{}, depth + 1));
       return out;
     }
+    if (kind == "subdivide") return subdivide_node(v, sub, world, depth);
     if (kind == "complement") return {CsgOp::kComplement, 0, {plan(v, sub, world, depth + 1)}};
     if (kind == "union" || kind == "intersection" || kind == "difference") {
       if (!v.is_array() || v.empty()) fail(sub, "expected an array of one or more nodes");
@@ -186,23 +198,94 @@ class SceneReader {
     fail(path, "unknown key '" + kind + "'");
   }
 
+  /// A subdivide node `v` at `path` (its transform included in `world`): one leaf, the mesh of
+  /// its child (a mesh leaf, a primitive or another subdivide node, placed in the node's frame
+  /// by its own transform) refined by subdivide() when the leaf is made, then placed by `world`.
+  /// io does not depend on boolean (docs/design.md "Modules"), so an operation is not evaluated
+  /// here: other children are refused.
+  Plan subdivide_node(const json& v, const std::string& path, const Transform& world, int depth) {
+    keys(v, path, {"scheme", "levels", "exact_rounding", "child"});
+    Subdivision step{{}, world, path};
+    if (v.contains("scheme")) {
+      const json& s = v.at("scheme");
+      const std::optional<Scheme> scheme =
+          s.is_string() ? scheme_from_string(s.get_ref<const std::string&>()) : std::nullopt;
+      if (!scheme)
+        fail(path + "/scheme", "expected \"catmull-clark\", \"doo-sabin\", \"loop\" or \"sqrt3\"");
+      step.options.scheme = *scheme;
+    }
+    if (v.contains("levels")) {
+      const json& l = v.at("levels");
+      if (!l.is_number_integer() || l.get<int64_t>() < 0 || l.get<int64_t>() > kMaxSubdivideLevels)
+        fail(path + "/levels",
+             "expected an integer from 0 to " + std::to_string(kMaxSubdivideLevels));
+      step.options.levels = static_cast<int>(l.get<int64_t>());
+    }
+    if (v.contains("exact_rounding")) {
+      if (!v.at("exact_rounding").is_boolean())
+        fail(path + "/exact_rounding", "expected true or false");
+      step.options.exact_rounding = v.at("exact_rounding").get<bool>();
+    }
+    const json& c = required(v, path, "child");
+    const std::string child = path + "/child";
+    std::string kind;
+    if (c.is_object())
+      for (auto it = c.begin(); it != c.end(); ++it)
+        if (it.key() != "transform") kind = it.key();
+    if (kind != "mesh" && kind != "box" && kind != "sphere" && kind != "cylinder" &&
+        kind != "subdivide")
+      fail(kind.empty() ? child : child + "/" + kind,
+           "a subdivide node's child is a mesh, box, sphere, cylinder or subdivide node" +
+               (kind.empty() ? std::string() : ", not '" + kind + "'") +
+               " (operations, fields and warps are not subdivided; evaluate an operation to a "
+               "mesh first: cover evaluate)");
+    const Plan p = plan(c, child, Transform{}, depth + 1);
+    LeafTask& task = tasks_[p.task];
+    task.subdivisions.push_back(std::move(step));
+    task.path = path;
+    return p;
+  }
+
   /// Makes the leaf of one task (in parallel with the others; `warnings` are the task's own).
   /// A mesh file's own errors ("m.off:5: ...", "m.off: cannot open: ...") follow the JSON path.
   Solid run(LeafTask& task, std::vector<std::string>& warnings) const {
     if (task.made) return std::move(*task.made);
-    if (task.file.empty()) return leaf(std::move(task.mesh), task.kind, task.path, false, warnings);
-    const FileRead& r = reads_[task.read];
-    if (r.error) {
-      try {
-        std::rethrow_exception(r.error);
-      } catch (const InputError& e) {
-        fail(task.path, e.what());
+    if (task.file.empty() && task.subdivisions.empty())
+      return leaf(std::move(task.mesh), task.kind, task.path, false, warnings);
+    PolygonMesh m;
+    std::string name = task.kind;
+    const FileRead* r = nullptr;
+    if (task.file.empty()) {
+      m = std::move(task.mesh);
+    } else {
+      r = &reads_[task.read];
+      if (r->error) {
+        try {
+          std::rethrow_exception(r->error);
+        } catch (const InputError& e) {
+          fail(task.subdivisions.empty() ? task.path : task.subdivisions[0].path + "/child/mesh",
+               e.what());
+        }
       }
+      warnings.insert(warnings.end(), r->warnings.begin(), r->warnings.end());
+      m = r->mesh;
+      apply_transform(task.world, m);
+      name = task.file.string();
     }
-    warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-    PolygonMesh m = r.mesh;
-    apply_transform(task.world, m);
-    return leaf(std::move(m), task.file.string(), task.path, true, warnings, &r.topology);
+    if (task.subdivisions.empty())
+      return leaf(std::move(m), std::move(name), task.path, true, warnings, &r->topology);
+    for (const Subdivision& s : task.subdivisions) {
+      try {
+        m = subdivide(m, s.options);
+      } catch (const InputError& e) {
+        fail(s.path, (task.file.empty() ? "" : task.file.string() + ": ") + e.what());
+      }
+      apply_transform(s.world, m);
+      name = std::string(to_string(s.options.scheme)) + " subdivision (" +
+             std::to_string(s.options.levels) + " level" + (s.options.levels == 1 ? "" : "s") +
+             ") of " + name;
+    }
+    return leaf(std::move(m), std::move(name), task.path, false, warnings);
   }
 
   Solid assemble(const Plan& p, std::vector<Solid>& solids) const {

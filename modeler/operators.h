@@ -66,4 +66,103 @@ VertexId stellate_face(DlflMesh& mesh, FaceId f, double height);
 /// edge, or t is not in (0, 1).
 FaceId truncate_vertex(DlflMesh& mesh, VertexId v, double t);
 
+/// Catmull–Clark refinement (one level, closed meshes) built from the minimal operators, the
+/// DLFL view of [Akleman2002 §5] vertex insertion: subdivide_edge(·, 1) on every edge (the edge
+/// points), then per face a point-sphere joined by insert_edge to one edge point of the face and
+/// then to each of its other edge points (the face point; each join after the first splits off
+/// one quad). Positions are subdivision/'s Catmull–Clark masks (docs/design.md "Subdivision")
+/// evaluated in its operand order over the corner order of to_polygon_mesh(mesh), so
+/// to_polygon_mesh of the result equals subdivide(to_polygon_mesh(mesh), {kCatmullClark, 1})
+/// bit for bit up to the numbering of vertices and faces. Old vertices, edges and faces become
+/// V + E + F vertices, 2E + H edges and H quads (H: face-vertex entries); genus and components
+/// are unchanged. Vertex ids of the input are kept (they hold the vertex points).
+/// \throws InputError when the mesh has a point-sphere or a loop edge.
+void catmull_clark_by_operators(DlflMesh& mesh);
+
+/// Face inset: extrude_face(f, 0), then the n new vertices (f's loop) moved toward f's
+/// centroid by `fraction` of the way; f becomes the smaller copy inside a ring of n quads.
+/// V+n, E+2n, F+n; genus and components unchanged. Returns f.
+/// \throws as extrude_face; InputError when fraction is not in (0, 1).
+FaceId inset_face(DlflMesh& mesh, FaceId f, double fraction);
+
+/// Edge chamfer (TopMod's "cut edges"): edge e becomes a face. The four edges beside e in its
+/// two faces get cut points at fraction t from u = tail(2e) and v = head(2e) (subdivide_edge),
+/// each face is cut between its two cut points (insert_edge) and e is deleted, which merges the
+/// two strips into the new face. An end of valence 3 is dissolved (its far face is cut between
+/// its two cut points and remove_edge takes its two short edges), as on a cube, so the new face
+/// is a quad; an end of higher valence stays a corner of it. Changes: V+4, E+5, F+1, then per
+/// dissolved end V−1, E−1; genus and components unchanged. Returns the new face.
+/// \throws PreconditionError when e is not live; InputError when t is not in (0, 1/2), e is a
+/// loop, has one face on both sides, borders a face of fewer than 3 sides, or ends at a
+/// vertex of valence under 3.
+FaceId chamfer_edge(DlflMesh& mesh, EdgeId e, double t);
+
+/// Vertex-and-edge bevel (the Doo–Sabin pattern as one step): every face is inset by
+/// `fraction` (inset_face), then each old edge is deleted (its two ring quads merge) and its
+/// ends are cut across (two insert_edge: the edge's quad between two triangles), and each old
+/// vertex is removed with its edges (remove_edge; its triangles merge into its face). Each
+/// corner of face f at v ends at v + fraction·(centroid(f) − v). V, E, F become H, 2H and
+/// F + E + V (H: face-vertex entries, = 2E); genus and components unchanged.
+/// \throws InputError when fraction is not in (0, 1), the mesh has a point-sphere or a loop
+/// edge, or a face is degenerate.
+void bevel(DlflMesh& mesh, double fraction);
+
+/// Options of crust and wireframe.
+struct CrustOptions {
+  double thickness = 0.1;  ///< distance of the inner surface below the outer one
+  double inset = 0.2;      ///< inset_face fraction of each punched face (and its inner copy)
+};
+
+/// A rind (TopMod's createCrust + cmMakeHole): a reversed copy of the mesh (create_vertex per
+/// vertex, insert_edge per edge at the corners of the reversed rotations) placed
+/// options.thickness inside (each vertex moved against the mean unit normal of its faces, by
+/// the mean of thickness / cos over them: a uniform thickness on flat sides), then each punched
+/// face and its inner copy are inset (inset_face, so neighbouring holes keep a frame between
+/// them) and joined by create_pipe: each punched face becomes a tunnel through the rind into
+/// its hollow. For a connected closed mesh (V, E, F, genus g) and k ≥ 1 punched faces of total
+/// degree N: V' = 2V + 2N, E' = 2E + 5N, F' = 2F + 3N − 2k, one component of genus 2g + k − 1
+/// (with k = 0: the two shells, genus g each).
+/// \throws PreconditionError when a punched face is not live; InputError when one is a
+/// point-sphere's face or listed twice, the mesh has a loop edge, thickness ≤ 0, inset is not in
+/// (0, 1), or a vertex's faces turn 90° or more from their mean normal.
+void crust(DlflMesh& mesh, const std::vector<FaceId>& punched, const CrustOptions& options = {});
+
+/// Wireframe (TopMod's makeWireframe): crust with every face punched, so every face becomes a
+/// hole framed by beams along its edges. For a connected closed genus-0 mesh the result is one
+/// component of genus F − 1 = E − V + 1 (the cycle rank of the edge graph), V' = 2V + 2H,
+/// E' = 2E + 5H, F' = 3H (H: face-vertex entries).
+/// \throws as crust.
+void wireframe(DlflMesh& mesh, const CrustOptions& options = {});
+
+/// Options of extrude_face_doo_sabin.
+struct DooSabinExtrudeOptions {
+  double twist = 0;  ///< in [0, 1]: corner i starts from (1 − twist)·p_i + twist·p_{i+1}
+  double scale = 1;  ///< the new face scaled about its centroid (> 0)
+};
+
+/// Doo–Sabin extrusion (TopMod's extrudeFaceDS): extrude_face(f, 0), then new corner i at the
+/// Doo–Sabin corner mask Σ a_k q_{i+k}, a_0 = 1/4 + 5/(4n), a_k = (3 + 2cos(2πk/n))/(4n), over
+/// the corners q moved `distance` along f's unit normal (and twisted), scaled about their
+/// centroid. V+n, E+2n, F+n; genus and components unchanged. Returns f (the new top face).
+/// \throws as extrude_face; InputError when scale ≤ 0 or twist is not in [0, 1].
+FaceId extrude_face_doo_sabin(DlflMesh& mesh, FaceId f, double distance,
+                              const DooSabinExtrudeOptions& options = {});
+
+/// Dome extrusion (TopMod's extrudeFaceDome): five Doo–Sabin extrusions of heights (0.3, 0.18,
+/// 0.1, 0.05, 0.025)·length and scales (1.7, 1.6, 1.4, 1.2, 1.1)·scale, then stellate_face of
+/// height 0.01·length. V+5n+1, E+11n, F+6n−1. Returns the apex.
+/// \throws as extrude_face_doo_sabin.
+VertexId extrude_face_dome(DlflMesh& mesh, FaceId f, double length, double scale = 1);
+
+/// Dodecahedral extrusion (TopMod's extrudeFaceDodeca): three layers of height distance / 3,
+/// each scaled by ∛scale about its centroid: a straight extrusion (corners c_i); a dual ring of
+/// new vertices m_i over the edge midpoints, each joined to both ends of its edge and to the
+/// next m (insert_edge), after which the old top edges are deleted; a straight extrusion of the
+/// m-face, after which the m-face's old edges are deleted. The 2n sides are pentagons (a
+/// pentagon grows a cap of 10 pentagons, as in TopMod). V+3n, E+5n, F+2n; genus and components
+/// unchanged. Returns the new top face.
+/// \throws PreconditionError when f is not live; InputError when scale ≤ 0, f has fewer than 3
+/// sides, or a layer's face is degenerate.
+FaceId extrude_face_dodecahedral(DlflMesh& mesh, FaceId f, double distance, double scale = 1);
+
 }  // namespace cover::modeler

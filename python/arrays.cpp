@@ -80,6 +80,73 @@ std::vector<std::array<uint32_t, 3>> triangles_arg(py::handle obj, size_t vertic
   return out;
 }
 
+namespace {
+
+/// Appends `m` faces of `k` vertices each, the integer array `a` in C order, to `mesh`.
+void append_faces(const py::array& a, size_t m, size_t k, PolygonMesh& mesh) {
+  if (a.size() > 0) check_numeric(a, "F", "iu");
+  const auto f = py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+  const int64_t* idx = f.data();
+  const size_t vertices = mesh.vertices.size();
+  for (size_t i = 0; i < m * k; ++i)
+    if (idx[i] < 0 || static_cast<uint64_t>(idx[i]) >= vertices)
+      throw InputError("F: face " + std::to_string(mesh.face_count() + i / k) + ": vertex index " +
+                       std::to_string(idx[i]) + " out of range (" + std::to_string(vertices) +
+                       " vertices)");
+  mesh.face_vertices.insert(mesh.face_vertices.end(), idx, idx + m * k);
+  for (size_t i = 0; i < m; ++i)
+    mesh.face_start.push_back(mesh.face_start.back() + static_cast<uint32_t>(k));
+}
+
+}  // namespace
+
+void faces_arg(py::handle obj, PolygonMesh& mesh) {
+  if (!py::isinstance<py::array>(obj)) {
+    // A list of equal-length index lists reads as one array; a ragged one face by face.
+    py::array a = py::array::ensure(obj);
+    if (!a) PyErr_Clear();
+    if (!a || a.ndim() != 2 || std::string("iu").find(a.dtype().kind()) == std::string::npos) {
+      if (!py::isinstance<py::sequence>(obj) || py::isinstance<py::str>(obj))
+        throw py::type_error("F: expected an (m, k) integer array or a list of index lists");
+      const py::sequence faces = py::reinterpret_borrow<py::sequence>(obj);
+      for (size_t i = 0; i < faces.size(); ++i) {
+        const std::string name = "F[" + std::to_string(i) + "]";
+        py::array face = any_array(faces[i], name);
+        if (face.ndim() != 1)
+          throw py::value_error(name + ": expected a list of vertex indices, got shape " +
+                                shape_text(face));
+        append_faces(face, 1, static_cast<size_t>(face.shape(0)), mesh);
+      }
+      return;
+    }
+    obj = a;
+  }
+  py::array a = any_array(obj, "F");
+  if (a.ndim() != 2)
+    throw py::value_error("F: expected an array of shape (m, k), got shape " + shape_text(a));
+  append_faces(a, static_cast<size_t>(a.shape(0)), static_cast<size_t>(a.shape(1)), mesh);
+}
+
+py::object faces_object(const PolygonMesh& mesh) {
+  const size_t m = mesh.face_count();
+  const size_t k = m == 0 ? 3 : mesh.face(0).size();
+  bool uniform = true;
+  for (size_t f = 0; f < m && uniform; ++f) uniform = mesh.face(f).size() == k;
+  if (uniform) {
+    py::array_t<int64_t> out({static_cast<py::ssize_t>(m), static_cast<py::ssize_t>(k)});
+    std::copy(mesh.face_vertices.begin(), mesh.face_vertices.end(), out.mutable_data());
+    return out;
+  }
+  py::list out(m);
+  for (size_t f = 0; f < m; ++f) {
+    const auto face = mesh.face(f);
+    py::list l(face.size());
+    for (size_t c = 0; c < face.size(); ++c) l[c] = py::int_(face[c]);
+    out[f] = std::move(l);
+  }
+  return out;
+}
+
 int thread_count(const std::optional<int>& threads) {
   if (!threads) return 0;
   if (*threads < 0)

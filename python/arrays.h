@@ -57,6 +57,16 @@ Vec3 vec3_arg(py::handle obj, const std::string& name);
 /// an index outside [0, vertices) (as cover::mesh words it).
 std::vector<std::array<uint32_t, 3>> triangles_arg(py::handle obj, size_t vertices);
 
+/// Polygon faces into `mesh` (its face lists; `mesh.vertices` already set): an (m, k) integer
+/// array, every face of k vertices, or a sequence of integer sequences, faces of mixed degrees.
+/// \throws ValueError for a wrong shape, TypeError for non-integers, cover::InputError for an
+/// index outside [0, vertices) ("F: face 3: vertex index 9 out of range (8 vertices)").
+void faces_arg(py::handle obj, PolygonMesh& mesh);
+
+/// The faces of `mesh` as int64 (m, k) when every face has k vertices (an empty mesh: (0, 3)),
+/// else a list of lists of int, one per face.
+py::object faces_object(const PolygonMesh& mesh);
+
 /// The worker-thread count of a `threads=` argument (None or 0: all cores). \throws ValueError
 /// for a negative count.
 int thread_count(const std::optional<int>& threads);

@@ -243,4 +243,46 @@ for non-integer F, InputError for an index out of range, a non-orientable mesh, 
 (closed_only=True) an open mesh; otherwise an open mesh is inside where its generalized
 winding number has |w| > 1/2.)";
 
+inline constexpr const char* kSubdivide =
+    R"(`levels` rounds of a subdivision scheme on a polygon mesh: returns (V, F).
+
+V: array-like (n, 3) of coordinates; F: an integer array-like (m, k) of vertex indices (every
+face of k vertices) or a list of index lists (faces of mixed degrees), counter-clockwise seen
+from outside. scheme: "catmull-clark" (any polygons in, quads out), "doo-sabin" (any polygons,
+dual), "loop" or "sqrt3" (triangles in and out). levels: 0 returns the input. exact_rounding:
+every new point the correctly rounded value of its stencil evaluated exactly. The result's V is
+float64 (n', 3); its F is int64 (m', k') when every face has k' vertices (always for
+catmull-clark, loop and sqrt3; an empty result: (0, 3)), else a list of lists of int (doo-sabin
+in general). Vertex and face order as cover::subdivide (docs/library.md), identical to
+`cover subdivide`. Raises ValueError for a wrong shape, TypeError for non-integer F, InputError
+for an index out of range, a face with fewer than 3 vertices or repeating a vertex, a
+non-manifold or inconsistently oriented mesh, a non-triangle face for loop or sqrt3, an unknown
+scheme, levels < 0 or an output beyond 2^30 vertices or face entries.)";
+
+inline constexpr const char* kModify =
+    R"(Modeling operations on a closed mesh (the DLFL modeler): returns (V, F).
+
+V, F as for subdivide(); the mesh must be closed, oriented and manifold. operations: the JSON
+text of `cover modify --ops` (docs/cli.md "Modeling"), or the same as Python objects (a list of
+one-key dicts, or {"operations": [...]}), e.g. [{"pipe": {"faces": [1, 0], "segments": 2}},
+{"subdivide": {"levels": 2}}]. Faces, edges and vertices are ids or points [x, y, z] near
+them. Every operation is built from the DLFL's minimal operators, so the result is an
+orientable 2-manifold. The result's F is int64 (m', k') when every face has k' vertices, else a
+list of lists of int. Raises InputError naming the operation's JSON path for a bad operation,
+and for an open, non-manifold or inconsistently oriented mesh.)";
+
+inline constexpr const char* kHalfedgeMesh =
+    R"(A closed orientable 2-manifold mesh in the DLFL modeler, edited in place.
+
+HalfedgeMesh(V, F): V, F as for subdivide(); the mesh must be closed, oriented and manifold.
+Elements are named by id (the input's vertex and face indices until an operation renumbers) or
+by a point [x, y, z] near them (the face whose centroid, the edge whose midpoint, the vertex
+nearest to it). The minimal operators: create_vertex(p) -> id (a point-sphere),
+delete_vertex(v), insert_edge(c1, c2) between corners (face, vertex) or a point-sphere's vertex,
+delete_edge(e); and remove_edge(e), subdivide_edge(e, points=1), pipe(f1, f2, segments=1,
+twist=0.0 degrees), extrude(face, distance, kind="straight"|"cubical"|"dodecahedral"|"stellate"|
+"dome"), truncate(vertex, fraction=0.25), apply(operations) (a `cover modify` script).
+vertex_count, edge_count, face_count, genus, components; arrays() -> (V, F); check() raises
+when an invariant is broken. Operators raise InputError naming the problem.)";
+
 }  // namespace cover::python::doc

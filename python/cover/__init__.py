@@ -5,7 +5,8 @@ Models with | (union), & (intersection), - (difference) and ~ (complement) or un
 intersection_all(), move them with translate(), scale(), rotate(), mirror() and transform(),
 and query it:
 classify(), winding(), volume(), bounds(), voxelize(), cast(), render(), evaluate(), clip(),
-info(). See docs/python.md.
+info(). subdivide() refines a polygon mesh given as arrays; modify() applies modeling operations
+(pipes, extrusions, ...) to one. See docs/python.md.
 """
 
 from ._cover import (
@@ -22,6 +23,9 @@ from ._cover import (
     load,
     mesh,
     sphere,
+    HalfedgeMesh,
+    modify,
+    subdivide,
     union_all,
 )
 
@@ -39,5 +43,8 @@ __all__ = [
     "load",
     "mesh",
     "sphere",
+    "HalfedgeMesh",
+    "modify",
+    "subdivide",
     "union_all",
 ]

@@ -209,11 +209,11 @@ TEST_F(CliMessages, OptionMessages) {
   expect_error(run_cover("info --threads 0 " + box()),
                "--threads: expected a whole number from 1 to 4096, got '0'");
   expect_error(run_cover("bogus"),
-               "unknown command 'bogus' (expected info, volume, classify, "
-               "field, render, voxelize, octree, clip, evaluate, decompose)");
+               "unknown command 'bogus' (expected info, volume, classify, field, render, "
+               "voxelize, octree, clip, evaluate, decompose, subdivide, modify, pipe, extrude)");
   expect_error(run_cover(""),
-               "no command given (expected info, volume, classify, field, render, "
-               "voxelize, octree, clip, evaluate, decompose; try --help)");
+               "no command given (expected info, volume, classify, field, render, voxelize, "
+               "octree, clip, evaluate, decompose, subdivide, modify, pipe, extrude; try --help)");
   // Whole numbers are decimal: a leading zero is not octal, and '+' is allowed.
   const auto r = run_cover("voxelize " + box() + " --res +010 -o " + q(dir_ / "v.npy") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
