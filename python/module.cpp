@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <nlohmann/json.hpp>
 
 #include "arrays.h"
 #include "cover/brep/halfedge.h"
@@ -20,9 +19,7 @@
 #include "cover/mesh/validate.h"
 #include "cover/model/info.h"
 #include "cover/model/model.h"
-#include "cover/modeler/dlfl.h"
-#include "cover/modeler/script.h"
-#include "cover/subdivision/subdivide.h"
+#include "modeling.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -571,130 +568,6 @@ Model warned(Model model) {
 
 #include "docstrings.h"
 
-namespace cover::python {
-namespace {
-
-/// cover.HalfedgeMesh: the DLFL modeler's mesh (modeler/dlfl.h) with its operators; each
-/// operator runs as a one-step script (modeler/script.h), so ids and points name elements as in
-/// `cover modify`.
-void bind_halfedge_mesh(py::module_& m) {
-  using modeler::DlflMesh;
-  const auto run = [](DlflMesh& mesh, const nlohmann::json& op) {
-    py::gil_scoped_release release;
-    modeler::apply_script(mesh, nlohmann::json::array({op}).dump(), "HalfedgeMesh");
-  };
-  const auto target = [](py::handle h) -> nlohmann::json {
-    if (py::isinstance<py::int_>(h)) return h.cast<int64_t>();
-    const std::vector<double> p = h.cast<std::vector<double>>();
-    return nlohmann::json(p);
-  };
-  const auto corner = [target](py::handle h) -> nlohmann::json {
-    if (py::isinstance<py::int_>(h)) return {{"vertex", h.cast<int64_t>()}};
-    const py::tuple t = h.cast<py::tuple>();
-    if (t.size() != 2)
-      throw InputError("corner: expected (face, vertex) or a point-sphere's vertex");
-    return {{"face", target(t[0])}, {"vertex", target(t[1])}};
-  };
-  py::class_<DlflMesh>(m, "HalfedgeMesh", doc::kHalfedgeMesh)
-      .def(py::init([](py::handle v, py::handle f) {
-             PolygonMesh in;
-             const Points vertices = points_arg(v, "V");
-             in.vertices.assign(vertices.span().begin(), vertices.span().end());
-             faces_arg(f, in);
-             return modeler::from_polygon_mesh(in);
-           }),
-           py::arg("V"), py::arg("F"))
-      .def_property_readonly("vertex_count", &DlflMesh::vertex_count)
-      .def_property_readonly("edge_count", &DlflMesh::edge_count)
-      .def_property_readonly("face_count", &DlflMesh::face_count)
-      .def_property_readonly("genus",
-                             [](const DlflMesh& mesh) {
-                               int g = 0;
-                               for (const auto& c : modeler::components(mesh)) g += c.genus;
-                               return g;
-                             })
-      .def_property_readonly("components",
-                             [](const DlflMesh& mesh) { return modeler::components(mesh).size(); })
-      .def("arrays",
-           [](const DlflMesh& mesh) {
-             const PolygonMesh out = modeler::to_polygon_mesh(mesh);
-             return py::make_tuple(vertices_array(out.vertices), faces_object(out));
-           })
-      .def("check", [](const DlflMesh& mesh) { modeler::check_valid(mesh); })
-      .def(
-          "create_vertex",
-          [](DlflMesh& mesh, const std::array<double, 3>& p) {
-            return mesh.create_vertex({p[0], p[1], p[2]});
-          },
-          py::arg("point"))
-      .def(
-          "delete_vertex",
-          [run, target](DlflMesh& mesh, py::handle v) {
-            run(mesh, {{"delete_vertex", {{"vertex", target(v)}}}});
-          },
-          py::arg("vertex"))
-      .def(
-          "insert_edge",
-          [run, corner](DlflMesh& mesh, py::handle c1, py::handle c2) {
-            run(mesh, {{"insert_edge", {{"corners", {corner(c1), corner(c2)}}}}});
-          },
-          py::arg("c1"), py::arg("c2"))
-      .def(
-          "delete_edge",
-          [run, target](DlflMesh& mesh, py::handle e) {
-            run(mesh, {{"delete_edge", {{"edge", target(e)}}}});
-          },
-          py::arg("edge"))
-      .def(
-          "remove_edge",
-          [run, target](DlflMesh& mesh, py::handle e) {
-            run(mesh, {{"remove_edge", {{"edge", target(e)}}}});
-          },
-          py::arg("edge"))
-      .def(
-          "subdivide_edge",
-          [run, target](DlflMesh& mesh, py::handle e, int points) {
-            run(mesh, {{"subdivide_edge", {{"edge", target(e)}, {"points", points}}}});
-          },
-          py::arg("edge"), py::arg("points") = 1)
-      .def(
-          "pipe",
-          [run, target](DlflMesh& mesh, py::handle f1, py::handle f2, int segments, double twist) {
-            run(mesh, {{"pipe",
-                        {{"faces", {target(f1), target(f2)}},
-                         {"segments", segments},
-                         {"twist", twist}}}});
-          },
-          py::arg("f1"), py::arg("f2"), py::arg("segments") = 1, py::arg("twist") = 0.0)
-      .def(
-          "extrude",
-          [run, target](DlflMesh& mesh, py::handle f, double distance, const std::string& kind) {
-            run(mesh, {{"extrude", {{"face", target(f)}, {"distance", distance}, {"kind", kind}}}});
-          },
-          py::arg("face"), py::arg("distance"), py::arg("kind") = "straight")
-      .def(
-          "truncate",
-          [run, target](DlflMesh& mesh, py::handle v, double fraction) {
-            run(mesh, {{"truncate", {{"vertex", target(v)}, {"fraction", fraction}}}});
-          },
-          py::arg("vertex"), py::arg("fraction") = 0.25)
-      .def(
-          "apply",
-          [](DlflMesh& mesh, py::handle operations) {
-            const std::string script =
-                py::isinstance<py::str>(operations)
-                    ? operations.cast<std::string>()
-                    : py::module_::import("json").attr("dumps")(operations).cast<std::string>();
-            py::gil_scoped_release release;
-            modeler::apply_script(mesh, script, "operations");
-          },
-          py::arg("operations"));
-}
-
-}  // namespace
-
-}  // namespace cover::python
-
 PYBIND11_MODULE(_cover, m) {
   using namespace cover;
   using namespace cover::python;
@@ -942,48 +815,5 @@ PYBIND11_MODULE(_cover, m) {
         return warned(std::move(model));
       },
       py::arg("V"), py::arg("F"), py::kw_only(), py::arg("closed_only") = false, doc::kMesh);
-  m.def(
-      "subdivide",
-      [](py::handle v, py::handle f, const std::string& scheme, int levels, bool exact_rounding,
-         const std::optional<int>& threads) {
-        PolygonMesh in;
-        const Points vertices = points_arg(v, "V");
-        in.vertices.assign(vertices.span().begin(), vertices.span().end());
-        faces_arg(f, in);
-        const std::optional<Scheme> s = scheme_from_string(scheme);
-        if (!s)
-          throw InputError(
-              "scheme: expected 'catmull-clark', 'doo-sabin', 'loop' or 'sqrt3', got '" + scheme +
-              "'");
-        PolygonMesh out;
-        {
-          KernelScope scope(threads);
-          out = subdivide(in, {.scheme = *s, .levels = levels, .exact_rounding = exact_rounding});
-        }
-        return py::make_tuple(vertices_array(out.vertices), faces_object(out));
-      },
-      py::arg("V"), py::arg("F"), py::arg("scheme") = "catmull-clark", py::arg("levels") = 1,
-      py::arg("exact_rounding") = false, py::kw_only(), threads, doc::kSubdivide);
-  m.def(
-      "modify",
-      [](py::handle v, py::handle f, py::handle operations) {
-        PolygonMesh in;
-        const Points vertices = points_arg(v, "V");
-        in.vertices.assign(vertices.span().begin(), vertices.span().end());
-        faces_arg(f, in);
-        const std::string script =
-            py::isinstance<py::str>(operations)
-                ? operations.cast<std::string>()
-                : py::module_::import("json").attr("dumps")(operations).cast<std::string>();
-        PolygonMesh out;
-        {
-          py::gil_scoped_release release;
-          modeler::DlflMesh mesh = modeler::from_polygon_mesh(in);
-          modeler::apply_script(mesh, script, "operations");
-          out = modeler::to_polygon_mesh(mesh);
-        }
-        return py::make_tuple(vertices_array(out.vertices), faces_object(out));
-      },
-      py::arg("V"), py::arg("F"), py::arg("operations"), doc::kModify);
-  bind_halfedge_mesh(m);
+  bind_modeling(m);
 }
