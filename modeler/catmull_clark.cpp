@@ -4,10 +4,12 @@
 // Notation
 //   corner order   the order in which to_polygon_mesh writes face-vertex entries: faces by id,
 //                  each loop from face_halfedge(f); the "first" half-edge of an edge or of a
-//                  vertex's ring is the one met first in this order, as subdivision/ numbers
-//                  edges and starts rings at their smallest corner.
-//   ring(v)        v's outgoing half-edges from its first one, h → twin(prev(h)) (the reverse
-//                  of DlflMesh::rotation, subdivision/'s order).
+//                  edge is the one met first in this order, as subdivision/ numbers edges;
+//                  the "last" half-edge of a vertex is its last outgoing one in this order.
+//   ring(v)        v's outgoing half-edges from its last one, h → twin(prev(h)) (the reverse
+//                  of DlflMesh::rotation); a vertex point sums the faces of ring(v) from the
+//                  last one backwards and the neighbours from the one after it backwards, as
+//                  subdivision/ does (CGAL's order, detail/stencils.h).
 
 #include <string>
 
@@ -41,7 +43,7 @@ Points catmull_clark_points(const DlflMesh& mesh) {
   out.face.resize(mesh.face_capacity());
   out.edge.resize(mesh.edge_capacity());
   out.vertex.resize(mesh.vertex_capacity());
-  std::vector<HalfedgeId> first_out(mesh.vertex_capacity(), kNone);
+  std::vector<HalfedgeId> last_out(mesh.vertex_capacity(), kNone);
   std::vector<HalfedgeId> edge_first(mesh.edge_capacity(), kNone);
   for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
     if (!mesh.face_alive(f)) continue;
@@ -49,7 +51,7 @@ Points catmull_clark_points(const DlflMesh& mesh) {
     P3 s{0.0, 0.0, 0.0};
     for (HalfedgeId h : loop) {
       s = s + pos(mesh.tail(h));
-      if (first_out[mesh.tail(h)] == kNone) first_out[mesh.tail(h)] = h;
+      last_out[mesh.tail(h)] = h;
       if (edge_first[DlflMesh::edge(h)] == kNone) edge_first[DlflMesh::edge(h)] = h;
     }
     out.face[f] = s / static_cast<double>(loop.size());
@@ -64,19 +66,22 @@ Points catmull_clark_points(const DlflMesh& mesh) {
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v) {
     if (!mesh.vertex_alive(v) || mesh.is_point_sphere(v)) continue;
     const P3 s = pos(v);
-    P3 r{0.0, 0.0, 0.0}, q{0.0, 0.0, 0.0};
-    int n = 0;
-    HalfedgeId h = first_out[v];
+    std::vector<HalfedgeId> ring;
+    HalfedgeId h = last_out[v];
     do {
-      r = r + (s + pos(mesh.head(h))) / 2.0;
-      q = q + out.face[mesh.face(h)];
-      ++n;
+      ring.push_back(h);
       h = DlflMesh::twin(mesh.prev(h));
-    } while (h != first_out[v]);
+    } while (h != last_out[v]);
+    const size_t n = ring.size();
+    P3 r{0.0, 0.0, 0.0}, q{0.0, 0.0, 0.0};
+    for (size_t j = 0; j < n; ++j) {
+      r = r + (s + pos(mesh.head(ring[(n + 1 - j) % n]))) / 2.0;
+      q = q + out.face[mesh.face(ring[(n - j) % n])];
+    }
     const auto tn = static_cast<double>(n);
     r = r / tn;
     q = q / tn;
-    out.vertex[v] = (q + 2.0 * r + s * static_cast<double>(n - 3)) / tn;
+    out.vertex[v] = (q + 2.0 * r + s * (static_cast<double>(n) - 3.0)) / tn;
   }
   return out;
 }

@@ -49,6 +49,30 @@ P3<T> operator/(const P3<T>& a, const T& s) {
   return {a.x / s, a.y / s, a.z / s};
 }
 
+/// The order in which an interior vertex's ring terms are summed: CGAL's. A CGAL Surface_mesh
+/// built face by face (Euler::add_face) keeps, for each interior vertex, the half-edge entering
+/// it in the last face that uses it, and its masks circulate from there. So the ring is read
+/// from the corner with the largest index (the last face's): at(k) is the entry k steps after
+/// it, for k in (−n, 2n). With the same operands in the same order, one step from the same mesh
+/// gives CGAL's doubles bit for bit (tests/subdivision).
+struct RingOrder {
+  const uint32_t* ring;  ///< the vertex's ring slice
+  uint32_t n, last;      ///< its size, the offset of the last face's corner in it
+  uint32_t at(int64_t k) const {
+    int64_t i = last + k;
+    if (i < 0) i += n;
+    if (i >= n) i -= n;
+    return ring[i];
+  }
+};
+inline RingOrder ring_order(const Topology& t, uint32_t v) {
+  const uint32_t lo = t.ring_start[v], n = t.ring_start[v + 1] - lo;
+  uint32_t last = 0;
+  for (uint32_t k = 1; k < n; ++k)
+    if (t.ring[lo + k] > t.ring[lo + last]) last = k;
+  return {t.ring.data() + lo, n, last};
+}
+
 template <class T>
 P3<T> pos(const Topology& t, uint32_t v) {
   const Vec3& q = t.mesh->vertices[v];
@@ -103,12 +127,14 @@ P3<T> cc_vertex_point(const Topology& t, uint32_t v, const FacePoint& face_point
   if (t.border[v]) return border_vertex_point<T>(t, v);
   const P3<T> s = pos<T>(t, v);
   P3<T> r = zero<T>(), q = zero<T>();
-  for (uint32_t i = t.ring_start[v]; i < t.ring_start[v + 1]; ++i) {
-    const uint32_t h = t.ring[i];
-    r = r + (s + pos<T>(t, t.vertex(t.next(h)))) / T(2.0);
-    q = q + face_point(t.face_of[h]);
+  // CGAL's circulator: the faces from the last face's corner backwards through the ring, each
+  // with the neighbour before v in it (the ring entry one step later).
+  const RingOrder o = ring_order(t, v);
+  for (int64_t j = 0; j < o.n; ++j) {
+    r = r + (s + pos<T>(t, t.vertex(t.next(o.at(1 - j))))) / T(2.0);
+    q = q + face_point(t.face_of[o.at(-j)]);
   }
-  const int n = static_cast<int>(t.ring_start[v + 1] - t.ring_start[v]);
+  const int n = static_cast<int>(o.n);
   const T tn(static_cast<double>(n));
   r = r / tn;
   q = q / tn;
@@ -130,9 +156,9 @@ template <class T>
 P3<T> loop_vertex_point(const Topology& t, uint32_t v) {
   if (t.border[v]) return border_vertex_point<T>(t, v);
   P3<T> r = zero<T>();
-  for (uint32_t i = t.ring_start[v]; i < t.ring_start[v + 1]; ++i)
-    r = r + pos<T>(t, t.vertex(t.next(t.ring[i])));
-  const uint32_t n = t.ring_start[v + 1] - t.ring_start[v];
+  const RingOrder o = ring_order(t, v);  // CGAL's order, as in cc_vertex_point
+  for (int64_t j = 0; j < o.n; ++j) r = r + pos<T>(t, t.vertex(t.next(o.at(1 - j))));
+  const uint32_t n = o.n;
   const P3<T> s = pos<T>(t, v);
   if (n == 6) return (T(10.0) * s + r) / T(16.0);
   const double c = std::cos(2 * std::numbers::pi / static_cast<double>(n));
@@ -171,8 +197,9 @@ P3<T> sqrt3_vertex_point(const Topology& t, uint32_t v) {
   const double a = (4.0 - 2.0 * std::cos(2.0 * std::numbers::pi / static_cast<double>(n))) / 9.0;
   P3<T> cv = T(1.0 - a) * pos<T>(t, v);
   const T w(a / static_cast<double>(n));
-  for (uint32_t i = t.ring_start[v]; i < t.ring_start[v + 1]; ++i)
-    cv = cv + w * pos<T>(t, t.vertex(t.next(t.ring[i])));
+  // CGAL circulates the other way here (--vcir): forwards from the neighbour after the start.
+  const RingOrder o = ring_order(t, v);
+  for (int64_t j = 1; j <= o.n; ++j) cv = cv + w * pos<T>(t, t.vertex(t.next(o.at(j))));
   return cv;
 }
 
