@@ -146,6 +146,9 @@ struct ModifyCommandOptions {
   std::vector<double> near;             ///< --near x,y,z[,x,y,z]: faces by a point near them
   int segments = 1;                     ///< pipe: --segments
   double twist = 0;                     ///< pipe: --twist DEG (rounded to whole corners)
+  bool curved = false;                  ///< pipe: --curved (a Hermite handle)
+  std::vector<double> weights;          ///< pipe: --weights W1,W2 (end tangents)
+  std::vector<double> through;          ///< pipe: --through x,y,z (repeatable): path points
   double distance = 0;                  ///< extrude: --distance
   std::string kind = "straight";        ///< extrude: --kind (straight, cubical, ...)
   bool check_self_intersection = true;  ///< --no-self-intersection skips the (exact) check

@@ -350,6 +350,16 @@ int main(int argc, char** argv) {
       ->transform(whole_number(1, 4096));
   pip_cmd->add_option("--twist", mod.twist, "DEG the pipe turns (rounded to whole corners)")
       ->capture_default_str();
+  pip_cmd->add_flag("--curved", mod.curved,
+                    "A curved handle: the centre on a Hermite curve leaving and entering along "
+                    "the faces' normals");
+  pip_cmd->add_option("--weights", mod.weights, "W1,W2: the curve's end tangents (default 1,1)")
+      ->delimiter(',')
+      ->expected(2);
+  pip_cmd
+      ->add_option("--through", mod.through,
+                   "x,y,z (repeatable): points the curved pipe's centre passes through")
+      ->delimiter(',');
   CLI::App* ext_cmd = add_modeling("extrude", "Extrude a face along its normal");
   ext_cmd->add_option("--face", mod.faces, "F: a face id (input face index)")->delimiter(',');
   ext_cmd->add_option("--near", mod.near, "x,y,z: the face nearest to a point")->delimiter(',');

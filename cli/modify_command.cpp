@@ -66,9 +66,18 @@ int run_modify(std::string_view command, const ModifyCommandOptions& o,
     origin = o.ops;
   } else if (command == "pipe") {
     const Json faces = face_list(o, 2, "--faces");
-    script =
-        Json::array({{{"pipe", {{"faces", faces}, {"segments", o.segments}, {"twist", o.twist}}}}})
-            .dump();
+    Json pipe = {{"faces", faces}, {"segments", o.segments}, {"twist", o.twist}};
+    if (o.curved) pipe["curved"] = true;
+    if (!o.weights.empty()) pipe["weights"] = o.weights;
+    if (o.through.size() % 3 != 0)
+      throw InputError("--through: expected x,y,z (three numbers per point)");
+    if (!o.through.empty()) {
+      Json path = Json::array();
+      for (size_t i = 0; i < o.through.size(); i += 3)
+        path.push_back({o.through[i], o.through[i + 1], o.through[i + 2]});
+      pipe["path"] = path;
+    }
+    script = Json::array({{{"pipe", pipe}}}).dump();
     origin = "cover pipe";
   } else {
     const Json face = face_list(o, 1, "--face")[0];

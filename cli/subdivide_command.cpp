@@ -4,6 +4,8 @@
 // (mesh/validate.h, as `cover info` reports a leaf). Every input problem (unreadable file, a face
 // Loop or √3 cannot take, a non-manifold or inconsistently oriented edge, levels beyond
 // kMaxSubdivisionEntries) is one InputError naming the input file; nothing is written then.
+// An OBJ's texture coordinates (vt) are carried to an OBJ output, interpolated within faces
+// (subdivide.h, CornerAttributes).
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -33,7 +35,12 @@ int run_subdivide(const SubdivideCommandOptions& o, const CommonOptions& common)
                      ": cover subdivide reads a mesh file (.off .obj .stl .ply); in a scene, "
                      "use a \"subdivide\" node");
   std::vector<std::string> warnings;
-  const PolygonMesh mesh = read_mesh(o.input, common.max_memory_bytes(), &warnings);
+  std::vector<double> uvs;  // an OBJ's texture coordinates, 2 per corner (empty: none)
+  const PolygonMesh mesh = read_mesh_with_uvs(o.input, uvs, common.max_memory_bytes(), &warnings);
+  const bool carry_uvs = !uvs.empty() && lower_extension(o.output) == ".obj";
+  if (!uvs.empty() && !carry_uvs)
+    warnings.push_back(o.input + ": texture coordinates dropped (" + o.output +
+                       " cannot hold them; use .obj)");
   for (const std::string& w : warnings) std::fprintf(stderr, "cover: warning: %s\n", w.c_str());
   if (common.closed_only) {
     const MeshReport in = validate_mesh(mesh, {.check_self_intersection = false});
@@ -47,15 +54,19 @@ int run_subdivide(const SubdivideCommandOptions& o, const CommonOptions& common)
   so.levels = o.levels;
   so.exact_rounding = o.exact_rounding;
   PolygonMesh out;
+  CornerAttributes attributes{2, std::move(uvs)};
   try {
-    out = subdivide(mesh, so);
+    out = carry_uvs ? subdivide(mesh, so, attributes) : subdivide(mesh, so);
   } catch (const InputError& e) {
     throw e.prefixed(o.input + ": ");
   }
   const MeshReport r = validate_mesh(out, {.check_self_intersection = o.check_self_intersection});
   timing.lap(Timing::kKernel);
   OutputBatch outputs;
-  write_mesh(o.output, out);
+  if (carry_uvs)
+    write_mesh_with_uvs(o.output, out, attributes.values);
+  else
+    write_mesh(o.output, out);
   outputs.commit();
   timing.lap(Timing::kWrite);
   nlohmann::json j;
@@ -64,6 +75,7 @@ int run_subdivide(const SubdivideCommandOptions& o, const CommonOptions& common)
   j["scheme"] = std::string(to_string(*scheme));
   j["levels"] = o.levels;
   j["exact_rounding"] = o.exact_rounding;
+  j["texture_coordinates"] = carry_uvs;
   j["vertices"] = out.vertices.size();
   j["edges"] = r.edges;
   j["faces"] = out.face_count();

@@ -139,4 +139,13 @@ PolygonMesh read_mesh(const std::filesystem::path& path, uint64_t max_file_bytes
   return detail::read_ply(file, data);
 }
 
+PolygonMesh read_mesh_with_uvs(const std::filesystem::path& path, std::vector<double>& uvs,
+                               uint64_t max_file_bytes, std::vector<std::string>* warnings) {
+  uvs.clear();
+  if (lower_extension(path) != ".obj") return read_mesh(path, max_file_bytes, warnings);
+  const FileBytes data = read_regular_file(path, max_file_bytes);
+  if (data.empty()) detail::fail_file(path.string(), "empty file");
+  return detail::read_obj(path.string(), data, &uvs);
+}
+
 }  // namespace cover

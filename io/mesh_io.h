@@ -52,6 +52,21 @@ struct FaceLabels {
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh,
                 const FaceLabels& labels);
 
+/// read_mesh() that also returns the texture coordinates of an OBJ file's corners in `uvs`: u, v
+/// per corner in face_vertices order (a `vt` line's w is dropped; a missing v reads 0). `uvs` is
+/// empty for other formats and for an OBJ whose faces name no texture coordinates.
+/// \throws InputError as read_mesh, and "FILE:LINE: ..." for a texture index out of range or 0,
+///   or an OBJ in which some corners name a texture coordinate and others do not.
+PolygonMesh read_mesh_with_uvs(const std::filesystem::path& path, std::vector<double>& uvs,
+                               uint64_t max_file_bytes = kDefaultMaxMemoryBytes,
+                               std::vector<std::string>* warnings = nullptr);
+
+/// write_mesh() of an OBJ with texture coordinates: one `vt u v` line per corner (2 values per
+/// corner in `uvs`, face_vertices order) and faces `f v/t ...`. \throws InputError as write_mesh,
+/// for another format than .obj, or when uvs does not hold 2 finite values per corner.
+void write_mesh_with_uvs(const std::filesystem::path& path, const PolygonMesh& mesh,
+                         const std::vector<double>& uvs);
+
 /// True if the extension names a mesh format read_mesh understands.
 bool is_mesh_extension(const std::filesystem::path& path);
 

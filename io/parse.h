@@ -192,7 +192,10 @@ void check_numeric_tail(std::string_view rest, const std::string& file, uint64_t
 
 /// Reader entry points; `data` is the whole file, `file` the path for messages.
 PolygonMesh read_off(const std::string& file, std::string_view data);
-PolygonMesh read_obj(const std::string& file, std::string_view data);
+/// `uvs`, when given, receives the corners' texture coordinates (io/mesh_io.h,
+/// read_mesh_with_uvs); the file is then read serially.
+PolygonMesh read_obj(const std::string& file, std::string_view data,
+                     std::vector<double>* uvs = nullptr);
 /// `warnings`, when given, receives the non-fatal problems (one line each, naming the file).
 PolygonMesh read_stl(const std::string& file, std::string_view data,
                      std::vector<std::string>* warnings = nullptr);

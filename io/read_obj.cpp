@@ -2,7 +2,10 @@
 //   v x y z [numbers]      vertex; trailing numbers (w, colour) are ignored
 //   f r0 r1 r2 ...         face with >= 3 references; a reference is i, i/t, i//n or i/t/n where
 //                          i is 1-based, or negative: relative to the last vertex defined so far
-//   vt vn vp g o s usemtl mtllib l p and the free-form curve/surface statements are ignored.
+//   vt u [v [w]]           texture coordinate: read when the caller asks for texture coordinates
+//                          (read_mesh_with_uvs: u and v per corner from the references' t;
+//                          serial), else ignored like the statements below
+//   vn vp g o s usemtl mtllib l p and the free-form curve/surface statements are ignored.
 // Any other statement is an error (that is what binary garbage or a wrong format looks like).
 // Positive indices may refer forward, so they are checked once the whole file is read; the
 // message names the line where the largest index first appeared. A file of 1 MiB or more is
@@ -46,13 +49,46 @@ struct ObjPart {
   std::vector<uint32_t> sizes;  ///< per face
   uint64_t max_index = 0;       ///< largest positive (1-based) index seen
   uint64_t max_index_line = 0;  ///< where it first appeared
+  // Texture coordinates, when asked for:
+  std::vector<double> vt;          ///< u, v per vt statement
+  std::vector<int64_t> corner_vt;  ///< per corner: 0-based vt index, or -1 (none)
+  uint64_t max_vt = 0, max_vt_line = 0;
+  uint64_t corners_with_vt = 0, first_without_vt_line = 0, first_with_vt_line = 0;
 };
+
+/// The texture index of a reference's tail ("/t" or "/t/n"; 0-based, resolved against the `so_far`
+/// vt statements for negative ones), or -1 when the tail names none ("", "//n").
+int64_t texture_index(std::string_view tail, uint64_t so_far, const std::string& file, uint64_t n,
+                      ObjPart& part) {
+  if (tail.size() < 2 || tail[0] != '/' || tail[1] == '/') return -1;
+  tail.remove_prefix(1);
+  int64_t index = 0;
+  const auto [ptr, ec] = std::from_chars(tail.data(), tail.data() + tail.size(), index);
+  if (ec != std::errc() || (ptr != tail.data() + tail.size() && *ptr != '/'))
+    fail_line(file, n, "expected a texture index, found " + quote(tail));
+  if (index == 0) fail_line(file, n, "texture index 0 is invalid (OBJ indices start at 1)");
+  if (index < 0) {
+    const uint64_t back = 0 - static_cast<uint64_t>(index);
+    if (back > so_far)
+      fail_line(file, n,
+                "relative texture index " + std::to_string(index) +
+                    " reaches before the first vt (" + std::to_string(so_far) + " defined so far)");
+    return static_cast<int64_t>(so_far - back);
+  }
+  if (static_cast<uint64_t>(index) > kMaxIndexCount)
+    fail_line(file, n, "texture index " + std::to_string(index) + " exceeds 2^32-1");
+  if (static_cast<uint64_t>(index) > part.max_vt) {
+    part.max_vt = static_cast<uint64_t>(index);
+    part.max_vt_line = n;
+  }
+  return index - 1;
+}
 
 /// Reads the lines of `data` (its first is line `first_line` of the file; 0: line numbers not
 /// known) into `part`; `defined` counts the vertices of the file before `data`. \throws
 /// InputError for any bad statement.
 void read_obj_lines(const std::string& file, std::string_view data, uint64_t first_line,
-                    uint64_t defined, ObjPart& part) {
+                    uint64_t defined, ObjPart& part, bool texture = false) {
   LineReader lines(data);
   std::string_view line;
   while (lines.next(line)) {
@@ -69,6 +105,11 @@ void read_obj_lines(const std::string& file, std::string_view data, uint64_t fir
       p.z = parse_coordinate(next_token(line), file, n, 'z');
       check_numeric_tail(line, file, n);
       part.vertices.push_back(p);
+    } else if (texture && keyword == "vt") {
+      part.vt.push_back(parse_coordinate(next_token(line), file, n, 'u'));
+      const std::string_view v = next_token(line);
+      part.vt.push_back(v.empty() ? 0.0 : parse_coordinate(v, file, n, 'v'));
+      check_numeric_tail(line, file, n);
     } else if (keyword == "f") {
       const size_t first = part.face_vertices.size();
       const uint64_t so_far = defined + part.vertices.size();
@@ -100,6 +141,16 @@ void read_obj_lines(const std::string& file, std::string_view data, uint64_t fir
           resolved = one_based - 1;
         }
         part.face_vertices.push_back(static_cast<uint32_t>(resolved));
+        if (texture) {
+          const int64_t t = texture_index({ptr, static_cast<size_t>(end - ptr)}, part.vt.size() / 2,
+                                          file, n, part);
+          part.corner_vt.push_back(t);
+          if (t >= 0) {
+            if (part.corners_with_vt++ == 0) part.first_with_vt_line = n;
+          } else if (part.first_without_vt_line == 0) {
+            part.first_without_vt_line = n;
+          }
+        }
       }
       const size_t size = part.face_vertices.size() - first;
       if (size < 3)
@@ -184,20 +235,38 @@ bool read_obj_parallel(const std::string& file, std::string_view data, PolygonMe
 
 }  // namespace
 
-PolygonMesh read_obj(const std::string& file, std::string_view data) {
+PolygonMesh read_obj(const std::string& file, std::string_view data, std::vector<double>* uvs) {
   data = without_bom(data);
   // A large file is read in parallel (read_obj_parallel); any error there: read serially below.
-  if (data.size() >= kParallelBytes) {
+  if (uvs == nullptr && data.size() >= kParallelBytes) {
     PolygonMesh mesh;
     if (read_obj_parallel(file, data, mesh)) return mesh;
   }
   ObjPart part;
-  read_obj_lines(file, data, 1, 0, part);
+  read_obj_lines(file, data, 1, 0, part, uvs != nullptr);
   if (part.sizes.empty()) fail_file(file, "no faces");
   if (part.max_index > part.vertices.size())
     fail_line(file, part.max_index_line,
               "vertex index " + std::to_string(part.max_index) + " out of range (the file has " +
                   std::to_string(part.vertices.size()) + " vertices)");
+  if (uvs) {
+    uvs->clear();
+    if (part.max_vt > part.vt.size() / 2)
+      fail_line(file, part.max_vt_line,
+                "texture index " + std::to_string(part.max_vt) + " out of range (the file has " +
+                    std::to_string(part.vt.size() / 2) + " vt lines)");
+    if (part.corners_with_vt > 0 && part.corners_with_vt < part.corner_vt.size())
+      fail_line(file, part.first_without_vt_line,
+                "a face corner without a texture index, although the face on line " +
+                    std::to_string(part.first_with_vt_line) + " has them");
+    if (part.corners_with_vt > 0) {
+      uvs->resize(2 * part.corner_vt.size());
+      for (size_t c = 0; c < part.corner_vt.size(); ++c) {
+        (*uvs)[2 * c] = part.vt[2 * static_cast<size_t>(part.corner_vt[c])];
+        (*uvs)[2 * c + 1] = part.vt[2 * static_cast<size_t>(part.corner_vt[c]) + 1];
+      }
+    }
+  }
   PolygonMesh mesh;
   mesh.vertices.assign(part.vertices.begin(), part.vertices.end());
   mesh.face_vertices.assign(part.face_vertices.begin(), part.face_vertices.end());

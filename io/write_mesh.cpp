@@ -18,6 +18,7 @@
 #include <bit>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -137,18 +138,28 @@ void write_off(Output& out, const PolygonMesh& mesh) {
   });
 }
 
-void write_obj(Output& out, const PolygonMesh& mesh, const FaceLabels* labels) {
+/// With `uvs` (2 per corner): a vt line per corner, in corner order, and `f v/t` references.
+void write_obj(Output& out, const PolygonMesh& mesh, const FaceLabels* labels,
+               const std::vector<double>* uvs = nullptr) {
   out.text("# written by Cover\n");
   out.items(mesh.vertices.size(), [&](size_t v, std::string& s) {
     const Vec3& p = mesh.vertices[v];
     s += "v ", append_number(s, p.x), s += ' ', append_number(s, p.y), s += ' ';
     append_number(s, p.z), s += '\n';
   });
+  if (uvs)
+    out.items(mesh.face_vertices.size(), [&](size_t c, std::string& s) {
+      s += "vt ", append_number(s, (*uvs)[2 * c]), s += ' ', append_number(s, (*uvs)[2 * c + 1]);
+      s += '\n';
+    });
   out.items(mesh.face_count(), [&](size_t f, std::string& s) {
     if (labels && (f == 0 || labels->labels[f] != labels->labels[f - 1]))
       s += "g ", s += labels->obj_groups[labels->labels[f]], s += '\n';
     s += 'f';
-    for (uint32_t v : mesh.face(f)) s += ' ', append_number(s, uint64_t{v} + 1);
+    for (uint32_t c = mesh.face_start[f]; c < mesh.face_start[f + 1]; ++c) {
+      s += ' ', append_number(s, uint64_t{mesh.face_vertices[c]} + 1);
+      if (uvs) s += '/', append_number(s, uint64_t{c} + 1);
+    }
     s += '\n';
   });
 }
@@ -206,23 +217,37 @@ void write_stl(Output& out, const PolygonMesh& mesh, const std::string& file) {
 }  // namespace
 
 static void write_mesh_labelled(const std::filesystem::path& path, const PolygonMesh& mesh,
-                                const FaceLabels* labels);
+                                const FaceLabels* labels, const std::vector<double>* uvs);
 
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh) {
-  write_mesh_labelled(path, mesh, nullptr);
+  write_mesh_labelled(path, mesh, nullptr, nullptr);
 }
 
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh,
                 const FaceLabels& labels) {
-  write_mesh_labelled(path, mesh, &labels);
+  write_mesh_labelled(path, mesh, &labels, nullptr);
+}
+
+void write_mesh_with_uvs(const std::filesystem::path& path, const PolygonMesh& mesh,
+                         const std::vector<double>& uvs) {
+  write_mesh_labelled(path, mesh, nullptr, &uvs);
 }
 
 static void write_mesh_labelled(const std::filesystem::path& path, const PolygonMesh& mesh,
-                                const FaceLabels* labels) {
+                                const FaceLabels* labels, const std::vector<double>* uvs) {
   const std::string file = path.string();
   const std::string ext = lower_extension(path);
   if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
   check_mesh(file, mesh);
+  if (uvs) {
+    if (ext != ".obj") detail::fail_file(file, "cannot carry texture coordinates (use .obj)");
+    if (uvs->size() != 2 * mesh.face_vertices.size())
+      detail::fail_file(file, "cannot write: " + std::to_string(uvs->size()) +
+                                  " texture values for " +
+                                  std::to_string(mesh.face_vertices.size()) + " corners");
+    for (double u : *uvs)
+      if (!std::isfinite(u)) detail::fail_file(file, "cannot write: a texture value is not finite");
+  }
   if (labels) {
     if (ext != ".ply" && ext != ".obj")
       detail::fail_file(file, "cannot carry face labels (use .ply or .obj)");
@@ -245,7 +270,7 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
           if (ext == ".off")
             write_off(out, mesh);
           else if (ext == ".obj")
-            write_obj(out, mesh, labels);
+            write_obj(out, mesh, labels, uvs);
           else if (ext == ".ply")
             write_ply(out, mesh, labels);
           else

@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "cover/modeler/detail/pipe_path.h"
 #include "cover/solid/errors.h"
 
 namespace cover::modeler {
@@ -38,6 +39,13 @@ Vec3 unit_normal(const DlflMesh& mesh, FaceId f, const char* op) {
     throw InputError(std::string(op) + ": face " + std::to_string(f) +
                      " has no normal (degenerate)");
   return (1 / length) * normal;
+}
+
+/// The mean of the loop's vertex positions.
+Vec3 centroid(const DlflMesh& mesh, const std::vector<HalfedgeId>& loop) {
+  Vec3 c{0, 0, 0};
+  for (HalfedgeId h : loop) c = c + mesh.position(mesh.head(h));
+  return (1.0 / static_cast<double>(loop.size())) * c;
 }
 
 /// The corner of v that lies in face f (the first in rotation order).
@@ -95,16 +103,36 @@ void create_pipe(DlflMesh& mesh, FaceId f1, FaceId f2, const PipeOptions& option
                      " is not positive");
   if (options.segments > 1 && n < 3)
     throw InputError(parameter("segments") + ": inner rings need faces of at least 3 sides");
+  const bool curved = options.curved || !options.path.empty();
+  detail::PipePath path;
+  std::vector<detail::Frame> frames;
+  std::vector<Vec3> p1(n), p2(n);
+  for (size_t i = 0; i < n; ++i) p1[i] = mesh.position(mesh.head(loop1[i]));
+  if (curved) {
+    for (double w : {options.weight1, options.weight2})
+      if (!(w > 0) || !std::isfinite(w))
+        throw InputError(parameter("weights") + ": " + std::to_string(w) +
+                         " is not a positive number");
+    path = {centroid(mesh, loop1),
+            centroid(mesh, loop2),
+            unit_normal(mesh, f1, "create_pipe"),
+            unit_normal(mesh, f2, "create_pipe"),
+            options.path,
+            options.weight1,
+            options.weight2};
+    frames = detail::pipe_frames(path, options.segments);
+  }
   // The closest correspondence i ↔ s − i, then the twist.
   auto partner = [n](size_t s, size_t i) { return (s + n - i) % n; };
   size_t best = 0;
   double best_cost = std::numeric_limits<double>::infinity();
   for (size_t s = 0; s < n; ++s) {
+    for (size_t i = 0; i < n; ++i) p2[i] = mesh.position(mesh.head(loop2[partner(s, i)]));
     double cost = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const Vec3 d =
-          mesh.position(mesh.head(loop1[i])) - mesh.position(mesh.head(loop2[partner(s, i)]));
-      cost += dot(d, d);
+    if (curved) {
+      cost = detail::pipe_correspondence_cost(path, p1, p2, frames.back());
+    } else {
+      for (size_t i = 0; i < n; ++i) cost += dot(p1[i] - p2[i], p1[i] - p2[i]);
     }
     if (cost < best_cost) {
       best_cost = cost;
@@ -114,6 +142,9 @@ void create_pipe(DlflMesh& mesh, FaceId f1, FaceId f2, const PipeOptions& option
   const auto count = static_cast<long long>(n);
   const size_t s =
       static_cast<size_t>(((static_cast<long long>(best) + options.twist) % count + count) % count);
+  for (size_t i = 0; i < n; ++i) p2[i] = mesh.position(mesh.head(loop2[partner(s, i)]));
+  const std::vector<Vec3> rings =
+      curved ? detail::pipe_rings(path, p1, p2, options.segments) : std::vector<Vec3>{};
   std::vector<HalfedgeId> rails(n);
   for (size_t i = 0; i < n; ++i)
     rails[i] = mesh.insert_edge(Corner::at(loop1[i]), Corner::at(loop2[partner(s, i)]));
@@ -122,6 +153,11 @@ void create_pipe(DlflMesh& mesh, FaceId f1, FaceId f2, const PipeOptions& option
   // edges cut it from the near end up, so that half-edge stays in the part still to cut.
   std::vector<std::vector<VertexId>> chains(n);
   for (size_t i = 0; i < n; ++i) chains[i] = subdivide_edge(mesh, rails[i], options.segments - 1);
+  // chains[i][j] is ring j + 1 (counted from f1) on rail i.
+  if (curved)
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = 0; j < chains[i].size(); ++j)
+        mesh.set_position(chains[i][j], rings[j * n + i]);
   for (size_t j = 0; j + 1 < static_cast<size_t>(options.segments); ++j) {
     for (size_t i = 0; i < n; ++i) {
       const FaceId quad = mesh.face(loop2[partner(s, i)]);

@@ -24,8 +24,16 @@ std::vector<VertexId> subdivide_edge(DlflMesh& mesh, HalfedgeId h, int k);
 
 /// Options of create_pipe.
 struct PipeOptions {
+  PipeOptions(int segments_ = 1, int twist_ = 0) : segments(segments_), twist(twist_) {}
   int segments = 1;  ///< edges along the pipe between the two faces; segments − 1 inner rings
   int twist = 0;     ///< corner offset added to the closest correspondence (turns the pipe)
+  /// A curved pipe (TopMod's Hermite handle): the centre runs on a cubic Hermite curve from f1's
+  /// centroid through `path` to f2's, leaving f1 along its normal and entering f2 against its
+  /// normal, and the rings blend the two faces' shapes across the curve
+  /// (modeler/detail/pipe_path.h). False with an empty path: straight rails.
+  bool curved = false;
+  double weight1 = 1, weight2 = 1;  ///< end tangents, in lengths of the first / last chord
+  std::vector<Vec3> path;           ///< points the centre passes through (implies curved)
 };
 
 /// CREATEPIPE: a pipe from face f1 to face f2 of equal degree n (both removed). Corner i of f1
@@ -36,8 +44,12 @@ struct PipeOptions {
 /// subdivide_edge cuts each of those edges into `segments` pieces (inner ring vertices on the
 /// straight segments between corresponding corners) and insert_edge closes each ring. Changes:
 /// V + n(segments−1), E + n(2·segments−1), F + n·segments − 2.
+/// Curved: σ minimises the same sum over the corners' offsets from the centroids, taken in one
+/// frame (the frame carried along the curve), and the inner ring vertices lie on the curve's
+/// rings instead of the straight segments.
 /// \throws PreconditionError when a face is not live; InputError when f1 == f2, a face is a
-/// point-sphere's, the degrees differ, segments < 1, or segments > 1 with faces under 3 sides.
+/// point-sphere's, the degrees differ, segments < 1, or segments > 1 with faces under 3 sides;
+/// curved: a weight not positive and finite, a face without a normal, or a cusp on the curve.
 void create_pipe(DlflMesh& mesh, FaceId f1, FaceId f2, const PipeOptions& options = {});
 
 /// Straight face extrusion: n new vertices at f's corners moved by distance along f's unit

@@ -54,6 +54,15 @@ class Args {
     return static_cast<int>(v.get<int64_t>());
   }
 
+  bool boolean(const std::string& key, bool fallback) const {
+    if (!object_.contains(key)) return fallback;
+    const Json& v = object_.at(key);
+    if (!v.is_boolean()) throw InputError(path_ + "/" + key + ": expected true or false");
+    return v.get<bool>();
+  }
+
+  bool has(const std::string& key) const { return object_.contains(key); }
+
   const Json& at(const std::string& key) const {
     if (!object_.contains(key)) throw InputError(path_ + ": missing '" + key + "'");
     return object_.at(key);
@@ -161,7 +170,7 @@ Corner corner_of(const DlflMesh& m, const Json& v, const std::string& path) {
 
 void apply_one(DlflMesh& mesh, const std::string& name, const Json& body, const std::string& path) {
   if (name == "pipe") {
-    const Args a(body, path, {"faces", "segments", "twist"});
+    const Args a(body, path, {"faces", "segments", "twist", "curved", "weights", "path"});
     const Json& faces = a.at("faces");
     if (!faces.is_array() || faces.size() != 2)
       throw InputError(path + "/faces: expected two faces (ids or points)");
@@ -171,7 +180,27 @@ void apply_one(DlflMesh& mesh, const std::string& name, const Json& body, const 
     const double n = static_cast<double>(mesh.face_degree(f1));
     const double corners = std::round(a.number("twist", 0) * n / 360);
     if (std::abs(corners) > 1e6) throw InputError(path + "/twist: out of range");
-    create_pipe(mesh, f1, f2, PipeOptions{a.integer("segments", 1), static_cast<int>(corners)});
+    PipeOptions o{a.integer("segments", 1), static_cast<int>(corners)};
+    o.curved = a.boolean("curved", false);
+    if (a.has("weights")) {
+      const Json& w = a.at("weights");
+      if (!w.is_array() || w.size() != 2 || !w[0].is_number() || !w[1].is_number())
+        throw InputError(path + "/weights: expected two numbers [w1, w2]");
+      o.weight1 = w[0].get<double>();
+      o.weight2 = w[1].get<double>();
+    }
+    if (a.has("path")) {
+      const Json& points = a.at("path");
+      if (!points.is_array()) throw InputError(path + "/path: expected a list of points [x, y, z]");
+      for (size_t i = 0; i < points.size(); ++i) {
+        const std::string where = path + "/path/" + std::to_string(i);
+        const std::optional<Vec3> p =
+            points[i].is_array() ? point_of(points[i], where) : std::nullopt;
+        if (!p) throw InputError(where + ": expected a point [x, y, z]");
+        o.path.push_back(*p);
+      }
+    }
+    create_pipe(mesh, f1, f2, o);
   } else if (name == "extrude") {
     const Args a(body, path, {"face", "distance", "kind", "scale", "twist"});
     const FaceId f = face_of(mesh, a.at("face"), path + "/face");

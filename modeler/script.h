@@ -10,7 +10,8 @@
 //                                             a point-sphere's corner
 //   {"delete_edge": {"edge": E}}
 //   {"pipe": {"faces": [F1, F2], "segments": 1, "twist": 0}}      (twist in degrees, rounded to
-//                                             whole corners of F1: 360/n degrees each)
+//                whole corners of F1: 360/n degrees each; "curved": true, "weights": [w1, w2],
+//                "path": [[x, y, z], ...]: a Hermite handle, PipeOptions)
 //   {"extrude": {"face": F, "distance": d, "kind": "straight"}}   (or "cubical": TopMod's
 //                Doo–Sabin extrusion, with "twist" in [0, 1] and "scale"; "dodecahedral" and
 //                "dome" with "scale"; "stellate": a cone of height d)

@@ -209,8 +209,7 @@ void crust(DlflMesh& mesh, const std::vector<FaceId>& punched, const CrustOption
   for (VertexId v = 0; v < mesh.vertex_capacity(); ++v)
     if (mesh.vertex_alive(v) && !mesh.is_point_sphere(v))
       inner[v] = inner_point(mesh, v, normals, options.thickness);
-  std::vector<FaceId> inner_faces;
-  for (FaceId f : punched) inner_faces.push_back(kNone);
+  std::vector<FaceId> inner_faces(punched.size(), kNone);
   {
     std::vector<HalfedgeId> first;
     for (FaceId f : punched) first.push_back(DlflMesh::twin(mesh.face_halfedge(f)));

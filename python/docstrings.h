@@ -257,7 +257,14 @@ in general). Vertex and face order as cover::subdivide (docs/library.md), identi
 `cover subdivide`. Raises ValueError for a wrong shape, TypeError for non-integer F, InputError
 for an index out of range, a face with fewer than 3 vertices or repeating a vertex, a
 non-manifold or inconsistently oriented mesh, a non-triangle face for loop or sqrt3, an unknown
-scheme, levels < 0 or an output beyond 2^30 vertices or face entries.)";
+scheme, levels < 0 or an output beyond 2^30 vertices or face entries.
+
+uv (keyword): face-varying attributes (texture coordinates, colours), float (corners, k) with
+one row per corner of F in face order, or (m, n, k) for faces of n vertices; the result is then
+(V, F, UV) with UV float64 (corners', k) for the result's corners. They are interpolated within
+each face, never smoothed (cover::CornerAttributes): corners at old vertices keep their values,
+edge points take the mean of the edge's two corners in that face, face points the face's mean;
+doo-sabin applies its own mask within the face; seams stay seams.)";
 
 inline constexpr const char* kModify =
     R"(Modeling operations on a closed mesh (the DLFL modeler): returns (V, F).
@@ -280,7 +287,8 @@ by a point [x, y, z] near them (the face whose centroid, the edge whose midpoint
 nearest to it). The minimal operators: create_vertex(p) -> id (a point-sphere),
 delete_vertex(v), insert_edge(c1, c2) between corners (face, vertex) or a point-sphere's vertex,
 delete_edge(e); and remove_edge(e), subdivide_edge(e, points=1), pipe(f1, f2, segments=1,
-twist=0.0 degrees), extrude(face, distance, kind="straight"|"cubical"|"dodecahedral"|"stellate"|
+twist=0.0 degrees, curved=False, weights=(1, 1), path=None: points the curved centre passes
+through), extrude(face, distance, kind="straight"|"cubical"|"dodecahedral"|"stellate"|
 "dome"), truncate(vertex, fraction=0.25), apply(operations) (a `cover modify` script).
 vertex_count, edge_count, face_count, genus, components; arrays() -> (V, F); check() raises
 when an invariant is broken. Operators raise InputError naming the problem.)";

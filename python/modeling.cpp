@@ -6,8 +6,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -108,13 +110,20 @@ void bind_halfedge_mesh(py::module_& m) {
           py::arg("edge"), py::arg("points") = 1)
       .def(
           "pipe",
-          [run, target](DlflMesh& mesh, py::handle f1, py::handle f2, int segments, double twist) {
-            run(mesh, {{"pipe",
-                        {{"faces", {target(f1), target(f2)}},
-                         {"segments", segments},
-                         {"twist", twist}}}});
+          [run, target](DlflMesh& mesh, py::handle f1, py::handle f2, int segments, double twist,
+                        bool curved, std::array<double, 2> weights,
+                        std::optional<std::vector<std::array<double, 3>>> path) {
+            nlohmann::json pipe = {{"faces", {target(f1), target(f2)}},
+                                   {"segments", segments},
+                                   {"twist", twist},
+                                   {"curved", curved},
+                                   {"weights", weights}};
+            if (path) pipe["path"] = *path;
+            run(mesh, {{"pipe", pipe}});
           },
-          py::arg("f1"), py::arg("f2"), py::arg("segments") = 1, py::arg("twist") = 0.0)
+          py::arg("f1"), py::arg("f2"), py::arg("segments") = 1, py::arg("twist") = 0.0,
+          py::arg("curved") = false, py::arg("weights") = std::array<double, 2>{1.0, 1.0},
+          py::arg("path") = py::none())
       .def(
           "extrude",
           [run, target](DlflMesh& mesh, py::handle f, double distance, const std::string& kind) {
@@ -147,7 +156,7 @@ void bind_modeling(py::module_& m) {
   m.def(
       "subdivide",
       [](py::handle v, py::handle f, const std::string& scheme, int levels, bool exact_rounding,
-         const std::optional<int>& threads) {
+         py::handle uv, const std::optional<int>& threads) -> py::tuple {
         PolygonMesh in;
         const Points vertices = points_arg(v, "V");
         in.vertices.assign(vertices.span().begin(), vertices.span().end());
@@ -157,15 +166,40 @@ void bind_modeling(py::module_& m) {
           throw InputError(
               "scheme: expected 'catmull-clark', 'doo-sabin', 'loop' or 'sqrt3', got '" + scheme +
               "'");
+        const SubdivideOptions options{
+            .scheme = *s, .levels = levels, .exact_rounding = exact_rounding};
+        if (uv.is_none()) {
+          PolygonMesh out;
+          {
+            KernelScope scope(threads);
+            out = subdivide(in, options);
+          }
+          return py::make_tuple(vertices_array(out.vertices), faces_object(out));
+        }
+        // Corner attributes: (corners, k), or (faces, n, k) for faces of one size n.
+        const DoubleArray a = DoubleArray::ensure(uv);
+        if (!a || (a.ndim() != 2 && a.ndim() != 3))
+          throw InputError("uv: expected a float array (corners, k) or (faces, n, k)");
+        const auto corners = static_cast<py::ssize_t>(in.face_vertices.size());
+        const py::ssize_t k = a.shape(a.ndim() - 1);
+        if (k < 1 || a.size() != corners * k)
+          throw InputError("uv: expected " + std::to_string(corners) +
+                           " values per column (one per corner of F, in face order), got " +
+                           std::to_string(a.size() / std::max<py::ssize_t>(k, 1)));
+        CornerAttributes attributes{static_cast<int>(k),
+                                    std::vector<double>(a.data(), a.data() + a.size())};
         PolygonMesh out;
         {
           KernelScope scope(threads);
-          out = subdivide(in, {.scheme = *s, .levels = levels, .exact_rounding = exact_rounding});
+          out = subdivide(in, options, attributes);
         }
-        return py::make_tuple(vertices_array(out.vertices), faces_object(out));
+        py::array_t<double> values({static_cast<py::ssize_t>(out.face_vertices.size()), k});
+        std::copy(attributes.values.begin(), attributes.values.end(), values.mutable_data());
+        return py::make_tuple(vertices_array(out.vertices), faces_object(out), values);
       },
       py::arg("V"), py::arg("F"), py::arg("scheme") = "catmull-clark", py::arg("levels") = 1,
-      py::arg("exact_rounding") = false, py::kw_only(), threads, doc::kSubdivide);
+      py::arg("exact_rounding") = false, py::kw_only(), py::arg("uv") = py::none(), threads,
+      doc::kSubdivide);
   m.def(
       "modify",
       [](py::handle v, py::handle f, py::handle operations) {

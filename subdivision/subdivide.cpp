@@ -6,11 +6,14 @@
 #include "cover/subdivision/subdivide.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
+#include "cover/subdivision/detail/attributes.h"
 #include "cover/subdivision/detail/evaluate.h"
+#include "cover/subdivision/detail/sqrt3.h"
 
 namespace cover {
 
@@ -133,40 +136,23 @@ void doo_sabin_faces(const Topology& t, PolygonMesh& out) {
   });
 }
 
-/// √3: per edge, the flipped pair (A_f, x, A_g), (A_g, y, A_f), or the border triangle.
+/// √3: per edge, the flipped pair (A_f, x, A_g), (A_g, y, A_f), or the border triangle
+/// (detail/sqrt3.h).
 void sqrt3_faces(const Topology& t, const Layout& l, PolygonMesh& out) {
-  const auto apex = [&](uint32_t h) {
-    const uint32_t f = t.face_of[h];
-    const uint32_t r = l.refine_border ? l.refined[f] : kNone;
-    if (r == kNone) return l.face_slot[f];
-    return h == t.prev(r) ? l.face_slot[f] : l.face_slot[f] + 1;
-  };
-  const size_t ne = t.edge_count();
-  std::vector<uint32_t> first(ne + 1, 0);
-  for (size_t e = 0; e < ne; ++e)
-    first[e + 1] = first[e] + (t.opposite[t.edge_half[e]] == kNone ? 1 : 2);
-  uniform_faces(out, first[ne], 3, 1024, [&](size_t i, uint32_t* tri) {
-    // Edge of triangle i: the last e with first[e] <= i.
-    const auto e =
-        static_cast<uint32_t>(std::upper_bound(first.begin(), first.end(), i) - first.begin() - 1);
-    const uint32_t h = t.edge_half[e], o = t.opposite[h];
-    const uint32_t x = t.vertex(h), y = t.vertex(t.next(h));
-    if (o != kNone) {
-      const uint32_t af = apex(h), ag = apex(o);
-      if (i == first[e])
-        tri[0] = af, tri[1] = x, tri[2] = ag;
-      else
-        tri[0] = ag, tri[1] = y, tri[2] = af;
-    } else if (l.refine_border && l.refined[t.face_of[h]] == h) {
-      const uint32_t s = l.face_slot[t.face_of[h]];
-      tri[0] = s, tri[1] = s + 1, tri[2] = t.vertex(t.prev(h));
-    } else {
-      tri[0] = x, tri[1] = y, tri[2] = apex(h);
-    }
+  const std::vector<uint32_t> first = subdivision_detail::sqrt3_first_triangles(t);
+  uniform_faces(out, first.back(), 3, 1024, [&](size_t i, uint32_t* tri) {
+    subdivision_detail::Sqrt3Corner c[3];
+    subdivision_detail::sqrt3_triangle(t, l, first, i, c);
+    for (int j = 0; j < 3; ++j)
+      tri[j] = c[j].apex ? l.face_slot[t.face_of[c[j].corner]] +
+                               subdivision_detail::sqrt3_apex_which(t, l, c[j].corner)
+                         : t.vertex(c[j].corner);
   });
 }
 
-PolygonMesh step(const PolygonMesh& in, const Topology& t, const SubdivideOptions& o, int level) {
+/// One level; with `attributes`, also replaces them by the new corners' values.
+PolygonMesh step(const PolygonMesh& in, const Topology& t, const SubdivideOptions& o, int level,
+                 CornerAttributes* attributes) {
   const size_t nv = in.vertices.size(), nf = in.face_count(), ne = t.edge_count();
   Layout l;
   l.scheme = o.scheme;
@@ -228,6 +214,11 @@ PolygonMesh step(const PolygonMesh& in, const Topology& t, const SubdivideOption
       sqrt3_faces(t, l, out);
       break;
   }
+  if (attributes) {
+    CornerAttributes refined;
+    subdivision_detail::refine_attributes(t, l, out, *attributes, refined);
+    *attributes = std::move(refined);
+  }
   return out;
 }
 
@@ -267,11 +258,29 @@ std::optional<Scheme> scheme_from_string(std::string_view name) {
   return std::nullopt;
 }
 
-PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) {
+namespace {
+
+void check_attributes(const PolygonMesh& mesh, const CornerAttributes& a) {
+  if (a.dims < 1)
+    throw InputError("corner attributes: " + std::to_string(a.dims) + " values per corner");
+  const uint64_t expected = uint64_t(a.dims) * mesh.face_vertices.size();
+  if (a.values.size() != expected)
+    throw InputError("corner attributes: " + std::to_string(a.values.size()) + " values for " +
+                     std::to_string(mesh.face_vertices.size()) + " corners of " +
+                     std::to_string(a.dims));
+  for (size_t i = 0; i < a.values.size(); ++i)
+    if (!std::isfinite(a.values[i]))
+      throw InputError("corner attributes: value " + std::to_string(i % a.dims) + " of corner " +
+                       std::to_string(i / a.dims) + " is not finite");
+}
+
+PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options,
+                      CornerAttributes* attributes) {
   if (options.levels < 0)
     throw InputError(parameter("levels") + ": must be >= 0, got " + std::to_string(options.levels));
   if (options.scheme == Scheme::kLoop || options.scheme == Scheme::kSqrt3)
     subdivision_detail::require_triangles(mesh, scheme_name(options.scheme));
+  if (attributes) check_attributes(mesh, *attributes);
   Topology t = build_topology(mesh);
   if (mesh.face_count() == 0) return mesh;
   check_size(t, options);
@@ -279,11 +288,22 @@ PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) 
   const PolygonMesh* in = &mesh;
   for (int level = 1; level <= options.levels; ++level) {
     if (level > 1) t = build_topology(*in);
-    current = step(*in, t, options, level);
+    current = step(*in, t, options, level, attributes);
     in = &current;
   }
   if (options.levels == 0) return mesh;
   return current;
+}
+
+}  // namespace
+
+PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options) {
+  return subdivide(mesh, options, nullptr);
+}
+
+PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options,
+                      CornerAttributes& attributes) {
+  return subdivide(mesh, options, &attributes);
 }
 
 }  // namespace cover

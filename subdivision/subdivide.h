@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "cover/solid/polygon_mesh.h"
 
@@ -64,5 +65,30 @@ inline constexpr uint64_t kMaxSubdivisionEntries = uint64_t{1} << 30;
 ///   range, a non-manifold or inconsistently oriented edge, a non-manifold vertex, a non-triangle
 ///   face for Loop or √3, levels < 0, or an output beyond kMaxSubdivisionEntries.
 PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options);
+
+/// Face-varying attributes (texture coordinates, colours): `dims` values per corner, in the
+/// order of face_vertices, so seams (a vertex with different values in different faces) are
+/// kept. subdivide() interpolates them within each old face and never smooths them: applying
+/// Catmull–Clark to texture coordinates makes textures swim (Akleman, Chen, Srinivasan §5).
+struct CornerAttributes {
+  int dims = 0;                ///< values per corner (2 for UVs)
+  std::vector<double> values;  ///< dims · face_vertices.size()
+};
+
+/// subdivide(mesh, options) that also replaces `attributes` (given for mesh's corners) by the
+/// values at the result's corners. Per level:
+///   Catmull–Clark, Loop  a corner at an old vertex keeps its old corner's value; at an edge
+///                        point, the mean of the edge's two corners in the same old face; at a
+///                        face point, the mean of the face's corners.
+///   Doo–Sabin            a corner point's value is the Doo–Sabin mask over its face's corners
+///                        (weights in (0, 1) summing to 1; on quads bilinear at (1/4, 1/4)).
+///   √3                   a centre's value is its face's mean; a border point's (2a + b)/3 or
+///                        (a + 2b)/3 of its edge's corners; an old vertex's corner in a triangle
+///                        of a flipped edge takes its corner's value in the face of the edge's
+///                        smaller corner.
+/// \throws InputError as subdivide(), and when dims < 1 or the value count is not
+///   dims · face_vertices.size() or a value is not finite.
+PolygonMesh subdivide(const PolygonMesh& mesh, const SubdivideOptions& options,
+                      CornerAttributes& attributes);
 
 }  // namespace cover

@@ -140,7 +140,14 @@ class HalfedgeMesh:
     def remove_edge(self, edge: int | _Vec3) -> None: ...
     def subdivide_edge(self, edge: int | _Vec3, points: int = 1) -> None: ...
     def pipe(
-        self, f1: int | _Vec3, f2: int | _Vec3, segments: int = 1, twist: float = 0.0
+        self,
+        f1: int | _Vec3,
+        f2: int | _Vec3,
+        segments: int = 1,
+        twist: float = 0.0,
+        curved: bool = False,
+        weights: tuple[float, float] = (1.0, 1.0),
+        path: Sequence[_Vec3] | None = None,
     ) -> None: ...
     def extrude(
         self,
@@ -163,5 +170,9 @@ def subdivide(
     levels: int = 1,
     exact_rounding: bool = False,
     *,
+    uv: _ArrayLike | None = None,
     threads: int | None = None,
-) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64] | list[list[int]]]: ...
+) -> (
+    tuple[npt.NDArray[np.float64], npt.NDArray[np.int64] | list[list[int]]]
+    | tuple[npt.NDArray[np.float64], npt.NDArray[np.int64] | list[list[int]], npt.NDArray[np.float64]]
+): ...

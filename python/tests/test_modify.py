@@ -101,3 +101,19 @@ def test_halfedge_mesh_operators_against_euler_and_the_script():
     np.testing.assert_array_equal(V3, m.arrays()[0])
     with pytest.raises(cover.InputError, match="not a point-sphere"):
         m.delete_vertex(0)
+
+
+def test_curved_handle_matches_the_script_and_arches_over():
+    V, F = slab()
+    m = cover.HalfedgeMesh(V, F)
+    m.pipe([1.5, 0.5, 0.6], [5.5, 0.5, 0.6], segments=12, curved=True, weights=(1.0, 1.0),
+           path=[[3.5, 0.5, 2.5]])
+    m.check()
+    assert m.genus == 1 and m.vertex_count == 32 + 4 * 11
+    ops = [{"pipe": {"faces": [[1.5, 0.5, 0.6], [5.5, 0.5, 0.6]], "segments": 12,
+                     "curved": True, "path": [[3.5, 0.5, 2.5]]}}]
+    V2, F2 = cover.modify(V, F, ops)
+    np.testing.assert_array_equal(V2, m.arrays()[0])
+    assert m.arrays()[0][:, 2].max() > 2.5
+    with pytest.raises(cover.InputError, match="weights"):
+        cover.HalfedgeMesh(V, F).pipe(0, 5, segments=4, curved=True, weights=(0.0, 1.0))

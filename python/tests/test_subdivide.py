@@ -136,3 +136,74 @@ def test_errors():
     with pytest.raises(TypeError):
         cover.subdivide(CUBE_V, CUBE_F.astype(np.float64))
     assert issubclass(cover.InputError, ValueError)
+
+
+CUBE_OBJ = """v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1
+vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5
+f 1/1 4/2 3/3 2/4\nf 5/1 6/2 7/3 8/4\nf 1/1 2/2 6/3 5/4\nf 2/1 3/2 7/3 6/4\nf 3/1 4/2 8/3 7/4
+f 4/5 1/2 5/3 8/4
+"""
+
+
+def cube_obj_arrays():
+    """The cube of CUBE_OBJ as (V, F, UV per corner), read here."""
+    V, vt, F, UV = [], [], [], []
+    for line in CUBE_OBJ.splitlines():
+        w = line.split()
+        if w[0] == "v":
+            V.append([float(x) for x in w[1:]])
+        elif w[0] == "vt":
+            vt.append([float(x) for x in w[1:]])
+        elif w[0] == "f":
+            F.append([int(r.split("/")[0]) - 1 for r in w[1:]])
+            UV.extend(vt[int(r.split("/")[1]) - 1] for r in w[1:])
+    return np.array(V), np.array(F), np.array(UV)
+
+
+@pytest.mark.parametrize("scheme", ["catmull-clark", "doo-sabin"])
+def test_texture_coordinates_through_the_cli_read_back_by_vtk(tmp_path, scheme):
+    vtk = pytest.importorskip("vtkmodules.vtkIOGeometry")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    (tmp_path / "cube.obj").write_text(CUBE_OBJ)
+    out = tmp_path / "out.obj"
+    j = cli_json("subdivide", tmp_path / "cube.obj", "-o", out, "--scheme", scheme,
+                 "--levels", 2)
+    assert j["texture_coordinates"] is True
+    V, F, UV = cube_obj_arrays()
+    Vs, Fs, UVs = cover.subdivide(V, F, scheme, 2, uv=UV)
+    assert UVs.shape == (sum(len(f) for f in Fs), 2)
+    reader = vtk.vtkOBJReader()
+    reader.SetFileName(str(out))
+    reader.Update()
+    poly = reader.GetOutput()
+    points = vtk_to_numpy(poly.GetPoints().GetData())
+    tcoords = vtk_to_numpy(poly.GetPointData().GetTCoords())
+    cells = poly.GetPolys()
+    ids = vtk_to_numpy(cells.GetConnectivityArray())
+    offsets = vtk_to_numpy(cells.GetOffsetsArray())
+    assert len(offsets) - 1 == len(Fs)
+    corner = 0
+    for f, face in enumerate(Fs):
+        for k, v in enumerate(face):
+            p = ids[offsets[f] + k]
+            np.testing.assert_allclose(points[p], Vs[v], rtol=0, atol=1e-6)  # float32
+            np.testing.assert_allclose(tcoords[p], UVs[corner], rtol=0, atol=1e-7)  # float32
+            corner += 1
+
+
+def test_texture_coordinates_keep_seams_and_interpolate_within_faces():
+    V, F, UV = cube_obj_arrays()
+    Vs, Fs, UVs = cover.subdivide(V, F, "catmull-clark", 1, uv=UV)
+    # Quad of old corner c: (old vertex, edge point, face point, edge point).
+    UVc = UVs.reshape(-1, 4, 2)
+    UVin = UV.reshape(6, 4, 2)
+    for f in range(6):
+        for k in range(4):
+            q = UVc[4 * f + k]
+            np.testing.assert_array_equal(q[0], UVin[f, k])
+            np.testing.assert_array_equal(q[1], (UVin[f, k] + UVin[f, (k + 1) % 4]) / 2)
+            np.testing.assert_array_equal(q[2], UVin[f].mean(axis=0))
+    # The (faces, n, k) form gives the same; wrong counts are InputErrors naming uv.
+    np.testing.assert_array_equal(cover.subdivide(V, F, uv=UV.reshape(6, 4, 2))[2], UVs)
+    with pytest.raises(cover.InputError, match="uv"):
+        cover.subdivide(V, F, uv=UV[:-1])

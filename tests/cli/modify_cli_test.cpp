@@ -96,6 +96,40 @@ TEST(ModifyCli, PipeRaisesTheGenusAndTheFlagsAgreeWithTheScript) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(ModifyCli, CurvedHandleOverTheSlabIsEmbeddedAndMatchesTheScript) {
+  const auto dir = test::temp_dir("modify");
+  const auto a = dir / "a.off", b = dir / "b.off", ops = dir / "ops.json";
+  // Two top cells of the slab (z = 0.6) joined by an arch: the centre on a Hermite curve
+  // through a point above the slab's middle.
+  const json p = run_json("pipe " + q(model("slab.off")) +
+                          " --near 1.5,0.5,0.6 --near 5.5,0.5,0.6 --segments 12 --curved"
+                          " --weights 1,1 --through 3.5,0.5,2.5 -o " +
+                          q(a));
+  EXPECT_EQ(p["genus"], 1);
+  EXPECT_EQ(p["self_intersecting"], false);
+  EXPECT_EQ(p["vertices"], 32 + 4 * 11);
+  std::ofstream(ops) << R"([{"pipe": {"faces": [[1.5, 0.5, 0.6], [5.5, 0.5, 0.6]],
+      "segments": 12, "curved": true, "path": [[3.5, 0.5, 2.5]]}}])";
+  run_json("modify " + q(model("slab.off")) + " --ops " + q(ops) + " -o " + q(b));
+  const PolygonMesh ma = read_mesh(a), mb = read_mesh(b);
+  EXPECT_EQ(ma.vertices, mb.vertices);
+  EXPECT_EQ(ma.face_vertices, mb.face_vertices);
+  // The arch rises above the slab: its highest ring reaches the path point's height.
+  double top = 0;
+  for (const Vec3& v : ma.vertices) top = std::max(top, v.z);
+  EXPECT_GT(top, 2.5);
+  // Bad curve arguments: one line, exit 2, nothing written.
+  for (const std::string& bad : {" --curved --weights 0,1", " --through 1,2"}) {
+    const auto r = run_cover("pipe " + q(model("slab.off")) +
+                             " --near 1.5,0.5,0.6 --near 5.5,0.5,0.6 --segments 4 -o " +
+                             q(dir / "bad.off") + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.off"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(ModifyCli, MinimalOperatorsUndoneGiveTheInputBack) {
   const auto dir = test::temp_dir("modify");
   const auto out = dir / "out.off", mid = dir / "mid.off", ops = dir / "ops.json";

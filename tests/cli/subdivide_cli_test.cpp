@@ -4,6 +4,7 @@
 // problem and writes nothing.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cover/io/mesh_io.h"
@@ -131,6 +132,49 @@ TEST(SubdivideCli, CountsFollowTheSchemesAndGenusIsPreserved) {
             j1["vertices"].get<size_t>() + j1["edges"].get<size_t>() + j1["faces"].get<size_t>());
   EXPECT_EQ(j2["faces"], 4 * j1["faces"].get<size_t>());
   EXPECT_EQ(j2["genus"], 1);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SubdivideCli, CarriesAnObjsTextureCoordinates) {
+  const auto dir = test::temp_dir("subdivide");
+  const auto in = dir / "cube.obj", out = dir / "out.obj";
+  // A cube with a seam: face 6 names its own vt at vertex 4.
+  std::ofstream(in) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+                       "f 1/1 4/2 3/3 2/4\nf 5/1 6/2 7/3 8/4\nf 1/1 2/2 6/3 5/4\n"
+                       "f 2/1 3/2 7/3 6/4\nf 3/1 4/2 8/3 7/4\nf 4/5 1/-4 5/-3 8/-2\n";
+  for (const char* scheme : {"catmull-clark", "doo-sabin"}) {
+    SCOPED_TRACE(scheme);
+    const json j = subdivide_json(in, out, std::string("--scheme ") + scheme + " --levels 2");
+    EXPECT_EQ(j["texture_coordinates"], true);
+    std::vector<double> uvs, written;
+    const PolygonMesh mesh = read_mesh_with_uvs(in, uvs);
+    ASSERT_EQ(uvs.size(), 48u);
+    EXPECT_EQ(uvs[40], 0.5);  // face 6's first corner: vt 5
+    EXPECT_EQ(uvs[42], 1.0);  // its second: vt -4 = vt 2 (1, 0)
+    CornerAttributes a{2, uvs};
+    const PolygonMesh expected = subdivide(mesh, {*scheme_from_string(scheme), 2}, a);
+    const PolygonMesh got = read_mesh_with_uvs(out, written);
+    expect_same_mesh(got, expected);
+    EXPECT_EQ(written, a.values);
+  }
+  // Another output format drops them with a warning; bad references are one-line errors.
+  const auto r = run_cover("subdivide " + q(in) + " -o " + q(dir / "out.off"));
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.err.find("texture coordinates dropped"), std::string::npos) << r.err;
+  const std::pair<const char*, const char*> bad[] = {
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3\n", "bad.obj:5: a face corner without"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/4\n", "bad.obj:5: texture index 4 out"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/0 3/1\n", "bad.obj:5: texture index 0"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 x\nf 1/1 2/1 3/1\n", "bad.obj:4: "}};
+  for (const auto& [text, message] : bad) {
+    std::ofstream(dir / "bad.obj") << text;
+    const auto e = run_cover("subdivide " + q(dir / "bad.obj") + " -o " + q(dir / "b.obj"));
+    EXPECT_EQ(e.status, 2) << text;
+    EXPECT_NE(e.err.find(message), std::string::npos) << e.err;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << e.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.obj"));
+  }
   std::filesystem::remove_all(dir);
 }
 

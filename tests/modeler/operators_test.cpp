@@ -340,7 +340,7 @@ TEST(Operators, RandomSequencesKeepTheMeshValidAndMatchTheirCounts) {
 
 TEST(Operators, LibraryExample) {  // docs/library.md
   DlflMesh mesh = from_polygon_mesh(make_box({0, 0, 0}, {1, 1, 1}));
-  create_pipe(mesh, 1, 0, PipeOptions{.segments = 3});
+  create_pipe(mesh, 1, 0, PipeOptions(3));
   const FaceId lid = extrude_face(mesh, 5, 0.5);
   check_valid(mesh);
   EXPECT_EQ(lid, 5u);

@@ -358,5 +358,104 @@ TEST(Crust, RefusesBadArguments) {
   EXPECT_EQ(totals(mesh), (Totals{8, 12, 6, 1, 0}));
 }
 
+/// The Hermite centre curve of a curved pipe between faces with centroids c1, c2 and outward
+/// normals n1, n2, weights 1, no path points (written out here independently of pipe_path.cpp).
+Vec3 hermite(Vec3 c1, Vec3 n1, Vec3 c2, Vec3 n2, double t, Vec3* tangent) {
+  const double l = std::sqrt(dot(c2 - c1, c2 - c1));
+  const Vec3 m0 = l * n1, m1 = -l * n2;
+  const double t2 = t * t, t3 = t2 * t;
+  *tangent = (6 * t2 - 6 * t) * c1 + (3 * t2 - 4 * t + 1) * m0 + (6 * t - 6 * t2) * c2 +
+             (3 * t2 - 2 * t) * m1;
+  return (2 * t3 - 3 * t2 + 1) * c1 + (t3 - 2 * t2 + t) * m0 + (3 * t2 - 2 * t3) * c2 +
+         (t3 - t2) * m1;
+}
+
+/// The new vertices (ids from `first`) within `radius` of `centre` in the plane through it
+/// across `tangent`.
+std::vector<Vec3> ring_near(const DlflMesh& mesh, VertexId first, Vec3 centre, Vec3 tangent,
+                            double radius) {
+  const Vec3 u = (1 / std::sqrt(dot(tangent, tangent))) * tangent;
+  std::vector<Vec3> ring;
+  for (VertexId v = first; v < mesh.vertex_capacity(); ++v) {
+    if (!mesh.vertex_alive(v)) continue;
+    const Vec3 d = mesh.position(v) - centre;
+    if (dot(d, d) <= radius * radius && std::abs(dot(d, u)) < 1e-9)
+      ring.push_back(mesh.position(v));
+  }
+  return ring;
+}
+
+// A curved handle between two quads on the top of a bar arches over it: every inner ring is
+// planar across the Hermite curve and centred on it, the genus rises by one, and the result is
+// embedded.
+TEST(CreatePipe, CurvedHandleFollowsTheHermiteCurveAndIsEmbedded) {
+  for (int segments : {2, 5, 16}) {
+    SCOPED_TRACE(segments);
+    DlflMesh mesh = from_polygon_mesh(grid_box({0, 0, 0}, {5, 1, 1}, 5));
+    const Totals before = totals(mesh);
+    const FaceId f1 = quad_at(mesh, {0.5, 0.5, 1}), f2 = quad_at(mesh, {4.5, 0.5, 1});
+    const Vec3 c1{0.5, 0.5, 1}, c2{4.5, 0.5, 1}, up{0, 0, 1};
+    PipeOptions options(segments);
+    options.curved = true;
+    create_pipe(mesh, f1, f2, options);
+    check_valid(mesh);
+    const auto n = static_cast<size_t>(segments);
+    EXPECT_EQ(totals(mesh), (Totals{before.vertices + 4 * (n - 1), before.edges + 4 * (2 * n - 1),
+                                    before.faces + 4 * n - 2, 1, 1}));
+    EXPECT_FALSE(self_intersects(to_polygon_mesh(mesh)));
+    for (int j = 1; j < segments; ++j) {
+      Vec3 tangent;
+      const Vec3 centre = hermite(c1, up, c2, up, double(j) / segments, &tangent);
+      const std::vector<Vec3> ring =
+          ring_near(mesh, static_cast<VertexId>(before.vertices), centre, tangent, 0.6);
+      ASSERT_EQ(ring.size(), 4u) << "ring " << j;
+      Vec3 mean{0, 0, 0};
+      for (const Vec3& p : ring) mean = mean + 0.25 * p;
+      EXPECT_LT(std::sqrt(dot(mean - centre, mean - centre)), 1e-12) << "ring " << j;
+    }
+  }
+}
+
+// Through a path point: the centre passes through it (the middle ring of an even count is
+// centred there), and the handle stays embedded.
+TEST(CreatePipe, CurvedHandleThroughAPathPoint) {
+  DlflMesh mesh = from_polygon_mesh(grid_box({0, 0, 0}, {5, 1, 1}, 5));
+  const Totals before = totals(mesh);
+  PipeOptions options(12);
+  options.path = {{2.5, 0.5, 3}};
+  options.weight1 = options.weight2 = 0.5;
+  create_pipe(mesh, quad_at(mesh, {0.5, 0.5, 1}), quad_at(mesh, {4.5, 0.5, 1}), options);
+  check_valid(mesh);
+  EXPECT_EQ(totals(mesh).genus, 1);
+  EXPECT_FALSE(self_intersects(to_polygon_mesh(mesh)));
+  // At the path point the curve's tangent is the Catmull–Rom one, (c2 − c1)/2: along x.
+  const std::vector<Vec3> ring =
+      ring_near(mesh, static_cast<VertexId>(before.vertices), {2.5, 0.5, 3}, {1, 0, 0}, 0.6);
+  ASSERT_EQ(ring.size(), 4u);
+  Vec3 mean{0, 0, 0};
+  for (const Vec3& p : ring) mean = mean + 0.25 * p;
+  EXPECT_LT(std::sqrt(dot(mean - Vec3{2.5, 0.5, 3}, mean - Vec3{2.5, 0.5, 3})), 1e-12);
+  // The first and last rings stay near their faces: the pipe leaves and enters vertically.
+  for (VertexId v = static_cast<VertexId>(before.vertices); v < mesh.vertex_capacity(); ++v) {
+    if (mesh.vertex_alive(v)) {
+      EXPECT_GT(mesh.position(v).z, 1.0);
+    }
+  }
+}
+
+TEST(CreatePipe, CurvedRefusesBadWeights) {
+  for (double w : {0.0, -1.0, std::nan("")}) {
+    DlflMesh mesh = from_polygon_mesh(grid_box({0, 0, 0}, {5, 1, 1}, 5));
+    PipeOptions options(4);
+    options.curved = true;
+    options.weight2 = w;
+    EXPECT_THROW(
+        create_pipe(mesh, quad_at(mesh, {0.5, 0.5, 1}), quad_at(mesh, {4.5, 0.5, 1}), options),
+        InputError);
+    check_valid(mesh);  // nothing changed
+    EXPECT_EQ(totals(mesh).genus, 0);
+  }
+}
+
 }  // namespace
 }  // namespace cover::modeler

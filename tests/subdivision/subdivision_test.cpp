@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -529,6 +530,154 @@ TEST(Subdivision, ExactRoundingMatchesTextbookRationals) {
   check_exact("grid", regular_triangles(3, false), Scheme::kLoop, textbook_loop);
   check_exact("torus", torus(5, 4), Scheme::kDooSabin, textbook_doo_sabin);
   check_exact("grid", grid(3), Scheme::kDooSabin, textbook_doo_sabin);
+}
+
+// ---- Corner attributes -------------------------------------------------------------------------
+
+/// The corners' positions as 3 attribute values per corner.
+CornerAttributes corner_positions(const PolygonMesh& m) {
+  CornerAttributes a{3, {}};
+  for (uint32_t v : m.face_vertices)
+    a.values.insert(a.values.end(), {m.vertices[v].x, m.vertices[v].y, m.vertices[v].z});
+  return a;
+}
+
+/// The mesh whose faces are `m`'s with every corner its own vertex at the attribute value
+/// (a "polygon soup" of the attribute values), vertices merged when their values are equal.
+PolygonMesh attribute_mesh(const PolygonMesh& m, const CornerAttributes& a) {
+  PolygonMesh out;
+  std::map<std::array<double, 3>, uint32_t> ids;
+  for (size_t f = 0; f < m.face_count(); ++f) {
+    std::vector<uint32_t> loop;
+    for (uint32_t h = m.face_start[f]; h < m.face_start[f + 1]; ++h) {
+      const std::array<double, 3> p{a.values[3 * h], a.values[3 * h + 1], a.values[3 * h + 2]};
+      const auto [it, added] = ids.emplace(p, static_cast<uint32_t>(out.vertices.size()));
+      if (added) out.vertices.push_back({p[0], p[1], p[2]});
+      loop.push_back(it->second);
+    }
+    out.add_face(loop);
+  }
+  return out;
+}
+
+// Positions carried as attributes are refined linearly: the same as CGAL's linear masks
+// (Linear_mask_3: face centroid, edge midpoint, vertex kept) through the same refinement,
+// Catmull–Clark (PQQ) and Loop (PTQ) topology, over two levels. Closed meshes only: CGAL's
+// Linear_mask_3::border_node leaves a border vertex's point unset; on an open cube the old
+// vertices' corners are checked directly.
+TEST(SubdivisionAttributes, CatmullClarkAndLoopCarryValuesLinearlyAsCgalLinearMasks) {
+  namespace SM = CGAL::Subdivision_method_3;
+  const std::pair<const char*, PolygonMesh> quads[] = {{"cube", cube()}, {"torus", torus(8, 6)}};
+  const std::pair<const char*, PolygonMesh> triangles[] = {
+      {"cube", test::triangulate(cube())},
+      {"torus", regular_triangles(6, true)},
+      {"cross.off", read_mesh(test::cgal_mesh("cross.off"))}};
+  for (int levels : {1, 2}) {
+    for (const auto& [label, m] : quads) {
+      SCOPED_TRACE(std::string("CC ") + label + " L" + std::to_string(levels));
+      CornerAttributes a = corner_positions(m);
+      const PolygonMesh refined = subdivide(m, {Scheme::kCatmullClark, levels}, a);
+      ASSERT_EQ(a.values.size(), 3 * refined.face_vertices.size());
+      SurfaceMesh s = to_cgal(m);
+      SM::PQQ(s, CGAL::Linear_mask_3<SurfaceMesh>(&s, get(CGAL::vertex_point, s)),
+              CGAL::parameters::number_of_iterations(levels));
+      const Agreement agree = compare_with_cgal(attribute_mesh(refined, a), from_cgal(s));
+      EXPECT_LE(agree.scaled, 1u);
+    }
+    for (const auto& [label, m] : triangles) {
+      SCOPED_TRACE(std::string("Loop ") + label + " L" + std::to_string(levels));
+      CornerAttributes a = corner_positions(m);
+      const PolygonMesh refined = subdivide(m, {Scheme::kLoop, levels}, a);
+      SurfaceMesh s = to_cgal(m);
+      SM::PTQ(s, CGAL::Linear_mask_3<SurfaceMesh>(&s, get(CGAL::vertex_point, s)),
+              CGAL::parameters::number_of_iterations(levels));
+      const Agreement agree = compare_with_cgal(attribute_mesh(refined, a), from_cgal(s));
+      EXPECT_LE(agree.scaled, 1u);
+    }
+  }
+  // Open cube, Catmull–Clark: corner 0 of the quad of old corner c is old vertex fv[c]'s.
+  const PolygonMesh open = open_cube();
+  CornerAttributes a = corner_positions(open);
+  const PolygonMesh refined = subdivide(open, {Scheme::kCatmullClark, 1}, a);
+  for (size_t c = 0; c < open.face_vertices.size(); ++c)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(a.values[3 * (4 * c) + k], open.vertices[open.face_vertices[c]][k]);
+}
+
+// Doo–Sabin's attribute rule is its own mask within the face: positions carried as attributes
+// land on the refined vertices (one level, closed and open meshes, quads and other polygons).
+TEST(SubdivisionAttributes, DooSabinCarriesPositionsOntoItsCornerPoints) {
+  for (const PolygonMesh& m : {cube(), open_cube(), read_mesh(test::cgal_mesh("cross.off"))}) {
+    CornerAttributes a = corner_positions(m);
+    const PolygonMesh refined = subdivide(m, {Scheme::kDooSabin, 1}, a);
+    double worst = 0;
+    for (size_t h = 0; h < refined.face_vertices.size(); ++h) {
+      const Vec3 p = refined.vertices[refined.face_vertices[h]];
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(a.values[3 * h + k] - p[k]));
+    }
+    EXPECT_LE(worst, 1e-14);
+  }
+}
+
+// √3: a corner at an old vertex keeps that vertex's value, a centre's value is its face's mean
+// (read off the output's vertex numbering: old vertices first, then one centre per face).
+TEST(SubdivisionAttributes, Sqrt3KeepsOldVerticesAndAveragesFaces) {
+  for (const PolygonMesh& m : {test::triangulate(cube()), regular_triangles(4, true)}) {
+    CornerAttributes a = corner_positions(m);
+    const PolygonMesh refined = subdivide(m, {Scheme::kSqrt3, 1}, a);
+    const size_t nv = m.vertices.size();
+    for (size_t h = 0; h < refined.face_vertices.size(); ++h) {
+      const uint32_t u = refined.face_vertices[h];
+      Vec3 expected{0, 0, 0};
+      if (u < nv) {
+        expected = m.vertices[u];
+      } else {
+        const size_t f = u - nv;
+        for (uint32_t v : m.face(f)) expected = expected + (1.0 / 3) * m.vertices[v];
+      }
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(a.values[3 * h + k], expected[k], 1e-15) << h;
+    }
+  }
+}
+
+// Seams survive: with one value per old face (every edge a seam), each new face of
+// Catmull–Clark, Loop and Doo–Sabin's face-faces carries its old face's value only, and the
+// values are identical for 1 and 2 threads.
+TEST(SubdivisionAttributes, KeepsSeamsAndIsThreadIndependent) {
+  const PolygonMesh elephant = read_mesh(test::cgal_mesh("elephant.off"));
+  for (Scheme s : {Scheme::kCatmullClark, Scheme::kLoop, Scheme::kDooSabin, Scheme::kSqrt3}) {
+    CornerAttributes a{1, {}};
+    for (size_t f = 0; f < elephant.face_count(); ++f)
+      a.values.insert(a.values.end(), elephant.face(f).size(), double(f));
+    CornerAttributes one = a, two = a;
+    PolygonMesh r1, r2;
+    {
+      ThreadLimit limit(1);
+      r1 = subdivide(elephant, {s, 2}, one);
+    }
+    {
+      ThreadLimit limit(2);
+      r2 = subdivide(elephant, {s, 2}, two);
+    }
+    EXPECT_EQ(one.values, two.values) << name(s);
+    if (s == Scheme::kSqrt3) continue;  // its triangles straddle two old faces
+    const size_t faces = s == Scheme::kDooSabin ? elephant.face_count() : r1.face_count();
+    for (size_t f = 0; f < faces; ++f) {
+      const uint32_t b = r1.face_start[f], e = r1.face_start[f + 1];
+      for (uint32_t h = b + 1; h < e; ++h) ASSERT_EQ(one.values[h], one.values[b]) << name(s);
+    }
+  }
+}
+
+TEST(SubdivisionAttributes, RefusesBadAttributes) {
+  const PolygonMesh m = cube();
+  CornerAttributes wrong_count{2, std::vector<double>(5, 0.0)};
+  EXPECT_THROW(subdivide(m, {}, wrong_count), InputError);
+  CornerAttributes no_dims{0, {}};
+  EXPECT_THROW(subdivide(m, {}, no_dims), InputError);
+  CornerAttributes nan{1, std::vector<double>(m.face_vertices.size(), 0.0)};
+  nan.values[7] = std::nan("");
+  EXPECT_THROW(subdivide(m, {}, nan), InputError);
 }
 
 // ---- Counts, threads, errors -------------------------------------------------------------------
