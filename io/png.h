@@ -1,6 +1,8 @@
 #pragma once
-// PNG output through libpng (Debian libpng-dev). Files are written atomically: a temporary file
-// in the same folder, then rename; a failure leaves no partial file and throws InputError.
+// PNG output: rows deflated by zlib in parallel bands (the bytes do not depend on the thread
+// count), chunks written by libpng (Debian libpng-dev); io/png.cpp has the details. Files are
+// written atomically: a temporary file in the same folder, then rename; a failure leaves no
+// partial file and throws InputError.
 
 #include <cstdint>
 #include <filesystem>
