@@ -117,9 +117,9 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     if (out.empty()) continue;
     if ((out.extension() == ".json") != scene_out)
       throw InputError(out.string() + ": ABOVE and BELOW must both be meshes or both .json scenes");
-    if (!scene_out && !is_mesh_extension(out))
-      throw InputError(out.string() +
-                       ": unsupported output format (use .off .obj .stl .ply or .json)");
+    if (!scene_out && !is_mesh_output_extension(out))
+      throw InputError(out.string() + ": unsupported output format (use " + kMeshOutputFormats +
+                       " or .json)");
   }
   const Model model = load_model(o.input, common.load_options(), "clip needs closed leaves");
   const Solid& s = model.solid();

@@ -36,8 +36,8 @@ std::string piece_name(const brep::CellPiece& p, const std::string& ext) {
 
 int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& common) {
   Timing timing;
-  if (!is_mesh_extension(o.output))
-    throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
+  if (!is_mesh_output_extension(o.output))
+    throw InputError(o.output + ": unsupported output format (use " + kMeshOutputFormats + ")");
   // The cells' part now, the evaluated mesh's part once it is known (CellsOptions).
   check_memory(brep::cells_memory_bytes(o.cells), common.max_memory_bytes(),
                "--cells " + std::to_string(o.cells) + ": cutting into cells");

@@ -16,6 +16,7 @@
 #include "cover/io/atomic_file.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/scene.h"
+#include "cover/render/render.h"
 #include "cover/solid/errors.h"
 
 namespace cover::cli {
@@ -27,10 +28,12 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   if (!o.pieces.empty() || !o.bounds.empty())
     throw InputError(std::string(o.pieces.empty() ? "--bounds" : "--pieces") + ": needs --cells N");
   Timing timing;
-  if (!is_mesh_extension(o.output))
-    throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
-  if (o.leaf_ids && lower_extension(o.output) != ".ply" && lower_extension(o.output) != ".obj")
-    throw InputError(o.output + ": --leaf-ids needs a .ply or .obj output");
+  if (!is_mesh_output_extension(o.output))
+    throw InputError(o.output + ": unsupported output format (use " + kMeshOutputFormats + ")");
+  const std::string ext = lower_extension(o.output);
+  const bool gltf = ext == ".gltf" || ext == ".glb";
+  if (o.leaf_ids && ext != ".ply" && ext != ".obj" && !gltf)
+    throw InputError(o.output + ": --leaf-ids needs a .ply, .obj, .gltf or .glb output");
   const Model model = load_model(o.input, common.load_options(), "evaluate needs closed leaves");
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
@@ -39,12 +42,14 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
   OutputBatch outputs;
-  if (o.leaf_ids) {
+  if (o.leaf_ids || gltf) {  // glTF: a material per leaf, in the leaf's render colour
     FaceLabels labels;
     labels.ply_property = "leaf";
     labels.labels = r.face_leaf;
-    for (size_t l = 0; l < model.leaf_count(); ++l)
+    for (size_t l = 0; l < model.leaf_count(); ++l) {
       labels.obj_groups.push_back("leaf_" + std::to_string(l));
+      labels.colours.push_back(leaf_colour(static_cast<uint32_t>(l)));
+    }
     write_mesh(o.output, r.mesh, labels);
   } else {
     write_mesh(o.output, r.mesh);

@@ -58,8 +58,8 @@ Json face_list(const ModifyCommandOptions& o, size_t count, const char* flag) {
 int run_modify(std::string_view command, const ModifyCommandOptions& o,
                const CommonOptions& common) {
   Timing timing;
-  if (!is_mesh_extension(o.output))
-    throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
+  if (!is_mesh_output_extension(o.output))
+    throw InputError(o.output + ": unsupported output format (use " + kMeshOutputFormats + ")");
   std::string script, origin;
   if (command == "modify") {
     script = read_text(o.ops);

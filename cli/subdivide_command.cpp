@@ -28,8 +28,8 @@ int run_subdivide(const SubdivideCommandOptions& o, const CommonOptions& common)
   if (!scheme)
     throw InputError("--scheme: expected catmull-clark, doo-sabin, loop or sqrt3, got '" +
                      o.scheme + "'");
-  if (!is_mesh_extension(o.output))
-    throw InputError(o.output + ": unsupported output format (use .off, .obj, .stl or .ply)");
+  if (!is_mesh_output_extension(o.output))
+    throw InputError(o.output + ": unsupported output format (use " + kMeshOutputFormats + ")");
   if (lower_extension(o.input) == ".json")
     throw InputError(o.input +
                      ": cover subdivide reads a mesh file (.off .obj .stl .ply); in a scene, "

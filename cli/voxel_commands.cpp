@@ -80,9 +80,9 @@ int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common) {
   if (!is_voxel_extension(o.output) && !zarr && !vdb)
     throw InputError(
         o.output + ": unsupported voxel format (expected .binvox, .vti, .npy, .raw, .zarr, .vdb)");
-  if (!o.surface.empty() && !is_mesh_extension(o.surface))
-    throw InputError(o.surface +
-                     ": unsupported mesh format for --surface (expected .obj, .stl, .off, .ply)");
+  if (!o.surface.empty() && !is_mesh_output_extension(o.surface))
+    throw InputError(o.surface + ": unsupported mesh format for --surface (expected " +
+                     kMeshOutputFormats + ")");
   if (!o.surface.empty() && zarr)
     throw InputError("--surface: needs the grid in memory, not with a .zarr output");
   if (o.res == 0 && o.voxel_size == 0 && o.dims.empty())

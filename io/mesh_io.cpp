@@ -126,6 +126,11 @@ bool is_mesh_extension(const std::filesystem::path& path) {
   return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
 }
 
+bool is_mesh_output_extension(const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  return is_mesh_extension(path) || ext == ".gltf" || ext == ".glb";
+}
+
 PolygonMesh read_mesh(const std::filesystem::path& path, uint64_t max_file_bytes,
                       std::vector<std::string>* warnings) {
   const std::string file = path.string();

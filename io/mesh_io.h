@@ -32,19 +32,23 @@ PolygonMesh read_mesh(const std::filesystem::path& path,
 
 /// Writes a mesh atomically (io/atomic_file.h: a temporary beside the target, then rename;
 /// inside an OutputBatch, renamed with the batch's other outputs).
-/// Polygons are fan-triangulated for STL (coordinates rounded to float); .off/.obj/.ply round
-/// trips are exact. Throws InputError on unsupported extension, I/O failure, or a mesh that
-/// cannot be written (index out of range, face with fewer than 3 vertices, non-finite vertex).
+/// Polygons are fan-triangulated for STL, glTF (.gltf, .glb) (coordinates rounded to float);
+/// .off/.obj/.ply round trips are exact. Throws InputError on unsupported extension, I/O failure,
+/// or a mesh that cannot be written (index out of range, face with fewer than 3 vertices,
+/// non-finite vertex).
 void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh);
 
 /// Per-face labels (e.g. the source leaf of each face of an evaluated mesh) for the formats
 /// that can hold them: .ply gets a face property `int <ply_property>` after vertex_indices;
 /// .obj a line "g <obj_groups[label]>" before each run of faces with the same label (faces keep
-/// their order, so indices match the unlabelled file).
+/// their order, so indices match the unlabelled file); .gltf / .glb one primitive per label with
+/// a material named obj_groups[label] in colours[label] (io/write_gltf.cpp).
 struct FaceLabels {
   std::string ply_property = "label";
   std::vector<uint32_t> labels;         ///< one per face
   std::vector<std::string> obj_groups;  ///< group name per label value (no whitespace)
+  /// glTF: the material colour per label value (sRGB bytes); labels beyond it get grey.
+  std::vector<std::array<uint8_t, 3>> colours;
 };
 
 /// write_mesh with face labels. Throws InputError as above, for .off / .stl ("cannot carry face
@@ -69,6 +73,13 @@ void write_mesh_with_uvs(const std::filesystem::path& path, const PolygonMesh& m
 
 /// True if the extension names a mesh format read_mesh understands.
 bool is_mesh_extension(const std::filesystem::path& path);
+
+/// True if the extension names a mesh format write_mesh writes: the read formats and glTF 2.0
+/// (.gltf, .glb).
+bool is_mesh_output_extension(const std::filesystem::path& path);
+
+/// The mesh output formats for messages: ".off, .obj, .stl, .ply, .gltf or .glb".
+inline constexpr const char* kMeshOutputFormats = ".off, .obj, .stl, .ply, .gltf or .glb";
 
 /// The extension of `path` with its dot, ASCII-lowercased (".OFF" → ".off"), or empty: how every
 /// reader and writer picks a format.

@@ -9,6 +9,8 @@
 //         with FaceLabels then "int NAME" per face
 //   .stl  binary; polygons are fan-triangulated (v0, vi, vi+1) and coordinates rounded to float,
 //         so an STL round trip is exact only for float-representable coordinates
+//   .gltf, .glb  glTF 2.0 (io/write_gltf.cpp): float positions, fan-triangulated, a material per
+//         face label
 // Numbers are written with std::to_chars' shortest round-trip form, so .off/.obj/.ply round trips
 // reproduce every double exactly. Vertex and face lines are formatted in parallel chunks and
 // written in order (the same bytes as one by one): formatting, not the file system, took most of
@@ -23,6 +25,7 @@
 #include <string>
 
 #include "cover/io/atomic_file.h"
+#include "cover/io/detail/gltf.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/parse.h"
 #include "cover/solid/errors.h"
@@ -237,7 +240,9 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
                                 const FaceLabels* labels, const std::vector<double>* uvs) {
   const std::string file = path.string();
   const std::string ext = lower_extension(path);
-  if (!is_mesh_extension(path)) detail::fail_file(file, detail::unsupported_format(path));
+  if (!is_mesh_output_extension(path))
+    detail::fail_file(file, "unsupported mesh format '" + path.extension().string() +
+                                "' (expected " + kMeshOutputFormats + ")");
   check_mesh(file, mesh);
   if (uvs) {
     if (ext != ".obj") detail::fail_file(file, "cannot carry texture coordinates (use .obj)");
@@ -249,8 +254,8 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
       if (!std::isfinite(u)) detail::fail_file(file, "cannot write: a texture value is not finite");
   }
   if (labels) {
-    if (ext != ".ply" && ext != ".obj")
-      detail::fail_file(file, "cannot carry face labels (use .ply or .obj)");
+    if (ext != ".ply" && ext != ".obj" && ext != ".gltf" && ext != ".glb")
+      detail::fail_file(file, "cannot carry face labels (use .ply, .obj, .gltf or .glb)");
     if (labels->labels.size() != mesh.face_count())
       detail::fail_file(file, "cannot write: " + std::to_string(labels->labels.size()) +
                                   " face labels for " + std::to_string(mesh.face_count()) +
@@ -258,6 +263,22 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
     for (uint32_t l : labels->labels)
       if (l > 0x7FFFFFFFu || (ext == ".obj" && l >= labels->obj_groups.size()))
         detail::fail_file(file, "cannot write: face label " + std::to_string(l) + " out of range");
+  }
+  if (ext == ".gltf" || ext == ".glb") {
+    const std::string bytes = detail::gltf_bytes(file, mesh, labels, ext == ".glb");
+    write_atomically(
+        path,
+        [&](const std::filesystem::path& temporary) {
+          std::FILE* stream = std::fopen(temporary.c_str(), "wb");
+          if (stream == nullptr)
+            detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
+          const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), stream) == bytes.size();
+          if (std::fclose(stream) != 0 || !ok)
+            detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
+          return true;
+        },
+        "the mesh");
+    return;
   }
   write_atomically(
       path,

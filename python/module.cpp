@@ -19,6 +19,7 @@
 #include "cover/mesh/validate.h"
 #include "cover/model/info.h"
 #include "cover/model/model.h"
+#include "files.h"
 #include "modeling.h"
 
 namespace py = pybind11;
@@ -816,4 +817,5 @@ PYBIND11_MODULE(_cover, m) {
       },
       py::arg("V"), py::arg("F"), py::kw_only(), py::arg("closed_only") = false, doc::kMesh);
   bind_modeling(m);
+  bind_files(m);
 }

@@ -6,7 +6,8 @@ intersection_all(), move them with translate(), scale(), rotate(), mirror() and 
 and query it:
 classify(), winding(), volume(), bounds(), voxelize(), cast(), render(), evaluate(), clip(),
 info(). subdivide() refines a polygon mesh given as arrays; modify() applies modeling operations
-(pipes, extrusions, ...) to one. See docs/python.md.
+(pipes, extrusions, ...) to one; write_mesh() writes one in any format the CLI writes. See
+docs/python.md.
 """
 
 from ._cover import (
@@ -27,6 +28,7 @@ from ._cover import (
     modify,
     subdivide,
     union_all,
+    write_mesh,
 )
 
 __all__ = [
@@ -47,4 +49,5 @@ __all__ = [
     "modify",
     "subdivide",
     "union_all",
+    "write_mesh",
 ]

@@ -176,3 +176,9 @@ def subdivide(
     tuple[npt.NDArray[np.float64], npt.NDArray[np.int64] | list[list[int]]]
     | tuple[npt.NDArray[np.float64], npt.NDArray[np.int64] | list[list[int]], npt.NDArray[np.float64]]
 ): ...
+def write_mesh(
+    path: str | os.PathLike[str],
+    V: _ArrayLike,
+    F: _ArrayLike | Sequence[Sequence[int]],
+    leaf_ids: _ArrayLike | None = None,
+) -> None: ...

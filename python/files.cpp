@@ -1,0 +1,62 @@
+// The mesh writers of io/mesh_io.h for Python (docs/python.md): every format the CLI writes, atomic
+// as the CLI's, with per-face leaf labels where the format holds them.
+#include "files.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
+#include <string>
+
+#include "arrays.h"
+#include "cover/io/mesh_io.h"
+#include "cover/render/render.h"
+#include "cover/solid/errors.h"
+#include "docstrings.h"
+
+namespace py = pybind11;
+
+namespace cover::python {
+
+void bind_files(py::module_& m) {
+  m.def(
+      "write_mesh",
+      [](const std::filesystem::path& path, py::handle v, py::handle f, py::handle leaf_ids) {
+        PolygonMesh mesh;
+        const Points vertices = points_arg(v, "V");
+        mesh.vertices.assign(vertices.span().begin(), vertices.span().end());
+        faces_arg(f, mesh);
+        if (leaf_ids.is_none()) {
+          py::gil_scoped_release release;
+          write_mesh(path, mesh);
+          return;
+        }
+        const auto ids =
+            py::array_t<int64_t, py::array::c_style | py::array::forcecast>::ensure(leaf_ids);
+        if (!ids || ids.ndim() != 1 || static_cast<size_t>(ids.size()) != mesh.face_count())
+          throw InputError("leaf_ids: expected one integer per face (" +
+                           std::to_string(mesh.face_count()) + ")");
+        FaceLabels labels;
+        labels.ply_property = "leaf";
+        int64_t largest = -1;
+        for (py::ssize_t i = 0; i < ids.size(); ++i) {
+          const int64_t id = ids.data()[i];
+          if (id < 0 || id > 0x7FFFFFFF)
+            throw InputError("leaf_ids: face " + std::to_string(i) + ": leaf " +
+                             std::to_string(id) + " out of range");
+          labels.labels.push_back(static_cast<uint32_t>(id));
+          largest = std::max(largest, id);
+        }
+        for (int64_t l = 0; l <= largest; ++l) {
+          labels.obj_groups.push_back("leaf_" + std::to_string(l));
+          labels.colours.push_back(leaf_colour(static_cast<uint32_t>(l)));
+        }
+        py::gil_scoped_release release;
+        write_mesh(path, mesh, labels);
+      },
+      py::arg("path"), py::arg("V"), py::arg("F"), py::arg("leaf_ids") = py::none(),
+      doc::kWriteMesh);
+}
+
+}  // namespace cover::python
