@@ -31,9 +31,9 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   if (!is_mesh_output_extension(o.output))
     throw InputError(o.output + ": unsupported output format (use " + kMeshOutputFormats + ")");
   const std::string ext = lower_extension(o.output);
-  const bool gltf = ext == ".gltf" || ext == ".glb";
+  const bool gltf = ext == ".gltf" || ext == ".glb" || ext == ".3mf";  // colours per leaf
   if (o.leaf_ids && ext != ".ply" && ext != ".obj" && !gltf)
-    throw InputError(o.output + ": --leaf-ids needs a .ply, .obj, .gltf or .glb output");
+    throw InputError(o.output + ": --leaf-ids needs a .ply, .obj, .gltf, .glb or .3mf output");
   const Model model = load_model(o.input, common.load_options(), "evaluate needs closed leaves");
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
@@ -42,7 +42,7 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
   OutputBatch outputs;
-  if (o.leaf_ids || gltf) {  // glTF: a material per leaf, in the leaf's render colour
+  if (o.leaf_ids || gltf) {  // glTF, 3MF: a material per leaf, in the leaf's render colour
     FaceLabels labels;
     labels.ply_property = "leaf";
     labels.labels = r.face_leaf;

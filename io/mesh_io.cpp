@@ -128,7 +128,7 @@ bool is_mesh_extension(const std::filesystem::path& path) {
 
 bool is_mesh_output_extension(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);
-  return is_mesh_extension(path) || ext == ".gltf" || ext == ".glb";
+  return is_mesh_extension(path) || ext == ".gltf" || ext == ".glb" || ext == ".3mf";
 }
 
 PolygonMesh read_mesh(const std::filesystem::path& path, uint64_t max_file_bytes,

@@ -32,7 +32,8 @@ PolygonMesh read_mesh(const std::filesystem::path& path,
 
 /// Writes a mesh atomically (io/atomic_file.h: a temporary beside the target, then rename;
 /// inside an OutputBatch, renamed with the batch's other outputs).
-/// Polygons are fan-triangulated for STL, glTF (.gltf, .glb) (coordinates rounded to float);
+/// Polygons are fan-triangulated for STL, glTF (.gltf, .glb) and 3MF (coordinates rounded to
+/// float);
 /// .off/.obj/.ply round trips are exact. Throws InputError on unsupported extension, I/O failure,
 /// or a mesh that cannot be written (index out of range, face with fewer than 3 vertices,
 /// non-finite vertex).
@@ -42,7 +43,8 @@ void write_mesh(const std::filesystem::path& path, const PolygonMesh& mesh);
 /// that can hold them: .ply gets a face property `int <ply_property>` after vertex_indices;
 /// .obj a line "g <obj_groups[label]>" before each run of faces with the same label (faces keep
 /// their order, so indices match the unlabelled file); .gltf / .glb one primitive per label with
-/// a material named obj_groups[label] in colours[label] (io/write_gltf.cpp).
+/// a material named obj_groups[label] in colours[label] (io/write_gltf.cpp); .3mf a base
+/// material per label, the same name and colour, set on each triangle (io/write_3mf.cpp).
 struct FaceLabels {
   std::string ply_property = "label";
   std::vector<uint32_t> labels;         ///< one per face
@@ -74,12 +76,12 @@ void write_mesh_with_uvs(const std::filesystem::path& path, const PolygonMesh& m
 /// True if the extension names a mesh format read_mesh understands.
 bool is_mesh_extension(const std::filesystem::path& path);
 
-/// True if the extension names a mesh format write_mesh writes: the read formats and glTF 2.0
-/// (.gltf, .glb).
+/// True if the extension names a mesh format write_mesh writes: the read formats, glTF 2.0
+/// (.gltf, .glb) and 3MF (.3mf).
 bool is_mesh_output_extension(const std::filesystem::path& path);
 
-/// The mesh output formats for messages: ".off, .obj, .stl, .ply, .gltf or .glb".
-inline constexpr const char* kMeshOutputFormats = ".off, .obj, .stl, .ply, .gltf or .glb";
+/// The mesh output formats for messages.
+inline constexpr const char* kMeshOutputFormats = ".off, .obj, .stl, .ply, .gltf, .glb or .3mf";
 
 /// The extension of `path` with its dot, ASCII-lowercased (".OFF" → ".off"), or empty: how every
 /// reader and writer picks a format.

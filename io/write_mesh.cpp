@@ -11,6 +11,8 @@
 //         so an STL round trip is exact only for float-representable coordinates
 //   .gltf, .glb  glTF 2.0 (io/write_gltf.cpp): float positions, fan-triangulated, a material per
 //         face label
+//   .3mf  3MF (io/write_3mf.cpp): one object, float positions, fan-triangulated, a base
+//         material per face label
 // Numbers are written with std::to_chars' shortest round-trip form, so .off/.obj/.ply round trips
 // reproduce every double exactly. Vertex and face lines are formatted in parallel chunks and
 // written in order (the same bytes as one by one): formatting, not the file system, took most of
@@ -26,6 +28,7 @@
 
 #include "cover/io/atomic_file.h"
 #include "cover/io/detail/gltf.h"
+#include "cover/io/detail/threemf.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/parse.h"
 #include "cover/solid/errors.h"
@@ -254,8 +257,8 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
       if (!std::isfinite(u)) detail::fail_file(file, "cannot write: a texture value is not finite");
   }
   if (labels) {
-    if (ext != ".ply" && ext != ".obj" && ext != ".gltf" && ext != ".glb")
-      detail::fail_file(file, "cannot carry face labels (use .ply, .obj, .gltf or .glb)");
+    if (ext != ".ply" && ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".3mf")
+      detail::fail_file(file, "cannot carry face labels (use .ply, .obj, .gltf, .glb or .3mf)");
     if (labels->labels.size() != mesh.face_count())
       detail::fail_file(file, "cannot write: " + std::to_string(labels->labels.size()) +
                                   " face labels for " + std::to_string(mesh.face_count()) +
@@ -264,8 +267,9 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
       if (l > 0x7FFFFFFFu || (ext == ".obj" && l >= labels->obj_groups.size()))
         detail::fail_file(file, "cannot write: face label " + std::to_string(l) + " out of range");
   }
-  if (ext == ".gltf" || ext == ".glb") {
-    const std::string bytes = detail::gltf_bytes(file, mesh, labels, ext == ".glb");
+  if (ext == ".gltf" || ext == ".glb" || ext == ".3mf") {
+    const std::string bytes = ext == ".3mf" ? detail::threemf_bytes(file, mesh, labels)
+                                            : detail::gltf_bytes(file, mesh, labels, ext == ".glb");
     write_atomically(
         path,
         [&](const std::filesystem::path& temporary) {

@@ -269,12 +269,12 @@ doo-sabin applies its own mask within the face; seams stay seams.)";
 inline constexpr const char* kWriteMesh =
     R"(Writes a mesh file, atomically (a temporary beside the target, then renamed).
 
-The format follows the extension: .off, .obj, .stl, .ply, .gltf or .glb (docs/cli.md "Mesh
-formats written"). V, F as for subdivide(). leaf_ids (optional, an integer per face, e.g. the
-third result of Model.evaluate(leaf_ids=True)): .ply gets a face property `int leaf`, .obj a
-group per leaf, .gltf / .glb a material per leaf in its render colour; .off and .stl cannot hold
-them (InputError). Raises InputError for an unsupported extension, an index out of range, a
-non-finite coordinate or a file that cannot be written.)";
+The format follows the extension: .off, .obj, .stl, .ply, .gltf, .glb or .3mf (docs/cli.md
+"Mesh formats written"). V, F as for subdivide(). leaf_ids (optional, an integer per face, e.g.
+the third result of Model.evaluate(leaf_ids=True)): .ply gets a face property `int leaf`, .obj
+a group per leaf, .gltf / .glb / .3mf a material per leaf in its render colour; .off and .stl
+cannot hold them (InputError). Raises InputError for an unsupported extension, an index out of
+range, a non-finite coordinate or a file that cannot be written.)";
 
 inline constexpr const char* kModify =
     R"(Modeling operations on a closed mesh (the DLFL modeler): returns (V, F).

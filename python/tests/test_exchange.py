@@ -1,6 +1,10 @@
-"""glTF 2.0 output of `cover evaluate` read back by VTK's vtkGLTFReader (an independent reader):
-one block per leaf present, each the leaf's triangles of Model.evaluate(leaf_ids=True), at the
-same positions rounded to float."""
+"""Exchange formats: glTF 2.0 output of `cover evaluate` read back by VTK's vtkGLTFReader (one
+block per leaf present, each the leaf's triangles of Model.evaluate(leaf_ids=True), at the same
+positions rounded to float); 3MF read back with zipfile and ElementTree from the 3MF core and
+materials specification; cover.write_mesh in every format."""
+
+import xml.etree.ElementTree as ET
+import zipfile
 
 import numpy as np
 import pytest
@@ -43,7 +47,7 @@ def test_write_mesh_every_format_reads_back(tmp_path):
     io = pytest.importorskip("vtkmodules.vtkIOGeometry")
     model = cover.load(MODELS / "default.json")
     V, F, leaf = model.evaluate(leaf_ids=True)
-    for ext in (".off", ".obj", ".ply", ".stl", ".glb", ".gltf"):
+    for ext in (".off", ".obj", ".ply", ".stl", ".glb", ".gltf", ".3mf"):
         cover.write_mesh(tmp_path / ("m" + ext), V, F, None)
     # .off round-trips exactly (read back by the CLI's reader via cover.load).
     V2, F2 = cover.load(tmp_path / "m.off").evaluate()
@@ -67,3 +71,37 @@ def test_write_mesh_every_format_reads_back(tmp_path):
         cover.write_mesh(tmp_path / "m.3ds", V, F)
     with pytest.raises(cover.InputError, match="leaf_ids"):
         cover.write_mesh(tmp_path / "m.ply", V, F, leaf[:-1])
+
+
+CORE = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
+
+
+def test_evaluate_3mf_reads_back_with_a_material_per_leaf(tmp_path):
+    out = tmp_path / "scene.3mf"
+    j = cli_json("evaluate", MODELS / "default.json", "-o", out)
+    V, F, leaf = cover.load(MODELS / "default.json").evaluate(leaf_ids=True)
+    with zipfile.ZipFile(out) as z:
+        assert "3D/3dmodel.model" in z.namelist()
+        root = ET.fromstring(z.read("3D/3dmodel.model"))
+    assert root.get("unit") == "millimeter"
+    resources = root.find(CORE + "resources")
+    objects = resources.findall(CORE + "object")
+    assert len(objects) == 1 and len(root.find(CORE + "build")) == 1
+    mesh = objects[0].find(CORE + "mesh")
+    P = np.array([[float(v.get(a)) for a in "xyz"] for v in mesh.find(CORE + "vertices")])
+    T = mesh.find(CORE + "triangles")
+    tris = np.array([[int(t.get(a)) for a in ("v1", "v2", "v3")] for t in T])
+    assert len(tris) == j["faces"] == len(F)
+    np.testing.assert_allclose(P[tris], V[F].astype(np.float32), rtol=0, atol=1e-5)
+    # Each triangle's base material is its leaf; one opaque colour per leaf, all distinct.
+    materials = resources.find(CORE + "basematerials")
+    group = materials.get("id")
+    assert all(t.get("pid") == group for t in T)
+    np.testing.assert_array_equal([int(t.get("p1")) for t in T], leaf)
+    colours = [m.get("displaycolor") for m in materials]
+    assert [m.get("name") for m in materials] == [f"leaf_{i}" for i in range(len(colours))]
+    assert all(c.endswith("FF") for c in colours) and len(set(colours)) == len(colours)
+    # The same mesh gives the same bytes (content-derived UUIDs), for any thread count.
+    again = tmp_path / "again.3mf"
+    cli_json("evaluate", MODELS / "default.json", "-o", again, "--threads", 1)
+    assert again.read_bytes() == out.read_bytes()
