@@ -469,6 +469,7 @@ std::vector<Frame> render_frames(const RenderCommandOptions& o, const CameraOpti
       number.insert(number.begin(), static_cast<size_t>(digits) - number.size(), '0');
       Frame f{"_" + number, base};
       f.camera.azimuth_degrees = base.azimuth_degrees + 360.0 * k / o.turntable;
+      f.camera.turntable = true;  // one framing for every frame
       frames.push_back(std::move(f));
     }
   } else if (!o.views.empty()) {
@@ -501,7 +502,12 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   CameraOptions co;
   co.view = parse_view(o.view);
   co.perspective = o.perspective;
+  co.up = parse_up(o.up);  // "--up: expected x, y or z, got 'w'"
+  co.elevation_degrees = o.elevation;
   co.azimuth_degrees = o.azimuth;
+  co.zoom = o.zoom;
+  co.fit = o.fit;
+  if (o.fit && o.section.empty()) throw InputError("--fit: needs a --section");
   const std::vector<double> size = parse_numbers(o.size, "--size", 2, "xX");
   if (size[0] < 1 || size[1] < 1 || size[0] > 16384 || size[1] > 16384 ||
       size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]))
@@ -536,8 +542,8 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   OutputBatch outputs;
   json frames_json = json::array();
   for (size_t f = 0; f < frames.size(); ++f) {
-    const Camera camera =
-        model.camera(frames[f].camera);  // frames the result's box (Model::camera)
+    // Frames the result's box, or with --fit what the section keeps (Model::camera).
+    const Camera camera = model.camera(frames[f].camera, ro.section);
     ro.progress = [&](size_t done, size_t total) {
       progress.update(f * total + done, frames.size() * total);
     };

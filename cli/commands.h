@@ -79,9 +79,13 @@ struct RenderCommandOptions {
   std::string ids;      ///< --ids I.png
   std::string background = "255,255,255";
   bool outline = true;
-  double azimuth = 0;  ///< --azimuth DEG: the view turned about the vertical axis
-  int turntable = 0;   ///< --turntable N: N frames OUT_000.png ... around the vertical axis
-  std::string views;   ///< --views iso,front,...: one frame per view, OUT_iso.png ...
+  std::string up = "z";             ///< --up x|y|z: the axis shown upright
+  std::optional<double> elevation;  ///< --elevation DEG (default: the view's)
+  double azimuth = 0;               ///< --azimuth DEG: the view turned about the up axis
+  double zoom = 1;                  ///< --zoom F (> 1 magnifies)
+  bool fit = false;                 ///< --fit: frame what --section keeps
+  int turntable = 0;                ///< --turntable N: N frames OUT_000.png ... around the up axis
+  std::string views;                ///< --views iso,front,...: one frame per view, OUT_iso.png ...
 };
 
 struct VoxelizeCommandOptions {

@@ -76,6 +76,23 @@ CLI::Validator real_number(double lo, double hi) {
       help.str());
 }
 
+/// Check for a positive real option: a finite number > 0 ("--zoom: expected a positive number,
+/// got '0'").
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::string_view digits = text;
+        if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+        double value = 0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (ec != std::errc() || end != digits.data() + digits.size() || !(value > 0) ||
+            !std::isfinite(value))
+          return "expected a positive number, got " + shown(text);
+        return "";
+      },
+      "POSITIVE FLOAT");
+}
+
 /// Check for a path or list option: not empty ("--pieces: expected a folder, got ''"); an empty
 /// value would otherwise read as "not given".
 CLI::Validator non_empty(const std::string& expected) {
@@ -190,14 +207,25 @@ int main(int argc, char** argv) {
   ren_cmd->add_option("--background", ren.background, "Background colour r,g,b (0-255)")
       ->capture_default_str();
   ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
+  ren_cmd->add_option("--up", ren.up, "The axis shown upright: x, y or z (Y-up scans: y)")
+      ->capture_default_str();
+  ren_cmd
+      ->add_option("--elevation", ren.elevation,
+                   "The eye's angle above the horizontal plane in DEG (default: the view's; "
+                   "iso 35.26)")
+      ->check(real_number(-90, 90));
   ren_cmd
       ->add_option("--azimuth", ren.azimuth,
-                   "Turn the view about the vertical axis by DEG (counter-clockwise from above)")
+                   "Turn the view about the up axis by DEG (counter-clockwise from above)")
       ->check(real_number(-360, 360));
+  ren_cmd->add_option("--zoom", ren.zoom, "Magnify by F about the image centre (F > 1: larger)")
+      ->capture_default_str()
+      ->check(positive_number());
+  ren_cmd->add_flag("--fit", ren.fit, "Frame the part --section keeps instead of the whole model");
   auto* turntable = ren_cmd
                         ->add_option("--turntable", ren.turntable,
-                                     "N frames around the vertical axis: OUT_000.png ... "
-                                     "(one load, one BVH)")
+                                     "N frames around the up axis, one framing: "
+                                     "OUT_000.png ... (one load, one BVH)")
                         ->transform(whole_number(1, 3600));
   ren_cmd
       ->add_option("--views", ren.views,

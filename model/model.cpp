@@ -565,17 +565,31 @@ Octree Model::octree(const OctreeOptions& options, const std::optional<VoxelBoun
   return build_octree(prepared(), b, options);
 }
 
-Camera Model::camera(const CameraOptions& options) const {
+Camera Model::camera(const CameraOptions& options, const std::optional<Plane>& section) const {
   if (options.width < 1 || options.height < 1 || options.width > 16384 || options.height > 16384)
     throw InputError(parameter("width, height") +
                      ": expected WxH with whole numbers from 1 to 16384, got " +
                      std::to_string(options.width) + "x" + std::to_string(options.height));
-  const std::optional<Bbox> box = bounds();
-  return frame_camera(box && !box->empty() ? *box : solid().bbox(), options);
+  if (options.fit && !section)
+    throw InputError(parameter("fit") + ": needs a " + parameter("section"));
+  const std::optional<Bbox> bounded = bounds();
+  Bbox box = bounded && !bounded->empty() ? *bounded : solid().bbox();
+  if (options.fit) {
+    const Plane& s = *section;
+    if (!finite(s.normal) || !std::isfinite(s.offset))
+      throw InputError(parameter("section") + ": expected finite numbers");
+    if (s.normal.x == 0 && s.normal.y == 0 && s.normal.z == 0)
+      throw InputError(parameter("section") + ": the normal must be non-zero");
+    const Bbox kept = section_box(box, s);
+    if (!kept.empty()) box = kept;
+  }
+  // Bounded: framed on the leaves' vertices through the tree, within the box.
+  if (!bounded || bounded->empty()) return frame_camera(box, options);
+  return frame_camera(box, options, [this](Vec3 d) { return result_support(solid(), d); });
 }
 
 Image Model::render(const CameraOptions& camera_options, const RenderOptions& options) const {
-  return render(camera(camera_options), options);
+  return render(camera(camera_options, options.section), options);
 }
 
 Image Model::render(const Camera& camera, const RenderOptions& options) const {

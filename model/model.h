@@ -214,9 +214,14 @@ class Model {
   Octree octree(const OctreeOptions& options = {},
                 const std::optional<VoxelBounds>& bounds = std::nullopt) const;
 
-  /// The camera that frames the result's box (every leaf's when unbounded) from options.view.
-  Camera camera(const CameraOptions& options = {}) const;
-  /// Ray-cast preview (render/render.h) through camera(camera_options).
+  /// The camera that frames the result from options.view: its box (every leaf's when unbounded)
+  /// tightened by result_support (render/camera.h) where bounded; with options.fit, only the
+  /// part that `section` keeps (section_box; the whole box where that part is empty).
+  /// \throws InputError for an image size out of 1..16384, options.fit without a section or
+  /// with a zero or non-finite one, and as frame_camera().
+  Camera camera(const CameraOptions& options = {},
+                const std::optional<Plane>& section = std::nullopt) const;
+  /// Ray-cast preview (render/render.h) through camera(camera_options, options.section).
   /// \throws InputError for an image size out of 1..16384 or a zero section normal.
   Image render(const CameraOptions& camera_options = {}, const RenderOptions& options = {}) const;
   /// The same through a given camera.

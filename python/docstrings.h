@@ -168,7 +168,11 @@ inline constexpr const char* kRender =
 
 view: "iso", "front", "back", "left", "right", "top" or "bottom"; section: (nx, ny, nz, d)
 removes the half-space n.x > d and shows the exact cut faces; perspective: a perspective
-camera (default orthographic). The same pixels as `cover render --size WxH`.)";
+camera (default orthographic). up: "x", "y" or "z", the axis shown upright (Y-up scans: "y");
+elevation: the eye's angle above the horizontal plane in degrees, -90..90 (None: the view's,
+iso 35.26); azimuth: the view turned about the up axis in degrees; zoom: magnification (> 0);
+fit: frame the part the section keeps. The camera frames the result tightly (docs/cli.md).
+The same pixels as `cover render --size WxH` with the same flags.)";
 
 inline constexpr const char* kEvaluate =
     R"(The result as one closed, outward, 2-manifold triangle mesh (exact evaluation).

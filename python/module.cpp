@@ -346,12 +346,19 @@ py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& boun
 
 py::array_t<uint8_t> render_image(const Model& model, int width, int height,
                                   const std::string& view, const py::object& section,
-                                  bool perspective, Threads threads) {
+                                  bool perspective, const std::string& up,
+                                  std::optional<double> elevation, double azimuth, double zoom,
+                                  bool fit, Threads threads) {
   CameraOptions co;
   co.view = parse_view(view);
   co.width = width;
   co.height = height;
   co.perspective = perspective;
+  co.up = parse_up(up);
+  co.elevation_degrees = elevation;
+  co.azimuth_degrees = azimuth;
+  co.zoom = zoom;
+  co.fit = fit;
   RenderOptions ro;
   if (!section.is_none()) {
     const std::vector<double> s = numbers_arg(section, "section", 4);
@@ -748,8 +755,9 @@ PYBIND11_MODULE(_cover, m) {
                                      "pickled cover.Model");
           }))
       .def("render", &render_image, py::arg("width"), py::arg("height"), py::arg("view") = "iso",
-           py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false, threads,
-           doc::kRender)
+           py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false,
+           py::arg("up") = "z", py::arg("elevation") = py::none(), py::arg("azimuth") = 0.0,
+           py::arg("zoom") = 1.0, py::arg("fit") = false, threads, doc::kRender)
       .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false, threads,
            doc::kEvaluate)
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)

@@ -97,6 +97,11 @@ class Model:
         section: Sequence[float] | None = None,
         *,
         perspective: bool = False,
+        up: Literal["x", "y", "z"] = "z",
+        elevation: float | None = None,
+        azimuth: float = 0.0,
+        zoom: float = 1.0,
+        fit: bool = False,
         threads: int | None = None,
     ) -> npt.NDArray[np.uint8]: ...
     @overload

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cover/io/mesh_io.h"
+#include "cover/io/png.h"
 #include "cover/solid/primitives.h"
 #include "helpers.h"
 
@@ -335,6 +336,80 @@ TEST_F(Cli, RenderWritesImagesAndCamera) {
   r = run_cover("render " + q(scene) + " -o " + q(dir_ / "missing-folder" / "x.png"));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("x.png"), std::string::npos);
+}
+
+/// Occupied rows and columns (max − min + 1) of a --ids PNG: pixels with a leaf or cap.
+std::pair<int, int> silhouette_rows_cols(const std::filesystem::path& ids_png) {
+  const PngImage ids = read_png(ids_png);
+  int x0 = ids.width, x1 = -1, y0 = ids.height, y1 = -1;
+  for (int y = 0; y < ids.height; ++y)
+    for (int x = 0; x < ids.width; ++x)
+      if (ids.values[static_cast<size_t>(y) * ids.width + x] != 0) {
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+  if (x1 < 0) return {0, 0};
+  return {y1 - y0 + 1, x1 - x0 + 1};
+}
+
+TEST_F(Cli, RenderCameraFramesUpElevationZoomAndFit) {
+  const auto scene = test::source_dir() / "models" / "default.json";
+  const std::filesystem::path ids = dir_ / "i.png";
+  auto span = [&](const std::string& input, const std::string& flags) {
+    const auto r = run_cover("render " + input + " -o " + q(dir_ / "a.png") + " --ids " + q(ids) +
+                             " " + flags);
+    EXPECT_EQ(r.status, 0) << flags << r.err;
+    return silhouette_rows_cols(ids);
+  };
+  // The README's render (800x600 iso): the silhouette spans at least 80% of the shorter side.
+  const auto [rows, cols] = span(q(scene), "");
+  EXPECT_GE(rows, 0.8 * 600) << rows << "x" << cols;
+  EXPECT_LE(cols, 800 - 8);  // within the frame, with a margin
+  // A Y-up model (a box tall along y) stands upright with --up y and lies with the default z.
+  const auto tall = dir_ / "tall.json";
+  test::write_file(tall, R"({"box": {"min": [-0.2, -1, -0.2], "max": [0.2, 1, 0.2]}})");
+  const auto upright = span(q(tall), "--size 120x90 --up y");
+  EXPECT_GT(upright.first, 2 * upright.second);
+  const auto lying = span(q(tall), "--size 120x90");
+  EXPECT_GT(lying.second, lying.first);
+  // --zoom f scales the silhouette by f about the centre (±2 px).
+  const auto zoomed = span(q(tall), "--size 120x90 --up y --zoom 2");
+  EXPECT_NEAR(zoomed.second, 2 * upright.second, 2);
+  const auto halved = span(q(tall), "--size 120x90 --up y --zoom 0.5");
+  EXPECT_NEAR(2 * halved.first, upright.first, 2);
+  EXPECT_NEAR(2 * halved.second, upright.second, 2);
+  // --elevation 90 from the front is the top view.
+  span(q(scene), "--size 64x48 --view top");
+  const std::string top = test::read_file(ids);
+  span(q(scene), "--size 64x48 --view front --elevation 90");
+  EXPECT_EQ(test::read_file(ids), top);
+  // --fit frames what the section keeps: it fills the frame as the whole model does.
+  const std::string cut = "--size 200x150 --section 1,0,0,-0.5";  // keeps x ≤ −0.5
+  const auto unfitted = span(q(scene), cut);
+  const auto fitted = span(q(scene), cut + " --fit");
+  EXPECT_LT(unfitted.first, 0.8 * 150);
+  EXPECT_GE(std::max(fitted.first / 150.0, fitted.second / 200.0), 0.8)
+      << fitted.first << "x" << fitted.second;
+  // Byte-identical frames with 1 and 2 threads under every camera option.
+  const std::string all =
+      "--size 96x72 --up y --elevation 20 --azimuth 33 --zoom 1.5 "
+      "--perspective --section 1,0,0,-0.5 --fit --threads ";
+  span(q(scene), all + "1");
+  const std::string one = test::read_file(dir_ / "a.png");
+  span(q(scene), all + "2");
+  EXPECT_EQ(test::read_file(dir_ / "a.png"), one);
+  // Bad values: exit 2, one line naming the flag, nothing written.
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--up w", "--up: expected x, y or z, got 'w'"},
+           {"--zoom 0", "--zoom: expected a positive number, got '0'"},
+           {"--zoom -2", "--zoom: expected a positive number, got '-2'"},
+           {"--zoom abc", "--zoom: expected a positive number, got 'abc'"},
+           {"--elevation 91", "--elevation: expected a number from -90 to 90, got '91'"},
+           {"--fit", "--fit: needs a --section"}}) {
+    const auto r = run_cover("render " + q(scene) + " -o " + q(dir_ / "bad.png") + " " + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_EQ(r.err, "cover: error: " + message + "\n") << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.png")) << bad;
+  }
 }
 
 TEST_F(Cli, VoxelizeAndOctreeWriteEveryFormatDeterministically) {

@@ -138,18 +138,30 @@ TEST_F(CliReports, SeveralViewsFromOneLoadEqualSingleRenders) {
     EXPECT_EQ(test::read_file(d + "d_" + view + ".png"), test::read_file(d + "one_depth.png"))
         << view;
   }
-  // Turntable frame k is the view turned by 360·k/N about the vertical axis.
+  // Turntable frame k is the view turned by 360·k/N about the up axis, every frame with
+  // one framing (the box seen from every azimuth), so its scale and depth range never change.
   const json turn = run_json("render " + in + " --size 96x64 --turntable 4 -o " + q(d + "t.png"));
   ASSERT_EQ(turn["frames"].size(), 4u);
   std::set<std::string> distinct;
   for (int k = 0; k < 4; ++k) {
     const std::string frame = d + "t_00" + std::to_string(k) + ".png";
-    run_json("render " + in + " --size 96x64 --azimuth " + std::to_string(90 * k) + " -o " +
-             q(d + "one.png"));
-    EXPECT_EQ(test::read_file(frame), test::read_file(d + "one.png")) << k;
+    const json one = run_json("render " + in + " --size 96x64 --azimuth " + std::to_string(90 * k) +
+                              " -o " + q(d + "one.png"));
+    const json& cam = turn["frames"][k]["camera"];
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(cam["forward"][i].get<double>(), one["camera"]["forward"][i].get<double>(), 1e-15)
+          << k;
+      EXPECT_NEAR(cam["up"][i].get<double>(), one["camera"]["up"][i].get<double>(), 1e-15) << k;
+    }
+    EXPECT_EQ(cam["pixel_size"], turn["camera"]["pixel_size"]) << k;
+    EXPECT_EQ(cam["depth_near"], turn["camera"]["depth_near"]) << k;
+    EXPECT_EQ(cam["depth_far"], turn["camera"]["depth_far"]) << k;
     distinct.insert(test::read_file(frame));
   }
   EXPECT_EQ(distinct.size(), 4u);  // the scene is not symmetric under quarter turns
+  // With --turntable 1 the one frame is that framing of the view itself.
+  run_json("render " + in + " --size 96x64 --turntable 1 --azimuth 90 -o " + q(d + "t1.png"));
+  EXPECT_EQ(test::read_file(d + "t1_000.png"), test::read_file(d + "t_001.png"));
   // Bad lists are one-line errors, and nothing is written.
   for (const std::string bad :
        {"--views iso,sideways", "--views iso,iso", "--views iso --turntable 2", "--turntable 0"}) {

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "cover/covering/classify.h"
 #include "cover/covering/ray.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/png.h"
@@ -384,6 +386,360 @@ TEST(Render, ReportsProgressWithoutChangingTheImage) {
   for (size_t i = 1; i < calls.size(); ++i) EXPECT_LE(calls[i - 1].first, calls[i].first);
   EXPECT_EQ(with.rgb, without.rgb);
   EXPECT_EQ(with.ids, without.ids);
+}
+
+// Issue 46 (camera): up axis, elevation, zoom, tight box framing, turntable framing, section box.
+
+/// The occupied rows and columns of an image (pixels with a leaf or cap): max − min + 1 each.
+struct Span {
+  int rows = 0, cols = 0;
+};
+Span silhouette(const Image& img) {
+  int x0 = img.width, x1 = -1, y0 = img.height, y1 = -1;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (img.ids[at(img, x, y)] != Image::kBackgroundId) {
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+  return x1 < 0 ? Span{} : Span{y1 - y0 + 1, x1 - x0 + 1};
+}
+
+/// (sx, sy): where a point lands in pixels from the image centre (right, up).
+std::pair<double, double> project(const Camera& c, Vec3 p) {
+  const Vec3 d = p - c.eye;
+  if (!c.perspective) return {dot(d, c.right) / c.pixel_size, dot(d, c.up) / c.pixel_size};
+  const double scale = 2 * c.tan_half_fov / std::min(c.width, c.height);
+  const double depth = dot(d, c.forward);
+  return {dot(d, c.right) / (depth * scale), dot(d, c.up) / (depth * scale)};
+}
+
+std::vector<Vec3> corners(const Bbox& b) {
+  std::vector<Vec3> out;
+  for (int k = 0; k < 8; ++k)
+    out.push_back(
+        {k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y, k & 4 ? b.max.z : b.min.z});
+  return out;
+}
+
+double box_support_of(const Bbox& b, Vec3 d) {
+  double s = 0;
+  for (int k = 0; k < 3; ++k) s += std::max(d[k] * b.min[k], d[k] * b.max[k]);
+  return s;
+}
+
+Bbox make_bbox(Vec3 lo, Vec3 hi) {
+  Bbox b;
+  b.add(lo);
+  b.add(hi);
+  return b;
+}
+
+TEST(Camera, DefaultIsoLooksAlongTheDiagonalWithZUp) {
+  const Camera c = frame_camera(unit_frame(), {});
+  const double k = 1 / std::sqrt(3.0);
+  EXPECT_NEAR(c.forward.x, -k, 1e-15);
+  EXPECT_NEAR(c.forward.y, k, 1e-15);
+  EXPECT_NEAR(c.forward.z, -k, 1e-15);
+  EXPECT_EQ(c.right.z, 0);
+  EXPECT_GT(c.up.z, 0);
+  EXPECT_NEAR(view_elevation_degrees(View::kIso), std::asin(k) * 180 / M_PI, 1e-12);
+  // The same direction from an explicit elevation, within rounding.
+  CameraOptions co;
+  co.elevation_degrees = view_elevation_degrees(View::kIso);
+  const Camera e = frame_camera(unit_frame(), co);
+  EXPECT_NEAR(dot(e.forward, c.forward), 1, 1e-15);
+  EXPECT_NEAR(dot(e.up, c.up), 1, 1e-15);
+}
+
+TEST(Camera, ElevationAndUpAxisSetTheDirection) {
+  for (UpAxis up : {UpAxis::kZ, UpAxis::kY, UpAxis::kX})
+    for (View view : {View::kIso, View::kFront, View::kLeft, View::kTop})
+      for (double elevation : {-90.0, -30.0, 0.0, 20.0, 60.0, 90.0}) {
+        CameraOptions co;
+        co.view = view;
+        co.up = up;
+        co.elevation_degrees = elevation;
+        co.azimuth_degrees = 25;
+        const Camera c = frame_camera(unit_frame(), co);
+        const double from_up = -c.forward[static_cast<int>(up == UpAxis::kX   ? 0
+                                                           : up == UpAxis::kY ? 1
+                                                                              : 2)];
+        EXPECT_NEAR(std::asin(std::clamp(from_up, -1.0, 1.0)) * 180 / M_PI, elevation, 1e-9)
+            << to_string(up) << " " << to_string(view) << " " << elevation;
+        EXPECT_NEAR(dot(c.right, c.up), 0, 1e-15);
+        EXPECT_NEAR(dot(c.forward, c.up), 0, 1e-15);
+      }
+  // Elevation 90 from the front is the top view; exact axes for the named views.
+  CameraOptions co;
+  co.view = View::kFront;
+  co.elevation_degrees = 90;
+  const Camera top = frame_camera(unit_frame(), co);
+  EXPECT_EQ(top.forward, (Vec3{0, 0, -1}));
+  EXPECT_EQ(top.up, (Vec3{0, 1, 0}));
+  co = {};
+  co.view = View::kFront;
+  co.up = UpAxis::kY;  // the Y-up convention: front from +z, right +x
+  const Camera front_y = frame_camera(unit_frame(), co);
+  EXPECT_EQ(front_y.forward, (Vec3{0, 0, -1}));
+  EXPECT_EQ(front_y.right, (Vec3{1, 0, 0}));
+  EXPECT_EQ(front_y.up, (Vec3{0, 1, 0}));
+}
+
+TEST(Camera, YUpModelStandsUprightWithUpY) {
+  // A tall thin box along y: upright (taller than wide) with up y, lying with the default z.
+  const Solid s = box_solid({-0.2, -1, -0.2}, {0.2, 1, 0.2});
+  for (bool perspective : {false, true})
+    for (View view : {View::kIso, View::kFront, View::kLeft}) {
+      CameraOptions co;
+      co.view = view;
+      co.perspective = perspective;
+      co.width = 120;
+      co.height = 90;
+      co.up = UpAxis::kY;
+      const Span upright = silhouette(draw(s, frame_camera(s.bbox(), co)));
+      EXPECT_GT(upright.rows, 2 * upright.cols) << to_string(view) << perspective;
+      co.up = UpAxis::kZ;
+      if (view == View::kFront) continue;  // from −y with z up the box is seen end-on
+      const Span lying = silhouette(draw(s, frame_camera(s.bbox(), co)));
+      EXPECT_GT(lying.cols, lying.rows) << to_string(view) << perspective;
+    }
+}
+
+TEST(Camera, BoxCornersFitTheFrameTightly) {
+  const std::vector<Bbox> boxes = {unit_frame(), make_bbox({-2, -1, 0}, {5, 1, 0.5}),
+                                   make_bbox({0, 0, 0}, {1, 1, 0}),  // flat
+                                   make_bbox({1, 2, 3}, {1.5, 9, 3.25})};
+  for (const Bbox& box : boxes)
+    for (View view : {View::kIso, View::kFront, View::kRight, View::kTop, View::kBottom})
+      for (bool perspective : {false, true})
+        for (const auto& [w, h] : {std::pair{80, 60}, std::pair{50, 90}}) {
+          CameraOptions co;
+          co.view = view;
+          co.perspective = perspective;
+          co.width = w;
+          co.height = h;
+          co.azimuth_degrees = view == View::kRight ? 20 : 0;
+          const Camera c = frame_camera(box, co);
+          double fill = 0;  // the largest share of the half image a corner reaches
+          for (const Vec3& p : corners(box)) {
+            const auto [sx, sy] = project(c, p);
+            ASSERT_LE(std::abs(sx), 0.5 * w / 1.08 + 1e-9);
+            ASSERT_LE(std::abs(sy), 0.5 * h / 1.08 + 1e-9);
+            fill = std::max({fill, std::abs(sx) / (0.5 * w), std::abs(sy) / (0.5 * h)});
+            // near..far holds the corner's t along its pixel ray (a distance).
+            const double t =
+                perspective ? std::sqrt(dot(p - c.eye, p - c.eye)) : dot(p - c.eye, c.forward);
+            EXPECT_GE(t, c.near);
+            EXPECT_LE(t, c.far);
+          }
+          EXPECT_NEAR(fill, 1 / 1.08, 1e-9) << to_string(view) << perspective << w;
+          EXPECT_GT(c.near, 0);
+          EXPECT_LT(c.near, c.far);
+        }
+}
+
+TEST(Camera, ZoomMagnifiesAboutTheCentre) {
+  const Solid s = subtract({box_solid({-1, -0.5, -0.7}, {1.2, 0.5, 0.7}),
+                            make_leaf(make_sphere({1, 0, 0}, 0.6, 24), "s")});
+  for (bool perspective : {false, true})
+    for (double zoom : {0.25, 0.5}) {  // zoom and 2·zoom both fit the frame
+      CameraOptions co;
+      co.perspective = perspective;
+      co.width = 160;
+      co.height = 120;
+      co.zoom = zoom;
+      const Span one = silhouette(draw(s, frame_camera(s.bbox(), co)));
+      co.zoom = 2 * zoom;
+      const Span two = silhouette(draw(s, frame_camera(s.bbox(), co)));
+      EXPECT_NEAR(two.rows, 2 * one.rows, 2) << perspective << zoom;
+      EXPECT_NEAR(two.cols, 2 * one.cols, 2) << perspective << zoom;
+      EXPECT_GT(one.cols, 20);
+    }
+}
+
+TEST(Camera, TurntableKeepsOneFramingForEveryAzimuth) {
+  const Bbox box = make_bbox({-3, -1, 0}, {4, 0.5, 2});  // an uneven footprint
+  for (bool perspective : {false, true}) {
+    CameraOptions co;
+    co.perspective = perspective;
+    co.turntable = true;
+    const Camera first = frame_camera(box, co);
+    for (int k = 1; k < 12; ++k) {
+      co.azimuth_degrees = 30.0 * k;
+      const Camera c = frame_camera(box, co);
+      EXPECT_NEAR(c.pixel_size, first.pixel_size, 1e-12 * first.pixel_size);
+      EXPECT_NEAR(c.tan_half_fov, first.tan_half_fov, 1e-15);
+      EXPECT_NEAR(std::sqrt(dot(c.eye - c.target, c.eye - c.target)),
+                  std::sqrt(dot(first.eye - first.target, first.eye - first.target)), 1e-9);
+      EXPECT_NEAR(c.near, first.near, 1e-9);
+      EXPECT_NEAR(c.far, first.far, 1e-9);
+      for (const Vec3& p : corners(box)) {
+        const auto [sx, sy] = project(c, p);
+        EXPECT_LE(std::abs(sx), 0.5 * c.width);
+        EXPECT_LE(std::abs(sy), 0.5 * c.height);
+      }
+    }
+  }
+}
+
+TEST(Camera, SectionBoxHoldsTheKeptPartTightly) {
+  const Bbox box = make_bbox({-1, -2, -3}, {1, 2, 3});
+  Bbox kept = section_box(box, Plane{{0, 0, 1}, 0.5});  // keeps z ≤ 0.5
+  EXPECT_EQ(kept.min, box.min);
+  EXPECT_EQ(kept.max.x, 1);
+  EXPECT_EQ(kept.max.y, 2);
+  EXPECT_NEAR(kept.max.z, 0.5, 1e-9);
+  EXPECT_GE(kept.max.z, 0.5);
+  kept = section_box(box, Plane{{-1, -1, 0}, -2.5});  // keeps x + y ≥ 2.5
+  EXPECT_NEAR(kept.min.x, 0.5, 1e-9);
+  EXPECT_NEAR(kept.min.y, 1.5, 1e-9);
+  EXPECT_LE(kept.min.x, 0.5);
+  EXPECT_EQ(kept.max, box.max);
+  EXPECT_TRUE(section_box(box, Plane{{1, 1, 1}, -7}).empty());    // x + y + z ≥ −6 in the box
+  EXPECT_EQ(section_box(box, Plane{{1, 0, 0}, 5}).min, box.min);  // keeps it all
+  // Sound: random points of the box on the kept side lie in the section box.
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Plane p{{u(rng), u(rng), u(rng)}, 2 * u(rng)};
+    const Bbox k = section_box(box, p);
+    for (int i = 0; i < 200; ++i) {
+      const Vec3 x{u(rng), 2 * u(rng), 3 * u(rng)};
+      if (dot(p.normal, x) <= p.offset) {
+        ASSERT_FALSE(k.empty());
+        ASSERT_TRUE(k.contains(x)) << trial;
+      }
+    }
+  }
+}
+
+TEST(Camera, ResultSupportBoundsTheResultThroughTheTree) {
+  const Solid a = box_solid({-1, -1, -1}, {1, 1, 1});
+  const Solid ball = make_leaf(make_sphere({3, 0, 0}, 0.5, 16), "ball");
+  const Solid small = box_solid({0.2, 0.2, 0.2}, {0.4, 0.3, 0.6});
+  const Vec3 x{1, 0, 0}, mx{-1, 0, 0}, diag{1, 1, 1};
+  const Solid u = unite({a, ball});
+  EXPECT_NEAR(result_support(u, x), 3.5, 1e-12);  // the ball's pole vertex
+  EXPECT_EQ(result_support(u, mx), 1);
+  EXPECT_NEAR(result_support(intersect({a, small}), diag), 1.3, 1e-15);  // the least of two
+  EXPECT_EQ(result_support(subtract({small, a}), x), 0.4);               // A − B within A
+  EXPECT_EQ(result_support(complement(a), x), INFINITY);
+  EXPECT_EQ(result_support(subtract({a, complement(small)}), x), 0.4);  // A ∩ small
+  // Sound on a CSG scene: points classified inside never pass the bound.
+  const Solid csg = unite(
+      {subtract({box_solid({0, 0, 0}, {2, 2, 2}), make_leaf(make_sphere({2, 2, 2}, 1.2, 24), "s")}),
+       intersect({make_leaf(make_cylinder({0, 0, -1}, {0, 0, 3}, 0.6, 20), "c"),
+                  box_solid({-1, -1, 0.5}, {1, 1, 2.5})})});
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> coordinate(-1, 3), direction(-1, 1);
+  std::vector<Vec3> points(20000);
+  for (Vec3& p : points) p = {coordinate(rng), coordinate(rng), coordinate(rng)};
+  const std::vector<PointClass> classes = classify(csg, points);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec3 d{direction(rng), direction(rng), direction(rng)};
+    const double bound = result_support(csg, d);
+    double reached = -INFINITY;
+    for (size_t i = 0; i < points.size(); ++i)
+      if (classes[i] != PointClass::kOutside) reached = std::max(reached, dot(d, points[i]));
+    EXPECT_LE(reached, bound) << trial;
+    EXPECT_LE(bound, box_support_of(csg.bbox(), d) + 1e-12) << trial;
+  }
+}
+
+TEST(Camera, SupportFramesTheSilhouetteInsideTheImage) {
+  // A ball in a corner of a tall box's box: framed on the leaves' vertices, the silhouette
+  // fills 1/1.08 of the limiting side (less the facets' rounding) and stays inside.
+  const Solid s = unite({make_leaf(make_sphere({0, 0, 0}, 1, 32), "ball"),
+                         make_leaf(make_cylinder({2, 2, -1}, {2, 2, 3}, 0.1, 12), "rod")});
+  const Bbox box = s.bbox();
+  const Support support = [&](Vec3 d) { return result_support(s, d); };
+  for (bool perspective : {false, true})
+    for (View view : {View::kIso, View::kFront, View::kTop}) {
+      CameraOptions co;
+      co.view = view;
+      co.perspective = perspective;
+      co.width = 120;
+      co.height = 90;
+      const Camera cam = frame_camera(box, co, support);
+      const Image img = draw(s, cam);
+      const Span sp = silhouette(img);
+      EXPECT_GE(std::max(sp.rows / 90.0, sp.cols / 120.0), 0.85) << to_string(view) << perspective;
+      for (int x = 0; x < img.width; ++x)
+        ASSERT_TRUE(img.ids[at(img, x, 0)] == 0 && img.ids[at(img, x, img.height - 1)] == 0);
+      for (int y = 0; y < img.height; ++y)
+        ASSERT_TRUE(img.ids[at(img, 0, y)] == 0 && img.ids[at(img, img.width - 1, y)] == 0);
+      // near..far holds the solid (orthographic: the whole box).
+      auto t_of = [&](Vec3 p) {
+        return perspective ? std::sqrt(dot(p - cam.eye, p - cam.eye))
+                           : dot(p - cam.eye, cam.forward);
+      };
+      for (const Vec3& p : s.vertices) {
+        EXPECT_GE(t_of(p), cam.near);
+        EXPECT_LE(t_of(p), cam.far);
+      }
+      for (const Vec3& p : corners(box)) {
+        EXPECT_LE(t_of(p), cam.far);
+        if (!perspective) EXPECT_GE(t_of(p), cam.near);
+      }
+      EXPECT_GT(cam.near, 0);
+    }
+}
+
+TEST(Camera, BadOptionsAreInputErrorsNamingTheParameter) {
+  auto message = [](const CameraOptions& co) {
+    try {
+      frame_camera(unit_frame(), co);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  for (double zoom : {0.0, -1.0, double(NAN), double(INFINITY)}) {
+    CameraOptions co;
+    co.zoom = zoom;
+    EXPECT_EQ(message(co).rfind("zoom: expected a positive number", 0), 0u) << message(co);
+  }
+  CameraOptions co;
+  co.elevation_degrees = 91;
+  EXPECT_EQ(message(co), "elevation: expected a number from -90 to 90, got 91");
+  co = {};
+  co.azimuth_degrees = double(NAN);
+  EXPECT_EQ(message(co).rfind("azimuth: expected a finite number", 0), 0u);
+  EXPECT_EQ(parse_up("y"), UpAxis::kY);
+  try {
+    parse_up("w");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "up: expected x, y or z, got 'w'");
+  }
+}
+
+TEST(Camera, SameImageWithOneAndTwoThreadsForEveryOption) {
+  const Solid s = subtract({box_solid({-1, -0.5, -0.7}, {1.2, 0.5, 0.7}),
+                            make_leaf(make_sphere({1, 0, 0}, 0.6, 24), "s")});
+  CameraOptions co;
+  co.width = 96;
+  co.height = 72;
+  co.up = UpAxis::kY;
+  co.elevation_degrees = 20;
+  co.azimuth_degrees = 33;
+  co.zoom = 1.7;
+  for (bool perspective : {false, true}) {
+    co.perspective = perspective;
+    const Camera cam = frame_camera(s.bbox(), co);
+    Image one, two;
+    {
+      ThreadLimit limit(1);
+      one = draw(s, cam);
+    }
+    {
+      ThreadLimit limit(2);
+      two = draw(s, cam);
+    }
+    EXPECT_EQ(one.rgb, two.rgb);
+    EXPECT_EQ(one.depth, two.depth);
+    EXPECT_GT(silhouette(one).rows, 0);
+  }
 }
 
 }  // namespace
