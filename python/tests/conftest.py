@@ -4,6 +4,7 @@ fit a build in build/), the CLI runner, and numpy helpers (an independent classi
 import json
 import os
 import pathlib
+import signal
 import subprocess
 import zlib
 
@@ -16,6 +17,12 @@ COVER_BIN = pathlib.Path(os.environ.get("COVER_BIN", BUILD_DIR / "bin" / "cover"
 CGAL_MESHES = pathlib.Path(
     os.environ.get("COVER_CGAL_MESHES", BUILD_DIR / "cgal-data" / "data" / "meshes"))
 MODELS = SOURCE_DIR / "models"
+
+# The interrupt tests send SIGINT to this process. A runner started in the background by a
+# non-interactive shell inherits SIGINT ignored, and Python then leaves it ignored: install
+# Python's own handler so that the signal raises KeyboardInterrupt as Ctrl-C in a terminal does.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def run_cli(*args, check=True):
