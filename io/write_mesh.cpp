@@ -267,23 +267,12 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
       if (l > 0x7FFFFFFFu || (ext == ".obj" && l >= labels->obj_groups.size()))
         detail::fail_file(file, "cannot write: face label " + std::to_string(l) + " out of range");
   }
-  if (ext == ".gltf" || ext == ".glb" || ext == ".3mf") {
-    const std::string bytes = ext == ".3mf" ? detail::threemf_bytes(file, mesh, labels)
+  // glTF and 3MF are serialized by their libraries first (errors before any file exists), then
+  // written through the same Output as the other formats.
+  const bool packaged = ext == ".gltf" || ext == ".glb" || ext == ".3mf";
+  const std::string bytes = !packaged       ? std::string()
+                            : ext == ".3mf" ? detail::threemf_bytes(file, mesh, labels)
                                             : detail::gltf_bytes(file, mesh, labels, ext == ".glb");
-    write_atomically(
-        path,
-        [&](const std::filesystem::path& temporary) {
-          std::FILE* stream = std::fopen(temporary.c_str(), "wb");
-          if (stream == nullptr)
-            detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
-          const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), stream) == bytes.size();
-          if (std::fclose(stream) != 0 || !ok)
-            detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
-          return true;
-        },
-        "the mesh");
-    return;
-  }
   write_atomically(
       path,
       [&](const std::filesystem::path& temporary) {
@@ -292,7 +281,9 @@ static void write_mesh_labelled(const std::filesystem::path& path, const Polygon
           detail::fail_file(file, std::string("cannot write: ") + std::strerror(errno));
         try {
           Output out(stream, file);
-          if (ext == ".off")
+          if (packaged)
+            out.text(bytes);
+          else if (ext == ".off")
             write_off(out, mesh);
           else if (ext == ".obj")
             write_obj(out, mesh, labels, uvs);

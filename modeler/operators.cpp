@@ -191,10 +191,7 @@ VertexId stellate_face(DlflMesh& mesh, FaceId f, double height) {
   require_face(mesh, f, "stellate_face");
   const std::vector<HalfedgeId> loop = mesh.face_loop(f);
   const Vec3 normal = unit_normal(mesh, f, "stellate_face");
-  Vec3 centroid{0, 0, 0};
-  for (HalfedgeId h : loop) centroid = centroid + mesh.position(mesh.head(h));
-  centroid = (1.0 / double(loop.size())) * centroid;
-  const VertexId apex = mesh.create_vertex(centroid + height * normal);
+  const VertexId apex = mesh.create_vertex(centroid(mesh, loop) + height * normal);
   // The apex's corner in the part of f still to cut stays the one after the first spoke.
   const Corner at_apex =
       Corner::at(mesh.insert_edge(Corner::at(loop[0]), Corner::point_sphere_of(apex)));
