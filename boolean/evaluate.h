@@ -57,6 +57,22 @@ struct EvaluateOptions {
   bool exact_volume = false;
   /// When given, receives the wall-clock seconds per step (profiling; the result is the same).
   EvaluatePhases* phases = nullptr;
+  /// Mixed evaluation (Model::evaluate, docs/design.md "Mixed evaluation"): each field, warp and
+  /// open-mesh leaf is first meshed by polygonize/polygonize.h at `mesh_resolution` cells along
+  /// its box's largest extent, every vertex within `mesh_tolerance` of its surface (0: the cell
+  /// size / 1024); the exact Booleans then combine those meshes with the mesh leaves.
+  int mesh_resolution = 128;
+  double mesh_tolerance = 0;
+};
+
+/// A leaf that mixed evaluation meshed (EvaluateResult::meshed).
+struct MeshedLeaf {
+  uint32_t leaf = 0;     ///< Solid::leaves index
+  size_t triangles = 0;  ///< of its mesh
+  double cell_size = 0;  ///< the polygonizer's step
+  double tolerance = 0;  ///< certified: every vertex of its mesh within this of its surface
+  size_t uncertain = 0;  ///< points whose class could not be certified (circle skeletons)
+  size_t clipped = 0;    ///< grid-border points found inside (the leaf reaches past its box)
 };
 
 struct EvaluateResult {
@@ -78,6 +94,10 @@ struct EvaluateResult {
   size_t patches = 0;             ///< classified patches
   int64_t collapsed_edges = 0;    ///< step 7: rounding-scale edges collapsed (usually 0)
   int64_t rounding_contacts = 0;  ///< step 7: face pairs still meeting (0: none left)
+  /// Mixed evaluation: the leaves that were meshed first, in leaf order (empty when every leaf
+  /// is a closed mesh: the result is then exact up to the final rounding).
+  std::vector<MeshedLeaf> meshed;
+  double tolerance = 0;  ///< the largest meshed leaf's tolerance (0 when none was meshed)
 };
 
 /// Evaluates `solid` (closed leaves; the nonzero winding rule per leaf) to a B-rep. A

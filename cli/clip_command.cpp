@@ -121,7 +121,7 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
       throw InputError(out.string() + ": unsupported output format (use " + kMeshOutputFormats +
                        " or .json)");
   }
-  const Model model = load_model(o.input, common.load_options(), "clip needs closed leaves");
+  const Model model = load_model(o.input, common.load_options());
   const Solid& s = model.solid();
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
@@ -151,8 +151,8 @@ int run_clip(const ClipCommandOptions& o, const CommonOptions& common) {
     std::vector<brep::ClipResult> clipped;
     if (s.has_implicit_leaf())
       throw NotComputable(o.input + ": " + s.implicit_leaf_message() +
-                          ": clip does not take field leaves (classify, field, cast, render, "
-                          "voxelize, octree, volume and info do)");
+                          ": a field or warp leaf cannot be clipped leaf by leaf into a scene "
+                          "(use a mesh output: the result is meshed, then clipped)");
     for (uint32_t l = 0; l < s.leaves.size(); ++l) {
       const std::string& origin = s.leaves[l].origin;
       clipped.push_back(clip_named([&] { return brep::clip(leaf_mesh(s, l), plane, co); },

@@ -122,6 +122,16 @@ struct EvaluateCommandOptions {
   int cells = 0;          ///< --cells N: through N×N×N cells (0: plain evaluation)
   std::string pieces;     ///< --pieces DIR: DIR/cell_I_J_K.ext and DIR/pieces.json (with --cells)
   std::string bounds;     ///< --bounds xmin,ymin,zmin,size: the cells' cube (with --cells)
+  int mesh_resolution = 128;  ///< --mesh-resolution: field, warp and open leaves' grid
+  double mesh_tolerance = 0;  ///< --mesh-tolerance: their vertices' distance (0: cell/1024)
+};
+
+struct PolygonizeCommandOptions {
+  std::string input;
+  std::string output;    ///< -o OUT (any mesh format)
+  int resolution = 128;  ///< --resolution: cells along the largest extent, at least
+  double cell_size = 0;  ///< --cell-size: the step instead (a power of two at most this)
+  double tolerance = 0;  ///< --tolerance: every vertex's distance from the surface (0: h/1024)
 };
 
 struct DecomposeCommandOptions {
@@ -177,6 +187,8 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
 int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& common);
 /// `cover decompose`: exact convex pieces by reflex-edge plane cuts (brep/decompose.h).
 int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common);
+/// `cover polygonize`: the whole result by certified marching tetrahedra (polygonize/).
+int run_polygonize(const PolygonizeCommandOptions& o, const CommonOptions& common);
 /// `cover subdivide`: `levels` rounds of a subdivision scheme on a mesh (subdivision/subdivide.h).
 int run_subdivide(const SubdivideCommandOptions& o, const CommonOptions& common);
 /// `cover modify` / `pipe` / `extrude` (`command` names which; modeler/script.h).

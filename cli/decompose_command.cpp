@@ -33,7 +33,7 @@ int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common)
                      "STL would not be exactly convex (use .off, .obj or .ply)");
   const std::filesystem::path dir = o.output;
   const auto folder = pieces_folder(o.output);
-  const Model model = load_model(o.input, common.load_options(), "decompose needs closed leaves");
+  const Model model = load_model(o.input, common.load_options());
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
   brep::DecomposeResult r;

@@ -52,7 +52,7 @@ int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& com
   }
   std::unique_ptr<OutputFolder> folder;
   if (!o.pieces.empty()) folder = pieces_folder(o.pieces);
-  const Model model = load_model(o.input, common.load_options(), "evaluate needs closed leaves");
+  const Model model = load_model(o.input, common.load_options());
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
   brep::CellsOptions cells_options;

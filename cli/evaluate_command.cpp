@@ -3,7 +3,9 @@
 // (e.g. disjoint operands intersected) is not an error: an empty mesh (0 vertices, 0 faces) is
 // written, exit 0, with a warning on stderr. --leaf-ids adds each face's source leaf (index into
 // the scene's leaves, in load order): PLY face property `int leaf`, OBJ groups `g leaf_K`; the
-// JSON then lists the leaf names under `leaf_names`.
+// JSON then lists the leaf names under `leaf_names`. Field, warp and open-mesh leaves are meshed
+// first (mixed evaluation, --mesh-resolution, --mesh-tolerance); the JSON then lists them under
+// `meshed` with the certified `tolerance`.
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -34,10 +36,13 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   const bool gltf = ext == ".gltf" || ext == ".glb" || ext == ".3mf";  // colours per leaf
   if (o.leaf_ids && ext != ".ply" && ext != ".obj" && !gltf)
     throw InputError(o.output + ": --leaf-ids needs a .ply, .obj, .gltf, .glb or .3mf output");
-  const Model model = load_model(o.input, common.load_options(), "evaluate needs closed leaves");
+  const Model model = load_model(o.input, common.load_options());
   if (!model.bounded()) throw InputError(unbounded_message(o.input));
   timing.lap(Timing::kLoad);
-  const EvaluateResult r = model.evaluate();
+  EvaluateOptions eo;
+  eo.mesh_resolution = o.mesh_resolution;
+  eo.mesh_tolerance = o.mesh_tolerance;
+  const EvaluateResult r = model.evaluate(eo);
   timing.lap(Timing::kKernel);
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
@@ -64,6 +69,20 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   j["genus"] = r.genus;
   j["components"] = r.components;
   j["collapsed_edges"] = r.collapsed_edges;
+  if (!r.meshed.empty()) {  // mixed evaluation: what was meshed, and how close
+    j["tolerance"] = r.tolerance;
+    j["meshed"] = nlohmann::json::array();
+    for (const MeshedLeaf& m : r.meshed)
+      j["meshed"].push_back({{"leaf", m.leaf},
+                             {"name", model.solid().leaves[m.leaf].origin.empty()
+                                          ? model.solid().leaves[m.leaf].name
+                                          : model.solid().leaves[m.leaf].origin},
+                             {"triangles", m.triangles},
+                             {"cell_size", m.cell_size},
+                             {"tolerance", m.tolerance},
+                             {"uncertain", m.uncertain},
+                             {"clipped", m.clipped}});
+  }
   if (o.leaf_ids) {
     j["leaf_names"] = nlohmann::json::array();
     for (const Leaf& leaf : model.solid().leaves) j["leaf_names"].push_back(leaf.name);
@@ -76,6 +95,9 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
                 o.output.c_str(), r.mesh.vertices.size(), r.mesh.face_count(),
                 static_cast<long long>(r.components), static_cast<long long>(r.genus));
     std::printf("volume %.17g\narea %.17g\n", r.volume, r.area);
+    if (!r.meshed.empty())
+      std::printf("meshed %zu field, warp or open leaves first: vertices within %.3g of them\n",
+                  r.meshed.size(), r.tolerance);
   }
   return 0;
 }

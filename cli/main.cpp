@@ -322,7 +322,35 @@ int main(int argc, char** argv) {
   eva_cmd->add_option(
       "--bounds", eva.bounds,
       "With --cells: the cells' cube xmin,ymin,zmin,size (default: the box, cubic)");
+  eva_cmd
+      ->add_option("--mesh-resolution", eva.mesh_resolution,
+                   "Field, warp and open leaves are meshed first: cells along each one's box")
+      ->capture_default_str()
+      ->transform(whole_number(2));
+  eva_cmd
+      ->add_option("--mesh-tolerance", eva.mesh_tolerance,
+                   "Their vertices' largest distance from the surface (0: the cell size / 1024)")
+      ->check(CLI::NonNegativeNumber);
   add_common(eva_cmd, common);
+
+  cover::cli::PolygonizeCommandOptions pol;
+  CLI::App* pol_cmd = app.add_subcommand(
+      "polygonize", "Certified marching tetrahedra of the whole result (any tree)");
+  pol_cmd->add_option("INPUT", pol.input, "Mesh or scene")->required();
+  pol_cmd->add_option("-o,--output", pol.output, "OUT mesh (.off .obj .stl .ply .gltf .glb .3mf)")
+      ->required();
+  pol_cmd
+      ->add_option("--resolution", pol.resolution,
+                   "Cells along the largest extent, at least (the step is a power of two)")
+      ->capture_default_str()
+      ->transform(whole_number(2));
+  pol_cmd->add_option("--cell-size", pol.cell_size, "The step instead (a power of two ≤ this)")
+      ->check(CLI::PositiveNumber);
+  pol_cmd
+      ->add_option("--tolerance", pol.tolerance,
+                   "Every vertex's largest distance from the surface (0: the cell size / 1024)")
+      ->check(CLI::NonNegativeNumber);
+  add_common(pol_cmd, common);
 
   cover::cli::DecomposeCommandOptions dec;
   CLI::App* dec_cmd = app.add_subcommand(
@@ -423,6 +451,7 @@ int main(int argc, char** argv) {
     if (eva_cmd->parsed()) return cover::cli::run_evaluate(eva, common);
     if (clp_cmd->parsed()) return cover::cli::run_clip(clp, common);
     if (dec_cmd->parsed()) return cover::cli::run_decompose(dec, common);
+    if (pol_cmd->parsed()) return cover::cli::run_polygonize(pol, common);
     if (sub_cmd->parsed()) return cover::cli::run_subdivide(sub, common);
     if (mod_cmd->parsed()) return cover::cli::run_modify("modify", mod, common);
     if (pip_cmd->parsed()) return cover::cli::run_modify("pipe", mod, common);

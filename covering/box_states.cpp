@@ -94,6 +94,20 @@ void crossed_leaves(const Bvh& bvh, const Bbox& box, std::vector<uint8_t>& cross
       });
 }
 
+/// An open leaf's state on a box none of its triangles meets (gwn.h GwnClosure): inside is
+/// |W − w_C| > 1/2 with W the closure's exact winding number, constant on a box that neither
+/// the leaf's nor the cones' triangles meet; where the cones provably subtend |w_C| < 0.4 over
+/// the box (winding_below, which also rules out cone triangles meeting it) that is W ≠ 0, read
+/// at the centre. Else undecided.
+uint8_t open_state(const GwnForest& forest, size_t leaf, const Bbox& box, const Vec3& centre) {
+  const int32_t k = forest.tree_of_leaf[leaf];
+  if (k < 0) return kUnknown;
+  const GwnClosure& c = forest.closures[static_cast<size_t>(k)];
+  if (!winding_below(c.cone, box, 0.4)) return kUnknown;
+  const LeafWindings w = detail::crossing_windings(c.solid, *c.bvh, {&centre, 1}, 1);
+  return w.winding[0] != 0 ? kIn : kOut;
+}
+
 /// The state of one box; leaf_state and crossed are scratch of one entry per leaf.
 uint8_t state_of(const Prepared& prepared, const Bbox& box, std::vector<uint8_t>& leaf_state,
                  std::vector<uint8_t>& crossed) {
@@ -111,6 +125,8 @@ uint8_t state_of(const Prepared& prepared, const Bbox& box, std::vector<uint8_t>
       leaf_state[l] = detail::implicit_box_state(prepared, static_cast<uint32_t>(l), box);
     } else if (crossed[l]) {
       leaf_state[l] = kUnknown;
+    } else if (leaf.open()) {
+      leaf_state[l] = open_state(*prepared.gwn(), l, box, centre[0]);
     } else {
       if (w.leaves == 0) w = detail::crossing_windings(s, prepared.bvh(), centre, 1);
       leaf_state[l] = w.winding[l] != 0 ? kIn : kOut;

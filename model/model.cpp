@@ -13,6 +13,7 @@
 #include "cover/covering/bounds.h"
 #include "cover/field/warp.h"
 #include "cover/io/serialize.h"
+#include "cover/model/detail/mixed.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
 
@@ -233,7 +234,7 @@ const GwnForest* Model::gwn() const { return prepared().gwn(); }
 
 const EvaluateResult& Model::evaluated() const {
   const Solid& s = solid();
-  std::call_once(state_->brep_once, [&] { state_->brep.emplace(cover::evaluate(s)); });
+  std::call_once(state_->brep_once, [&] { state_->brep.emplace(detail::evaluate_mixed(s, {})); });
   return *state_->brep;
 }
 
@@ -318,18 +319,6 @@ std::optional<Bbox> Model::bounds() const {
   if (empty()) return Bbox{};
   return result_bounds(solid());
 }
-
-namespace {
-
-/// Refuses what field and warp leaves do not take (docs/cli.md lists what does).
-void refuse_fields(const Solid& solid, const char* what) {
-  if (solid.has_implicit_leaf())
-    throw NotComputable(solid.implicit_leaf_message() + ": " + what +
-                        " does not take field or warp leaves (classify, field, cast, render, "
-                        "voxelize, octree, volume and info do)");
-}
-
-}  // namespace
 
 std::vector<PointClass> Model::classify(std::span<const Vec3> points,
                                         const ClassifyOptions& options) const {
@@ -610,25 +599,38 @@ Image Model::render(const Camera& camera, const RenderOptions& options) const {
 
 EvaluateResult Model::evaluate(const EvaluateOptions& options) const {
   if (empty()) return EvaluateResult{};
-  if (solid().has_open_leaf())
-    throw InputError(solid().open_leaf_message() + ": evaluate needs closed leaves");
-  refuse_fields(solid(), "evaluate");
   // The default evaluation is kept (grain changes no result); other options evaluate again.
-  if (options.check_leaves && !options.exact_volume && options.phases == nullptr)
+  const EvaluateOptions plain;
+  if (options.check_leaves && !options.exact_volume && options.phases == nullptr &&
+      options.mesh_resolution == plain.mesh_resolution &&
+      options.mesh_tolerance == plain.mesh_tolerance)
     return evaluated();
-  return cover::evaluate(solid(), options);
+  return detail::evaluate_mixed(solid(), options);
 }
+
+PolygonizeResult Model::polygonize(const PolygonizeOptions& options) const {
+  if (empty()) return PolygonizeResult{};
+  const std::optional<Bbox> box = bounds();
+  if (!box) throw NotComputable("polygonize: the result is unbounded (a complement at the root)");
+  return cover::polygonize(prepared(), *box, options);
+}
+
+namespace {
+
+/// True when the solid is one closed mesh leaf: clip and decompose take its faces as they are.
+bool one_mesh_leaf(const Solid& s) {
+  return s.tree.nodes[s.tree.root].op == CsgOp::kLeaf && !s.leaves[0].open() &&
+         !s.leaves[0].is_implicit();
+}
+
+}  // namespace
 
 brep::ClipResult Model::clip(const brep::Plane& plane, const brep::ClipOptions& options) const {
   if (empty()) return brep::ClipResult{};
-  if (solid().has_open_leaf())
-    throw InputError(solid().open_leaf_message() + ": clip needs closed leaves");
-  refuse_fields(solid(), "clip");
   if (!is_bounded(solid()))
     throw NotComputable("clip: the result is unbounded (a complement at the root)");
   const Solid& s = solid();
-  const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
-  return brep::clip(one_leaf ? leaf_mesh(s, 0) : evaluated().mesh, plane, options);
+  return brep::clip(one_mesh_leaf(s) ? leaf_mesh(s, 0) : evaluated().mesh, plane, options);
 }
 
 CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& bounds,
@@ -639,7 +641,6 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
       brep::cells_memory_bytes(n), options.max_memory_bytes,
       "evaluate cells: n = " + std::to_string(n) + ": cutting into cells");  // before evaluating
   CellsEvaluation out;
-  refuse_fields(solid(), "evaluate cells");
   if (!empty() && !is_bounded(solid()))
     throw NotComputable("evaluate cells: the result is unbounded (a complement at the root)");
   const VoxelBounds b = bounds ? *bounds : (empty() ? VoxelBounds{{0, 0, 0}, 1} : voxel_bounds(n));
@@ -654,12 +655,10 @@ CellsEvaluation Model::evaluate_cells(int n, const std::optional<VoxelBounds>& b
 
 brep::DecomposeResult Model::decompose(const brep::DecomposeOptions& options) const {
   if (empty()) return brep::DecomposeResult{};
-  refuse_fields(solid(), "decompose");
   if (!is_bounded(solid()))
     throw NotComputable("decompose: the result is unbounded (a complement at the root)");
   const Solid& s = solid();
-  const bool one_leaf = s.tree.nodes[s.tree.root].op == CsgOp::kLeaf;
-  return brep::decompose(one_leaf ? leaf_mesh(s, 0) : evaluated().mesh, options);
+  return brep::decompose(one_mesh_leaf(s) ? leaf_mesh(s, 0) : evaluated().mesh, options);
 }
 
 Model load(const std::filesystem::path& path, const LoadOptions& options) {

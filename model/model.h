@@ -41,6 +41,7 @@
 #include "cover/io/scene.h"
 #include "cover/io/zarr_io.h"
 #include "cover/octree/octree.h"
+#include "cover/polygonize/polygonize.h"
 #include "cover/render/camera.h"
 #include "cover/render/render.h"
 #include "cover/solid/errors.h"
@@ -229,17 +230,26 @@ class Model {
 
   /// The result as one closed, outward 2-manifold triangle mesh (boolean/evaluate.h), with each
   /// face's source leaf (EvaluateResult::face_leaf, indices into solid().leaves). A
-  /// self-intersecting leaf stands for its nonzero-winding set, as in classify(). The evaluation
-  /// with default options (any grain) is built once and kept, as the BVH is, and shared with
-  /// clip(), evaluate_cells() and decompose(); other options evaluate again.
+  /// self-intersecting leaf stands for its nonzero-winding set, as in classify(). Field, warp
+  /// and open-mesh leaves are meshed first by polygonize() (mixed evaluation: options.
+  /// mesh_resolution, mesh_tolerance), then the exact Booleans combine them with the mesh leaves;
+  /// EvaluateResult::meshed and tolerance say which and how close. The evaluation with default
+  /// options (any grain) is built once and kept, as the BVH is, and shared with clip(),
+  /// evaluate_cells() and decompose(); other options evaluate again.
   /// \throws NotComputable for an unbounded result; InputError for a leaf face whose boundary
   /// crosses itself.
   EvaluateResult evaluate(const EvaluateOptions& options = {}) const;
 
-  /// Plane clip and patch (brep/clip.h) of the result: a single leaf is clipped as it is, any
-  /// other expression is evaluated first. \throws InputError for a zero or non-finite plane, or
-  /// (as brep::clip) a leaf that is open or non-manifold; NotComputable for an unbounded result
-  /// and when the cap cannot be built.
+  /// The whole result's boundary by certified marching tetrahedra (polygonize/polygonize.h) over
+  /// its bounds: any tree, closed, outward, 2-manifold and free of self-intersections, every
+  /// vertex within PolygonizeResult::tolerance of the surface. \throws NotComputable for an
+  /// unbounded result; InputError as cover::polygonize().
+  PolygonizeResult polygonize(const PolygonizeOptions& options = {}) const;
+
+  /// Plane clip and patch (brep/clip.h) of the result: a single closed mesh leaf is clipped as it
+  /// is, any other expression (fields, warps, open leaves included) is evaluated first.
+  /// \throws InputError for a zero or non-finite plane, or (as brep::clip) a non-manifold leaf;
+  /// NotComputable for an unbounded result and when the cap cannot be built.
   brep::ClipResult clip(const brep::Plane& plane, const brep::ClipOptions& options = {}) const;
 
   /// The result through n×n×n cells (brep/cells.h): evaluate(), then its mesh cut by the plane
@@ -255,9 +265,9 @@ class Model {
   CellsEvaluation evaluate_cells(int n, const std::optional<VoxelBounds>& bounds = std::nullopt,
                                  const brep::CellsOptions& options = {}) const;
 
-  /// Exact convex decomposition (brep/decompose.h) of the result: a single leaf as it is, any
-  /// other expression evaluated first. Every piece is a closed, outward triangle mesh, convex
-  /// exactly on its doubles; the volumes sum to the result's. \throws InputError (as
+  /// Exact convex decomposition (brep/decompose.h) of the result: a single closed mesh leaf as it
+  /// is, any other expression evaluated first. Every piece is a closed, outward triangle mesh,
+  /// convex exactly on its doubles; the volumes sum to the result's. \throws InputError (as
   /// brep::decompose) for an open, non-manifold or inside-out leaf; NotComputable for an
   /// unbounded result (as evaluate()) and when a cut cannot be made (a self-intersecting leaf).
   brep::DecomposeResult decompose(const brep::DecomposeOptions& options = {}) const;

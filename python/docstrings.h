@@ -180,9 +180,22 @@ inline constexpr const char* kEvaluate =
 Returns (V float64 (n, 3), F int64 (m, 3)), faces counter-clockwise seen from outside; the
 same mesh as `cover evaluate -o out.off`. leaf_ids=True returns (V, F, L) with L int32 (m,):
 each face's source leaf (index into the leaves in load order, as `cover evaluate --leaf-ids`).
-A self-intersecting leaf stands for its nonzero-winding set (as classify). Raises
-NotComputable for an unbounded result, InputError for a leaf face whose boundary crosses itself.
-Not interruptible.)";
+A self-intersecting leaf stands for its nonzero-winding set (as classify). Field, warp and open
+leaves are meshed first by polygonize() at mesh_resolution cells along each one's box, vertices
+within mesh_tolerance (0: the cell size / 1024) of their surface, then combined exactly (as
+`cover evaluate --mesh-resolution --mesh-tolerance`). Raises NotComputable for an unbounded
+result, InputError for a leaf face whose boundary crosses itself. Not interruptible.)";
+
+inline constexpr const char* kPolygonize =
+    R"(The whole result by certified marching tetrahedra: (V, F, report).
+
+V float64 (n, 3), F int64 (m, 3): closed, outward, 2-manifold, free of self-intersections, for
+any tree (fields, warps, open leaves). resolution: cells along the largest extent, at least
+(the step is a power of two); cell_size: the step instead; tolerance: the largest distance of a
+vertex from the surface (0: the cell size / 1024). report: dict with cell_size, tolerance (the
+certified bound achieved), cells, grid_points, bisections, uncertain, clipped (as
+`cover polygonize --json`). Features thinner than the grid may be missed. Raises NotComputable
+for an unbounded result. Not interruptible.)";
 
 inline constexpr const char* kClip =
     R"(Plane clip and patch: ((V_above, F_above), (V_below, F_below)).

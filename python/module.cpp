@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 
 #include "arrays.h"
 #include "cover/brep/halfedge.h"
@@ -389,16 +390,47 @@ py::tuple mesh_arrays(const PolygonMesh& mesh) {
   return py::make_tuple(vertices_array(mesh.vertices), triangles_array(mesh));
 }
 
-py::tuple evaluate_mesh(const Model& model, bool leaf_ids, Threads threads) {
+py::tuple evaluate_mesh(const Model& model, bool leaf_ids, int mesh_resolution,
+                        double mesh_tolerance, Threads threads) {
   EvaluateResult r;
+  EvaluateOptions o;
+  o.mesh_resolution = mesh_resolution;
+  o.mesh_tolerance = mesh_tolerance;
   {
     KernelScope scope(threads);
-    r = model.evaluate();
+    r = model.evaluate(o);
   }
   if (!leaf_ids) return mesh_arrays(r.mesh);
   py::array_t<int32_t> leaf(static_cast<py::ssize_t>(r.face_leaf.size()));
   std::copy(r.face_leaf.begin(), r.face_leaf.end(), leaf.mutable_data());
   return py::make_tuple(vertices_array(r.mesh.vertices), triangles_array(r.mesh), leaf);
+}
+
+py::tuple polygonize_mesh(const Model& model, int resolution, std::optional<double> cell_size,
+                          double tolerance, uint64_t max_memory, Threads threads) {
+  PolygonizeOptions o;
+  o.resolution = resolution;
+  if (cell_size) {
+    if (!(*cell_size > 0) || !std::isfinite(*cell_size))
+      throw InputError("polygonize: cell_size: expected a finite number > 0");
+    o.cell_size = *cell_size;
+  }
+  o.tolerance = tolerance;
+  o.max_memory_bytes = max_memory << 20;
+  PolygonizeResult r;
+  {
+    KernelScope scope(threads);
+    r = model.polygonize(o);
+  }
+  py::dict report;
+  report["cell_size"] = r.cell_size;
+  report["tolerance"] = r.tolerance;
+  report["cells"] = r.cells;
+  report["grid_points"] = r.grid_points;
+  report["bisections"] = r.bisections;
+  report["uncertain"] = r.uncertain;
+  report["clipped"] = r.clipped;
+  return py::make_tuple(vertices_array(r.mesh.vertices), triangles_array(r.mesh), report);
 }
 
 py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
@@ -758,8 +790,12 @@ PYBIND11_MODULE(_cover, m) {
            py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false,
            py::arg("up") = "z", py::arg("elevation") = py::none(), py::arg("azimuth") = 0.0,
            py::arg("zoom") = 1.0, py::arg("fit") = false, threads, doc::kRender)
-      .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false, threads,
+      .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false,
+           py::arg("mesh_resolution") = 128, py::arg("mesh_tolerance") = 0.0, threads,
            doc::kEvaluate)
+      .def("polygonize", &polygonize_mesh, py::kw_only(), py::arg("resolution") = 128,
+           py::arg("cell_size") = py::none(), py::arg("tolerance") = 0.0,
+           py::arg("max_memory") = 4096, threads, doc::kPolygonize)
       .def("clip", &clip_halves, py::arg("plane"), py::kw_only(), threads, doc::kClip)
       .def("evaluate_cells", &cell_pieces, py::arg("n"), py::arg("bounds") = py::none(),
            py::kw_only(), py::arg("max_memory") = 4096, threads, doc::kEvaluateCells)

@@ -69,11 +69,32 @@ def test_render_equals_cli(tmp_path):
 
 
 def test_what_does_not_take_fields_refuses():
-    model = cover.load(SNAKE)
-    with pytest.raises(cover.NotComputable):
-        model.evaluate()
     with pytest.raises(cover.InputError):
         cover.load(MODELS / "default.json").field([[0, 0, 0]])
+
+
+def test_evaluate_and_polygonize_take_fields(tmp_path):
+    model = cover.load(SNAKE)
+    V, F = model.evaluate(mesh_resolution=32)
+    assert F.shape[1] == 3 and len(F) > 1000
+    out = tmp_path / "snake.off"
+    run_cli("evaluate", SNAKE, "-o", out, "--mesh-resolution", "32")
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6
+    assert cover.load(out).volume(exact=True) == pytest.approx(volume, rel=1e-9)
+    V2, F2, report = model.polygonize(resolution=24, tolerance=1e-6)
+    assert report["tolerance"] <= 1e-6 and report["cell_size"] > 0 and len(F2) > 100
+    # Every vertex is within the tolerance of the surface: a step of 2·tolerance along ±x, ±y
+    # or ±z changes the class for almost every vertex (the surface is oblique elsewhere).
+    step = 2 * report["tolerance"]
+    probes = np.concatenate([V2 + s * step * np.eye(3)[k] for k in range(3) for s in (-1, 1)])
+    inside = (model.classify(probes) != 0).reshape(6, -1)
+    changed = inside.any(axis=0) & ~inside.all(axis=0)
+    assert changed.mean() > 0.9
+    with pytest.raises(cover.InputError):
+        model.polygonize(resolution=1)
+    with pytest.raises(cover.InputError):
+        model.polygonize(cell_size=-1.0)
 
 
 def test_pickle_keeps_field_leaves():

@@ -518,8 +518,8 @@ TEST(DecomposeCli, OpenMeshIsExitTwoNamingTheFile) {
   const auto dir = temp_dir("decompose_open");
   const auto path = dir / "open.off";
   write_file(path, "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n");
-  const RunResult r =
-      run_cover("decompose '" + path.string() + "' -o '" + (dir / "out").string() + "'");
+  const RunResult r = run_cover("decompose --closed-only '" + path.string() + "' -o '" +
+                                (dir / "out").string() + "'");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("open.off"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "piece_0000.off"));

@@ -73,17 +73,33 @@ TEST_F(FieldsCli, InfoDescribesFieldLeaves) {
   EXPECT_EQ(leaf["primitives"][1]["skeleton"], "point");
 }
 
-TEST_F(FieldsCli, CommandsThatDoNotTakeFieldsRefuseInOneLine) {
-  const std::string at = scene_.string() + ": /union/0/blend: field leaf: ";
-  for (const std::string& cmd : {"evaluate " + q(scene_) + " -o " + q(dir_ / "e.off"),
-                                 "clip " + q(scene_) + " --plane 0,0,1,0 -o " + q(dir_ / "c.off"),
-                                 "decompose " + q(scene_) + " -o " + q(dir_ / "d")}) {
-    const auto r = run_cover(cmd);
-    EXPECT_EQ(r.status, 2) << cmd;
-    EXPECT_EQ(r.err.rfind("cover: error: " + at, 0), 0u) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  }
-  EXPECT_FALSE(std::filesystem::exists(dir_ / "e.off"));
+TEST_F(FieldsCli, EvaluateAndClipMeshTheBlendFirst) {
+  const auto r = run_cover("evaluate " + q(scene_) + " -o " + q(dir_ / "e.off") +
+                           " --mesh-resolution 32 --mesh-tolerance 1e-7 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["meshed"].size(), 1u);
+  EXPECT_EQ(j["meshed"][0]["name"], "/union/0/blend");
+  EXPECT_LE(j["tolerance"].get<double>(), 1e-7);
+  EXPECT_EQ(j["components"], 2);  // the blend and the box apart
+  const auto info = run_cover("info " + q(dir_ / "e.off") + " --json");
+  ASSERT_EQ(info.status, 0) << info.err;
+  const json leaf = json::parse(info.out)["leaves_info"][0];
+  EXPECT_TRUE(leaf["closed"].get<bool>());
+  EXPECT_FALSE(leaf["self_intersecting"].get<bool>());
+  const auto c = run_cover("clip " + q(scene_) + " --plane 0,0,1,0 -o " + q(dir_ / "c.off"));
+  EXPECT_EQ(c.status, 0) << c.err;
+  // The polygonizer itself, on the whole tree.
+  const auto p =
+      run_cover("polygonize " + q(scene_) + " -o " + q(dir_ / "p.ply") + " --resolution 20 --json");
+  ASSERT_EQ(p.status, 0) << p.err;
+  const json pj = json::parse(p.out);
+  EXPECT_EQ(pj["cell_size"], 0.125);  // the largest power of two ≤ 2.7 / 20
+  EXPECT_GT(pj["faces"].get<int>(), 100);
+  const auto bad =
+      run_cover("polygonize " + q(scene_) + " -o " + q(dir_ / "p.ply") + " --resolution 1");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
 TEST_F(FieldsCli, BadFieldNodeNamesTheFileAndPath) {
@@ -108,7 +124,7 @@ TEST_F(FieldsCli, RenderDrawsTheBlend) {
   EXPECT_TRUE(std::filesystem::exists(dir_ / "f.png"));
 }
 
-TEST_F(FieldsCli, WarpsClassifyInfoAndRefuse) {
+TEST_F(FieldsCli, WarpsClassifyInfoAndEvaluate) {
   const std::filesystem::path taper = dir_ / "taper.json";
   test::write_file(taper, R"({"taper": {"axis": {"direction": [0, 1, 0]}, "range": [-0.5, 0.5],
     "scale": [1, 0.5], "child": {"box": {"min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]}}}})");
@@ -125,10 +141,10 @@ TEST_F(FieldsCli, WarpsClassifyInfoAndRefuse) {
   EXPECT_EQ(leaf["kind"], "warp");
   EXPECT_EQ(leaf["warp"], "taper");
   EXPECT_EQ(leaf["child_leaves"], 1);
-  const auto e = run_cover("evaluate " + q(taper) + " -o " + q(dir_ / "out.off"));
-  EXPECT_EQ(e.status, 2);
-  EXPECT_NE(e.err.find("/taper: warp leaf:"), std::string::npos) << e.err;
-  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.off"));
+  const auto e = run_cover("evaluate " + q(taper) + " -o " + q(dir_ / "out.off") +
+                           " --mesh-resolution 16 --json");
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_EQ(json::parse(e.out)["meshed"][0]["name"], "/taper");
   test::write_file(taper, R"({"taper": {"axis": {"direction": [0, 1, 0]}, "range": [1, 0],
     "scale": [1, 0.5], "child": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}}}})");
   const auto bad = run_cover("classify " + q(taper) + " --points -", "0 0 0\n");

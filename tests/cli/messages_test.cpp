@@ -210,10 +210,10 @@ TEST_F(CliMessages, OptionMessages) {
                "--threads: expected a whole number from 1 to 4096, got '0'");
   expect_error(run_cover("bogus"),
                "unknown command 'bogus' (expected info, volume, classify, field, render, "
-               "voxelize, octree, clip, evaluate, decompose, subdivide, modify, pipe, extrude)");
+               "voxelize, octree, clip, evaluate, polygonize, decompose, subdivide, modify, pipe, extrude)");
   expect_error(run_cover(""),
                "no command given (expected info, volume, classify, field, render, voxelize, "
-               "octree, clip, evaluate, decompose, subdivide, modify, pipe, extrude; try --help)");
+               "octree, clip, evaluate, polygonize, decompose, subdivide, modify, pipe, extrude; try --help)");
   // Whole numbers are decimal: a leading zero is not octal, and '+' is allowed.
   const auto r = run_cover("voxelize " + box() + " --res +010 -o " + q(dir_ / "v.npy") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -234,19 +234,20 @@ TEST_F(CliMessages, OctreeTouchingCellsEmpty) {
 }
 
 TEST_F(CliMessages, OpenMeshRefusedOnceWithoutAWarningFirst) {
-  // evaluate, clip, decompose and volume --exact need closed leaves: one error line naming the
-  // file once (clip named it twice), no open-mesh warning printed just before the refusal.
+  // volume --exact needs closed leaves, and --closed-only refuses open leaves everywhere: one
+  // error line naming the file once, no open-mesh warning printed just before the refusal.
   test::write_file(dir_ / "open.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
   const std::string in = q(dir_ / "open.off"), name = (dir_ / "open.off").string();
   const std::string refused = name + ": open mesh (3 boundary edges): ";
-  expect_error(run_cover("clip " + in + " --plane 0,0,1,0.5 -o " + q(dir_ / "a.off")),
-               refused + "clip needs closed leaves");
-  expect_error(run_cover("evaluate " + in + " -o " + q(dir_ / "e.off")),
-               refused + "evaluate needs closed leaves");
-  expect_error(run_cover("evaluate " + in + " -o " + q(dir_ / "e.off") + " --cells 2"),
-               refused + "evaluate needs closed leaves");
-  expect_error(run_cover("decompose " + in + " -o " + q(dir_ / "d")),
-               refused + "decompose needs closed leaves");
+  const std::string closed_only =
+      name + ": open mesh: 3 boundary edges (a leaf must be a closed solid)";
+  expect_error(run_cover("clip --closed-only " + in + " --plane 0,0,1,0.5 -o " + q(dir_ / "a.off")),
+               closed_only);
+  expect_error(run_cover("evaluate --closed-only " + in + " -o " + q(dir_ / "e.off")), closed_only);
+  expect_error(
+      run_cover("evaluate --closed-only " + in + " -o " + q(dir_ / "e.off") + " --cells 2"),
+      closed_only);
+  expect_error(run_cover("decompose --closed-only " + in + " -o " + q(dir_ / "d")), closed_only);
   expect_error(run_cover("volume --exact " + in),
                refused + "no exact volume; the winding method estimates it (without --exact)");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "d"));

@@ -469,9 +469,13 @@ TEST(Warps, BadNodesAreOneLineErrorsNamingThePath) {
   EXPECT_EQ(what.find('\n'), std::string::npos);
 }
 
-TEST(Warps, WhatDoesNotTakeWarpsRefuses) {
+TEST(Warps, EvaluateMeshesTheWarpFirst) {
   const Model m = scene(kTwistedBar);
-  EXPECT_THROW(m.evaluate(), NotComputable);
+  const EvaluateResult e = m.evaluate({.mesh_resolution = 24});
+  ASSERT_EQ(e.meshed.size(), 1u);
+  EXPECT_GT(e.mesh.face_count(), 0u);
+  EXPECT_EQ(e.components, 1);
+  EXPECT_EQ(e.genus, 1);  // the bored hole
 }
 
 }  // namespace
