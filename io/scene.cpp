@@ -16,6 +16,7 @@
 #include "cover/mesh/orient.h"
 #include "cover/mesh/repair.h"
 #include "cover/mesh/validate.h"
+#include "cover/modeler/ffd.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/parallel.h"
@@ -72,6 +73,8 @@ class SceneReader {
     SubdivideOptions options;
     Transform world;
     std::string path;
+    std::optional<FfdLattice> ffd = {};  ///< an ffd node instead (modeler/ffd.h)
+    double ffd_tolerance = 0;
   };
   /// One leaf to make: a mesh file (read by read_files()) or a primitive's mesh (built by plan()),
   /// then refined by the subdivide nodes above it, innermost first.
@@ -144,7 +147,7 @@ class SceneReader {
     if (kind.empty())
       fail(path,
            "expected one of mesh, box, sphere, cylinder, field, blend, twist, taper, bend, "
-           "subdivide, union, intersection, difference, complement");
+           "subdivide, ffd, union, intersection, difference, complement");
     const json& v = j.at(kind);
     const std::string sub = path + "/" + kind;
     if (kind == "mesh") {
@@ -182,6 +185,7 @@ class SceneReader {
       return out;
     }
     if (kind == "subdivide") return subdivide_node(v, sub, world, depth);
+    if (kind == "ffd") return ffd_node(v, sub, world, depth);
     if (kind == "complement") return {CsgOp::kComplement, 0, {plan(v, sub, world, depth + 1)}};
     if (kind == "union" || kind == "intersection" || kind == "difference") {
       if (!v.is_array() || v.empty()) fail(sub, "expected an array of one or more nodes");
@@ -226,24 +230,64 @@ class SceneReader {
         fail(path + "/exact_rounding", "expected true or false");
       step.options.exact_rounding = v.at("exact_rounding").get<bool>();
     }
-    const json& c = required(v, path, "child");
-    const std::string child = path + "/child";
+    return mesh_step(required(v, path, "child"), path + "/child", "subdivide", std::move(step),
+                     depth);
+  }
+
+  /// The child of a subdivide or ffd node: a mesh-node (mesh, primitive, subdivide or ffd), whose
+  /// leaf gets `step` after its own.
+  Plan mesh_step(const json& c, const std::string& child, const std::string& node, Subdivision step,
+                 int depth) {
     std::string kind;
     if (c.is_object())
       for (auto it = c.begin(); it != c.end(); ++it)
         if (it.key() != "transform") kind = it.key();
     if (kind != "mesh" && kind != "box" && kind != "sphere" && kind != "cylinder" &&
-        kind != "subdivide")
+        kind != "subdivide" && kind != "ffd")
       fail(kind.empty() ? child : child + "/" + kind,
-           "a subdivide node's child is a mesh, box, sphere, cylinder or subdivide node" +
+           "a" + std::string(node == "ffd" ? "n " : " ") + node +
+               " node's child is a mesh, box, sphere, cylinder, subdivide or ffd node" +
                (kind.empty() ? std::string() : ", not '" + kind + "'") +
-               " (operations, fields and warps are not subdivided; evaluate an operation to a "
+               " (operations, fields and warps are not refined here; evaluate them to a "
                "mesh first: cover evaluate)");
+    const std::string path = step.path;
     const Plan p = plan(c, child, Transform{}, depth + 1);
     LeafTask& task = tasks_[p.task];
     task.subdivisions.push_back(std::move(step));
     task.path = path;
     return p;
+  }
+
+  /// An ffd node `v` at `path`: one leaf, its child's mesh deformed by the lattice
+  /// (modeler/ffd.h), refined until the chord bound meets `tolerance`, then placed by `world`.
+  Plan ffd_node(const json& v, const std::string& path, const Transform& world, int depth) {
+    keys(v, path, {"lattice", "tolerance", "child"});
+    const json& l = required(v, path, "lattice");
+    const std::string lp = path + "/lattice";
+    keys(l, lp, {"min", "max", "degree", "points"});
+    FfdLattice f;
+    f.min = vec3(required(l, lp, "min"), lp + "/min");
+    f.max = vec3(required(l, lp, "max"), lp + "/max");
+    if (l.contains("degree")) {
+      const json& d = l.at("degree");
+      if (!d.is_array() || d.size() != 3 || !std::all_of(d.begin(), d.end(), [](const json& x) {
+            return x.is_number_integer() && x.get<int64_t>() >= 1 && x.get<int64_t>() <= 16;
+          }))
+        fail(lp + "/degree", "expected 3 integers from 1 to 16");
+      for (int a = 0; a < 3; ++a) f.degree[a] = static_cast<int>(d[a].get<int64_t>());
+    }
+    const json& pts = required(l, lp, "points");
+    if (!pts.is_array()) fail(lp + "/points", "expected an array of [x, y, z] points");
+    for (size_t i = 0; i < pts.size(); ++i)
+      f.points.push_back(vec3(pts[i], lp + "/points/" + std::to_string(i)));
+    if (const std::string problem = validate(f); !problem.empty()) fail(lp, problem);
+    Subdivision step{{}, world, path, std::move(f), 0};
+    if (v.contains("tolerance")) {
+      const double t = number(v.at("tolerance"), path + "/tolerance");
+      if (!(t > 0)) fail(path + "/tolerance", "expected a number > 0");
+      step.ffd_tolerance = t;
+    }
+    return mesh_step(required(v, path, "child"), path + "/child", "ffd", std::move(step), depth);
   }
 
   /// Makes the leaf of one task (in parallel with the others; `warnings` are the task's own).
@@ -276,14 +320,22 @@ class SceneReader {
       return leaf(std::move(m), std::move(name), task.path, true, warnings, &r->topology);
     for (const Subdivision& s : task.subdivisions) {
       try {
-        m = subdivide(m, s.options);
+        if (s.ffd) {
+          FfdResult r = ffd(m, *s.ffd, {.tolerance = s.ffd_tolerance});
+          m = std::move(r.mesh);
+          name = "free-form deformation (" + std::to_string(r.levels) + " refinement" +
+                 (r.levels == 1 ? "" : "s") + ", chord bound " + std::to_string(r.chord_bound) +
+                 ") of " + name;
+        } else {
+          m = subdivide(m, s.options);
+          name = std::string(to_string(s.options.scheme)) + " subdivision (" +
+                 std::to_string(s.options.levels) + " level" + (s.options.levels == 1 ? "" : "s") +
+                 ") of " + name;
+        }
       } catch (const InputError& e) {
         fail(s.path, (task.file.empty() ? "" : task.file.string() + ": ") + e.what());
       }
       apply_transform(s.world, m);
-      name = std::string(to_string(s.options.scheme)) + " subdivision (" +
-             std::to_string(s.options.levels) + " level" + (s.options.levels == 1 ? "" : "s") +
-             ") of " + name;
     }
     return leaf(std::move(m), std::move(name), task.path, false, warnings);
   }

@@ -41,6 +41,7 @@
 #include "cover/model/info.h"
 #include "cover/model/model.h"
 #include "cover/modeler/dlfl.h"
+#include "cover/modeler/ffd.h"
 #include "cover/modeler/operators.h"
 #include "cover/octree/octree.h"
 #include "cover/render/camera.h"

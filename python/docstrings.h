@@ -260,6 +260,16 @@ for non-integer F, InputError for an index out of range, a non-orientable mesh, 
 (closed_only=True) an open mesh; otherwise an open mesh is inside where its generalized
 winding number has |w| > 1/2.)";
 
+inline constexpr const char* kFfd =
+    R"(Free-form deformation (Sederberg-Parry) of a mesh: (V, F, report).
+
+A trivariate Bernstein lattice of `degree` (l, m, n) over the box [lattice_min, lattice_max] with
+control `points` ((l+1)(m+1)(n+1), 3), index ((i*(m+1)) + j)*(n+1) + k, i along x; the
+undeformed lattice is the identity. Every vertex of the mesh must lie in the box. The mesh is
+triangulated and refined (each triangle into 4) until the certified chord bound 0.5*M*e^2 is at
+most `tolerance` (0: 1e-3 of the box's diagonal), M bounding the map's second derivatives from
+the control points' second differences; report: levels, chord_bound. As the scene's "ffd" node.)";
+
 inline constexpr const char* kSubdivide =
     R"(`levels` rounds of a subdivision scheme on a polygon mesh: returns (V, F).
 

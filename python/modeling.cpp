@@ -15,6 +15,7 @@
 
 #include "arrays.h"
 #include "cover/modeler/dlfl.h"
+#include "cover/modeler/ffd.h"
 #include "cover/modeler/script.h"
 #include "cover/solid/errors.h"
 #include "cover/subdivision/subdivide.h"
@@ -200,6 +201,36 @@ void bind_modeling(py::module_& m) {
       py::arg("V"), py::arg("F"), py::arg("scheme") = "catmull-clark", py::arg("levels") = 1,
       py::arg("exact_rounding") = false, py::kw_only(), py::arg("uv") = py::none(), threads,
       doc::kSubdivide);
+  m.def(
+      "ffd",
+      [](py::handle v, py::handle f, py::handle lattice_min, py::handle lattice_max,
+         py::handle points, py::handle degree, double tolerance) -> py::tuple {
+        PolygonMesh in;
+        const Points vertices = points_arg(v, "V");
+        in.vertices.assign(vertices.span().begin(), vertices.span().end());
+        faces_arg(f, in);
+        FfdLattice lattice;
+        lattice.min = vec3_arg(lattice_min, "lattice_min");
+        lattice.max = vec3_arg(lattice_max, "lattice_max");
+        const std::vector<double> d = numbers_arg(degree, "degree", 3);
+        for (int a = 0; a < 3; ++a) {
+          if (d[a] != std::floor(d[a]) || d[a] < 1 || d[a] > 16)
+            throw InputError("degree: expected 3 integers from 1 to 16");
+          lattice.degree[a] = static_cast<int>(d[a]);
+        }
+        const Points control = points_arg(points, "points");
+        lattice.points.assign(control.span().begin(), control.span().end());
+        if (!(tolerance >= 0) || !std::isfinite(tolerance))
+          throw InputError("tolerance: expected a finite number >= 0");
+        const FfdResult r = ffd(in, lattice, {.tolerance = tolerance});
+        py::dict report;
+        report["levels"] = r.levels;
+        report["chord_bound"] = r.chord_bound;
+        return py::make_tuple(vertices_array(r.mesh.vertices), faces_object(r.mesh), report);
+      },
+      py::arg("V"), py::arg("F"), py::arg("lattice_min"), py::arg("lattice_max"), py::arg("points"),
+      py::kw_only(), py::arg("degree") = std::vector<int>{1, 1, 1}, py::arg("tolerance") = 0.0,
+      doc::kFfd);
   m.def(
       "modify",
       [](py::handle v, py::handle f, py::handle operations) {
