@@ -245,10 +245,7 @@ VolumeResult volume(const Prepared& prepared, const VolumeOptions& options) {
       throw InputError(s.implicit_leaf_message() +
                        ": no exact volume; the bracket method bounds it (without " +
                        parameter("exact") + ")");
-    if (s.has_open_leaf())
-      throw NotComputable(s.open_leaf_message() +
-                          ": the bracket volume of field leaves needs closed mesh leaves");
-    return detail::bracket_volume(prepared, options);
+    return detail::bracket_volume(prepared, options);  // open leaves: by their closures
   }
   if (s.has_open_leaf()) {
     if (options.exact)

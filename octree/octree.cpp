@@ -324,12 +324,10 @@ Octree build_octree(const Prepared& prepared, const VoxelBounds& bounds,
                     const OctreeOptions& options) {
   check_octree_request(prepared.solid(), bounds, options);
   if (prepared.solid().leaves.empty()) return empty_octree(bounds, options);
-  if (prepared.solid().has_implicit_leaf()) {
-    if (prepared.solid().has_open_leaf())
-      throw NotComputable(prepared.solid().open_leaf_message() +
-                          ": the octree of field leaves needs closed mesh leaves");
+  // Field and warp leaves (open leaves beside them too: box_states settles an open leaf by its
+  // closure) take the three-valued route.
+  if (prepared.solid().has_implicit_leaf())
     return octree_build::build_field_octree(prepared, bounds, options);
-  }
   return Builder(prepared, bounds, options).run();
 }
 

@@ -243,6 +243,46 @@ TEST(MixedEvaluation, OpenMeshesEvaluate) {
   expect_valid(e.mesh, "elephant-with-holes.off");
 }
 
+TEST(MixedEvaluation, OpenLeafBoxStatesAreSound) {
+  // An open leaf's box state away from its triangles (its closure's winding number where the
+  // cones subtend |w_C| < 0.4): every point of a settled box has that class.
+  const Model open = load(test::cgal_mesh("cube-ouvert.off"));
+  const Model m = open | scene(kBall);
+  const Bbox b = *m.bounds();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  size_t settled[2] = {0, 0};
+  std::vector<Vec3> probes;
+  std::vector<uint8_t> state;
+  for (int i = 0; i < 3000; ++i) {
+    const double half = 0.3 * u(rng) * u(rng);
+    const Vec3 c{b.min.x + (b.max.x - b.min.x) * u(rng), b.min.y + (b.max.y - b.min.y) * u(rng),
+                 b.min.z + (b.max.z - b.min.z) * u(rng)};
+    Bbox box;
+    box.add(c - Vec3{half, half, half});
+    box.add(c + Vec3{half, half, half});
+    const uint8_t s = box_state(m.prepared(), box);
+    if (s == kBoxUndecided) continue;
+    ++settled[s];
+    for (int k = 0; k < 27; ++k) {
+      probes.push_back(c + half * Vec3{k % 3 - 1.0, k / 3 % 3 - 1.0, k / 9 - 1.0});
+      state.push_back(s);
+    }
+  }
+  EXPECT_GT(settled[kBoxInside], 20u);
+  EXPECT_GT(settled[kBoxOutside], 100u);
+  const std::vector<PointClass> cls = m.classify(probes);
+  size_t wrong = 0;
+  for (size_t i = 0; i < probes.size(); ++i)
+    wrong += (cls[i] == PointClass::kOutside) != (state[i] == kBoxOutside);
+  EXPECT_EQ(wrong, 0u);
+  // The bracket and the octree take the open leaf beside the field.
+  const VolumeResult v = m.volume();
+  EXPECT_EQ(v.method, "bracket");
+  EXPECT_GT(v.volume - v.error_bound, 0);
+  EXPECT_GT(m.octree({.depth = 3}).nodes.size(), 1u);
+}
+
 TEST(MixedEvaluation, ClipCellsAndDecomposeTakeEveryLeaf) {
   const Model m = scene(std::string(R"({"difference": [)") + kTwoPoints +
                         R"(, {"box": {"min": [-0.2, -1, -1], "max": [0.2, 1, 1]}}]})");
