@@ -13,10 +13,12 @@
 #include "cover/field/warp.h"
 #include "cover/io/mesh_io.h"
 #include "cover/io/parse.h"
+#include "cover/io/point_set_io.h"
 #include "cover/mesh/orient.h"
 #include "cover/mesh/repair.h"
 #include "cover/mesh/validate.h"
 #include "cover/modeler/ffd.h"
+#include "cover/points/point_set.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/measure.h"
 #include "cover/solid/parallel.h"
@@ -147,7 +149,7 @@ class SceneReader {
     if (kind.empty())
       fail(path,
            "expected one of mesh, box, sphere, cylinder, field, blend, twist, taper, bend, "
-           "subdivide, ffd, union, intersection, difference, complement");
+           "points, subdivide, ffd, union, intersection, difference, complement");
     const json& v = j.at(kind);
     const std::string sub = path + "/" + kind;
     if (kind == "mesh") {
@@ -166,6 +168,11 @@ class SceneReader {
       PolygonMesh m = primitive(kind, v, sub);
       apply_transform(world, m);
       tasks_.push_back({sub, {}, kind, std::move(m), Transform{}, 0, {}});
+      return {CsgOp::kLeaf, tasks_.size() - 1, {}};
+    }
+    if (kind == "points") {
+      Solid made = point_set_leaf(v, sub, world);
+      tasks_.push_back({sub, {}, kind, {}, Transform{}, 0, std::move(made)});
       return {CsgOp::kLeaf, tasks_.size() - 1, {}};
     }
     if (kind == "field" || kind == "blend") {
@@ -488,6 +495,50 @@ class SceneReader {
   /// validated as written (one threshold for all, compared exactly), then each is mapped by its
   /// own transform (a similarity; solid/transform.h), and the blend keeps its first primitive's
   /// threshold (solid/field_leaf.h).
+  /// A point-set leaf (points/point_set.h): the cloud of `file` (io/point_set_io.h), its normals
+  /// from the file or estimated, as an open-mesh leaf of dipole triangles placed by `world`.
+  Solid point_set_leaf(const json& v, const std::string& path, const Transform& world) const {
+    keys(v, path, {"file", "neighbours", "estimate_normals"});
+    const json& f = required(v, path, "file");
+    if (!f.is_string() || f.get_ref<const std::string&>().empty())
+      fail(path + "/file", "expected a non-empty file path string");
+    std::filesystem::path file = f.get<std::string>();
+    if (file.is_relative()) file = scene_.parent_path() / file;
+    PointSetOptions o;
+    if (v.contains("neighbours")) {
+      const json& k = v.at("neighbours");
+      if (!k.is_number_integer() || k.get<int64_t>() < 3 || k.get<int64_t>() > 64)
+        fail(path + "/neighbours", "expected an integer from 3 to 64");
+      o.neighbours = static_cast<int>(k.get<int64_t>());
+    }
+    bool estimate = false;
+    if (v.contains("estimate_normals")) {
+      if (!v.at("estimate_normals").is_boolean())
+        fail(path + "/estimate_normals", "expected true or false");
+      estimate = v.at("estimate_normals").get<bool>();
+    }
+    PolygonMesh m;
+    size_t count = 0;
+    try {
+      PointCloud cloud = read_point_cloud(file, options_.max_file_bytes);
+      count = cloud.points.size();
+      if (estimate) cloud.normals.clear();
+      m = point_set_mesh(cloud.points, cloud.normals, o);
+    } catch (const InputError& e) {
+      fail(path, e.what());
+    }
+    apply_transform(world, m);
+    for (const Vec3& p : m.vertices)
+      if (!(std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+            std::abs(p.z) <= kMaxCoordinate))
+        fail(path, "a point lies outside ±" + std::to_string(kMaxCoordinate));
+    const size_t triangles = m.face_count();
+    Solid s = make_leaf(
+        std::move(m), "point set (" + std::to_string(count) + " points) of " + file.string(), path);
+    s.leaves[0].boundary_edges = static_cast<int64_t>(3 * triangles);
+    return s;
+  }
+
   Solid field_leaf(const json& j, const std::string& path, const Transform& parent,
                    int depth) const {
     std::vector<PlacedPrimitive> placed;

@@ -44,6 +44,7 @@
 #include "cover/modeler/ffd.h"
 #include "cover/modeler/operators.h"
 #include "cover/octree/octree.h"
+#include "cover/points/point_set.h"
 #include "cover/render/camera.h"
 #include "cover/render/render.h"
 #include "cover/solid/errors.h"

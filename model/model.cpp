@@ -710,6 +710,25 @@ Model mesh(std::span<const Vec3> vertices, std::span<const std::array<uint32_t, 
   return mesh(std::move(m), name, options);
 }
 
+Model point_set(std::span<const Vec3> points, std::span<const Vec3> normals,
+                const PointSetOptions& options, const std::string& name) {
+  PolygonMesh m;
+  try {
+    m = point_set_mesh(points, normals, options);
+  } catch (const InputError& e) {
+    throw InputError(name + ": " + e.what());
+  }
+  for (const Vec3& p : m.vertices)
+    if (!(std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+          std::abs(p.z) <= kMaxCoordinate))
+      throw InputError(name + ": a point lies outside ±" + std::to_string(kMaxCoordinate));
+  const size_t triangles = m.face_count();
+  Solid s =
+      make_leaf(std::move(m), "point set (" + std::to_string(points.size()) + " points) " + name);
+  s.leaves[0].boundary_edges = static_cast<int64_t>(3 * triangles);
+  return Model(std::move(s));
+}
+
 Model mesh(PolygonMesh polygons, const std::string& name, const LoadOptions& options) {
   for (size_t v = 0; v < polygons.vertices.size(); ++v)
     if (!finite(polygons.vertices[v]))

@@ -41,6 +41,7 @@
 #include "cover/io/scene.h"
 #include "cover/io/zarr_io.h"
 #include "cover/octree/octree.h"
+#include "cover/points/point_set.h"
 #include "cover/polygonize/polygonize.h"
 #include "cover/render/camera.h"
 #include "cover/render/render.h"
@@ -307,5 +308,11 @@ Model mesh(std::span<const Vec3> vertices, std::span<const std::array<uint32_t, 
            const std::string& name = "mesh", const LoadOptions& options = {});
 /// The same from polygons (solid/polygon_mesh.h). \throws as above.
 Model mesh(PolygonMesh polygons, const std::string& name = "mesh", const LoadOptions& options = {});
+
+/// A point-set leaf (points/point_set.h): the set where the oriented cloud's winding number
+/// exceeds 1/2, as an open leaf of dipole triangles; `normals` one per point, or empty to estimate
+/// them (PCA, MST orientation). \throws InputError as point_set_mesh(), naming `name`.
+Model point_set(std::span<const Vec3> points, std::span<const Vec3> normals = {},
+                const PointSetOptions& options = {}, const std::string& name = "points");
 
 }  // namespace cover

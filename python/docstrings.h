@@ -251,6 +251,16 @@ segments/2 latitude bands.)";
 inline constexpr const char* kCylinder =
     R"(Cylinder from `base` to `top` with a regular `segments`-gon cross-section inscribed
 in the circle of `radius`.)";
+inline constexpr const char* kPoints =
+    R"(A point-set leaf: the set where the oriented cloud's winding number exceeds 1/2.
+
+P float (n, 3); N (n, 3) normals, or None to estimate them (PCA of the `neighbours` nearest
+points, oriented along a minimum spanning tree from the point of largest x, pointed to +x).
+Each point becomes a dipole of its tangent-plane Voronoi area (Barill et al. 2018), carried as
+one small triangle: the Model is an open leaf answered by the generalized winding number, as
+the scene's "points" node. Raises InputError for fewer than neighbours + 1 points, a zero normal,
+or neighbours outside 3..64.)";
+
 inline constexpr const char* kMesh = R"(A leaf from a triangle mesh given as arrays.
 
 V: array-like (n, 3) of coordinates (used without a copy when float64 C-contiguous); F:

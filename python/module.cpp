@@ -860,6 +860,22 @@ PYBIND11_MODULE(_cover, m) {
         return warned(std::move(model));
       },
       py::arg("V"), py::arg("F"), py::kw_only(), py::arg("closed_only") = false, doc::kMesh);
+  m.def(
+      "points",
+      [](py::handle p, py::handle n, int neighbours) {
+        const Points points = points_arg(p, "P");
+        std::optional<Points> normals;
+        if (!n.is_none()) normals = points_arg(n, "N");
+        Model model;
+        {
+          py::gil_scoped_release release;
+          model = point_set(points.span(), normals ? normals->span() : std::span<const Vec3>(),
+                            PointSetOptions{.neighbours = neighbours}, "P");
+        }
+        return model;
+      },
+      py::arg("P"), py::arg("N") = py::none(), py::kw_only(), py::arg("neighbours") = 16,
+      doc::kPoints);
   bind_modeling(m);
   bind_files(m);
 }

@@ -9,7 +9,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libgtest-dev libgmock-dev
   nlohmann-json3-dev libcli11-dev libpng-dev liboctomap-dev python3-numpy python3-vtk9
-  libtinygltf-dev lib3mf-dev
+  libtinygltf-dev lib3mf-dev libnanoflann-dev
   pybind11-dev python3-pybind11 python3-dev python3-pytest
   libcgal-demo assimp-testmodels
   zlib1g-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb python3-zarr
