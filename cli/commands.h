@@ -63,6 +63,12 @@ struct ClassifyCommandOptions {
   std::string output;  ///< --output OUT.npy: the classes as uint8 codes instead of words on stdout
 };
 
+struct DistanceCommandOptions {
+  std::string input;
+  std::string points;  ///< file or "-"
+  std::string output;  ///< --output D.npy: float64 (N,) instead of lines on stdout
+};
+
 struct FieldCommandOptions {
   std::string input;
   std::string points;  ///< file or "-"
@@ -187,6 +193,8 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common);
 int run_evaluate_cells(const EvaluateCommandOptions& o, const CommonOptions& common);
 /// `cover decompose`: exact convex pieces by reflex-edge plane cuts (brep/decompose.h).
 int run_decompose(const DecomposeCommandOptions& o, const CommonOptions& common);
+/// `cover distance`: signed distances to the result's boundary (Model::distance).
+int run_distance(const DistanceCommandOptions& o, const CommonOptions& common);
 /// `cover polygonize`: the whole result by certified marching tetrahedra (polygonize/).
 int run_polygonize(const PolygonizeCommandOptions& o, const CommonOptions& common);
 /// `cover subdivide`: `levels` rounds of a subdivision scheme on a mesh (subdivision/subdivide.h).

@@ -181,6 +181,15 @@ int main(int argc, char** argv) {
       "vertex 4) instead of printing them; --json then prints counts and seconds only");
   add_common(cls_cmd, common);
 
+  cover::cli::DistanceCommandOptions dst;
+  CLI::App* dst_cmd = app.add_subcommand(
+      "distance", "Signed distance of points to the result's boundary (negative inside)");
+  dst_cmd->add_option("INPUT", dst.input, "Mesh or scene")->required();
+  add_points_option(dst_cmd, dst.points);
+  dst_cmd->add_option("--output", dst.output,
+                      "Write the distances to OUT.npy (float64 (N,)) instead of printing them");
+  add_common(dst_cmd, common);
+
   cover::cli::FieldCommandOptions fld;
   CLI::App* fld_cmd =
       app.add_subcommand("field", "Field value f and gradient of each field leaf at points");
@@ -444,6 +453,7 @@ int main(int argc, char** argv) {
     if (info_cmd->parsed()) return cover::cli::run_info(info, common);
     if (vol_cmd->parsed()) return cover::cli::run_volume(vol, common);
     if (cls_cmd->parsed()) return cover::cli::run_classify(cls, common);
+    if (dst_cmd->parsed()) return cover::cli::run_distance(dst, common);
     if (fld_cmd->parsed()) return cover::cli::run_field(fld, common);
     if (ren_cmd->parsed()) return cover::cli::run_render(ren, common);
     if (vox_cmd->parsed()) return cover::cli::run_voxelize(vox, common);

@@ -28,7 +28,7 @@
 #include <limits>
 #include <span>
 
-#include "cover/field/detail/closest.h"
+#include "cover/field/closest.h"
 #include "cover/field/detail/exact.h"
 
 namespace cover::field {

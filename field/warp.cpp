@@ -37,7 +37,7 @@
 #include <limits>
 #include <optional>
 
-#include "cover/field/detail/closest.h"
+#include "cover/field/closest.h"
 #include "cover/field/detail/exact.h"
 
 namespace cover::field {

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "cover/covering/bounds.h"
+#include "cover/covering/distance.h"
 #include "cover/field/warp.h"
 #include "cover/io/serialize.h"
 #include "cover/model/detail/mixed.h"
@@ -385,6 +386,34 @@ LeafWindings Model::windings(std::span<const Vec3> points, const ClassifyOptions
   check_points(points, "windings");
   if (empty()) return LeafWindings{};
   return leaf_windings(prepared(), points, options);
+}
+
+Model::Distances Model::distance(std::span<const Vec3> points) const {
+  check_points(points, "distance");
+  Distances out;
+  if (empty()) {
+    out.distance.assign(points.size(), INFINITY);
+    out.classes.assign(points.size(), PointClass::kOutside);
+    return out;
+  }
+  if (!is_bounded(solid()))
+    throw NotComputable("distance: the result is unbounded (a complement at the root)");
+  Classification c = cover::classify_counted(prepared(), points);
+  const EvaluateResult& e = evaluated();
+  const Solid boundary = make_leaf(e.mesh, "evaluated");
+  const Prepared p(boundary);
+  out.distance = nearest_distances(p.bvh(), points);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const PointClass k = c.classes[i];
+    if (k == PointClass::kInside)
+      out.distance[i] = -out.distance[i];
+    else if (k != PointClass::kOutside)
+      out.distance[i] = 0;
+  }
+  out.classes = std::move(c.classes);
+  out.uncertain = c.uncertain;
+  out.meshed = e.meshed;
+  return out;
 }
 
 std::vector<RayResult> Model::cast(std::span<const Ray> rays, const CastOptions& options) const {

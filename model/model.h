@@ -151,6 +151,21 @@ class Model {
   /// holds a neighbouring count, an open leaf's 0. \throws InputError as classify().
   LeafWindings windings(std::span<const Vec3> points, const ClassifyOptions& options = {}) const;
 
+  /// Signed distance of each point to the result's boundary: negative inside, positive outside,
+  /// 0 exactly where classify() finds the point on the boundary (the sign is classify()'s, exact
+  /// where classify is). The magnitude is the distance, in doubles, to the evaluated B-rep
+  /// (evaluate(): the exact boundary rounded once for mesh trees; with field, warp or open
+  /// leaves, the mixed evaluation's mesh, within `evaluated.tolerance` at its vertices and
+  /// h·√3 of the surface; thinner features than its grid are not promised). An empty result
+  /// gives +∞. \throws InputError as classify(); NotComputable for an unbounded result.
+  struct Distances {
+    std::vector<double> distance;
+    std::vector<PointClass> classes;  ///< classify() of the points
+    size_t uncertain = 0;             ///< as classify_counted()
+    std::vector<MeshedLeaf> meshed;   ///< what the evaluation meshed first (empty: mesh trees)
+  };
+  Distances distance(std::span<const Vec3> points) const;
+
   /// All hits and inside spans of each ray (covering/ray.h). \throws InputError for a zero or
   /// non-finite direction or a non-finite origin, naming the ray's index.
   std::vector<RayResult> cast(std::span<const Ray> rays, const CastOptions& options = {}) const;

@@ -174,6 +174,14 @@ iso 35.26); azimuth: the view turned about the up axis in degrees; zoom: magnifi
 fit: frame the part the section keeps. The camera frames the result tightly (docs/cli.md).
 The same pixels as `cover render --size WxH` with the same flags.)";
 
+inline constexpr const char* kDistance =
+    R"(Signed distance of each point to the result's boundary: float64 (n,), negative inside.
+
+The sign is classify()'s (exact; 0 exactly on the boundary); the magnitude the distance to the
+evaluated B-rep (evaluate(): exact up to its final rounding for mesh trees, the mixed
+evaluation's certified mesh with fields, warps and open leaves). As `cover distance`. Raises
+NotComputable for an unbounded result.)";
+
 inline constexpr const char* kEvaluate =
     R"(The result as one closed, outward, 2-manifold triangle mesh (exact evaluation).
 

@@ -115,6 +115,21 @@ py::array_t<uint8_t> classify_points(const Model& model, py::handle points, Thre
   return out;
 }
 
+/// Model.distance: signed distances, float64 (n,).
+py::array_t<double> distance_values(const Model& model, py::handle points, Threads threads) {
+  const Points p = points_arg(points, "points");
+  const std::span<const Vec3> all = p.span();
+  check_finite(all, "distance");
+  Model::Distances d;
+  {
+    KernelScope scope(threads);
+    d = model.distance(all);
+  }
+  py::array_t<double> out(static_cast<py::ssize_t>(d.distance.size()));
+  std::copy(d.distance.begin(), d.distance.end(), out.mutable_data());
+  return out;
+}
+
 /// Model.field: f (n, k) and ∇f (n, k, 3), float64, for the k field leaves.
 py::tuple field_values(const Model& model, py::handle points, Threads threads) {
   const Points p = points_arg(points, "points");
@@ -705,6 +720,7 @@ PYBIND11_MODULE(_cover, m) {
           "mirror", [](const Model& a, py::handle n) { return a.mirrored(vec3_arg(n, "normal")); },
           py::arg("normal"), doc::kMirror)
       .def("classify", &classify_points, py::arg("points"), py::kw_only(), threads, doc::kClassify)
+      .def("distance", &distance_values, py::arg("points"), py::kw_only(), threads, doc::kDistance)
       .def("classify_counted", &classify_counted_points, py::arg("points"), py::kw_only(), threads,
            doc::kClassifyCounted)
       .def("field", &field_values, py::arg("points"), py::kw_only(), threads, doc::kField)

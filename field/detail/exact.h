@@ -6,7 +6,7 @@
 
 #include <CGAL/Gmpq.h>
 
-#include "cover/field/detail/closest.h"
+#include "cover/field/closest.h"
 #include "cover/field/field.h"
 #include "cover/solid/warp_leaf.h"
 

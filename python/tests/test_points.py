@@ -48,3 +48,20 @@ def test_points_refuses_bad_input():
         cover.points(fibonacci(100), np.zeros((100, 3)))
     with pytest.raises(cover.InputError, match="neighbours"):
         cover.points(fibonacci(100), neighbours=2)
+
+
+def test_distance_of_a_box_is_its_signed_distance_function(tmp_path):
+    box = cover.box([0, 0, 0], [1, 2, 3])
+    Q = np.random.default_rng(8).uniform(-1, 4, size=(2000, 3))
+    lo, hi = np.zeros(3), np.array([1.0, 2.0, 3.0])
+    outside = np.linalg.norm(np.maximum(np.maximum(lo - Q, Q - hi), 0), axis=1)
+    inside = -np.minimum(Q - lo, hi - Q).min(axis=1)
+    expected = np.where(outside > 0, outside, inside)
+    got = box.distance(Q)
+    assert np.allclose(got, expected, rtol=0, atol=1e-12)
+    assert box.distance([[0.5, 1, 3]])[0] == 0  # on a face: exactly 0
+    np.save(tmp_path / "q.npy", Q)
+    box_file = tmp_path / "box.json"
+    box_file.write_text(json.dumps({"box": {"min": [0, 0, 0], "max": [1, 2, 3]}}))
+    run_cli("distance", box_file, "--points", tmp_path / "q.npy", "--output", tmp_path / "d.npy")
+    assert np.array_equal(np.load(tmp_path / "d.npy"), got)

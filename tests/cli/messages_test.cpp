@@ -208,12 +208,11 @@ TEST_F(CliMessages, OptionMessages) {
                "--threshold: expected a number from 0 to 1, got 'x'");
   expect_error(run_cover("info --threads 0 " + box()),
                "--threads: expected a whole number from 1 to 4096, got '0'");
-  expect_error(run_cover("bogus"),
-               "unknown command 'bogus' (expected info, volume, classify, field, render, "
-               "voxelize, octree, clip, evaluate, polygonize, decompose, subdivide, modify, pipe, extrude)");
-  expect_error(run_cover(""),
-               "no command given (expected info, volume, classify, field, render, voxelize, "
-               "octree, clip, evaluate, polygonize, decompose, subdivide, modify, pipe, extrude; try --help)");
+  const std::string commands =
+      "info, volume, classify, distance, field, render, voxelize, octree, clip, evaluate, "
+      "polygonize, decompose, subdivide, modify, pipe, extrude";
+  expect_error(run_cover("bogus"), "unknown command 'bogus' (expected " + commands + ")");
+  expect_error(run_cover(""), "no command given (expected " + commands + "; try --help)");
   // Whole numbers are decimal: a leading zero is not octal, and '+' is allowed.
   const auto r = run_cover("voxelize " + box() + " --res +010 -o " + q(dir_ / "v.npy") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;

@@ -301,6 +301,35 @@ TEST(MixedEvaluation, ClipCellsAndDecomposeTakeEveryLeaf) {
   EXPECT_NEAR(sum, coarse.volume, 1e-9 * coarse.volume);
 }
 
+TEST(Distance, BallFieldAndBox) {
+  // A point field's surface is the sphere |p − c| = 0.5: the signed distance through the mixed
+  // evaluation's mesh is within h·√3 of |p − c| − 0.5 (the mesh lies within h·√3 of the
+  // surface, and a sphere's mesh at this grid misses nothing).
+  const Model ball = scene(kBall);
+  const Vec3 c{0.1, -0.2, 0.3};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Vec3> q(3000);
+  for (Vec3& p : q) p = c + Vec3{u(rng), u(rng), u(rng)};
+  const Model::Distances d = ball.distance(q);
+  ASSERT_EQ(d.meshed.size(), 1u);
+  const double h = d.meshed[0].cell_size;
+  for (size_t i = 0; i < q.size(); ++i) {
+    const Vec3 v = q[i] - c;
+    const double exact = std::sqrt(dot(v, v)) - 0.5;
+    ASSERT_NEAR(d.distance[i], exact, h * std::sqrt(3.0)) << i;
+    if (std::abs(exact) > 1e-9) ASSERT_EQ(d.distance[i] < 0, exact < 0) << i;
+  }
+  // A box: exactly its signed distance function (up to rounding), 0 exactly on a face.
+  const Model b = box({0, 0, 0}, {1, 2, 3});
+  const Model::Distances e = b.distance(std::vector<Vec3>{{0.5, 1, 3}, {2, 1, 1}, {0.5, 0.5, 0.5}});
+  EXPECT_EQ(e.distance[0], 0);
+  EXPECT_DOUBLE_EQ(e.distance[1], 1);
+  EXPECT_DOUBLE_EQ(e.distance[2], -0.5);
+  EXPECT_TRUE(e.meshed.empty());
+  EXPECT_THROW((~b).distance(q), NotComputable);
+}
+
 TEST(MixedEvaluation, ClosedMeshTreesAreUnchanged) {
   const Model m = box({0, 0, 0}, {1, 1, 1}) - sphere({1, 1, 1}, 0.5, 16);
   const EvaluateResult a = m.evaluate(), b = evaluate(m.solid());
