@@ -284,7 +284,7 @@ class Model {
   /// Exact convex decomposition (brep/decompose.h) of the result: a single closed mesh leaf as it
   /// is, any other expression evaluated first. Every piece is a closed, outward triangle mesh,
   /// convex exactly on its doubles; the volumes sum to the result's. \throws InputError (as
-  /// brep::decompose) for an open, non-manifold or inside-out leaf; NotComputable for an
+  /// brep::decompose) for a non-manifold leaf; NotComputable for an
   /// unbounded result (as evaluate()) and when a cut cannot be made (a self-intersecting leaf).
   brep::DecomposeResult decompose(const brep::DecomposeOptions& options = {}) const;
 

@@ -229,9 +229,9 @@ inline constexpr const char* kDecompose =
 
 Each piece is (V float64 (n, 3), F int64 (m, 3)): a closed, outward triangle mesh, convex
 exactly on its doubles (every vertex on the inner side of, or on, every face's plane); the
-volumes sum to the result's. A single leaf is decomposed as it is, any other expression is
-evaluated first (as `cover decompose`). Raises InputError for an open or inside-out leaf.
-Not interruptible.)";
+volumes sum to the result's. A single closed mesh leaf is decomposed as it is, any other
+expression (fields, warps, open leaves: meshed first, as evaluate()) is evaluated first (as
+`cover decompose`). Raises InputError for a non-manifold leaf. Not interruptible.)";
 
 inline constexpr const char* kInfo =
     R"(Facts about the Model as `cover info --json` reports them: dict with vertices,
