@@ -72,7 +72,8 @@ using cover::PolygonMesh;
 using cover::Vec3;
 
 const char* kTwoPointBlend =
-    R"({"blend": [{"field": {"skeleton": {"point": [-0.35, 0, 0]}, "radius": 0.5, "influence": 1}},)"
+    R"({"blend": [)"
+    R"({"field": {"skeleton": {"point": [-0.35, 0, 0]}, "radius": 0.5, "influence": 1}},)"
     R"( {"field": {"skeleton": {"point": [0.35, 0, 0]}, "radius": 0.5, "influence": 1}}]})";
 
 /// P point primitives with centres uniform in [−2, 2]³, R = 1, r_T = 0.5, n = 2 (field_bench's
