@@ -23,11 +23,14 @@
 namespace cover {
 namespace {
 
-// Random points per scene (the checked build, about 10 times slower, a fifth of them).
+// Random points per scene and the mixed evaluations' grid (the checked build, about 10 times
+// slower: a fifth of the points, half the cells per side).
 #ifdef COVER_SANITIZED
 constexpr size_t kPoints = 4000;
+constexpr int kResolution = 24;  // the mixed evaluations' grid
 #else
 constexpr size_t kPoints = 20000;
+constexpr int kResolution = 48;
 #endif
 
 Model scene(const std::string& text) {
@@ -150,7 +153,7 @@ TEST(Polygonize, MeshLeafVerticesLieOnItsFaces) {
 /// or, for open leaves (whose box test never decides), by classify() of the non-evaluated tree
 /// agreeing at the point and at the 26 points of the band's box around it.
 void expect_mixed_matches(const Model& m, const std::string& what, bool certified = true) {
-  const EvaluateResult e = m.evaluate({.mesh_resolution = 48});
+  const EvaluateResult e = m.evaluate({.mesh_resolution = kResolution});
   expect_valid(e.mesh, what);
   ASSERT_GE(e.meshed.size(), 1u) << what;
   double h = 0;
@@ -227,7 +230,7 @@ TEST(MixedEvaluation, WarpsAndModelsFromFiles) {
   const Model warped = load(std::filesystem::path(COVER_SOURCE_DIR) / "models/warped_part.json");
   expect_mixed_matches(warped, "warped_part.json");
   const Model snake = load(std::filesystem::path(COVER_SOURCE_DIR) / "models/snake.json");
-  const EvaluateResult e = snake.evaluate({.mesh_resolution = 48});
+  const EvaluateResult e = snake.evaluate({.mesh_resolution = kResolution});
   expect_valid(e.mesh, "snake.json");
   EXPECT_EQ(e.meshed.size(), 2u);  // the blend and the circle field; the slab stays exact
 }
