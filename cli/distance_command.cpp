@@ -1,10 +1,8 @@
 // `cover distance INPUT --points FILE [--output D.npy] [--json]` (docs/cli.md): the signed
 // distance of each point to the result's boundary (Model::distance): negative inside, the sign
 // exact (classify), the magnitude the distance to the evaluated B-rep.
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -13,37 +11,9 @@
 #include "cover/cli/points.h"
 #include "cover/covering/bounds.h"
 #include "cover/io/atomic_file.h"
-#include "cover/io/npy.h"
-#include "cover/io/parse.h"
 #include "cover/solid/errors.h"
 
 namespace cover::cli {
-namespace {
-
-void write_distances(const std::string& path, const std::vector<double>& d) {
-  const std::array<uint64_t, 1> shape{d.size()};
-  const std::string header = npy_header("<f8", shape);
-  write_atomically(
-      path,
-      [&](const std::filesystem::path& temporary) {
-        std::FILE* file = std::fopen(temporary.c_str(), "wb");
-        if (file == nullptr)
-          detail::fail_file(path, std::string("cannot write: ") + std::strerror(errno));
-        const bool written =
-            std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
-            (d.empty() || std::fwrite(d.data(), sizeof(double), d.size(), file) == d.size()) &&
-            std::fflush(file) == 0;
-        const int error = errno;
-        if (std::fclose(file) != 0 || !written)
-          detail::fail_file(path,
-                            std::string("cannot write: ") + std::strerror(written ? errno : error));
-        return true;
-      },
-      "the distances");
-}
-
-}  // namespace
-
 int run_distance(const DistanceCommandOptions& o, const CommonOptions& common) {
   Timing timing;
   if (!o.output.empty()) check_classes_path(o.output);  // an .npy path
@@ -57,7 +27,9 @@ int run_distance(const DistanceCommandOptions& o, const CommonOptions& common) {
   timing.lap(Timing::kKernel);
   if (!o.output.empty()) {
     OutputBatch outputs;
-    write_distances(o.output, d.distance);
+    static_assert(sizeof(double) == 8, "distances are written as <f8");
+    write_npy_vector(o.output, "<f8", d.distance.data(), d.distance.size(), sizeof(double),
+                     "the distances");
     outputs.commit();
   }
   double tolerance = 0;

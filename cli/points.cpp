@@ -329,11 +329,11 @@ void check_classes_path(const std::string& path) {
                                 " (expected .npy)");
 }
 
-void write_classes(const std::string& path, std::span<const PointClass> classes) {
+void write_npy_vector(const std::string& path, std::string_view descr, const void* data,
+                      size_t count, size_t item_bytes, const std::string& what) {
   check_classes_path(path);
-  static_assert(sizeof(PointClass) == 1, "classes are written as their uint8 codes");
-  const std::array<uint64_t, 1> shape{classes.size()};
-  const std::string header = npy_header("|u1", shape);
+  const std::array<uint64_t, 1> shape{count};
+  const std::string header = npy_header(descr, shape);
   write_atomically(
       path,
       [&](const std::filesystem::path& temporary) {
@@ -341,8 +341,7 @@ void write_classes(const std::string& path, std::span<const PointClass> classes)
         if (file == nullptr)
           detail::fail_file(path, std::string("cannot write: ") + std::strerror(errno));
         const bool written = std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
-                             (classes.empty() || std::fwrite(classes.data(), 1, classes.size(),
-                                                             file) == classes.size()) &&
+                             (count == 0 || std::fwrite(data, item_bytes, count, file) == count) &&
                              std::fflush(file) == 0;
         const int error = errno;
         if (std::fclose(file) != 0 || !written)
@@ -350,7 +349,12 @@ void write_classes(const std::string& path, std::span<const PointClass> classes)
                             std::string("cannot write: ") + std::strerror(written ? errno : error));
         return true;
       },
-      "the classes");
+      what);
+}
+
+void write_classes(const std::string& path, std::span<const PointClass> classes) {
+  static_assert(sizeof(PointClass) == 1, "classes are written as their uint8 codes");
+  write_npy_vector(path, "|u1", classes.data(), classes.size(), 1, "the classes");
 }
 
 }  // namespace cover::cli

@@ -49,5 +49,9 @@ void check_classes_path(const std::string& path);
 /// (joining the caller's OutputBatch, if one is open). \throws InputError as check_classes_path,
 /// "PATH: cannot write: reason", and write_atomically's "PATH: cannot write the classes (reason)".
 void write_classes(const std::string& path, std::span<const PointClass> classes);
+/// Writes `count` items of `item_bytes` each as a 1-d .npy array of dtype `descr` ("|u1", "<f8"),
+/// as write_classes does (`what` names the content in write errors: "the distances").
+void write_npy_vector(const std::string& path, std::string_view descr, const void* data,
+                      size_t count, size_t item_bytes, const std::string& what);
 
 }  // namespace cover::cli

@@ -61,6 +61,14 @@ void neighbours(std::span<const Vec3> points, int k, std::vector<uint32_t>& inde
   });
 }
 
+/// A right-handed orthonormal frame (u, v, n) of the tangent plane of the unit normal n.
+void tangent_frame(const Vec3& n, Vec3& u, Vec3& v) {
+  const Vec3 t = std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  u = cross(n, t);
+  u = (1 / std::sqrt(dot(u, u))) * u;
+  v = cross(n, u);
+}
+
 void check_options(const PointSetOptions& o, size_t n) {
   if (o.neighbours < 3 || o.neighbours > 64)
     throw InputError("points: neighbours: expected 3 to 64, got " + std::to_string(o.neighbours));
@@ -148,12 +156,8 @@ std::vector<double> voronoi_areas(std::span<const Vec3> points, std::span<const 
   parallel_for(n, 1024, [&](size_t begin, size_t end) {
     std::vector<std::array<double, 2>> poly, next;
     for (size_t i = begin; i < end; ++i) {
-      // A frame (u, v) of the tangent plane.
-      const Vec3 nn = normals[i];
-      const Vec3 t = std::abs(nn.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-      Vec3 u = cross(nn, t);
-      u = (1 / std::sqrt(dot(u, u))) * u;
-      const Vec3 v = cross(nn, u);
+      Vec3 u, v;
+      tangent_frame(normals[i], u, v);
       const double r = std::sqrt(d2[i * k + k - 1]);
       if (!(r > 0)) {  // k coincident neighbours: no extent of its own
         area[i] = 0;
@@ -198,11 +202,8 @@ PolygonMesh dipole_triangles(std::span<const Vec3> points, std::span<const Vec3>
   const double factor = 4 / (3 * std::sqrt(3.0));
   for (size_t i = 0; i < points.size(); ++i) {
     if (!(areas[i] > 0)) continue;
-    const Vec3 nn = normals[i];
-    const Vec3 t = std::abs(nn.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    Vec3 u = cross(nn, t);
-    u = (1 / std::sqrt(dot(u, u))) * u;
-    const Vec3 v = cross(nn, u);
+    Vec3 u, v;
+    tangent_frame(normals[i], u, v);
     const double r = std::sqrt(factor * areas[i]);
     const auto first = static_cast<uint32_t>(m.vertices.size());
     for (int c = 0; c < 3; ++c) {
