@@ -39,7 +39,10 @@ json field_json(const LeafInfo& leaf) {
   for (const FieldPrimitive& p : leaf.field->primitives) {
     json pj;
     pj["skeleton"] = std::string(to_string(p.kind));
-    if (p.kind == SkeletonKind::kCircle) {
+    if (p.kind == SkeletonKind::kMesh) {
+      pj["triangles"] = p.points.size() / 3;
+      pj["bbox"] = {to_json(p.mesh->nodes[0].box.min), to_json(p.mesh->nodes[0].box.max)};
+    } else if (p.kind == SkeletonKind::kCircle) {
       pj["center"] = to_json(p.points[0]);
       pj["normal"] = to_json(p.points[1]);
       pj["circle_radius"] = p.circle_radius;

@@ -30,11 +30,17 @@
 
 #include "cover/field/closest.h"
 #include "cover/field/detail/exact.h"
+#include "cover/field/detail/interval.h"
+#include "cover/field/detail/mesh.h"
 
 namespace cover::field {
 namespace {
 
-using I = CGAL::Interval_nt<false>;
+using detail::I;
+using detail::imin;
+using detail::IV;
+using detail::iv;
+using detail::norm2;
 using Q = CGAL::Gmpq;
 using detail::V3;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -56,22 +62,13 @@ bool far(const Vec3& lo, const Vec3& hi, const Vec3& smin, const Vec3& smax, dou
 double circle_reach(const FieldPrimitive& prim) {
   return std::nextafter(prim.circle_radius + prim.influence, kInf);
 }
+/// A mesh skeleton's support test: its box's distance, against R − r_T rounded up (outside M
+/// farther than that, the pseudo-distance r_T + dist exceeds R and g = 0).
+double mesh_reach(const FieldPrimitive& prim) {
+  return std::nextafter(prim.influence - prim.radius, kInf);
+}
 
 // ---- interval enclosures ------------------------------------------------------------------
-
-struct IV {
-  I x, y, z;
-};
-IV iv(const Vec3& v) { return {I(v.x), I(v.y), I(v.z)}; }
-IV operator-(const IV& a, const IV& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-IV operator*(const I& s, const IV& a) { return {s * a.x, s * a.y, s * a.z}; }
-I dot(const IV& a, const IV& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-I norm2(const IV& a) { return CGAL::square(a.x) + CGAL::square(a.y) + CGAL::square(a.z); }
-IV cross(const IV& a, const IV& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-I imin(const I& a, const I& b) { return I(std::min(a.inf(), b.inf()), std::min(a.sup(), b.sup())); }
-I join(const I& a, const I& b) { return I(std::min(a.inf(), b.inf()), std::max(a.sup(), b.sup())); }
 
 /// xⁿ, n ≥ 1, by squaring (sound for any x; tight for x ≥ 0).
 I power(I x, int n) {
@@ -96,31 +93,6 @@ I threshold_interval(const FieldPrimitive& prim) {
                prim.exponent);
 }
 
-/// d² to the segment [a, b]: t = clamp((p − a)·u / |u|², 0, 1) as an interval (clamping is
-/// monotone), then |p − a − t·u|² over that t interval, which holds the true t.
-I segment_d2(const IV& p, const Vec3& a, const Vec3& b) {
-  const IV A = iv(a), u = iv(b) - A, v = p - A;
-  const I t = dot(v, u) / norm2(u);
-  const I tc(std::clamp(t.inf(), 0.0, 1.0), std::clamp(t.sup(), 0.0, 1.0));
-  return norm2(v - tc * u);
-}
-
-/// d² to the filled triangle abc, n = (b − a)×(c − a). The projection of p lies in the closed
-/// triangle iff each edge's ((edge)×(p − its start))·n ≥ 0: then d² = ((p − a)·n)²/|n|², else d²
-/// is the least over the edges. Uncertain: the hull of both.
-I triangle_d2(const IV& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const IV A = iv(a), B = iv(b), C = iv(c);
-  const IV ab = B - A, n = cross(ab, C - A);
-  const I s1 = dot(cross(ab, p - A), n), s2 = dot(cross(C - B, p - B), n),
-          s3 = dot(cross(A - C, p - C), n);
-  const bool inside = s1.inf() >= 0 && s2.inf() >= 0 && s3.inf() >= 0;
-  const bool outside = s1.sup() < 0 || s2.sup() < 0 || s3.sup() < 0;
-  if (inside) return CGAL::square(dot(p - A, n)) / norm2(n);
-  const I edges = imin(segment_d2(p, a, b), imin(segment_d2(p, b, c), segment_d2(p, c, a)));
-  if (outside) return edges;
-  return join(CGAL::square(dot(p - A, n)) / norm2(n), edges);
-}
-
 /// d² = h² + (ρ − r)² to the circle (centre c, normal m, radius r): h² = (v·m)²/|m|²,
 /// ρ² = |v×m|²/|m|², v = p − c.
 I circle_d2(const IV& p, const Vec3& c, const Vec3& normal, double r) {
@@ -129,6 +101,25 @@ I circle_d2(const IV& p, const Vec3& c, const Vec3& normal, double r) {
   const I h2 = CGAL::square(dot(v, m)) / mm;
   const I rho = CGAL::sqrt(norm2(cross(v, m)) / mm);  // sqrt clamps a negative lower end at 0
   return h2 + CGAL::square(rho - I(r));
+}
+
+/// Enclosure of the squared pseudo-distance of a mesh skeleton over the box [lo, hi]
+/// (solid/field_leaf.h kMesh). Beyond c = max(R − r_T, r_T) from ∂M the potential no longer
+/// changes (0 outside, 1 inside), so dist is capped there. Where the box provably misses ∂M,
+/// the whole box is on one side, M's exact side at its corner lo; elsewhere the hull of both.
+/// Needs the rounding guard.
+I mesh_pseudo_d2(const FieldPrimitive& prim, const Vec3& lo, const Vec3& hi) {
+  const I c(std::max(prim.influence - prim.radius, prim.radius));
+  const I dist = CGAL::sqrt(detail::mesh_d2(prim, lo, hi, CGAL::square(c).sup()));
+  const I r(prim.radius);
+  auto clamp0 = [](const I& x) { return I(std::max(0.0, x.inf()), std::max(0.0, x.sup())); };
+  I d;
+  if (dist.inf() > 0) {
+    d = detail::mesh_side(prim, lo) > 0 ? clamp0(r - dist) : r + dist;
+  } else {
+    d = I(clamp0(r - dist).inf(), (r + dist).sup());
+  }
+  return CGAL::square(d);
 }
 
 /// Enclosure of f − T over the probe box [lo, hi] (a point when lo = hi); *circle is set when
@@ -173,6 +164,12 @@ I enclose(const FieldLeaf& leaf, const Vec3& lo, const Vec3& hi, bool* circle,
         *circle = true;
         d2 = circle_d2(p, q[0], q[1], prim.circle_radius);
         break;
+      case SkeletonKind::kMesh: {
+        const Bbox& mb = prim.mesh->nodes[0].box;
+        if (far(lo, hi, mb.min, mb.max, mesh_reach(prim))) continue;
+        d2 = mesh_pseudo_d2(prim, lo, hi);
+        break;
+      }
     }
     const I g = potential(d2, R, prim.exponent);
     f = prim.weight > 0 ? f + g : f - g;
@@ -208,6 +205,8 @@ Q segment_d2(const QV& p, const Vec3& a, const Vec3& b) {
 /// [p, hi] is a box of doubles holding P (the pruning tests are sound for boxes).
 Sign exact_sign(const FieldLeaf& leaf, const QV& P, const Vec3& p, const Vec3& hi) {
   Q f(0);
+  const FieldPrimitive* pending = nullptr;  // a mesh term with an irrational potential
+  int pending_side = 0;
   for (const FieldPrimitive& prim : leaf.primitives) {
     const double R = prim.influence;
     const Vec3* q = prim.points.data();
@@ -239,6 +238,29 @@ Sign exact_sign(const FieldLeaf& leaf, const QV& P, const Vec3& p, const Vec3& h
       case SkeletonKind::kCircle:
         if (far(p, hi, q[0], q[0], circle_reach(prim))) continue;
         return Sign::kUndecided;
+      case SkeletonKind::kMesh: {
+        const Bbox& mb = prim.mesh->nodes[0].box;
+        if (far(p, hi, mb.min, mb.max, mesh_reach(prim))) continue;
+        // The side is decided at double points only (a warp's rational preimage is not one).
+        if (!(p == hi) || pending != nullptr) return Sign::kUndecided;
+        const int side = detail::mesh_side(prim, p);
+        if (side == 0) {  // on ∂M: d = r_T, g = T
+          f = prim.weight > 0 ? f + exact_threshold(prim) : f - exact_threshold(prim);
+          continue;
+        }
+        // dist ≥ R − r_T outside: g = 0; dist ≥ r_T inside: d = 0, g = 1. Else g is
+        // irrational (a square root): decided below only when it is the lone term.
+        const Q D = detail::mesh_exact_d2(prim, p), r(prim.radius);
+        const Q reach = Q(R) - r;
+        if (side < 0 && D >= reach * reach) continue;
+        if (side > 0 && D >= r * r) {
+          f = prim.weight > 0 ? f + Q(1) : f - Q(1);
+          continue;
+        }
+        pending = &prim;
+        pending_side = side;
+        continue;
+      }
     }
     const Q R2 = Q(R) * Q(R);
     if (d2 >= R2) continue;  // d ≥ R: g = 0
@@ -246,6 +268,13 @@ Sign exact_sign(const FieldLeaf& leaf, const QV& P, const Vec3& p, const Vec3& h
     f = prim.weight > 0 ? f + g : f - g;
   }
   const Q T = exact_threshold(leaf.primitives[0]);
+  if (pending != nullptr) {
+    // 0 < g < 1 with g > T exactly inside M (d < r_T) and g < T outside. Alone (every other
+    // term 0), its side decides; a negative term alone leaves f < 0 < T.
+    if (f != 0) return Sign::kUndecided;
+    if (pending->weight < 0) return Sign::kOutside;
+    return pending_side > 0 ? Sign::kInside : Sign::kOutside;
+  }
   return f > T ? Sign::kInside : (f < T ? Sign::kOutside : Sign::kOn);
 }
 
@@ -272,6 +301,18 @@ std::string num(double x) {
 }
 bool in_range(double x) { return std::abs(x) <= kMaxCoordinate; }  // false for NaN
 
+/// True when a, b, c are collinear, exactly: (b − a)×(c − a) = 0, an interval filter first.
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const IV A = iv(a), n = detail::cross(iv(b) - A, iv(c) - A);
+    auto nonzero = [](const I& x) { return x.inf() > 0 || x.sup() < 0; };
+    if (nonzero(n.x) || nonzero(n.y) || nonzero(n.z)) return false;
+  }
+  const QV A = qv(a), ab = qv(b) - A, ac = qv(c) - A;
+  return ab.y * ac.z == ab.z * ac.y && ab.z * ac.x == ab.x * ac.z && ab.x * ac.y == ab.y * ac.x;
+}
+
 /// The first problem of one primitive, or "" (everything but the shared threshold).
 std::string primitive_problem(const FieldPrimitive& prim) {
   const size_t k = prim.points.size();
@@ -289,6 +330,16 @@ std::string primitive_problem(const FieldPrimitive& prim) {
       }
       break;
     }
+    case SkeletonKind::kMesh:
+      if (k < 6 || k % 3 != 0 || k > kMaxPolylinePoints) {
+        return "a mesh skeleton needs 2 to " + std::to_string(kMaxPolylinePoints / 3) +
+               " triangles (got " + std::to_string(k / 3) + (k % 3 ? " and a partial one)" : ")");
+      }
+      if (!prim.mesh || prim.mesh->order.size() * 3 != k)
+        return "mesh skeleton without its index (solid/field_leaf.h index_skeleton_mesh)";
+      if (!prim.mesh->open_edge.empty())
+        return "the mesh skeleton is not closed: " + prim.mesh->open_edge;
+      break;
     case SkeletonKind::kPolyline:
       if (k < 2 || k > kMaxPolylinePoints) {
         return "a polyline needs 2 to " + std::to_string(kMaxPolylinePoints) + " points (got " +
@@ -329,13 +380,15 @@ std::string primitive_problem(const FieldPrimitive& prim) {
         if (q[j] == q[j + 1]) return "polyline piece " + std::to_string(j) + " has zero length";
       }
       break;
-    case SkeletonKind::kTriangle: {
-      const QV a = qv(q[0]), ab = qv(q[1]) - a, ac = qv(q[2]) - a;
-      if (ab.y * ac.z == ab.z * ac.y && ab.z * ac.x == ab.x * ac.z && ab.x * ac.y == ab.y * ac.x) {
-        return "triangle is degenerate (its points are collinear)";
-      }
+    case SkeletonKind::kTriangle:
+      if (collinear(q[0], q[1], q[2])) return "triangle is degenerate (its points are collinear)";
       break;
-    }
+    case SkeletonKind::kMesh:
+      for (size_t t = 0; t < k / 3; ++t)
+        if (collinear(q[3 * t], q[3 * t + 1], q[3 * t + 2]))
+          return "mesh skeleton triangle " + std::to_string(t) +
+                 " is degenerate (its points are collinear)";
+      break;
     case SkeletonKind::kCircle:
       if (q[1] == Vec3{}) return "circle normal must not be zero";
       if (!(prim.circle_radius > 0 && in_range(prim.circle_radius))) {
@@ -392,8 +445,11 @@ FieldValue evaluate(const FieldLeaf& leaf, const Vec3& p) {
   for (const FieldPrimitive& prim : leaf.primitives) {
     const double R = prim.influence;
     const Vec3* q = prim.points.data();
-    D c{};            // the closest skeleton point: ∇(d²) = 2(p − c)
-    double axis = 0;  // a circle's r² when p is on its axis (d² = |p − c|² + r² there)
+    D c{};                // the closest skeleton point: ∇(d²) = 2(p − c)
+    double axis = 0;      // a circle's r² when p is on its axis (d² = |p − c|² + r² there)
+    bool pseudo = false;  // a mesh skeleton: d² and ½∇(d²) set directly
+    double d2 = 0;
+    D half{};
     switch (prim.kind) {
       case SkeletonKind::kPoint:
         c = dv(q[0]);
@@ -415,6 +471,20 @@ FieldValue evaluate(const FieldLeaf& leaf, const Vec3& p) {
         if (best == kInf) continue;
         break;
       }
+      case SkeletonKind::kMesh: {
+        // d = r_T ± dist with ∇d = ±(p − c)/dist: ½∇(d²) = d·∇d.
+        const Bbox& mb = prim.mesh->nodes[0].box;
+        if (far(p, p, mb.min, mb.max, mesh_reach(prim))) continue;
+        Vec3 closest;
+        const double dist = std::sqrt(detail::mesh_closest(prim, p, closest));
+        const bool inside = detail::mesh_side(prim, p) > 0;
+        const double d = inside ? std::max(0.0, prim.radius - dist) : prim.radius + dist;
+        const D u = dist > 0 ? (1 / dist) * (P - dv(closest)) : D{0, 0, 0};
+        pseudo = true;
+        d2 = d * d;
+        half = (inside ? -d : d) * u;
+        break;
+      }
       case SkeletonKind::kCircle: {
         // c = centre + r·(in-plane direction of v). On the axis every circle point is closest:
         // c is taken as the centre there, ∇(d²) = 2v (the mean of the one-sided gradients).
@@ -430,8 +500,11 @@ FieldValue evaluate(const FieldLeaf& leaf, const Vec3& p) {
         break;
       }
     }
-    const D v = P - c;
-    const double d2 = detail::dot(v, v) + axis;
+    if (!pseudo) {
+      half = P - c;
+      d2 = detail::dot(half, half) + axis;
+    }
+    const D v = half;
     const double R2 = R * R;
     if (!(d2 < R2)) continue;
     const double s = 1 - d2 / R2;
@@ -485,9 +558,11 @@ Sign sign_at(const FieldLeaf& leaf, const QPoint& p) {
 }  // namespace detail
 
 bool exact(const FieldLeaf& leaf) {
-  return std::none_of(
-      leaf.primitives.begin(), leaf.primitives.end(),
-      [](const FieldPrimitive& prim) { return prim.kind == SkeletonKind::kCircle; });
+  return std::none_of(leaf.primitives.begin(), leaf.primitives.end(),
+                      [&](const FieldPrimitive& prim) {
+                        return prim.kind == SkeletonKind::kCircle ||
+                               (prim.kind == SkeletonKind::kMesh && leaf.primitives.size() > 1);
+                      });
 }
 
 Range bound(const FieldLeaf& leaf, const Bbox& box) {

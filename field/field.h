@@ -8,7 +8,10 @@
 // skeletons: f is a rational function of the point there (squared distances to those skeletons
 // are rational; the potential is a polynomial in d²), so points exactly on the surface are found
 // (kOn). A circle skeleton's distance needs a square root: there the interval enclosure, refined
-// by nothing, is the answer, and an undecided point is kUndecided.
+// by nothing, is the answer, and an undecided point is kUndecided. A mesh skeleton's
+// pseudo-distance needs one too, except where it is constant (on ∂M, or beyond its cap) or the
+// only term (then M's exact side decides: field/detail/mesh.h): kUndecided only where it blends
+// with other terms and the interval cannot decide.
 // Distances use the closest point of each skeleton (Ericson, Real-Time Collision Detection
 // §5.1): segment by the clamped projection parameter, triangle by its Voronoi regions.
 
@@ -50,14 +53,16 @@ FieldValue evaluate(const FieldLeaf& leaf, const Vec3& p);
 enum class Sign : int8_t { kOutside = -1, kOn = 0, kInside = 1, kUndecided = 2 };
 
 /// The certified sign at p (ladder above). Never wrong; kUndecided only for leaves with a circle
-/// primitive. \pre p finite.
+/// primitive or a blended mesh skeleton. \pre p finite.
 Sign sign(const FieldLeaf& leaf, const Vec3& p);
 
 /// The exact sign in rationals alone (the independent reference path of the tests).
-/// \pre the leaf has no circle primitive.
+/// \pre the leaf has no circle primitive; kUndecided where a blended mesh skeleton's potential
+/// is irrational.
 Sign sign_exact(const FieldLeaf& leaf, const Vec3& p);
 
-/// True when the leaf's decisions are exact everywhere (no circle primitive).
+/// True when the leaf's decisions are exact everywhere (no circle primitive, no mesh skeleton in a
+/// blend of several primitives).
 bool exact(const FieldLeaf& leaf);
 
 /// A sound enclosure [lo, hi] of f(p) − T for every p in the closed box (interval arithmetic,

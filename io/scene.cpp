@@ -16,6 +16,7 @@
 #include "cover/io/point_set_io.h"
 #include "cover/mesh/orient.h"
 #include "cover/mesh/repair.h"
+#include "cover/mesh/triangulate.h"
 #include "cover/mesh/validate.h"
 #include "cover/modeler/ffd.h"
 #include "cover/points/point_set.h"
@@ -601,6 +602,37 @@ class SceneReader {
                             : "a blend's children are field or blend nodes, not '" + kind + "'");
   }
 
+  /// A mesh skeleton `{"mesh": "part.off"}`: the file's faces triangulated (mesh/triangulate.h)
+  /// into the primitive's triangle soup and indexed. The closedness and degenerate-triangle
+  /// checks are field::validate's; an inside-out mesh (negative volume) is refused here.
+  void mesh_skeleton(const json& a, const std::string& path, FieldPrimitive& p) const {
+    if (!a.is_string() || a.get_ref<const std::string&>().empty())
+      fail(path, "expected a non-empty mesh file path string");
+    std::filesystem::path file = a.get<std::string>();
+    if (file.is_relative()) file = scene_.parent_path() / file;
+    PolygonMesh m;
+    try {
+      m = read_mesh(file, options_.max_file_bytes, nullptr);
+    } catch (const InputError& e) {
+      fail(path, e.what());
+    }
+    std::vector<std::array<uint32_t, 3>> triangles;
+    for (size_t f = 0; f < m.face_count(); ++f)
+      if (triangulate_face(m.vertices, m.face(f), triangles) == FaceTiling::kCrossing)
+        fail(path, file.string() + ": face " + std::to_string(f) + " crosses itself");
+    if (triangles.size() * 3 > kMaxPolylinePoints)
+      fail(path, file.string() + ": more than " + std::to_string(kMaxPolylinePoints / 3) +
+                     " triangles in a mesh skeleton");
+    double volume = 0;
+    for (const auto& t : triangles) {
+      for (uint32_t v : t) p.points.push_back(m.vertices[v]);
+      volume += dot(m.vertices[t[0]], cross(m.vertices[t[1]], m.vertices[t[2]]));
+    }
+    if (volume < 0)
+      fail(path, file.string() + ": the mesh is inside out (negative volume); reverse its faces");
+    p.mesh = index_skeleton_mesh(p.points);
+  }
+
   /// A `field` node's object: skeleton, radius (r_T), influence (R), exponent (n, default 2),
   /// weight (±1, default 1). Ranges are field::validate's.
   FieldPrimitive field_primitive(const json& v, const std::string& path) const {
@@ -609,7 +641,7 @@ class SceneReader {
     const std::string sp = path + "/skeleton";
     const json& sk = required(v, path, "skeleton");
     if (!sk.is_object() || sk.size() != 1)
-      fail(sp, "expected one of point, segment, triangle, polyline, circle");
+      fail(sp, "expected one of point, segment, triangle, polyline, circle, mesh");
     const std::string kind = sk.begin().key();
     const json& a = sk.begin().value();
     const std::string ap = sp + "/" + kind;
@@ -632,6 +664,9 @@ class SceneReader {
     } else if (kind == "polyline") {
       p.kind = SkeletonKind::kPolyline;
       points(2, kMaxPolylinePoints);
+    } else if (kind == "mesh") {
+      p.kind = SkeletonKind::kMesh;
+      mesh_skeleton(a, ap, p);
     } else if (kind == "circle") {
       p.kind = SkeletonKind::kCircle;
       keys(a, ap, {"center", "normal", "radius"});
@@ -640,7 +675,7 @@ class SceneReader {
       p.circle_radius = number(required(a, ap, "radius"), ap + "/radius");
     } else {
       fail(sp + "/" + kind,
-           "unknown skeleton (expected point, segment, triangle, polyline, circle)");
+           "unknown skeleton (expected point, segment, triangle, polyline, circle, mesh)");
     }
     p.radius = number(required(v, path, "radius"), path + "/radius");
     p.influence = number(required(v, path, "influence"), path + "/influence");

@@ -221,7 +221,7 @@ void read_field(Reader& r, FieldLeaf& f, const std::string& label) {
   f.primitives.resize(n);
   for (FieldPrimitive& p : f.primitives) {
     const uint8_t kind = r.get<uint8_t>();
-    if (kind > static_cast<uint8_t>(SkeletonKind::kCircle))
+    if (kind > static_cast<uint8_t>(SkeletonKind::kMesh))
       r.fail_here(label + ": an unknown skeleton");
     p.kind = static_cast<SkeletonKind>(kind);
     const uint32_t points = r.get<uint32_t>();
@@ -232,6 +232,7 @@ void read_field(Reader& r, FieldLeaf& f, const std::string& label) {
     p.influence = r.get<double>();
     p.exponent = r.get<int32_t>();
     p.weight = r.get<int32_t>();
+    if (p.kind == SkeletonKind::kMesh) p.mesh = index_skeleton_mesh(p.points);
   }
   if (const std::string problem = field::validate_placed(f); !problem.empty())
     r.fail(label + ": " + problem);

@@ -14,7 +14,8 @@
 //   per node: u8 op, u32 leaf, u32 children, u32[children]
 // Version 2, written only for solids with field leaves (solid/field_leaf.h), adds leaf flag 4 (a
 // field leaf: no faces, no vertices) and, after the nodes, per field leaf in leaf order:
-//   u32 primitives; per primitive: u8 skeleton kind, u32 points, f64[3·points],
+//   u32 primitives; per primitive: u8 skeleton kind (0 point … 5 mesh), u32 points, f64[3·points]
+//   (a mesh: its triangle soup),
 //   f64 circle_radius, radius, influence, i32 exponent, i32 weight
 // checked as field::validate_placed checks a leaf (its box is recomputed); and leaf flag 8 (a
 // warp leaf: no faces, no vertices, solid/warp_leaf.h) with, after the fields, per warp leaf

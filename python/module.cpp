@@ -561,7 +561,11 @@ py::dict info_dict(const Model& model, bool self_intersection) {
       for (const FieldPrimitive& p : leaf.field->primitives) {
         py::dict pd("skeleton"_a = std::string(to_string(p.kind)));
         auto vec = [](const Vec3& v) { return py::make_tuple(v.x, v.y, v.z); };
-        if (p.kind == SkeletonKind::kCircle) {
+        if (p.kind == SkeletonKind::kMesh) {
+          pd["triangles"] = p.points.size() / 3;
+          pd["bbox"] = py::make_tuple(py::list(vec(p.mesh->nodes[0].box.min)),
+                                      py::list(vec(p.mesh->nodes[0].box.max)));
+        } else if (p.kind == SkeletonKind::kCircle) {
           pd["center"] = py::list(vec(p.points[0]));
           pd["normal"] = py::list(vec(p.points[1]));
           pd["circle_radius"] = p.circle_radius;

@@ -16,9 +16,12 @@
 //                 leaf (support boxes, not surface boxes: a blend's surface can leave the boxes
 //                 of its primitives' own surfaces).
 // Every number is a double, hence an exact rational: the decisions built on them are exact for
-// point, segment, triangle and polyline skeletons (f is a rational function of p there).
+// point, segment, triangle and polyline skeletons (f is a rational function of p there), and for
+// a mesh skeleton wherever it is the only primitive with g > 0 (then the sign is M's exact side).
 
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -26,13 +29,31 @@
 
 namespace cover {
 
-enum class SkeletonKind : uint8_t { kPoint, kSegment, kTriangle, kPolyline, kCircle };
+enum class SkeletonKind : uint8_t { kPoint, kSegment, kTriangle, kPolyline, kCircle, kMesh };
 
-/// "point", "segment", "triangle", "polyline", "circle".
+/// "point", "segment", "triangle", "polyline", "circle", "mesh".
 inline std::string_view to_string(SkeletonKind kind) {
-  constexpr std::string_view kNames[] = {"point", "segment", "triangle", "polyline", "circle"};
+  constexpr std::string_view kNames[] = {"point",    "segment", "triangle",
+                                         "polyline", "circle",  "mesh"};
   return kNames[static_cast<int>(kind)];
 }
+
+/// The bounding-volume hierarchy of a mesh skeleton's triangles (derived from its points by
+/// index_skeleton_mesh; never edited). Node 0 is the root; an inner node's children are
+/// node + 1 and `right`; a leaf node (count > 0) holds triangles order[first, first + count).
+/// Boxes are exact: the min and max of their triangles' vertex coordinates.
+struct SkeletonMeshIndex {
+  struct Node {
+    Bbox box;
+    uint32_t first = 0, count = 0, right = 0;
+  };
+  std::vector<Node> nodes;
+  std::vector<uint32_t> order;  ///< triangle t is points[3t], points[3t + 1], points[3t + 2]
+  /// "" when every directed edge (a, b) is matched by as many (b, a) (coordinates compared
+  /// exactly): the soup bounds a solid; else the first unmatched edge, as "triangle t: edge
+  /// (x, y, z) -> (x, y, z) has no opposite".
+  std::string open_edge;
+};
 
 /// One skeletal primitive.
 ///   kPoint: points[0]. kSegment: points[0..1]. kTriangle: points[0..2].
@@ -40,6 +61,11 @@ inline std::string_view to_string(SkeletonKind kind) {
 ///   distance is the least over them: one primitive, no bulge at the joints).
 ///   kCircle: points[0] the centre, points[1] the plane's normal (any length, not zero),
 ///   circle_radius > 0.
+///   kMesh: a closed, consistently oriented triangle soup, points[3t..3t+2] triangle t
+///   counter-clockwise seen from outside; M the solid it bounds (winding number ≥ 1). Its d is
+///   the pseudo-distance (paper §4.2): r_T + dist(p, ∂M) outside M, max(0, r_T − dist(p, ∂M))
+///   inside, so that the primitive alone has the surface ∂M itself (g(r_T) = T) and blends with
+///   other primitives round it. `mesh` is the triangles' hierarchy (index_skeleton_mesh).
 struct FieldPrimitive {
   SkeletonKind kind = SkeletonKind::kPoint;
   std::vector<Vec3> points;
@@ -48,7 +74,11 @@ struct FieldPrimitive {
   double influence = 1.0;  ///< R: the support's radius
   int exponent = 2;        ///< n, 2 ≤ n ≤ kMaxFieldExponent
   int weight = 1;          ///< ±1: a negative primitive carves
+  std::shared_ptr<const SkeletonMeshIndex> mesh;  ///< kMesh only: built from `points`
 };
+
+/// The hierarchy of a kMesh primitive's points (call again whenever they change).
+std::shared_ptr<const SkeletonMeshIndex> index_skeleton_mesh(const std::vector<Vec3>& points);
 
 inline constexpr int kMaxFieldExponent = 16;
 inline constexpr size_t kMaxPolylinePoints = 1 << 20;
@@ -59,7 +89,8 @@ struct FieldLeaf {
 };
 
 /// One primitive's support box: the skeleton's box grown by R (a circle's centre by its radius
-/// + R), rounded outward; every point where its g > 0 is inside, whatever its weight.
+/// + R; a mesh's box by R − r_T rounded up), rounded outward; every point where its g > 0 is
+/// inside, whatever its weight.
 Bbox primitive_support_box(const FieldPrimitive& prim);
 
 /// The union of the positive primitives' support boxes (the skeleton's box grown by R; a

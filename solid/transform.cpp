@@ -124,7 +124,8 @@ double similarity_scale(const Matrix4& m, double det, const char* kind) {
 
 /// Field leaves take similarities only (similarity_scale): skeleton points are mapped, lengths
 /// (r_T, R, a circle's radius) multiplied by s = |det L|^(1/3), a circle's normal mapped by L
-/// (L⁻ᵀ ∝ L for a similarity). A blend keeps its first primitive's threshold (solid/field_leaf.h).
+/// (L⁻ᵀ ∝ L for a similarity), a mesh skeleton's hierarchy rebuilt. A blend keeps its first
+/// primitive's threshold (solid/field_leaf.h).
 void transform_fields(const Matrix4& m, double det, Solid& solid) {
   const double s = similarity_scale(m, det, "field");
   auto map = [&](Vec3& p, double w) {
@@ -145,6 +146,13 @@ void transform_fields(const Matrix4& m, double det, Solid& solid) {
         prim.circle_radius *= s;
       } else {
         for (Vec3& p : prim.points) map(p, 1.0);
+      }
+      if (prim.kind == SkeletonKind::kMesh) {
+        // A mirror turns the triangles inside out: reverse them to keep them outward.
+        if (det < 0)
+          for (size_t t = 0; t + 2 < prim.points.size(); t += 3)
+            std::swap(prim.points[t + 1], prim.points[t + 2]);
+        prim.mesh = index_skeleton_mesh(prim.points);
       }
       prim.radius *= s;
       prim.influence *= s;

@@ -112,3 +112,41 @@ def test_octree_of_field_leaves_equals_cli(tmp_path):
     report = cli_json("octree", SNAKE, "--depth", 5, "-o", out)
     leaves = report["leaves"]
     assert leaves["full"] > 0 and leaves["empty"] > 0 and leaves["partial"] > 0
+
+
+def test_mesh_skeleton_alone_is_the_mesh_and_blends_round_it(tmp_path):
+    """A mesh skeleton alone classifies as its mesh does (surface points `face`); blended with a
+    point it grows near the point only; the CLI agrees and a bad mesh is an InputError naming
+    the scene and the node."""
+    torus = MODELS / "torus.off"
+    alone = tmp_path / "alone.json"
+    alone.write_text('{"field": {"skeleton": {"mesh": "%s"}, "radius": 0.1, "influence": 0.3}}'
+                     % torus)
+    blend = tmp_path / "blend.json"
+    blend.write_text('{"blend": [{"field": {"skeleton": {"mesh": "%s"}, "radius": 0.1, '
+                     '"influence": 0.3}}, {"field": {"skeleton": {"point": [1.2, 0, 0.3]}, '
+                     '"radius": 0.1, "influence": 0.3}}]}' % torus)
+    mesh = cover.load(torus)
+    lo, hi = cover.load(alone).bounds()
+    P = np.random.default_rng(7).uniform(lo, hi, size=(20000, 3))
+    a, m = cover.load(alone).classify(P), mesh.classify(P)
+    assert np.array_equal(a, np.where(m >= 2, 2, m))
+    assert (a == 1).sum() > 1000
+    b = cover.load(blend).classify(P)
+    grown = (b == 1) & (a == 0)
+    assert grown.sum() > 0 and (b[a == 1] == 1).all()
+    assert (np.linalg.norm(P[grown] - [1.2, 0, 0.3], axis=1) < 0.3 + 0.2).all()
+    points = tmp_path / "points.txt"
+    np.savetxt(points, P[:2000], fmt="%.17g")
+    report = cli_json("classify", blend, "--points", points)
+    assert [cover.CLASS_NAMES[c] for c in b[:2000]] == report["classes"]
+    info = cover.load(alone).info()
+    prim = [leaf for leaf in info["leaves_info"] if leaf["kind"] == "field"][0]["primitives"][0]
+    assert prim["skeleton"] == "mesh" and prim["triangles"] > 0
+    (tmp_path / "open.off").write_text("OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n")
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"field": {"skeleton": {"mesh": "open.off"}, "radius": 0.1, "influence": 0.3}}')
+    with pytest.raises(cover.InputError, match=r"bad\.json.*/field.*not closed"):
+        cover.load(bad)
+    r = run_cli("info", bad, check=False)
+    assert r.returncode == 2 and "not closed" in r.stderr and r.stderr.count("\n") == 1

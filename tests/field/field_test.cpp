@@ -122,7 +122,7 @@ Vec3 random_point(Rng& rng, double half) {
 }
 FieldPrimitive primitive(Kind kind, std::vector<Vec3> points, double r, double R, int n = 2,
                          int w = 1, double circle_radius = 0) {
-  return {kind, std::move(points), circle_radius, r, R, n, w};
+  return {kind, std::move(points), circle_radius, r, R, n, w, nullptr};
 }
 /// A valid blend of `count` random point/segment/triangle/polyline primitives, some negative:
 /// scales 2^k keep r_T/R = 1/2, so every T = (3/4)^n exactly.
