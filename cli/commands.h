@@ -41,8 +41,10 @@ struct CommonOptions {
 /// "LEAF: open mesh (N boundary edges): REASON", and no warning is printed; so is a field leaf
 /// ("INPUT: /json/path: field leaf: REASON", "closed leaves" reading "closed mesh leaves"), or
 /// with `field_reason` where that is given.
+/// `curved_ok`: a tree with field or warp leaves is accepted whole (open leaves beside them too).
 Model load_model(const std::string& input, const LoadOptions& options,
-                 const std::string& closed_needed = {}, const std::string& field_reason = {});
+                 const std::string& closed_needed = {}, const std::string& field_reason = {},
+                 bool curved_ok = false);
 
 struct InfoOptions {
   std::string input;

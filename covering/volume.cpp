@@ -240,13 +240,9 @@ VolumeResult bracket_volume(const Prepared& prepared, const VolumeOptions& optio
 
 VolumeResult volume(const Prepared& prepared, const VolumeOptions& options) {
   const Solid& s = prepared.solid();
-  if (s.has_implicit_leaf()) {
-    if (options.exact)
-      throw InputError(s.implicit_leaf_message() +
-                       ": no exact volume; the bracket method bounds it (without " +
-                       parameter("exact") + ")");
-    return detail::bracket_volume(prepared, options);  // open leaves: by their closures
-  }
+  // Curved solids have no exact volume in doubles: options.exact takes the bracket too, whose
+  // certified bound settles mesh leaves exactly inside it (open leaves: by their closures).
+  if (s.has_implicit_leaf()) return detail::bracket_volume(prepared, options);
   if (s.has_open_leaf()) {
     if (options.exact)
       throw InputError(s.open_leaf_message() +

@@ -71,10 +71,11 @@ std::optional<std::string> covering_inexact_reason(const Solid& solid);
 /// mesh leaves no covering triangle's box meets; V_in = the full cells, V_out = V_in + the
 /// undecided ones, both outward rounded, refined until (V_out − V_in)/2 ≤
 /// bracket_relative_error·V or the next level would hold more than max_rays cells; volume = the
-/// midpoint, error_bound = its distance to either end (certified), rays = the cells settled.
+/// midpoint, error_bound = its distance to either end (certified), rays = the cells settled;
+/// options.exact as well (a curved solid has no exact volume in doubles).
 /// \throws NotComputable for an unbounded result, and with options.exact when the covering is
 /// not exact for this expression (see above; evaluate() is); InputError with options.exact and
-/// an open leaf.
+/// an open leaf without field or warp leaves.
 VolumeResult volume(const Prepared& prepared, const VolumeOptions& options = {});
 
 /// One-shot: prepares the solid, then measures. \throws as above.

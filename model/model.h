@@ -179,7 +179,8 @@ class Model {
   /// method with its proven bound; else — options.exact, or (options.rays == 0) a bound that
   /// misses options.target_relative_error — the exact volume and area of the evaluated B-rep
   /// (method "brep", error_bound 0), when evaluate() accepts the leaves (otherwise the ray
-  /// result, target_met false, stays).
+  /// result, target_met false, stays). Field and warp leaves: the bracket method (method
+  /// "bracket"), options.exact included (a curved solid has no exact volume in doubles).
   /// \throws NotComputable for an unbounded result; with options.exact, InputError when the
   /// B-rep cannot be evaluated (a leaf face whose boundary crosses itself).
   VolumeResult volume(const VolumeOptions& options = {}) const;
