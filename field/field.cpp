@@ -272,7 +272,9 @@ Sign exact_sign(const FieldLeaf& leaf, const QV& P, const Vec3& p, const Vec3& h
     // 0 < g < 1 with g > T exactly inside M (d < r_T) and g < T outside. Alone (every other
     // term 0), its side decides; a negative term alone leaves f < 0 < T.
     if (f != 0) return Sign::kUndecided;
-    if (pending->weight < 0) return Sign::kOutside;
+    if (pending->weight < 0) return Sign::kOutside;  // f = −g < 0 < T
+    // Alone, with the leaf's threshold: g > T ⇔ d < r_T ⇔ inside M.
+    if (exact_threshold(*pending) != T) return Sign::kUndecided;
     return pending_side > 0 ? Sign::kInside : Sign::kOutside;
   }
   return f > T ? Sign::kInside : (f < T ? Sign::kOutside : Sign::kOn);

@@ -3,12 +3,17 @@
 #include "cover/model/detail/mixed.h"
 
 #include <algorithm>
+#include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "cover/covering/prepared.h"
+#include "cover/field/field.h"
 #include "cover/polygonize/polygonize.h"
+#include "cover/solid/primitives.h"
+#include "cover/solid/vec3_hash.h"
 
 namespace cover::detail {
 namespace {
@@ -47,6 +52,104 @@ Solid single_leaf(const Solid& s, uint32_t l) {
 
 bool curved(const Leaf& l) { return l.is_implicit() || l.open(); }
 
+bool meet(const Bbox& a, const Bbox& b) {
+  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
+         a.min.z <= b.max.z && b.min.z <= a.max.z;
+}
+
+/// A mesh skeleton's triangle soup welded into a mesh (equal coordinates, one vertex).
+PolygonMesh welded(const FieldPrimitive& prim) {
+  PolygonMesh m;
+  std::unordered_map<Vec3, uint32_t, Vec3Hash> index;
+  for (const Vec3& p : prim.points) {
+    const auto [it, fresh] = index.try_emplace(p, static_cast<uint32_t>(m.vertices.size()));
+    if (fresh) m.vertices.push_back(p);
+    m.face_vertices.push_back(it->second);
+    if (m.face_vertices.size() % 3 == 0)
+      m.face_start.push_back(static_cast<uint32_t>(m.face_vertices.size()));
+  }
+  return m;
+}
+
+/// A blend with mesh skeletons (solid/field_leaf.h kMesh), the mesh kept exact where it alone
+/// decides: with Q the union of every other primitive's support box and of the overlaps of two
+/// mesh skeletons' support boxes, at most one mesh primitive has g > 0 outside Q, so the leaf
+/// there is the union of its positive meshes M_k (f > T ⇔ p ∈ M_k when their thresholds equal
+/// the leaf's, exactly). The leaf is ((∪ M_k) − Q) ∪ (L ∩ Q): L polygonized over Q's box only, at
+/// the step the whole leaf would get, and the exact Booleans join them. Nothing when the leaf
+/// has no mesh skeleton or its primitives' thresholds differ (the transform rounded them).
+std::optional<PolygonizeResult> mesh_with_exact_skeletons(const Solid& s, uint32_t l,
+                                                          const PolygonizeOptions& options) {
+  const Leaf& leaf = s.leaves[l];
+  if (!leaf.is_field()) return std::nullopt;
+  const FieldLeaf& f = s.fields[leaf.field];
+  const auto is_mesh = [](const FieldPrimitive& p) { return p.kind == SkeletonKind::kMesh; };
+  if (std::none_of(f.primitives.begin(), f.primitives.end(), is_mesh) ||
+      !field::validate(f).empty())
+    return std::nullopt;
+  std::vector<Solid> q, meshes;
+  Bbox q_box;
+  for (size_t i = 0; i < f.primitives.size(); ++i) {
+    const FieldPrimitive& a = f.primitives[i];
+    const Bbox ba = primitive_support_box(a);
+    if (!is_mesh(a)) {
+      q.push_back(make_leaf(make_box(ba.min, ba.max), "Q"));
+      q_box.add(ba);
+      continue;
+    }
+    if (a.weight > 0) meshes.push_back(make_leaf(welded(a), leaf.name));
+    for (size_t j = i + 1; j < f.primitives.size(); ++j) {
+      const Bbox bb = primitive_support_box(f.primitives[j]);
+      if (!is_mesh(f.primitives[j]) || !meet(ba, bb)) continue;
+      const Vec3 lo{std::max(ba.min.x, bb.min.x), std::max(ba.min.y, bb.min.y),
+                    std::max(ba.min.z, bb.min.z)};
+      const Vec3 hi{std::min(ba.max.x, bb.max.x), std::min(ba.max.y, bb.max.y),
+                    std::min(ba.max.z, bb.max.z)};
+      if (lo.x < hi.x && lo.y < hi.y && lo.z < hi.z) {
+        q.push_back(make_leaf(make_box(lo, hi), "Q"));
+        q_box.add(Bbox{lo, hi});
+      } else {
+        // Boxes touching in a face, edge or corner: Q must still hold the contact; the whole
+        // of the smaller box is simplest.
+        const Bbox& small = ba.max.x - ba.min.x < bb.max.x - bb.min.x ? ba : bb;
+        q.push_back(make_leaf(make_box(small.min, small.max), "Q"));
+        q_box.add(small);
+      }
+    }
+  }
+  PolygonizeResult out;
+  Solid exact = meshes.empty() ? Solid{} : unite(std::move(meshes));
+  Solid whole;
+  if (q.empty()) {
+    whole = std::move(exact);
+  } else {
+    const Bbox& lb = leaf.bbox;
+    const Vec3 e = lb.max - lb.min;
+    PolygonizeOptions po = options;
+    if (po.cell_size <= 0) po.cell_size = std::max({e.x, e.y, e.z}) / options.resolution;
+    const Solid one = single_leaf(s, l);
+    const Prepared prepared(one);
+    const Bbox region{{std::max(q_box.min.x, lb.min.x), std::max(q_box.min.y, lb.min.y),
+                       std::max(q_box.min.z, lb.min.z)},
+                      {std::min(q_box.max.x, lb.max.x), std::min(q_box.max.y, lb.max.y),
+                       std::min(q_box.max.z, lb.max.z)}};
+    out = polygonize(prepared, region, po);
+    out.clipped = 0;  // the region cuts L on purpose: Q cuts it again below
+    Solid region_q = unite(std::move(q));
+    std::vector<Solid> parts;
+    if (!exact.leaves.empty()) parts.push_back(subtract({std::move(exact), region_q}));
+    if (out.mesh.face_count() > 0)
+      parts.push_back(intersect({make_leaf(std::move(out.mesh), leaf.name), region_q}));
+    if (parts.empty()) {
+      out.mesh = {};
+      return out;
+    }
+    whole = unite(std::move(parts));
+  }
+  out.mesh = whole.leaves.empty() ? PolygonMesh{} : evaluate(whole, {}).mesh;
+  return out;
+}
+
 }  // namespace
 
 MeshedSolid mesh_curved_leaves(const Solid& s, const EvaluateOptions& options) {
@@ -78,9 +181,15 @@ MeshedSolid mesh_curved_leaves(const Solid& s, const EvaluateOptions& options) {
       r.leaves.push_back(std::move(leaf));
       continue;
     }
-    const Solid one = single_leaf(s, l);
-    const Prepared prepared(one);
-    PolygonizeResult p = polygonize(prepared, from.bbox, po);
+    std::optional<PolygonizeResult> skeletal = mesh_with_exact_skeletons(s, l, po);
+    PolygonizeResult p;
+    if (skeletal) {
+      p = std::move(*skeletal);
+    } else {
+      const Solid one = single_leaf(s, l);
+      const Prepared prepared(one);
+      p = polygonize(prepared, from.bbox, po);
+    }
     out.meshed.push_back(
         {l, p.mesh.face_count(), p.cell_size, p.tolerance, p.uncertain, p.clipped});
     r.vertices.insert(r.vertices.end(), p.mesh.vertices.begin(), p.mesh.vertices.end());

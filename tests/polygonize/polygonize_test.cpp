@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <set>
 #include <string>
+#include <tuple>
 
 #include "cover/covering/box_states.h"
 #include "cover/io/scene.h"
@@ -224,6 +226,46 @@ TEST(MixedEvaluation, FieldsAndMeshesAgreeWithClassifyOffTheBand) {
   expect_mixed_matches(scene(std::string(R"({"intersection": [{"complement": )") + kBall +
                              R"(}, {"box": {"min": [-1, -1, -1], "max": [1, 1, 1]}}]})"),
                        "box minus a ball by complement");
+}
+
+TEST(MixedEvaluation, MeshSkeletonsStayExactOutsideTheOverlaps) {
+  const std::string torus = std::string(COVER_SOURCE_DIR) + "/models/torus.off";
+  const std::string skeleton =
+      R"({"field": {"skeleton": {"mesh": ")" + torus + R"("}, "radius": 0.1, "influence": 0.3}})";
+  // Alone: the mesh itself, exactly (no polygonization: Q is empty).
+  const Model mesh = load(torus);
+  const EvaluateResult alone = scene(skeleton).evaluate({.mesh_resolution = kResolution});
+  ASSERT_EQ(alone.meshed.size(), 1u);
+  EXPECT_EQ(alone.tolerance, 0);
+  std::vector<Vec3> a = alone.mesh.vertices, b = mesh.evaluate().mesh.vertices;
+  auto order = [](const Vec3& p, const Vec3& q) {
+    return std::tie(p.x, p.y, p.z) < std::tie(q.x, q.y, q.z);
+  };
+  std::sort(a.begin(), a.end(), order);
+  std::sort(b.begin(), b.end(), order);
+  EXPECT_EQ(a, b);
+  // Blended with a point and cut by a box: valid, agrees with classify off the band, and every
+  // torus vertex outside the point's support box and the cut is an output vertex, exactly.
+  const Model blend = scene(R"({"difference": [{"blend": [)" + skeleton +
+                            R"(, {"field": {"skeleton": {"point": [1.2, 0, 0.3]}, "radius": 0.1,
+                                  "influence": 0.3}}]},
+                              {"box": {"min": [-3, -3, -1], "max": [0, 0, 1]}}]})");
+  expect_mixed_matches(blend, "torus skeleton blend minus a box");
+  const EvaluateResult e = blend.evaluate({.mesh_resolution = kResolution});
+  const std::set<std::tuple<double, double, double>> out = [&] {
+    std::set<std::tuple<double, double, double>> s;
+    for (const Vec3& p : e.mesh.vertices) s.insert({p.x, p.y, p.z});
+    return s;
+  }();
+  size_t kept = 0;
+  for (const Vec3& p : mesh.solid().vertices) {
+    const bool near_point = std::abs(p.x - 1.2) <= 0.31 && std::abs(p.y) <= 0.31;
+    const bool cut = p.x <= 0 && p.y <= 0;
+    if (near_point || cut) continue;
+    EXPECT_TRUE(out.count({p.x, p.y, p.z})) << p.x << " " << p.y << " " << p.z;
+    ++kept;
+  }
+  EXPECT_GT(kept, mesh.solid().vertices.size() / 2);
 }
 
 TEST(MixedEvaluation, WarpsAndModelsFromFiles) {
