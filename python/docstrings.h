@@ -97,7 +97,7 @@ f: float64 (n, k), grad: float64 (n, k, 3), for the k field leaves in leaf order
 names them). f is the blend's sum of w_i (1 - d_i^2 / R_i^2)^n_i (inside where f exceeds the
 threshold). Raises InputError when the model has no field leaf.)";
 
-inline constexpr const char* kWinding =
+inline constexpr const char* kWindings =
     R"(Every leaf's winding number at every point: int32 (n, leaves).
 
 points: array-like (n, 3) as for classify(). Column l is leaf l (load order / operand order).
@@ -108,23 +108,45 @@ leaf inside. Where a point lies ON leaf l's surface the entry is undefined: a cl
 holds the count of a symbolically perturbed point (a neighbouring value, 0 or 1 for a simple
 leaf), an open leaf's 0: use classify() to detect such points (its face / edge / vertex codes).)";
 
+inline constexpr const char* kWinding =
+    R"(Deprecated name of windings() (a DeprecationWarning): the same array.)";
+
 inline constexpr const char* kCast =
-    R"(First entry into the result along each ray: a Hits named tuple of arrays.
+    R"(Every crossing of the solids' surfaces along each ray (as the C++ Model::cast): a
+Casts named tuple of flat arrays.
+
+origins: array-like (n, 3); directions: (n, 3), or (3,) for one direction shared by every
+ray (non-zero, finite). A ray is origin + t * direction, t > 0. Ray i's crossings are
+t[offsets[i]:offsets[i+1]] (sorted), with their leaf, face and sign (+1 leaving the leaf, -1
+entering it); the intervals of the ray inside the result are spans[span_offsets[i]:
+span_offsets[i+1]] ((k, 2) rows t0, t1); uncertain[i] counts pieces field bisection could not
+certify. first_hits() gives the first entry only.)";
+
+inline constexpr const char* kFirstHits =
+    R"(First entry into the result along each ray (as the C++ Model::first_hits): a Hits
+named tuple of arrays.
 
 origins: array-like (n, 3); directions: (n, 3), or (3,) for one direction shared by every
 ray (non-zero, finite). A ray is origin + t * direction, t > 0. Returns Hits(hit bool (n,),
 t float64 (n,) [inf where no hit], leaf int32 (n,) [-1], face int64 (n,) [-1], normal
 float64 (n, 3) unit outward normal of the result [0]).)";
 
-inline constexpr const char* kVolume = R"(Volume of the result (float), as `cover volume`.
+inline constexpr const char* kCasts =
+    R"(Model.cast()'s result: offsets int64 (n+1,), t float64 (k,), leaf int32 (k,), face
+int64 (k,), sign int32 (k,) (+1 leaving, -1 entering the leaf), span_offsets int64 (n+1,), spans
+float64 (s, 2), uncertain uint32 (n,).)";
+
+inline constexpr const char* kVolume =
+    R"(Volume of the result, as `cover volume`: a VolumeResult, a float (the volume) that also
+carries .volume, .error_bound, .method ("covering", "rays", "bracket" or "brep"), .area (None
+where it would need evaluation), .rays / .cells and .target_met, as the C++ VolumeResult.
 
 Exact from the covering where the expression allows it; else integrated over parallel rays
 with a proven relative error bound of 1e-4 (or the exact B-rep volume when the bound is not
-met); exact=True requires an exact method (B-rep evaluation); rays=N fixes the ray method's
-finest cells (1..2048). Field leaves: the certified bracket method (midpoint of [V_in, V_out],
-relative half-width 1e-2 by default). tolerance=t sets the relative target of the ray and bracket
-methods. volume_info() returns the method and error bound as well. Raises NotComputable for an
-unbounded result.)";
+met); exact=True requires an exact method (B-rep evaluation; field and warp leaves: the bracket);
+rays=N fixes the ray method's finest cells (1..2048). Field leaves: the certified bracket method
+(midpoint of [V_in, V_out], relative half-width 1e-2 by default). tolerance=t sets the relative
+target of the ray and bracket methods. Raises NotComputable for an unbounded result.)";
 
 inline constexpr const char* kVolumeInfo =
     R"(Volume with its provenance: dict with volume (float), area (float or None where
@@ -310,6 +332,10 @@ one row per corner of F in face order, or (m, n, k) for faces of n vertices; the
 each face, never smoothed (cover::CornerAttributes): corners at old vertices keep their values,
 edge points take the mean of the edge's two corners in that face, face points the face's mean;
 doo-sabin applies its own mask within the face; seams stay seams.)";
+
+inline constexpr const char* kWritePng =
+    R"(Writes an RGB image (uint8 (height, width, 3), as Model.render() returns) as a PNG file,
+atomically (a temporary beside it, then renamed), as `cover render` writes its frames.)";
 
 inline constexpr const char* kWriteMesh =
     R"(Writes a mesh file, atomically (a temporary beside the target, then renamed).

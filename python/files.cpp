@@ -1,5 +1,6 @@
 // The mesh writers of io/mesh_io.h for Python (docs/python.md): every format the CLI writes, atomic
-// as the CLI's, with per-face leaf labels where the format holds them.
+// as the CLI's, with per-face leaf labels where the format holds them; and the PNG writer of
+// io/png.h for images (Model.render()).
 #include "files.h"
 
 #include <pybind11/numpy.h>
@@ -11,6 +12,7 @@
 
 #include "arrays.h"
 #include "cover/io/mesh_io.h"
+#include "cover/io/png.h"
 #include "cover/render/render.h"
 #include "cover/solid/errors.h"
 #include "docstrings.h"
@@ -57,6 +59,24 @@ void bind_files(py::module_& m) {
       },
       py::arg("path"), py::arg("V"), py::arg("F"), py::arg("leaf_ids") = py::none(),
       doc::kWriteMesh);
+  m.def(
+      "write_png",
+      [](const std::filesystem::path& path, py::handle image) {
+        const auto img =
+            py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image);
+        if (!img || img.ndim() != 3 || img.shape(2) != 3 || img.shape(0) < 1 || img.shape(1) < 1)
+          throw InputError(
+              "image: expected a uint8 array of shape (height, width, 3), as "
+              "Model.render() returns");
+        if (img.shape(0) > 65535 || img.shape(1) > 65535)
+          throw InputError("image: at most 65535 pixels per side");
+        check_png_path(path);
+        const auto h = static_cast<int>(img.shape(0)), w = static_cast<int>(img.shape(1));
+        const std::span<const uint8_t> rgb(img.data(), static_cast<size_t>(img.size()));
+        py::gil_scoped_release release;
+        write_png_rgb(path, w, h, rgb);
+      },
+      py::arg("path"), py::arg("image"), doc::kWritePng);
 }
 
 }  // namespace cover::python

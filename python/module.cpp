@@ -197,8 +197,9 @@ py::array_t<int32_t> winding_numbers(const Model& model, py::handle points, Thre
   return out;
 }
 
-py::object cast_rays(const Model& model, py::handle origins, py::handle directions,
-                     Threads threads) {
+/// The rays of cast() and first_hits(): one direction for all, or one per origin; Model::cast's
+/// checks, naming the caller's index.
+std::vector<Ray> rays_arg(py::handle origins, py::handle directions, const char* what) {
   const Points o = points_arg(origins, "origins");
   const std::span<const Vec3> from = o.span();
   std::vector<Ray> rays(from.size());
@@ -215,14 +216,66 @@ py::object cast_rays(const Model& model, py::handle origins, py::handle directio
                             std::to_string(d.span().size()));
     for (size_t i = 0; i < rays.size(); ++i) rays[i] = {from[i], d.span()[i]};
   }
-  for (size_t i = 0; i < rays.size(); ++i) {  // Model::cast's checks, naming the caller's index
+  for (size_t i = 0; i < rays.size(); ++i) {
     const Ray& r = rays[i];
     const double c[6] = {r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z};
     if (!std::all_of(c, c + 6, [](double x) { return std::isfinite(x); }))
-      throw InputError("cast: ray " + std::to_string(i) + " has a non-finite origin or direction");
+      throw InputError(std::string(what) + ": ray " + std::to_string(i) +
+                       " has a non-finite origin or direction");
     if (r.dir == Vec3{})
-      throw InputError("cast: ray " + std::to_string(i) + " has a zero direction");
+      throw InputError(std::string(what) + ": ray " + std::to_string(i) + " has a zero direction");
   }
+  return rays;
+}
+
+/// Model::cast: every crossing of every ray, flattened (ray i's hits are
+/// [offsets[i], offsets[i + 1]), its spans [span_offsets[i], span_offsets[i + 1])).
+py::object all_hits(const Model& model, py::handle origins, py::handle directions,
+                    Threads threads) {
+  const std::vector<Ray> rays = rays_arg(origins, directions, "cast");
+  const auto n = static_cast<py::ssize_t>(rays.size());
+  py::array_t<int64_t> offsets(n + 1), span_offsets(n + 1);
+  py::array_t<uint32_t> uncertain(n);
+  std::vector<double> t, spans;
+  std::vector<int32_t> leaf, sign;
+  std::vector<int64_t> face;
+  int64_t* off = offsets.mutable_data();
+  int64_t* soff = span_offsets.mutable_data();
+  uint32_t* unc = uncertain.mutable_data();
+  off[0] = soff[0] = 0;
+  {
+    KernelScope scope(threads);
+    Interrupt interrupt;
+    for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
+      const size_t count = std::min(kBatch / 4, rays.size() - begin);
+      const auto r = model.cast(std::span<const Ray>(rays).subspan(begin, count));
+      for (size_t k = 0; k < count; ++k) {
+        const size_t i = begin + k;
+        for (const RayHit& h : r[k].hits) {
+          t.push_back(h.t);
+          leaf.push_back(static_cast<int32_t>(h.leaf));
+          face.push_back(static_cast<int64_t>(h.face));
+          sign.push_back(h.sign);
+        }
+        for (const Span& sp : r[k].spans) spans.insert(spans.end(), {sp.t0, sp.t1});
+        off[i + 1] = static_cast<int64_t>(t.size());
+        soff[i + 1] = static_cast<int64_t>(spans.size() / 2);
+        unc[i] = r[k].uncertain;
+      }
+      interrupt.poll();
+    }
+  }
+  const auto k = static_cast<py::ssize_t>(t.size());
+  return py::module_::import("cover._cover")
+      .attr("Casts")(offsets, copy_array<double>(t, {k}), copy_array<int32_t>(leaf, {k}),
+                     copy_array<int64_t>(face, {k}), copy_array<int32_t>(sign, {k}), span_offsets,
+                     copy_array<double>(spans, {static_cast<py::ssize_t>(spans.size() / 2), 2}),
+                     uncertain);
+}
+
+py::object first_hit_rays(const Model& model, py::handle origins, py::handle directions,
+                          Threads threads) {
+  const std::vector<Ray> rays = rays_arg(origins, directions, "first_hits");
   const auto n = static_cast<py::ssize_t>(rays.size());
   py::array_t<bool> hit(n);
   py::array_t<double> t(n), normal({n, py::ssize_t{3}});
@@ -254,6 +307,22 @@ py::object cast_rays(const Model& model, py::handle origins, py::handle directio
     }
   }
   return py::module_::import("cover._cover").attr("Hits")(hit, t, leaf, face, normal);
+}
+
+/// A VolumeResult as `cover volume --json` states it (keys by method).
+py::dict volume_dict(const VolumeResult& r) {
+  py::dict d("volume"_a = r.volume,
+             "area"_a = r.area ? py::object(py::float_(*r.area)) : py::none(),
+             "method"_a = r.method, "error_bound"_a = r.error_bound);
+  if (r.method == "rays") {
+    d["rays"] = r.rays;
+    d["target_met"] = r.target_met;
+  }
+  if (r.method == "bracket") {
+    d["cells"] = r.rays;
+    d["target_met"] = r.target_met;
+  }
+  return d;
 }
 
 VolumeResult volume_result(const Model& model, bool exact, std::optional<int> rays,
@@ -618,7 +687,7 @@ py::dict info_dict(const Model& model, bool self_intersection) {
 /// `model` after issuing each of its warnings as a Python UserWarning (with the GIL).
 Model warned(Model model) {
   for (const std::string& w : model.warnings(keyword))
-    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 2) != 0) throw py::error_already_set();
+    if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();
   return model;
 }
 
@@ -641,6 +710,11 @@ PYBIND11_MODULE(_cover, m) {
       py::module_::import("collections")
           .attr("namedtuple")("Hits", py::make_tuple("hit", "t", "leaf", "face", "normal"));
   m.attr("Hits").attr("__doc__") = doc::kHits;
+  m.attr("Casts") =
+      py::module_::import("collections")
+          .attr("namedtuple")("Casts", py::make_tuple("offsets", "t", "leaf", "face", "sign",
+                                                      "span_offsets", "spans", "uncertain"));
+  m.attr("Casts").attr("__doc__") = doc::kCasts;
 
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<NotComputable> not_computable(m, "NotComputable", PyExc_RuntimeError);
@@ -728,33 +802,33 @@ PYBIND11_MODULE(_cover, m) {
       .def("classify_counted", &classify_counted_points, py::arg("points"), py::kw_only(), threads,
            doc::kClassifyCounted)
       .def("field", &field_values, py::arg("points"), py::kw_only(), threads, doc::kField)
-      .def("winding", &winding_numbers, py::arg("points"), py::kw_only(), threads, doc::kWinding)
-      .def("cast", &cast_rays, py::arg("origins"), py::arg("directions"), py::kw_only(), threads,
+      .def("windings", &winding_numbers, py::arg("points"), py::kw_only(), threads, doc::kWindings)
+      .def(
+          "winding",
+          [](const Model& a, py::handle points, Threads t) {
+            if (PyErr_WarnEx(PyExc_DeprecationWarning,
+                             "Model.winding() is Model.windings() (the C++ name)", 1) != 0)
+              throw py::error_already_set();
+            return winding_numbers(a, points, t);
+          },
+          py::arg("points"), py::kw_only(), threads, doc::kWinding)
+      .def("cast", &all_hits, py::arg("origins"), py::arg("directions"), py::kw_only(), threads,
            doc::kCast)
+      .def("first_hits", &first_hit_rays, py::arg("origins"), py::arg("directions"), py::kw_only(),
+           threads, doc::kFirstHits)
       .def(
           "volume",
           [](const Model& a, bool exact, std::optional<int> rays, std::optional<double> tol,
-             Threads t) { return volume_result(a, exact, rays, tol, t).volume; },
+             Threads t) {
+            return py::module_::import("cover._results")
+                .attr("VolumeResult")(volume_dict(volume_result(a, exact, rays, tol, t)));
+          },
           py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(),
           py::arg("tolerance") = py::none(), threads, doc::kVolume)
       .def(
           "volume_info",
           [](const Model& a, bool exact, std::optional<int> rays, std::optional<double> tol,
-             Threads t) {
-            const VolumeResult r = volume_result(a, exact, rays, tol, t);
-            py::dict d("volume"_a = r.volume,
-                       "area"_a = r.area ? py::object(py::float_(*r.area)) : py::none(),
-                       "method"_a = r.method, "error_bound"_a = r.error_bound);
-            if (r.method == "rays") {
-              d["rays"] = r.rays;
-              d["target_met"] = r.target_met;
-            }
-            if (r.method == "bracket") {
-              d["cells"] = r.rays;
-              d["target_met"] = r.target_met;
-            }
-            return d;
-          },
+             Threads t) { return volume_dict(volume_result(a, exact, rays, tol, t)); },
           py::kw_only(), py::arg("exact") = false, py::arg("rays") = py::none(),
           py::arg("tolerance") = py::none(), threads, doc::kVolumeInfo)
       .def(

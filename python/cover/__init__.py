@@ -4,14 +4,19 @@ numpy in, numpy out. Build a Model with load(), box(), sphere(), cylinder() or m
 Models with | (union), & (intersection), - (difference) and ~ (complement) or union_all() and
 intersection_all(), move them with translate(), scale(), rotate(), mirror() and transform(),
 and query it:
-classify(), winding(), volume(), bounds(), voxelize(), cast(), render(), evaluate(), clip(),
-info(). subdivide() refines a polygon mesh given as arrays; modify() applies modeling operations
-(pipes, extrusions, ...) to one; write_mesh() writes one in any format the CLI writes. See
+classify(), windings(), volume(), bounds(), voxelize(), cast(), first_hits(), render(),
+evaluate(), clip(), info(). subdivide() refines a polygon mesh given as arrays; modify() applies
+modeling operations (pipes, extrusions, ...) to one; write_mesh() writes one in any format the
+CLI writes, write_png() an image. In a notebook a Model shows itself (a small render). See
 docs/python.md.
 """
 
+import os as _os
+import tempfile as _tempfile
+
 from ._cover import (
     CLASS_NAMES,
+    Casts,
     Hits,
     InputError,
     Model,
@@ -31,10 +36,13 @@ from ._cover import (
     subdivide,
     union_all,
     write_mesh,
+    write_png,
 )
+from ._results import VolumeResult
 
 __all__ = [
     "CLASS_NAMES",
+    "Casts",
     "Hits",
     "InputError",
     "Model",
@@ -54,4 +62,24 @@ __all__ = [
     "subdivide",
     "union_all",
     "write_mesh",
+    "write_png",
+    "VolumeResult",
 ]
+
+
+def _repr_png_(self):
+    """A 320x240 isometric render as PNG bytes (Jupyter's rich display); None for an empty or
+    unbounded Model."""
+    if self.empty or not self.bounded:
+        return None
+    handle, path = _tempfile.mkstemp(suffix=".png")
+    _os.close(handle)
+    try:
+        write_png(path, self.render(320, 240))
+        with open(path, "rb") as f:
+            return f.read()
+    finally:
+        _os.remove(path)
+
+
+Model._repr_png_ = _repr_png_

@@ -25,6 +25,26 @@ class Hits(NamedTuple):
     face: npt.NDArray[np.int64]
     normal: npt.NDArray[np.float64]
 
+class Casts(NamedTuple):
+    offsets: npt.NDArray[np.int64]
+    t: npt.NDArray[np.float64]
+    leaf: npt.NDArray[np.int32]
+    face: npt.NDArray[np.int64]
+    sign: npt.NDArray[np.int32]
+    span_offsets: npt.NDArray[np.int64]
+    spans: npt.NDArray[np.float64]
+    uncertain: npt.NDArray[np.uint32]
+
+class VolumeResult(float):
+    volume: float
+    area: float | None
+    method: str
+    error_bound: float
+    rays: int | None
+    cells: int | None
+    target_met: bool
+    def as_dict(self) -> dict[str, Any]: ...
+
 class Model:
     def __init__(self) -> None: ...
     @property
@@ -52,8 +72,12 @@ class Model:
     def field(
         self, points: _ArrayLike, *, threads: int | None = None
     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+    def windings(self, points: _ArrayLike, *, threads: int | None = None) -> npt.NDArray[np.int32]: ...
     def winding(self, points: _ArrayLike, *, threads: int | None = None) -> npt.NDArray[np.int32]: ...
-    def cast(self, origins: _ArrayLike, directions: _ArrayLike, *, threads: int | None = None) -> Hits: ...
+    def cast(self, origins: _ArrayLike, directions: _ArrayLike, *, threads: int | None = None) -> Casts: ...
+    def first_hits(
+        self, origins: _ArrayLike, directions: _ArrayLike, *, threads: int | None = None
+    ) -> Hits: ...
     def volume(
         self,
         *,
@@ -61,7 +85,7 @@ class Model:
         rays: int | None = None,
         tolerance: float | None = None,
         threads: int | None = None,
-    ) -> float: ...
+    ) -> VolumeResult: ...
     def volume_info(
         self,
         *,
@@ -197,3 +221,4 @@ def write_mesh(
     F: _ArrayLike | Sequence[Sequence[int]],
     leaf_ids: _ArrayLike | None = None,
 ) -> None: ...
+def write_png(path: str | os.PathLike[str], image: _ArrayLike) -> None: ...

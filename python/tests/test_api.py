@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import cover
-from conftest import MODELS, canonical_triangles, parity_inside, signed_volume
+from conftest import MODELS, canonical_triangles, parity_inside, read_png_rgb, signed_volume
 
 
 def box_mesh(lo, hi):
@@ -135,19 +135,19 @@ def test_mesh_accepts_any_integer_index_dtype_and_inside_out():
 def test_winding_numbers_of_overlapping_leaves():
     a = cover.box([0, 0, 0], [2, 2, 2])
     b = cover.box([1, 1, 1], [3, 3, 3])
-    w = (a | b).winding([[0.5, 0.5, 0.5], [1.5, 1.5, 1.5], [2.5, 2.5, 2.5], [5, 5, 5]])
+    w = (a | b).windings([[0.5, 0.5, 0.5], [1.5, 1.5, 1.5], [2.5, 2.5, 2.5], [5, 5, 5]])
     assert w.dtype == np.int32 and w.shape == (4, 2)
     assert w.tolist() == [[1, 0], [1, 1], [0, 1], [0, 0]]
     V, F = box_mesh([0, 0, 0], [1, 1, 1])
     double = cover.mesh(np.vstack([V, V]), np.vstack([F, F + 8]))  # two coincident shells
-    assert double.winding([[0.5, 0.5, 0.5]]).tolist() == [[2]]
+    assert double.windings([[0.5, 0.5, 0.5]]).tolist() == [[2]]
 
 
 def test_cast_hits_box_faces():
     b = cover.box([0, 0, 0], [1, 1, 1])
     O = np.array([[-1, 0.5, 0.5], [0.5, 0.5, 3], [5, 5, 5], [0.5, 0.25, 0.5]])
     D = np.array([[2, 0, 0], [0, 0, -1], [1, 0, 0], [0, 1, 0]], float)
-    h = b.cast(O, D)
+    h = b.first_hits(O, D)
     assert isinstance(h, cover.Hits)
     assert h.hit.tolist() == [True, True, False, False]  # the last starts inside: no entry
     assert h.t[:2].tolist() == [0.5, 2.0] and np.isinf(h.t[2])
@@ -155,8 +155,74 @@ def test_cast_hits_box_faces():
     assert h.leaf.dtype == np.int32 and h.face.dtype == np.int64 and h.leaf[2] == -1
     points = O[:2] + h.t[:2, None] * D[:2]
     assert np.isin(b.classify(points), [2, 3, 4]).all()
-    shared = b.cast(O[:2], [1, 0, 0])  # one direction for every ray
+    shared = b.first_hits(O[:2], [1, 0, 0])  # one direction for every ray
     assert shared.hit.tolist() == [True, False]
+
+
+def test_cast_gives_every_crossing_and_first_hits_the_first():
+    """cast() is C++'s Model::cast (every crossing, the inside spans); first_hits() its first
+    entry. Checked against the analytic crossings of two disjoint boxes along x."""
+    m = cover.box([0, 0, 0], [1, 1, 1]) | cover.box([2, 0, 0], [3, 1, 1])
+    O = np.array([[-1, 0.5, 0.5], [0.5, 0.5, 0.5], [-1, 5, 5]])
+    c = m.cast(O, [1, 0, 0])
+    assert isinstance(c, cover.Casts)
+    assert c.offsets.tolist() == [0, 4, 7, 7] and c.span_offsets.tolist() == [0, 2, 4, 4]
+    assert c.t[:4].tolist() == [1, 2, 3, 4] and c.t[4:].tolist() == [0.5, 1.5, 2.5]
+    assert c.sign[:4].tolist() == [-1, 1, -1, 1]
+    assert c.leaf[:4].tolist() == [0, 0, 1, 1]
+    assert c.spans.tolist() == [[1, 2], [3, 4], [0, 0.5], [1.5, 2.5]]
+    assert c.uncertain.tolist() == [0, 0, 0]
+    h = m.first_hits(O, [1, 0, 0])
+    assert h.hit.tolist() == [True, True, False] and h.t[:2].tolist() == [1, 1.5]
+
+
+def test_windings_is_the_cpp_name_and_winding_warns_at_the_callers_line():
+    b = cover.box([0, 0, 0], [1, 1, 1])
+    assert b.windings([[0.5, 0.5, 0.5]]).tolist() == [[1]]
+    with pytest.warns(DeprecationWarning, match="windings") as record:
+        assert b.winding([[0.5, 0.5, 0.5]]).tolist() == [[1]]
+    assert record[0].filename == __file__
+
+
+def test_repair_warnings_name_the_callers_line():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    with pytest.warns(UserWarning, match="open mesh") as record:
+        cover.mesh(V, [[0, 2, 1], [0, 1, 3]])
+    assert record[0].filename == __file__
+
+
+def test_volume_is_a_float_with_its_provenance():
+    """Model.volume() returns the C++ VolumeResult's fields on a float; pickles; equals the
+    dict of volume_info() and of `cover volume --json`."""
+    import pickle
+    v = cover.box([0, 0, 0], [1, 2, 3]).volume()
+    assert isinstance(v, cover.VolumeResult) and isinstance(v, float)
+    assert v == 6 and v.volume == 6 and v.method == "covering" and v.error_bound == 0
+    assert v.area == 22 and v + 1 == 7
+    assert v.as_dict() == cover.box([0, 0, 0], [1, 2, 3]).volume_info()
+    w = pickle.loads(pickle.dumps(v))
+    assert w == v and w.method == v.method and isinstance(w, cover.VolumeResult)
+    ball = cover.sphere([0, 0, 0], 1, 16) - cover.box([0, 0, 0], [2, 2, 2])
+    r = ball.volume(rays=64)
+    assert r.method == "rays" and r.rays > 0 and r.error_bound > 0
+    assert "VolumeResult(volume=" in repr(r)
+
+
+def test_write_png_and_notebook_display(tmp_path):
+    m = cover.box([0, 0, 0], [1, 1, 1]) - cover.sphere([1, 1, 1], 0.6, 24)
+    image = m.render(64, 48)
+    cover.write_png(tmp_path / "a.png", image)
+    assert np.array_equal(read_png_rgb(tmp_path / "a.png"), image)
+    png = m._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    (tmp_path / "b.png").write_bytes(png)
+    assert read_png_rgb(tmp_path / "b.png").shape == (240, 320, 3)
+    assert cover.Model()._repr_png_() is None
+    with pytest.raises(cover.InputError, match="image"):
+        cover.write_png(tmp_path / "c.png", image[:, :, :2])
+    with pytest.raises(cover.InputError, match="jpg"):
+        cover.write_png(tmp_path / "c.jpg", image)
+    assert not (tmp_path / "c.png").exists()
 
 
 def test_voxelize_converges_to_volume_and_indexes_xyz():
@@ -281,7 +347,7 @@ def test_wrong_shapes_raise_value_error_naming_argument(bad, message):
     with pytest.raises(ValueError, match=message):
         b.classify(bad)
     with pytest.raises(ValueError, match=message.replace("points", "origins")):
-        b.cast(bad, [1, 0, 0])
+        b.first_hits(bad, [1, 0, 0])
 
 
 def test_wrong_arguments():
@@ -326,11 +392,11 @@ def test_errors_name_the_callers_index_beyond_one_batch():
     with pytest.raises(cover.InputError, match="classify: point 1050000 has"):
         b.classify(P)
     with pytest.raises(cover.InputError, match="windings: point 1050000 has"):
-        b.winding(P)
+        b.windings(P)
     D = np.ones((300_000, 3))
     D[299_999] = 0
-    with pytest.raises(cover.InputError, match="cast: ray 299999 has a zero direction"):
-        b.cast(np.zeros((300_000, 3)), D)
+    with pytest.raises(cover.InputError, match="first_hits: ray 299999 has a zero direction"):
+        b.first_hits(np.zeros((300_000, 3)), D)
 
 
 def test_input_errors_are_value_errors():
@@ -344,11 +410,11 @@ def test_results_do_not_depend_on_threads():
     m = cover.load(MODELS / "default.json")
     P = np.random.default_rng(3).uniform(-4, 4, size=(50000, 3))
     assert np.array_equal(m.classify(P, threads=1), m.classify(P, threads=2))
-    assert np.array_equal(m.winding(P, threads=1), m.winding(P, threads=2))
+    assert np.array_equal(m.windings(P, threads=1), m.windings(P, threads=2))
     assert np.array_equal(m.voxelize(40, threads=1), m.voxelize(40, threads=2))
     assert m.volume_info(threads=1) == m.volume_info(threads=2)
     assert np.array_equal(m.render(40, 30, threads=1), m.render(40, 30, threads=2))
-    h1, h2 = m.cast(P[:1000], [0, 0, 1], threads=1), m.cast(P[:1000], [0, 0, 1], threads=2)
+    h1, h2 = m.first_hits(P[:1000], [0, 0, 1], threads=1), m.first_hits(P[:1000], [0, 0, 1], threads=2)
     assert all(np.array_equal(a, b) for a, b in zip(h1, h2))
     (V1, F1), (V2, F2) = m.evaluate(threads=1), m.evaluate(threads=2)
     assert np.array_equal(V1, V2)

@@ -131,7 +131,7 @@ FLIPS = textwrap.dedent("""
             continue
         read += 1
         m.classify(P)
-        m.winding(P)
+        m.windings(P)
         if m.bounded:
             m.volume(rays=8)
             m.voxelize(8)

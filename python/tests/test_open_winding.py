@@ -40,7 +40,7 @@ def test_winding_of_an_open_leaf_is_its_rounded_generalized_winding_number():
     assert m.warnings and "open mesh" in m.warnings[0]
     assert "(closed_only refuses)" in m.warnings[0]  # the keyword that refuses it
     P = lattice_points()
-    w = m.winding(P)[:, 0]
+    w = m.windings(P)[:, 0]
     ref = solid_angle_sum(V, F, P)
     far = np.abs(np.abs(ref) - 0.5) > 1e-6
     assert far.sum() > 2400
@@ -55,7 +55,7 @@ def test_winding_of_a_doubled_open_leaf_reaches_two():
     V, F = np.vstack([V1, V2]), np.vstack([F1, F2 + len(V1)])
     m = cover.mesh(V, F) | cover.box([0.25, 0.25, 0.25], [0.75, 0.75, 2])
     P = lattice_points(seed=4)
-    w = m.winding(P)
+    w = m.windings(P)
     ref = solid_angle_sum(V, F, P)
     far = np.abs(ref - np.rint(ref)) < 0.49
     assert (w[far, 0] == np.rint(ref[far])).all()

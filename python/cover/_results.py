@@ -1,0 +1,41 @@
+"""Result classes of cover.Model's methods (numbers with their provenance)."""
+
+__all__ = ["VolumeResult"]
+
+
+class VolumeResult(float):
+    """Model.volume()'s result: a float (the volume) with its provenance, as the C++
+    VolumeResult and `cover volume --json`: volume, area (None where it would need
+    evaluation), method ("covering", "rays", "bracket" or "brep"), error_bound (|volume -
+    exact| <= error_bound; 0 for exact methods), rays (ray method) or cells (bracket) and
+    target_met (whether the bound met the relative target)."""
+
+    def __new__(cls, info):
+        self = super().__new__(cls, info["volume"])
+        self.volume = float(info["volume"])
+        self.area = info.get("area")
+        self.method = info["method"]
+        self.error_bound = float(info["error_bound"])
+        self.rays = info.get("rays")
+        self.cells = info.get("cells")
+        self.target_met = info.get("target_met", True)
+        return self
+
+    def __repr__(self):
+        return (f"VolumeResult(volume={self.volume!r}, method={self.method!r}, "
+                f"error_bound={self.error_bound!r}, area={self.area!r})")
+
+    def as_dict(self):
+        """The dict of `cover volume --json` (and of Model.volume_info())."""
+        d = {"volume": self.volume, "area": self.area, "method": self.method,
+             "error_bound": self.error_bound}
+        if self.rays is not None:
+            d["rays"] = self.rays
+        if self.cells is not None:
+            d["cells"] = self.cells
+        if self.method in ("rays", "bracket"):
+            d["target_met"] = self.target_met
+        return d
+
+    def __reduce__(self):
+        return (VolumeResult, (self.as_dict(),))
