@@ -7,12 +7,16 @@
 // the shape it got. Outputs are NumPy arrays allocated with the GIL held and filled without it.
 //
 // Kernels run in a KernelScope: the GIL is released, the worker threads are limited to the
-// caller's `threads` (None or 0: all cores), and Interrupt::poll() re-acquires the GIL at most
-// every 50 ms to run Python's signal handlers, so Ctrl-C raises KeyboardInterrupt between
-// batches (py::error_already_set thrown through the kernel).
+// caller's `threads` for that call alone (a TBB task arena; None or 0: all cores), and
+// Interrupt::poll() re-acquires the GIL at most every 50 ms to run Python's signal handlers, so
+// Ctrl-C raises KeyboardInterrupt between batches (py::error_already_set thrown through the
+// kernel).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -20,6 +24,7 @@
 #include <span>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "cover/solid/parallel.h"
@@ -71,16 +76,26 @@ py::object faces_object(const PolygonMesh& mesh);
 /// for a negative count.
 int thread_count(const std::optional<int>& threads);
 
-/// Releases the GIL and limits the worker threads for its lifetime.
+/// Releases the GIL for its lifetime; run() applies the call's thread limit.
 class KernelScope {
  public:
   explicit KernelScope(const std::optional<int>& threads)
-      : count_(thread_count(threads)), release_(), limit_(count_) {}
+      : count_(thread_count(threads)), release_() {}
+
+  /// Runs `f` (the kernel) with this call's thread limit: in a task arena of that many threads
+  /// (at most the machine's cores), so the limit binds this call only and calls from other
+  /// Python threads with their own limits run at the same time; 0: the default arena, all cores.
+  /// The calling thread joins the arena and runs `f` itself (Interrupt's caller check).
+  template <class F>
+  auto run(F&& f) {
+    if (count_ <= 0) return f();
+    tbb::task_arena arena(std::min(count_, tbb::info::default_concurrency()));
+    return arena.execute(std::forward<F>(f));
+  }
 
  private:
   int count_;
   py::gil_scoped_release release_;
-  ThreadLimit limit_;
 };
 
 /// Runs Python's signal handlers (with the GIL) at most every 50 ms; a handler that raises

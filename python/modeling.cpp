@@ -173,7 +173,7 @@ void bind_modeling(py::module_& m) {
           PolygonMesh out;
           {
             KernelScope scope(threads);
-            out = subdivide(in, options);
+            scope.run([&] { out = subdivide(in, options); });
           }
           return py::make_tuple(vertices_array(out.vertices), faces_object(out));
         }
@@ -192,7 +192,7 @@ void bind_modeling(py::module_& m) {
         PolygonMesh out;
         {
           KernelScope scope(threads);
-          out = subdivide(in, options, attributes);
+          scope.run([&] { out = subdivide(in, options, attributes); });
         }
         py::array_t<double> values({static_cast<py::ssize_t>(out.face_vertices.size()), k});
         std::copy(attributes.values.begin(), attributes.values.end(), values.mutable_data());

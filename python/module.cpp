@@ -105,12 +105,14 @@ py::array_t<uint8_t> classify_points(const Model& model, py::handle points, Thre
   uint8_t* dst = out.mutable_data();
   {
     KernelScope scope(threads);
-    Interrupt interrupt;
-    for (size_t begin = 0; begin < all.size(); begin += kBatch) {
-      const auto part = model.classify(all.subspan(begin, std::min(kBatch, all.size() - begin)));
-      std::memcpy(dst + begin, part.data(), part.size());
-      interrupt.poll();
-    }
+    scope.run([&] {
+      Interrupt interrupt;
+      for (size_t begin = 0; begin < all.size(); begin += kBatch) {
+        const auto part = model.classify(all.subspan(begin, std::min(kBatch, all.size() - begin)));
+        std::memcpy(dst + begin, part.data(), part.size());
+        interrupt.poll();
+      }
+    });
   }
   return out;
 }
@@ -123,7 +125,7 @@ py::array_t<double> distance_values(const Model& model, py::handle points, Threa
   Model::Distances d;
   {
     KernelScope scope(threads);
-    d = model.distance(all);
+    scope.run([&] { d = model.distance(all); });
   }
   py::array_t<double> out(static_cast<py::ssize_t>(d.distance.size()));
   std::copy(d.distance.begin(), d.distance.end(), out.mutable_data());
@@ -137,7 +139,7 @@ py::tuple field_values(const Model& model, py::handle points, Threads threads) {
   Model::FieldValues f;
   {
     KernelScope scope(threads);
-    f = model.field(all);
+    scope.run([&] { f = model.field(all); });
   }
   const size_t n = all.size(), k = f.leaves.size();
   py::array_t<double> value({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(k)});
@@ -164,14 +166,16 @@ py::tuple classify_counted_points(const Model& model, py::handle points, Threads
   size_t uncertain = 0;
   {
     KernelScope scope(threads);
-    Interrupt interrupt;
-    for (size_t begin = 0; begin < all.size(); begin += kBatch) {
-      const Classification part =
-          model.classify_counted(all.subspan(begin, std::min(kBatch, all.size() - begin)));
-      std::memcpy(dst + begin, part.classes.data(), part.classes.size());
-      uncertain += part.uncertain;
-      interrupt.poll();
-    }
+    scope.run([&] {
+      Interrupt interrupt;
+      for (size_t begin = 0; begin < all.size(); begin += kBatch) {
+        const Classification part =
+            model.classify_counted(all.subspan(begin, std::min(kBatch, all.size() - begin)));
+        std::memcpy(dst + begin, part.classes.data(), part.classes.size());
+        uncertain += part.uncertain;
+        interrupt.poll();
+      }
+    });
   }
   return py::make_tuple(out, uncertain);
 }
@@ -186,13 +190,15 @@ py::array_t<int32_t> winding_numbers(const Model& model, py::handle points, Thre
   int32_t* dst = out.mutable_data();
   {
     KernelScope scope(threads);
-    Interrupt interrupt;
-    for (size_t begin = 0; begin < all.size() && leaves > 0; begin += kBatch) {
-      const LeafWindings w =
-          model.windings(all.subspan(begin, std::min(kBatch, all.size() - begin)));
-      std::copy(w.winding.begin(), w.winding.end(), dst + begin * leaves);
-      interrupt.poll();
-    }
+    scope.run([&] {
+      Interrupt interrupt;
+      for (size_t begin = 0; begin < all.size() && leaves > 0; begin += kBatch) {
+        const LeafWindings w =
+            model.windings(all.subspan(begin, std::min(kBatch, all.size() - begin)));
+        std::copy(w.winding.begin(), w.winding.end(), dst + begin * leaves);
+        interrupt.poll();
+      }
+    });
   }
   return out;
 }
@@ -245,25 +251,27 @@ py::object all_hits(const Model& model, py::handle origins, py::handle direction
   off[0] = soff[0] = 0;
   {
     KernelScope scope(threads);
-    Interrupt interrupt;
-    for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
-      const size_t count = std::min(kBatch / 4, rays.size() - begin);
-      const auto r = model.cast(std::span<const Ray>(rays).subspan(begin, count));
-      for (size_t k = 0; k < count; ++k) {
-        const size_t i = begin + k;
-        for (const RayHit& h : r[k].hits) {
-          t.push_back(h.t);
-          leaf.push_back(static_cast<int32_t>(h.leaf));
-          face.push_back(static_cast<int64_t>(h.face));
-          sign.push_back(h.sign);
+    scope.run([&] {
+      Interrupt interrupt;
+      for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
+        const size_t count = std::min(kBatch / 4, rays.size() - begin);
+        const auto r = model.cast(std::span<const Ray>(rays).subspan(begin, count));
+        for (size_t k = 0; k < count; ++k) {
+          const size_t i = begin + k;
+          for (const RayHit& h : r[k].hits) {
+            t.push_back(h.t);
+            leaf.push_back(static_cast<int32_t>(h.leaf));
+            face.push_back(static_cast<int64_t>(h.face));
+            sign.push_back(h.sign);
+          }
+          for (const Span& sp : r[k].spans) spans.insert(spans.end(), {sp.t0, sp.t1});
+          off[i + 1] = static_cast<int64_t>(t.size());
+          soff[i + 1] = static_cast<int64_t>(spans.size() / 2);
+          unc[i] = r[k].uncertain;
         }
-        for (const Span& sp : r[k].spans) spans.insert(spans.end(), {sp.t0, sp.t1});
-        off[i + 1] = static_cast<int64_t>(t.size());
-        soff[i + 1] = static_cast<int64_t>(spans.size() / 2);
-        unc[i] = r[k].uncertain;
+        interrupt.poll();
       }
-      interrupt.poll();
-    }
+    });
   }
   const auto k = static_cast<py::ssize_t>(t.size());
   return py::module_::import("cover._cover")
@@ -288,23 +296,25 @@ py::object first_hit_rays(const Model& model, py::handle origins, py::handle dir
   int64_t* face_p = face.mutable_data();
   {
     KernelScope scope(threads);
-    Interrupt interrupt;
-    for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
-      const size_t count = std::min(kBatch / 4, rays.size() - begin);
-      const auto hits = model.first_hits(std::span<const Ray>(rays).subspan(begin, count));
-      for (size_t k = 0; k < count; ++k) {
-        const FirstHit& h = hits[k];
-        const size_t i = begin + k;
-        hit_p[i] = h.hit;
-        t_p[i] = h.hit ? h.t : std::numeric_limits<double>::infinity();
-        leaf_p[i] = h.hit ? static_cast<int32_t>(h.leaf) : -1;
-        face_p[i] = h.hit ? static_cast<int64_t>(h.face) : -1;
-        const double len = std::sqrt(dot(h.normal, h.normal));
-        const Vec3 u = h.hit && len > 0 ? (1 / len) * h.normal : Vec3{};
-        normal_p[3 * i] = u.x, normal_p[3 * i + 1] = u.y, normal_p[3 * i + 2] = u.z;
+    scope.run([&] {
+      Interrupt interrupt;
+      for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
+        const size_t count = std::min(kBatch / 4, rays.size() - begin);
+        const auto hits = model.first_hits(std::span<const Ray>(rays).subspan(begin, count));
+        for (size_t k = 0; k < count; ++k) {
+          const FirstHit& h = hits[k];
+          const size_t i = begin + k;
+          hit_p[i] = h.hit;
+          t_p[i] = h.hit ? h.t : std::numeric_limits<double>::infinity();
+          leaf_p[i] = h.hit ? static_cast<int32_t>(h.leaf) : -1;
+          face_p[i] = h.hit ? static_cast<int64_t>(h.face) : -1;
+          const double len = std::sqrt(dot(h.normal, h.normal));
+          const Vec3 u = h.hit && len > 0 ? (1 / len) * h.normal : Vec3{};
+          normal_p[3 * i] = u.x, normal_p[3 * i + 1] = u.y, normal_p[3 * i + 2] = u.z;
+        }
+        interrupt.poll();
       }
-      interrupt.poll();
-    }
+    });
   }
   return py::module_::import("cover._cover").attr("Hits")(hit, t, leaf, face, normal);
 }
@@ -342,9 +352,11 @@ VolumeResult volume_result(const Model& model, bool exact, std::optional<int> ra
     o.rays = *rays;
   }
   KernelScope scope(threads);
-  Interrupt interrupt;
-  o.progress = [&](double) { interrupt.poll(); };
-  return model.volume(o);
+  return scope.run([&] {
+    Interrupt interrupt;
+    o.progress = [&](double) { interrupt.poll(); };
+    return model.volume(o);
+  });
 }
 
 /// The bits of `grid` as bool (nx, ny, nz) [x, y, z], one column per task.
@@ -422,9 +434,11 @@ py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& boun
   VoxelGrid grid;
   {
     KernelScope scope(threads);
-    Interrupt interrupt;
-    o.progress = [&](double) { interrupt.poll(); };
-    grid = model.voxelize(o);
+    scope.run([&] {
+      Interrupt interrupt;
+      o.progress = [&](double) { interrupt.poll(); };
+      grid = model.voxelize(o);
+    });
   }
   return unpack_grid(grid);
 }
@@ -456,16 +470,18 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height,
   uint8_t* dst = out.mutable_data();
   {
     KernelScope scope(threads);
-    Interrupt interrupt;
-    ro.progress = [&](size_t, size_t) { interrupt.poll(); };
-    const Image img = model.render(co, ro);
-    // In 16 MiB steps: the output's first touch is page faults too (432 MB at 12000²).
-    constexpr size_t kStep = size_t{16} << 20;
-    for (size_t at = 0; at < img.rgb.size(); at += kStep) {
-      const size_t count = std::min(kStep, img.rgb.size() - at);
-      std::copy(img.rgb.begin() + at, img.rgb.begin() + at + count, dst + at);
-      interrupt.poll();
-    }
+    scope.run([&] {
+      Interrupt interrupt;
+      ro.progress = [&](size_t, size_t) { interrupt.poll(); };
+      const Image img = model.render(co, ro);
+      // In 16 MiB steps: the output's first touch is page faults too (432 MB at 12000²).
+      constexpr size_t kStep = size_t{16} << 20;
+      for (size_t at = 0; at < img.rgb.size(); at += kStep) {
+        const size_t count = std::min(kStep, img.rgb.size() - at);
+        std::copy(img.rgb.begin() + at, img.rgb.begin() + at + count, dst + at);
+        interrupt.poll();
+      }
+    });
   }
   return out;
 }
@@ -482,7 +498,7 @@ py::tuple evaluate_mesh(const Model& model, bool leaf_ids, int mesh_resolution,
   o.mesh_tolerance = mesh_tolerance;
   {
     KernelScope scope(threads);
-    r = model.evaluate(o);
+    scope.run([&] { r = model.evaluate(o); });
   }
   if (!leaf_ids) return mesh_arrays(r.mesh);
   py::array_t<int32_t> leaf(static_cast<py::ssize_t>(r.face_leaf.size()));
@@ -504,7 +520,7 @@ py::tuple polygonize_mesh(const Model& model, int resolution, std::optional<doub
   PolygonizeResult r;
   {
     KernelScope scope(threads);
-    r = model.polygonize(o);
+    scope.run([&] { r = model.polygonize(o); });
   }
   py::dict report;
   report["cell_size"] = r.cell_size;
@@ -524,7 +540,7 @@ py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
   brep::ClipResult r;
   {
     KernelScope scope(threads);
-    r = model.clip(brep::Plane{{p[0], p[1], p[2]}, p[3]}, o);
+    scope.run([&] { r = model.clip(brep::Plane{{p[0], p[1], p[2]}, p[3]}, o); });
   }
   return py::make_tuple(mesh_arrays(r.above.mesh), mesh_arrays(r.below.mesh));
 }
@@ -547,7 +563,7 @@ py::list cell_pieces(const Model& model, int n, const py::object& bounds, int64_
   CellsEvaluation r;
   {
     KernelScope scope(threads);
-    r = model.evaluate_cells(n, given, o);
+    scope.run([&] { r = model.evaluate_cells(n, given, o); });
   }
   py::list out;
   for (const brep::CellPiece& p : r.cells.pieces) {
@@ -567,7 +583,7 @@ py::list decompose_pieces(const Model& model, Threads threads) {
   brep::DecomposeResult r;
   {
     KernelScope scope(threads);
-    r = model.decompose();
+    scope.run([&] { r = model.decompose(); });
   }
   py::list pieces;
   for (const PolygonMesh& piece : r.pieces) pieces.append(mesh_arrays(piece));

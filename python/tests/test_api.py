@@ -526,3 +526,27 @@ def test_voxel_bounds_and_voxelize_name_res():
     with pytest.raises(cover.InputError, match=r"^res: expected a whole number from 1 to 4096 "
                                                r"\(above, voxelize_brick or cover.dask.voxelize"):
         b.voxelize(8192)
+
+
+def test_two_python_threads_with_their_own_limits_run_at_once():
+    """threads= binds one call (a TBB task arena), not the process: two Python threads with
+    threads=1 each hold the kernel at the same time (their wall intervals overlap), and the
+    answers equal a single call's. Overlap is checked, not speed."""
+    m = cover.load(MODELS / "torus.off")
+    P = np.random.default_rng(3).uniform(-3, 3, size=(400_000, 3))
+    expected = m.classify(P)
+    spans, results = {}, {}
+
+    def work(name):
+        start = time.perf_counter()
+        results[name] = m.classify(P, threads=1)
+        spans[name] = (start, time.perf_counter())
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in ("a", "b")]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    (a0, a1), (b0, b1) = spans["a"], spans["b"]
+    assert max(a0, b0) < min(a1, b1), spans  # both were running at once
+    assert np.array_equal(results["a"], expected) and np.array_equal(results["b"], expected)
