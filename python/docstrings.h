@@ -167,7 +167,8 @@ inline constexpr const char* kVoxelizeBrick = R"(The voxels of one brick of the 
 ranges, 0 <= lo < hi <= res) and bounds = (xmin, ymin, zmin, size) (default: voxel_bounds(res)).
 Bit-identical to voxelize(res, bounds)[i0:i1, j0:j1, k0:k1] (global centres, the same tie rule);
 its cost follows the brick, and res may reach 16384 since only the brick is held. The building
-block of cover.dask.voxelize.)";
+block of cover.dask.voxelize. A brick needing more than max_memory MiB (9/8 byte a voxel) raises
+InputError before anything is allocated.)";
 
 inline constexpr const char* kToBytes =
     R"(The model as bytes: the same doubles and expression in another process
@@ -183,7 +184,8 @@ Voxel (i, j, k) has centre min + (i + 1/2, j + 1/2, k + 1/2) * size / res and is
 the centre is inside (a centre exactly on a surface is decided for the point displaced
 infinitesimally towards +x, then +y, then +z). bounds: (xmin, ymin, zmin, size) or None
 for voxel_bounds(res). Equal to the .npy of `cover voxelize --res res` (uint8 there).
-res: 1..4096.)";
+res: 1..4096. A grid needing more than max_memory MiB (9/8 byte a voxel: the array and the
+packed grid) raises InputError before anything is allocated, as the CLI's --max-memory.)";
 
 inline constexpr const char* kRender =
     R"(Ray-cast preview of the non-evaluated solid: uint8 (height, width, 3) RGB, row 0 at the top.

@@ -345,9 +345,9 @@ VolumeResult volume_result(const Model& model, bool exact, std::optional<int> ra
                        std::to_string(*tolerance));
     o.target_relative_error = o.bracket_relative_error = *tolerance;
   }
-  if (rays) {
-    if (*rays < 1 || *rays > 2048)
-      throw InputError("rays: expected a whole number from 1 to 2048, got " +
+  if (rays) {  // 0: adaptive, as None and as C++'s VolumeOptions::rays
+    if (*rays < 0 || *rays > 2048)
+      throw InputError("rays: expected a whole number from 0 (adaptive) to 2048, got " +
                        std::to_string(*rays));
     o.rays = *rays;
   }
@@ -395,8 +395,20 @@ py::array_t<bool> unpack_grid(const VoxelGrid& grid) {
 /// voxelize_brick(res, box, bounds): the voxels of index box (i0, i1, j0, j1, k0, k1) of the
 /// cubic res³ grid over `bounds` (default: voxel_bounds(res)), bit-identical to that region of
 /// voxelize(res, bounds); res up to 16384 (only the brick is held).
+/// Refuses a grid whose packed bits and bool array (9/8 byte per cell) would pass `max_memory`
+/// MiB, before allocating either (the CLI's --max-memory estimate).
+void check_grid_memory(const char* what, uint64_t cells, uint64_t max_memory) {
+  const uint64_t need = cells + cells / 8;
+  if (need > max_memory * (uint64_t{1} << 20))
+    throw InputError(std::string(what) + ": " + std::to_string(cells) + " voxels need " +
+                     std::to_string((need >> 20) + 1) +
+                     " MiB (a bool array and the packed grid), " +
+                     "over max_memory = " + std::to_string(max_memory) +
+                     " MiB; raise max_memory, or use voxelize_brick or cover.dask.voxelize");
+}
+
 py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box,
-                              const py::object& bounds, Threads threads) {
+                              const py::object& bounds, uint64_t max_memory, Threads threads) {
   if (res < 1 || res > 16384)
     throw InputError("res: expected a whole number from 1 to 16384, got " + std::to_string(res));
   const std::vector<double> b = numbers_arg(box, "box", 6);
@@ -411,17 +423,22 @@ py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box
     index.hi[a] = static_cast<int>(hi);
   }
   const std::optional<VoxelBounds> given = bounds_arg(bounds);
+  const uint64_t cells = uint64_t(index.hi[0] - index.lo[0]) * uint64_t(index.hi[1] - index.lo[1]) *
+                         uint64_t(index.hi[2] - index.lo[2]);
+  check_grid_memory("voxelize_brick", cells, max_memory);
   VoxelGrid grid;
   {
     KernelScope scope(threads);  // releases the GIL
-    const VoxelLattice lattice = cubic_lattice(given ? *given : model.voxel_bounds(res), res);
-    model.voxelize_brick(lattice, index, grid);
+    scope.run([&] {
+      const VoxelLattice lattice = cubic_lattice(given ? *given : model.voxel_bounds(res), res);
+      model.voxelize_brick(lattice, index, grid);
+    });
   }
   return unpack_grid(grid);
 }
 
 py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& bounds,
-                             Threads threads) {
+                             uint64_t max_memory, Threads threads) {
   VoxelizeOptions o;
   o.resolution = res;
   o.bounds = bounds_arg(bounds);
@@ -431,6 +448,7 @@ py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& boun
                      " (above, voxelize_brick or "
                      "cover.dask.voxelize, up to " +
                      std::to_string(kMaxVoxelDims) + "), got " + std::to_string(res));
+  check_grid_memory("voxelize", uint64_t(res) * uint64_t(res) * uint64_t(res), max_memory);
   VoxelGrid grid;
   {
     KernelScope scope(threads);
@@ -549,6 +567,7 @@ py::tuple clip_halves(const Model& model, py::handle plane, Threads threads) {
 py::list cell_pieces(const Model& model, int n, const py::object& bounds, int64_t max_memory,
                      Threads threads) {
   const std::optional<VoxelBounds> given = bounds_arg(bounds);
+  if (n < 1) throw InputError("n: expected at least 1 cell per axis, got " + std::to_string(n));
   if (max_memory < 1 || max_memory > (int64_t{1} << 40))
     throw InputError("max_memory: expected MiB from 1 to 2^40, got " + std::to_string(max_memory));
   brep::CellsOptions o;
@@ -868,9 +887,10 @@ PYBIND11_MODULE(_cover, m) {
           },
           py::arg("res"), doc::kVoxelBounds)
       .def("voxelize", &voxel_grid, py::arg("res"), py::arg("bounds") = py::none(), py::kw_only(),
-           threads, doc::kVoxelize)
+           py::arg("max_memory") = 4096, threads, doc::kVoxelize)
       .def("voxelize_brick", &voxel_brick, py::arg("res"), py::arg("box"),
-           py::arg("bounds") = py::none(), py::kw_only(), threads, doc::kVoxelizeBrick)
+           py::arg("bounds") = py::none(), py::kw_only(), py::arg("max_memory") = 4096, threads,
+           doc::kVoxelizeBrick)
       .def(
           "to_bytes",
           [](const Model& a) {

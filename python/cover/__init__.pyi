@@ -101,6 +101,7 @@ class Model:
         res: int,
         bounds: Sequence[float] | None = None,
         *,
+        max_memory: int = 4096,
         threads: int | None = None,
     ) -> npt.NDArray[np.bool_]: ...
     def voxelize_brick(
@@ -109,6 +110,7 @@ class Model:
         box: Sequence[int],
         bounds: Sequence[float] | None = None,
         *,
+        max_memory: int = 4096,
         threads: int | None = None,
     ) -> npt.NDArray[np.bool_]: ...
     def to_bytes(self) -> bytes: ...

@@ -550,3 +550,18 @@ def test_two_python_threads_with_their_own_limits_run_at_once():
     (a0, a1), (b0, b1) = spans["a"], spans["b"]
     assert max(a0, b0) < min(a1, b1), spans  # both were running at once
     assert np.array_equal(results["a"], expected) and np.array_equal(results["b"], expected)
+
+
+def test_errors_name_python_parameters_and_memory_is_estimated_first():
+    m = cover.box([0, 0, 0], [1, 1, 1])
+    with pytest.raises(cover.InputError, match=r"voxelize: .* MiB .*over max_memory = 4096 MiB"):
+        m.voxelize(4096)  # 64 GiB of bool: refused before numpy allocates anything
+    with pytest.raises(cover.InputError, match="max_memory = 1 MiB"):
+        m.voxelize_brick(1024, (0, 1024, 0, 1024, 0, 8), max_memory=1)
+    assert m.voxelize(8, max_memory=1).sum() > 0
+    with pytest.raises(cover.InputError, match=r"^n: expected at least 1"):
+        m.evaluate_cells(0)
+    with pytest.raises(cover.InputError, match=r"^res: "):
+        m.voxelize(5000)
+    adaptive, none = m.volume(rays=0), m.volume()
+    assert adaptive == none and adaptive.method == none.method  # 0: adaptive, as in C++
