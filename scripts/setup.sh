@@ -13,7 +13,7 @@ packages=(
   pybind11-dev python3-pybind11 python3-dev python3-pytest
   libcgal-demo assimp-testmodels
   zlib1g-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb python3-zarr
-  python3-dask python3-distributed
+  python3-dask python3-distributed python3-nbconvert python3-ipykernel
 )
 
 missing=()
