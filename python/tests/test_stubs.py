@@ -93,3 +93,23 @@ def test_every_function_has_a_docstring():
     for name in dir(cover.Model):
         if not name.startswith("_") or name in ("__or__", "__and__", "__sub__", "__invert__"):
             assert getattr(cover.Model, name).__doc__, name
+
+
+def test_names_table_matches_the_stubs_and_the_cpp_docs():
+    """docs/python.md "Names: Python and C++" lists exactly the public names of the stubs, and
+    each C++ name it pairs them with is in docs/library.md (the C++ facade's reference)."""
+    docs = pathlib.Path(__file__).parents[2] / "docs"
+    text = (docs / "python.md").read_text()
+    section = text[text.index("## Names: Python and C++"):]
+    section = section[:section.index("\n## ", 1)]
+    rows = re.findall(r"^\| `([^`]+)` \| (?:`([^`]+)`|—) \|$", section, flags=re.M)
+    assert len(rows) > 40
+    listed = {py for py, _ in rows}
+    model_stub = next(n for n in stub_tree().body if isinstance(n, ast.ClassDef) and n.name == "Model")
+    members = {n.name for n in model_stub.body if isinstance(n, ast.FunctionDef)}
+    members = {n for n in members if not n.startswith("_")}
+    expected = {f"cover.{n}" for n in cover.__all__} | {f"Model.{n}" for n in members}
+    assert listed == expected
+    library = (docs / "library.md").read_text()
+    missing = [cpp for _, cpp in rows if cpp and cpp not in library]
+    assert not missing
