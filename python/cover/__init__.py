@@ -28,7 +28,6 @@ from ._cover import (
     ffd,
     intersection_all,
     load,
-    mesh,
     points,
     sphere,
     HalfedgeMesh,
@@ -38,6 +37,7 @@ from ._cover import (
     write_mesh,
     write_png,
 )
+from ._interop import mesh, to_vtk
 from ._results import VolumeResult
 
 __all__ = [
@@ -64,6 +64,7 @@ __all__ = [
     "write_mesh",
     "write_png",
     "VolumeResult",
+    "to_vtk",
 ]
 
 

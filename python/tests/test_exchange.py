@@ -105,3 +105,47 @@ def test_evaluate_3mf_reads_back_with_a_material_per_leaf(tmp_path):
     again = tmp_path / "again.3mf"
     cli_json("evaluate", MODELS / "default.json", "-o", again, "--threads", 1)
     assert again.read_bytes() == out.read_bytes()
+
+
+class _TrimeshLike:  # the attributes trimesh.Trimesh and Open3D expose
+    def __init__(self, V, F, faces_name="faces"):
+        self.vertices = V
+        setattr(self, faces_name, F)
+
+
+class _MeshioLike:  # meshio.Mesh: points and cells_dict
+    def __init__(self, V, F):
+        self.points = V
+        self.cells_dict = {"triangle": F}
+
+
+def test_mesh_objects_from_other_libraries_and_to_vtk():
+    """cover.mesh takes trimesh-, Open3D- and meshio-shaped objects and VTK polydata (checked
+    with VTK's own cube source, quads triangulated by VTK); to_vtk gives polydata VTK measures
+    the same volume of (vtkMassProperties, an independent path)."""
+    from vtkmodules.vtkFiltersCore import vtkMassProperties, vtkTriangleFilter
+    from vtkmodules.vtkFiltersSources import vtkCubeSource
+    part = cover.load(MODELS / "torus.off")
+    V, F = part.evaluate()
+    volume = part.volume()
+    for obj in (_TrimeshLike(V, F), _TrimeshLike(V, F, "triangles"), _MeshioLike(V, F)):
+        assert cover.mesh(obj).volume() == pytest.approx(volume, rel=1e-12)
+    poly = cover.to_vtk(V, F)
+    assert poly.GetNumberOfPoints() == len(V) and poly.GetNumberOfCells() == len(F)
+    mass = vtkMassProperties()
+    mass.SetInputData(poly)
+    mass.Update()
+    assert mass.GetVolume() == pytest.approx(volume, rel=1e-9)
+    assert cover.mesh(poly).volume() == pytest.approx(volume, rel=1e-12)
+    cube = vtkCubeSource()
+    cube.SetXLength(2)
+    cube.Update()
+    assert cover.mesh(cube.GetOutput()).volume() == pytest.approx(2)
+    with pytest.raises(TypeError, match="mesh object"):
+        cover.mesh(object())
+    with pytest.raises(cover.InputError, match="triangle"):
+        m = _MeshioLike(V, F)
+        m.cells_dict = {"quad": F}
+        cover.mesh(m)
+    with pytest.raises(ValueError, match=r"F: expected an array of shape \(m, 3\)"):
+        cover.to_vtk(V, F[:, :2])

@@ -99,7 +99,7 @@ def test_names_table_matches_the_stubs_and_the_cpp_docs():
     """docs/python.md "Names: Python and C++" lists exactly the public names of the stubs, and
     each C++ name it pairs them with is in docs/library.md (the C++ facade's reference)."""
     docs = pathlib.Path(__file__).parents[2] / "docs"
-    text = (docs / "python.md").read_text()
+    text = (docs / "python.md").read_text(encoding="utf-8")
     section = text[text.index("## Names: Python and C++"):]
     section = section[:section.index("\n## ", 1)]
     rows = re.findall(r"^\| `([^`]+)` \| (?:`([^`]+)`|—) \|$", section, flags=re.M)
@@ -110,6 +110,6 @@ def test_names_table_matches_the_stubs_and_the_cpp_docs():
     members = {n for n in members if not n.startswith("_")}
     expected = {f"cover.{n}" for n in cover.__all__} | {f"Model.{n}" for n in members}
     assert listed == expected
-    library = (docs / "library.md").read_text()
+    library = (docs / "library.md").read_text(encoding="utf-8")
     missing = [cpp for _, cpp in rows if cpp and cpp not in library]
     assert not missing
