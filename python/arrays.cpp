@@ -190,4 +190,13 @@ py::array_t<int64_t> triangles_array(const PolygonMesh& mesh) {
   return out;
 }
 
+std::optional<VoxelBounds> bounds_arg(const py::object& bounds) {
+  if (bounds.is_none()) return std::nullopt;
+  const std::vector<double> b = numbers_arg(bounds, "bounds", 4);
+  if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !std::isfinite(b[2]) ||
+      !std::isfinite(b[3]) || !(b[3] > 0))
+    throw InputError("bounds: expected finite xmin,ymin,zmin and a size > 0");
+  return VoxelBounds{{b[0], b[1], b[2]}, b[3]};
+}
+
 }  // namespace cover::python

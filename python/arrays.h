@@ -30,6 +30,7 @@
 #include "cover/solid/parallel.h"
 #include "cover/solid/polygon_mesh.h"
 #include "cover/solid/types.h"
+#include "cover/solid/voxel_bounds.h"
 
 namespace cover::python {
 
@@ -109,6 +110,9 @@ class Interrupt {
   std::thread::id caller_ = std::this_thread::get_id();
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
+
+/// A `bounds=` argument: None, or (xmin, ymin, zmin, size) finite with size > 0 (InputError).
+std::optional<VoxelBounds> bounds_arg(const py::object& bounds);
 
 /// Vertices as float64 (n, 3).
 py::array_t<double> vertices_array(const std::vector<Vec3>& vertices);

@@ -335,6 +335,30 @@ each face, never smoothed (cover::CornerAttributes): corners at old vertices kee
 edge points take the mean of the edge's two corners in that face, face points the face's mean;
 doo-sabin applies its own mask within the face; seams stay seams.)";
 
+inline constexpr const char* kOctree =
+    R"(A direct octree (as `cover octree`): nodes breadth-first, an inner node's 8 children
+consecutive from first_child (Morton order: child c at offset (c&1, (c>>1)&1, (c>>2)&1) along
+x, y, z). Arrays per node: first_child uint32 (0 for a leaf), level uint8, state uint8 (0 empty,
+1 full, 2 partial), occupancy float32 (partial leaves: the share of their samples^3 sub-points
+inside); depth, bounds (xmin, ymin, zmin, size), leaf_counts; save(path) writes it.)";
+
+inline constexpr const char* kOctreeSave =
+    R"(Writes the octree as the CLI does, by extension: .htg (VTK HyperTreeGrid XML), .bt
+(OctoMap binary; cells with occupancy >= threshold are occupied; the cube must lie on OctoMap's
+grid, as `cover octree -o x.bt` chooses it) or .json; atomically.)";
+
+inline constexpr const char* kOctreeMethod =
+    R"(The direct octree of the result (octree/octree.h, as `cover octree`): cells no
+surface meets become full or empty leaves, the others split down to depth (0..16); partial
+leaves carry the occupancy of samples^3 sub-points. bounds: (xmin, ymin, zmin, size) or None
+for voxel_bounds(2^depth). An estimate over max_memory MiB raises InputError before building.)";
+
+inline constexpr const char* kWriteVoxels =
+    R"(Writes a voxel grid (bool or 0/1, cubic (N, N, N) indexed [x, y, z], as
+Model.voxelize returns) over bounds (xmin, ymin, zmin, size) in the CLI's formats, by
+extension: .binvox, .vti, .npy, .raw (with its .raw.json sidecar holding the bounds) or .vdb;
+atomically, as `cover voxelize` writes them.)";
+
 inline constexpr const char* kWritePng =
     R"(Writes an RGB image (uint8 (height, width, 3), as Model.render() returns) as a PNG file,
 atomically (a temporary beside it, then renamed), as `cover render` writes its frames.)";

@@ -21,6 +21,7 @@
 #include "cover/model/info.h"
 #include "cover/model/model.h"
 #include "files.h"
+#include "grids.h"
 #include "modeling.h"
 
 namespace py = pybind11;
@@ -43,15 +44,6 @@ void check_finite(std::span<const Vec3> points, const char* what) {
     if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z))
       throw InputError(std::string(what) + ": point " + std::to_string(i) +
                        " has a non-finite coordinate");
-}
-
-std::optional<VoxelBounds> bounds_arg(const py::object& bounds) {
-  if (bounds.is_none()) return std::nullopt;
-  const std::vector<double> b = numbers_arg(bounds, "bounds", 4);
-  if (!std::isfinite(b[0]) || !std::isfinite(b[1]) || !std::isfinite(b[2]) ||
-      !std::isfinite(b[3]) || !(b[3] > 0))
-    throw InputError("bounds: expected finite xmin,ymin,zmin and a size > 0");
-  return VoxelBounds{{b[0], b[1], b[2]}, b[3]};
 }
 
 /// A C++ parameter's Python keyword, for InputError messages (InputError::text).
@@ -1008,4 +1000,5 @@ PYBIND11_MODULE(_cover, m) {
       doc::kPoints);
   bind_modeling(m);
   bind_files(m);
+  bind_grids(m, model);
 }

@@ -21,6 +21,7 @@ from ._cover import (
     InputError,
     Model,
     NotComputable,
+    Octree,
     PreconditionError,
     __version__,
     box,
@@ -36,6 +37,7 @@ from ._cover import (
     union_all,
     write_mesh,
     write_png,
+    write_voxels,
 )
 from ._interop import mesh, to_vtk
 from ._results import VolumeResult
@@ -63,6 +65,8 @@ __all__ = [
     "union_all",
     "write_mesh",
     "write_png",
+    "write_voxels",
+    "Octree",
     "VolumeResult",
     "to_vtk",
 ]

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import cover
-from conftest import MODELS, cli_json
+from conftest import MODELS, cli_json, run_cli
 
 
 @pytest.mark.parametrize("ext", [".glb", ".gltf"])
@@ -149,3 +149,64 @@ def test_mesh_objects_from_other_libraries_and_to_vtk():
         cover.mesh(m)
     with pytest.raises(ValueError, match=r"F: expected an array of shape \(m, 3\)"):
         cover.to_vtk(V, F[:, :2])
+
+
+def test_octree_equals_the_cli_and_saves_every_format(tmp_path):
+    """Model.octree gives the nodes `cover octree` writes (the .json files are byte-equal);
+    its arrays hang together (children eight in a row, one level down); .htg reads back in
+    VTK's HyperTreeGrid reader with as many cells."""
+    part = cover.load(MODELS / "default.json")
+    tree = part.octree(5)
+    assert isinstance(tree, cover.Octree) and tree.depth == 5 and len(tree) > 8
+    ours, cli = tmp_path / "ours.json", tmp_path / "cli.json"
+    tree.save(ours)
+    run_cli("octree", MODELS / "default.json", "--depth", 5, "-o", cli, "--quiet")
+    assert ours.read_bytes() == cli.read_bytes()
+    inner = np.nonzero(tree.first_child)[0]
+    assert (tree.state[inner] == 2).all()
+    kids = tree.first_child[inner][:, None] + np.arange(8)
+    assert (tree.level[kids] == tree.level[inner][:, None] + 1).all()
+    counts = tree.leaf_counts
+    assert sum(counts.values()) == len(tree) - len(inner) and counts["full"] > 0
+    full = tree.state == 1
+    assert (tree.occupancy[full] == 1).all()
+    htg = tmp_path / "tree.htg"
+    tree.save(htg)
+    from vtkmodules.vtkIOXML import vtkXMLHyperTreeGridReader
+    reader = vtkXMLHyperTreeGridReader()
+    reader.SetFileName(str(htg))
+    reader.Update()
+    assert reader.GetOutput().GetNumberOfVertices() == len(tree)
+    with pytest.raises(cover.InputError, match="depth"):
+        part.octree(17)
+
+
+def test_write_voxels_reads_back_in_numpy_vtk_and_the_sidecar(tmp_path):
+    part = cover.load(MODELS / "torus.off")
+    grid = part.voxelize(24)
+    bounds = part.voxel_bounds(24)
+    for ext in (".npy", ".vti", ".raw", ".binvox"):
+        cover.write_voxels(tmp_path / ("g" + ext), grid, bounds)
+    assert np.array_equal(np.load(tmp_path / "g.npy"), grid.astype(np.uint8))
+    raw = np.fromfile(tmp_path / "g.raw", dtype=np.uint8).reshape(24, 24, 24)
+    assert np.array_equal(raw, grid)
+    import json
+    side = json.loads((tmp_path / "g.raw.json").read_text())
+    assert side["bounds"]["min"] == list(bounds[:3]) and side["bounds"]["size"] == bounds[3]
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(str(tmp_path / "g.vti"))
+    reader.Update()
+    image = reader.GetOutput()
+    cells = vtk_to_numpy(image.GetCellData().GetArray("occupancy")).reshape(24, 24, 24)
+    assert np.array_equal(cells.transpose(2, 1, 0), grid)  # VTK: x fastest
+    assert image.GetOrigin() == pytest.approx(bounds[:3])
+    cli = tmp_path / "cli.binvox"
+    run_cli("voxelize", MODELS / "torus.off", "--res", 24, "-o", cli, "--quiet")
+    assert cli.read_bytes() == (tmp_path / "g.binvox").read_bytes()
+    with pytest.raises(cover.InputError, match="cubic"):
+        cover.write_voxels(tmp_path / "bad.npy", grid[:, :, :3], bounds)
+    with pytest.raises(cover.InputError, match="bounds"):
+        cover.write_voxels(tmp_path / "bad.npy", grid, (0, 0, 0, -1))
+    assert not (tmp_path / "bad.npy").exists()
