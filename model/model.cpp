@@ -695,6 +695,13 @@ Model load(const std::filesystem::path& path, const LoadOptions& options) {
   return Model(std::move(in.solid), std::move(in.warnings));
 }
 
+Model scene(const std::string& json, const std::filesystem::path& base,
+            const LoadOptions& options) {
+  const std::filesystem::path dir = base.empty() ? std::filesystem::current_path() : base;
+  LoadedInput in = parse_scene(json, dir / "<scene>", options);
+  return Model(std::move(in.solid), std::move(in.warnings));
+}
+
 Model box(Vec3 min, Vec3 max) {
   check_vec(min, "box min");
   check_vec(max, "box max");

@@ -310,6 +310,12 @@ Model intersection_all(std::span<const Model> models);
 /// \throws InputError naming the file and the place (io/scene.h load_input).
 Model load(const std::filesystem::path& path, const LoadOptions& options = {});
 
+/// A JSON scene given as text (docs/cli.md#input), as load() reads a scene file: relative mesh
+/// and point-cloud paths resolve against `base` (default: the working directory), messages
+/// name the scene "<scene>". \throws InputError naming the place.
+Model scene(const std::string& json, const std::filesystem::path& base = {},
+            const LoadOptions& options = {});
+
 /// Primitives as closed, outward leaves (solid/primitives.h).
 /// \throws InputError for min ≥ max on an axis, a radius ≤ 0, segments < 3, base = top, or
 /// non-finite values.

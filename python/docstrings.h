@@ -359,6 +359,13 @@ Model.voxelize returns) over bounds (xmin, ymin, zmin, size) in the CLI's format
 extension: .binvox, .vti, .npy, .raw (with its .raw.json sidecar holding the bounds) or .vdb;
 atomically, as `cover voxelize` writes them.)";
 
+inline constexpr const char* kScene =
+    R"(A Model from a JSON scene given as a dict (or its JSON text): every node kind a scene
+file takes (mesh, box, sphere, cylinder, field, blend with point, segment, triangle, polyline,
+circle and mesh skeletons, twist, taper, bend, points, subdivide, ffd, union, intersection,
+difference, complement, transforms; docs/cli.md "Input"). Relative file paths resolve against
+base (default: the working directory). Raises InputError naming the node's JSON path.)";
+
 inline constexpr const char* kWritePng =
     R"(Writes an RGB image (uint8 (height, width, 3), as Model.render() returns) as a PNG file,
 atomically (a temporary beside it, then renamed), as `cover render` writes its frames.)";

@@ -937,6 +937,25 @@ PYBIND11_MODULE(_cover, m) {
         return warned(std::move(model));
       },
       py::arg("path"), py::kw_only(), py::arg("closed_only") = false, doc::kLoad);
+  m.def(
+      "scene",
+      [](py::object scene, const std::optional<std::filesystem::path>& base, bool closed_only) {
+        std::string text;
+        if (py::isinstance<py::str>(scene))
+          text = scene.cast<std::string>();
+        else
+          text = py::module_::import("json").attr("dumps")(scene).cast<std::string>();
+        Model model;
+        {
+          py::gil_scoped_release release;
+          LoadOptions options;
+          options.require_closed = closed_only;
+          model = cover::scene(text, base.value_or(std::filesystem::path{}), options);
+        }
+        return warned(std::move(model));
+      },
+      py::arg("scene"), py::kw_only(), py::arg("base") = py::none(), py::arg("closed_only") = false,
+      doc::kScene);
   // Any iterable of Models (a list, a generator), as Python's sum() takes.
   auto models_arg = [](const py::iterable& models) {
     std::vector<Model> out;

@@ -150,3 +150,21 @@ def test_mesh_skeleton_alone_is_the_mesh_and_blends_round_it(tmp_path):
         cover.load(bad)
     r = run_cli("info", bad, check=False)
     assert r.returncode == 2 and "not closed" in r.stderr and r.stderr.count("\n") == 1
+
+
+def test_scene_from_a_dict_equals_the_scene_file(tmp_path):
+    """cover.scene takes the dict a scene file holds: the same Model as cover.load of that file
+    (classes equal at random points), relative paths against base, errors naming the node."""
+    import json
+    snake = json.loads(SNAKE.read_text())
+    from_dict = cover.scene(snake, base=SNAKE.parent)
+    from_file = cover.load(SNAKE)
+    P = np.random.default_rng(9).uniform(*from_file.bounds(), size=(20000, 3))
+    assert np.array_equal(from_dict.classify(P), from_file.classify(P))
+    assert np.array_equal(cover.scene(json.dumps(snake), base=SNAKE.parent).classify(P),
+                          from_dict.classify(P))
+    blend = cover.scene(json.loads(TWO_POINTS))
+    assert blend.classify([[0.85, 0, 0]])[0] == 2  # exactly on the surface: face
+    with pytest.raises(cover.InputError, match=r"<scene>: /blend/1/field.*influence"):
+        cover.scene({"blend": [json.loads(TWO_POINTS)["blend"][0],
+                               {"field": {"skeleton": {"point": [0, 0, 0]}, "radius": 0.5}}]})
