@@ -346,6 +346,21 @@ TEST(MixedEvaluation, ClipCellsAndDecomposeTakeEveryLeaf) {
   EXPECT_NEAR(sum, coarse.volume, 1e-9 * coarse.volume);
 }
 
+TEST(MixedEvaluation, ClipAndCellsTakeMeshSkeletons) {
+  const std::string torus = std::string(COVER_SOURCE_DIR) + "/models/torus.off";
+  const Model m = scene(R"({"difference": [{"blend": [{"field": {"skeleton": {"mesh": ")" + torus +
+                        R"("}, "radius": 0.1, "influence": 0.3}}, {"field": {"skeleton":
+                        {"point": [1.2, 0, 0.3]}, "radius": 0.1, "influence": 0.3}}]},
+                        {"box": {"min": [-3, -3, -1], "max": [0.05, 0.05, 1]}}]})");
+  const double whole = m.evaluate().volume;
+  const brep::ClipResult c = m.clip({{0, 0, 1}, 0.1});
+  expect_valid(c.above.mesh, "clip above");
+  expect_valid(c.below.mesh, "clip below");
+  EXPECT_NEAR(signed_volume(c.above.mesh) + signed_volume(c.below.mesh), whole, 1e-9 * whole);
+  const CellsEvaluation cells = m.evaluate_cells(3);
+  EXPECT_NEAR(signed_volume(cells.cells.glued), whole, 1e-9 * whole);
+}
+
 TEST(Distance, BallFieldAndBox) {
   // A point field's surface is the sphere |p − c| = 0.5: the signed distance through the mixed
   // evaluation's mesh is within h·√3 of |p − c| − 0.5 (the mesh lies within h·√3 of the
