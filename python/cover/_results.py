@@ -21,6 +21,8 @@ class VolumeResult(float):
         self.target_met = info.get("target_met", True)
         return self
 
+    __str__ = float.__repr__  # print() and str() show the number, as for a float
+
     def __repr__(self):
         return (f"VolumeResult(volume={self.volume!r}, method={self.method!r}, "
                 f"error_bound={self.error_bound!r}, area={self.area!r})")

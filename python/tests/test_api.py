@@ -205,7 +205,7 @@ def test_volume_is_a_float_with_its_provenance():
     ball = cover.sphere([0, 0, 0], 1, 16) - cover.box([0, 0, 0], [2, 2, 2])
     r = ball.volume(rays=64)
     assert r.method == "rays" and r.rays > 0 and r.error_bound > 0
-    assert "VolumeResult(volume=" in repr(r)
+    assert "VolumeResult(volume=" in repr(r) and str(v) == "6.0" and f"{v}" == "6.0"
 
 
 def test_write_png_and_notebook_display(tmp_path):

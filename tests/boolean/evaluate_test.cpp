@@ -24,6 +24,7 @@
 #include "cover/io/mesh_io.h"
 #include "cover/io/scene.h"
 #include "cover/mesh/validate.h"
+#include "cover/model/model.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/primitives.h"
@@ -260,10 +261,11 @@ TEST(Evaluate, RotatedBoxesAnchorAndCheeseScene) {
 
 // ---- coplanar and touching leaves --------------------------------------------------------------
 
-Solid box(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
+Solid box_solid(Vec3 lo, Vec3 hi) { return make_leaf(make_box(lo, hi), "box"); }
 
 TEST(Evaluate, BoxesSharingAFaceUnite) {
-  const EvaluateResult r = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {2, 1, 1})}));
+  const EvaluateResult r =
+      evaluate(unite({box_solid({0, 0, 0}, {1, 1, 1}), box_solid({1, 0, 0}, {2, 1, 1})}));
   check_manifold(r.mesh);
   test::expect_valid_cells(r.mesh, {{0, 0, 0}, 2, 4}, "boxes sharing a face");
   EXPECT_DOUBLE_EQ(r.volume, 2);
@@ -273,7 +275,8 @@ TEST(Evaluate, BoxesSharingAFaceUnite) {
 }
 
 TEST(Evaluate, CubesSharingAnEdgeUnite) {
-  const EvaluateResult r = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({1, 1, 0}, {2, 2, 1})}));
+  const EvaluateResult r =
+      evaluate(unite({box_solid({0, 0, 0}, {1, 1, 1}), box_solid({1, 1, 0}, {2, 2, 1})}));
   const brep::BrepReport rep = check_manifold(r.mesh);
   test::expect_valid_cells(r.mesh, {{0, 0, 0}, 2, 4}, "cubes sharing an edge");
   EXPECT_DOUBLE_EQ(r.volume, 2);
@@ -287,7 +290,8 @@ TEST(Evaluate, CubesSharingAnEdgeUnite) {
 }
 
 TEST(Evaluate, CubesTouchingAtAPoint) {
-  const EvaluateResult r = evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({1, 1, 1}, {2, 2, 2})}));
+  const EvaluateResult r =
+      evaluate(unite({box_solid({0, 0, 0}, {1, 1, 1}), box_solid({1, 1, 1}, {2, 2, 2})}));
   check_manifold(r.mesh);
   test::expect_valid_cells(r.mesh, {{0, 0, 0}, 2, 4}, "cubes touching at a point");
   EXPECT_DOUBLE_EQ(r.volume, 2);
@@ -327,8 +331,8 @@ CGAL::Gmpq union_of_cubes(double lo, double a, double h, double b) {
 /// volume is the rational one rounded and whose doubles volume agrees with it.
 void expect_exact_union_of_cubes(double lo, double a) {
   const double h = a / 2, b = 1.5 * a;
-  const Solid s = unite({box({lo, lo, lo}, {lo + a, lo + a, lo + a}),
-                         box({lo + h, lo + h, lo + h}, {lo + b, lo + b, lo + b})});
+  const Solid s = unite({box_solid({lo, lo, lo}, {lo + a, lo + a, lo + a}),
+                         box_solid({lo + h, lo + h, lo + h}, {lo + b, lo + b, lo + b})});
   EvaluateOptions o;
   o.exact_volume = true;
   const EvaluateResult r = evaluate(s, o);
@@ -373,7 +377,7 @@ TEST(Evaluate, UnionOfBoxesOfSide1em200IsTheUnitResultScaled) {
       second = unit;
       for (Vec3& p : second.vertices) p = {c + a * p.x, c + a * p.y, c + a * p.z};
     }
-    return unite({box({0, 0, 0}, {a, a, a}), make_leaf(second, "b")});
+    return unite({box_solid({0, 0, 0}, {a, a, a}), make_leaf(second, "b")});
   };
   for (bool turn : {false, true}) {
     const EvaluateResult unit = evaluate(scene(1, turn));
@@ -393,15 +397,15 @@ TEST(Evaluate, ExactVolumeBelowTheNormalDoublesIsRefused) {
   EvaluateOptions o;
   o.exact_volume = true;
   const double a = 1e-150;
-  EXPECT_THROW(
-      evaluate(
-          unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {2 * a, 2 * a, 2 * a})}), o),
-      NotComputable);
-  const EvaluateResult empty =
-      evaluate(intersect({box({0, 0, 0}, {a, a, a}), box({2 * a, 0, 0}, {3 * a, a, a})}), o);
+  EXPECT_THROW(evaluate(unite({box_solid({0, 0, 0}, {a, a, a}),
+                               box_solid({a / 2, a / 2, a / 2}, {2 * a, 2 * a, 2 * a})}),
+                        o),
+               NotComputable);
+  const EvaluateResult empty = evaluate(
+      intersect({box_solid({0, 0, 0}, {a, a, a}), box_solid({2 * a, 0, 0}, {3 * a, a, a})}), o);
   EXPECT_EQ(*empty.exact_volume, 0);
   const double b = 1e-102;  // volume about 1e-306: still a normal double
-  const EvaluateResult small = evaluate(unite({box({0, 0, 0}, {b, b, b})}), o);
+  const EvaluateResult small = evaluate(unite({box_solid({0, 0, 0}, {b, b, b})}), o);
   const std::pair<double, double> bracket =
       CGAL::to_interval(CGAL::Gmpq(b) * CGAL::Gmpq(b) * CGAL::Gmpq(b));
   EXPECT_TRUE(*small.exact_volume == bracket.first || *small.exact_volume == bracket.second);
@@ -411,15 +415,15 @@ TEST(Evaluate, ExactVolumeBelowTheNormalDoublesIsRefused) {
 // A tiny box next to a unit box: both kept, each exact.
 TEST(Evaluate, TinyBoxNextToAUnitBox) {
   const double a = 1e-20;
-  const Solid s =
-      unite({box({0, 0, 0}, {a, a, a}), box({a / 2, a / 2, a / 2}, {1.5 * a, 1.5 * a, 1.5 * a}),
-             box({-1, -1, -1}, {-0.5, -0.5, -0.5})});
+  const Solid s = unite({box_solid({0, 0, 0}, {a, a, a}),
+                         box_solid({a / 2, a / 2, a / 2}, {1.5 * a, 1.5 * a, 1.5 * a}),
+                         box_solid({-1, -1, -1}, {-0.5, -0.5, -0.5})});
   const EvaluateResult r = evaluate(s);
   check_manifold(r.mesh);
   EXPECT_EQ(r.components, 2);
   EXPECT_DOUBLE_EQ(r.volume, 0.125);
   const EvaluateResult t =
-      evaluate(unite({box({0, 0, 0}, {a, a, a}), box({-1, -1, -1}, {0, 0, 0})}));
+      evaluate(unite({box_solid({0, 0, 0}, {a, a, a}), box_solid({-1, -1, -1}, {0, 0, 0})}));
   check_manifold(t.mesh);
   EXPECT_EQ(t.components, 2);  // touching at the origin only
 }
@@ -429,8 +433,8 @@ TEST(Evaluate, TinyBoxNextToAUnitBox) {
 // centre, not the origin (where it lost every digit: 1.4e29 for 1.875).
 TEST(Evaluate, UnitBoxesAtOffset1e15Unite) {
   const double o = 1e15;
-  const Solid s = unite({box({o, o, o}, {o + 1, o + 1, o + 1}),
-                         box({o + 0.5, o + 0.5, o + 0.5}, {o + 1.5, o + 1.5, o + 1.5})});
+  const Solid s = unite({box_solid({o, o, o}, {o + 1, o + 1, o + 1}),
+                         box_solid({o + 0.5, o + 0.5, o + 0.5}, {o + 1.5, o + 1.5, o + 1.5})});
   EvaluateOptions opt;
   opt.exact_volume = true;
   const EvaluateResult r = evaluate(s, opt);
@@ -443,15 +447,15 @@ TEST(Evaluate, UnitBoxesAtOffset1e15Unite) {
 
 TEST(Evaluate, IdenticalBoxes) {
   const Vec3 lo{0, 0, 0}, hi{1, 2, 3};
-  const EvaluateResult u = evaluate(unite({box(lo, hi), box(lo, hi)}));
+  const EvaluateResult u = evaluate(unite({box_solid(lo, hi), box_solid(lo, hi)}));
   check_manifold(u.mesh);
   EXPECT_DOUBLE_EQ(u.volume, 6);
   EXPECT_DOUBLE_EQ(u.area, 22);
-  const EvaluateResult i = evaluate(intersect({box(lo, hi), box(lo, hi)}));
+  const EvaluateResult i = evaluate(intersect({box_solid(lo, hi), box_solid(lo, hi)}));
   check_manifold(i.mesh);
   EXPECT_DOUBLE_EQ(i.volume, 6);
   EXPECT_DOUBLE_EQ(i.area, 22);
-  const EvaluateResult d = evaluate(subtract({box(lo, hi), box(lo, hi)}));
+  const EvaluateResult d = evaluate(subtract({box_solid(lo, hi), box_solid(lo, hi)}));
   EXPECT_EQ(d.mesh.face_count(), 0u);
   EXPECT_EQ(d.volume, 0);
 }
@@ -459,13 +463,13 @@ TEST(Evaluate, IdenticalBoxes) {
 TEST(Evaluate, FlushCut) {
   // [0,2]³ minus [1,2]×[0,2]×[0,2] (shares three faces partly and x = 2 wholly): [0,1]×[0,2]².
   const EvaluateResult r =
-      evaluate(subtract({box({0, 0, 0}, {2, 2, 2}), box({1, 0, 0}, {2, 2, 2})}));
+      evaluate(subtract({box_solid({0, 0, 0}, {2, 2, 2}), box_solid({1, 0, 0}, {2, 2, 2})}));
   check_manifold(r.mesh);
   EXPECT_DOUBLE_EQ(r.volume, 4);
   EXPECT_DOUBLE_EQ(r.area, 16);
   // A slot cut flush with the top: [0,3]³ minus [1,2]×[−1,4]×[2,3].
   const EvaluateResult s =
-      evaluate(subtract({box({0, 0, 0}, {3, 3, 3}), box({1, -1, 2}, {2, 4, 3})}));
+      evaluate(subtract({box_solid({0, 0, 0}, {3, 3, 3}), box_solid({1, -1, 2}, {2, 4, 3})}));
   check_manifold(s.mesh);
   test::expect_valid_cells(s.mesh, {{0, 0, 0}, 3, 4}, "slot");
   test::expect_valid_cells(s.mesh, {{0, 0, 0}, 3, 3}, "slot");
@@ -477,13 +481,13 @@ TEST(Evaluate, FlushCut) {
 TEST(Evaluate, OverlappingCoplanarTops) {
   // Two boxes with flush tops and bottoms, overlapping in x: one box [0, 1.5]×[0,1]×[0,1].
   const EvaluateResult u =
-      evaluate(unite({box({0, 0, 0}, {1, 1, 1}), box({0.5, 0, 0}, {1.5, 1, 1})}));
+      evaluate(unite({box_solid({0, 0, 0}, {1, 1, 1}), box_solid({0.5, 0, 0}, {1.5, 1, 1})}));
   check_manifold(u.mesh);
   test::expect_valid_cells(u.mesh, {{0, 0, 0}, 1.5, 4}, "coplanar tops");
   EXPECT_DOUBLE_EQ(u.volume, 1.5);
   EXPECT_DOUBLE_EQ(u.area, 2 * (1.5 + 1.5 + 1));
-  const EvaluateResult i =
-      evaluate(intersect({box({0, 0, 0}, {1, 1, 1}), box({0.5, 0.25, 0}, {1.5, 2, 1})}));
+  const EvaluateResult i = evaluate(
+      intersect({box_solid({0, 0, 0}, {1, 1, 1}), box_solid({0.5, 0.25, 0}, {1.5, 2, 1})}));
   check_manifold(i.mesh);
   EXPECT_DOUBLE_EQ(i.volume, 0.5 * 0.75);
 }
@@ -622,6 +626,32 @@ TEST(EvaluateCli, EmptyResultWritesEmptyMesh) {
   EXPECT_TRUE(std::filesystem::exists(dir / "e.off"));
   EXPECT_NE(r.err.find("empty"), std::string::npos) << r.err;
   std::filesystem::remove_all(dir);
+}
+
+TEST(EvaluateAgainstCgal, PolygonizedAndMixedMeshesPassCgalsChecks) {
+  // The certified polygonizer's meshes and a mixed evaluation's (a mesh-skeleton blend minus a
+  // box: exact torus triangles, polygonized overlap, exact Booleans) as CGAL judges them.
+  const std::string blend = R"({"blend": [
+    {"field": {"skeleton": {"point": [-0.35, 0, 0]}, "radius": 0.5, "influence": 1}},
+    {"field": {"skeleton": {"point": [0.35, 0, 0]}, "radius": 0.5, "influence": 1}}]})";
+  const Model two(parse_scene(blend, "two.json").solid);
+  PolygonizeOptions po;
+  po.resolution = 32;
+  EXPECT_EQ(test::cgal_verdict(two.polygonize(po).mesh), "");
+  const std::string torus = (test::source_dir() / "models" / "torus.off").string();
+  const Model mixed(
+      parse_scene(
+          R"({"difference": [{"blend": [{"field": {"skeleton": {"mesh": ")" + torus +
+              R"("}, "radius": 0.1, "influence": 0.3}}, {"field": {"skeleton": {"point": [1.2, 0,
+          0.3]}, "radius": 0.1, "influence": 0.3}}]}, {"box": {"min": [-3, -3, -1],
+          "max": [0.05, 0.05, 1]}}]})",
+          "mixed.json")
+          .solid);
+  EvaluateOptions eo;
+  eo.mesh_resolution = 32;
+  const EvaluateResult e = mixed.evaluate(eo);
+  ASSERT_GT(e.mesh.face_count(), 0u);
+  EXPECT_EQ(test::cgal_verdict(e.mesh), "");
 }
 
 }  // namespace
