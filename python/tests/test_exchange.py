@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import cover
-from conftest import MODELS, cli_json, run_cli
+from conftest import BUILD_DIR, MODELS, cli_json, run_cli
 
 
 @pytest.mark.parametrize("ext", [".glb", ".gltf"])
@@ -210,3 +210,20 @@ def test_write_voxels_reads_back_in_numpy_vtk_and_the_sidecar(tmp_path):
     with pytest.raises(cover.InputError, match="bounds"):
         cover.write_voxels(tmp_path / "bad.npy", grid, (0, 0, 0, -1))
     assert not (tmp_path / "bad.npy").exists()
+
+
+def test_write_voxels_vdb_reads_back_in_pyopenvdb(tmp_path, monkeypatch):
+    """The .vdb route (Cover's OpenVDB plugin) read by OpenVDB's own Python module: the same
+    voxels, the voxel size and the first voxel's centre of the bounds."""
+    vdb = pytest.importorskip("pyopenvdb")
+    monkeypatch.setenv("COVER_PLUGIN_DIR", str(BUILD_DIR / "lib" / "cover"))
+    part = cover.load(MODELS / "torus.off")
+    grid, bounds = part.voxelize(24), part.voxel_bounds(24)
+    cover.write_voxels(tmp_path / "g.vdb", grid, bounds)
+    read = vdb.read(str(tmp_path / "g.vdb"), "occupancy")
+    dense = np.zeros(grid.shape, bool)
+    read.copyToArray(dense, ijk=(0, 0, 0))
+    assert np.array_equal(dense, grid) and read.activeVoxelCount() == grid.sum()
+    h = bounds[3] / 24
+    assert read.transform.voxelSize() == pytest.approx((h, h, h))
+    assert read.transform.indexToWorld((0, 0, 0)) == pytest.approx(np.array(bounds[:3]) + h / 2)
