@@ -184,7 +184,9 @@ Voxel (i, j, k) has centre min + (i + 1/2, j + 1/2, k + 1/2) * size / res and is
 the centre is inside (a centre exactly on a surface is decided for the point displaced
 infinitesimally towards +x, then +y, then +z). bounds: (xmin, ymin, zmin, size) or None
 for voxel_bounds(res). Equal to the .npy of `cover voxelize --res res` (uint8 there).
-res: 1..4096. A grid needing more than max_memory MiB (9/8 byte a voxel: the array and the
+res: 1..4096. Instead of res, voxel_size=h (a grid of spacing h over the result's box, or over
+bounds: dims = ceil(extent / h)) or dims=(NX, NY, NZ) give non-cubic grids (NX, NY, NZ), as the
+CLI's --voxel-size and --dims. A grid needing more than max_memory MiB (9/8 byte a voxel: the array and the
 packed grid) raises InputError before anything is allocated, as the CLI's --max-memory.)";
 
 inline constexpr const char* kRender =

@@ -429,18 +429,40 @@ py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box
   return unpack_grid(grid);
 }
 
-py::array_t<bool> voxel_grid(const Model& model, int res, const py::object& bounds,
+py::array_t<bool> voxel_grid(const Model& model, std::optional<int> res, const py::object& bounds,
+                             std::optional<double> voxel_size, const py::object& dims,
                              uint64_t max_memory, Threads threads) {
   VoxelizeOptions o;
-  o.resolution = res;
   o.bounds = bounds_arg(bounds);
-  if (res < 1 || res > kMaxVoxelResolution)  // before allocating the output
-    throw InputError("res: expected a whole number from 1 to " +
-                     std::to_string(kMaxVoxelResolution) +
-                     " (above, voxelize_brick or "
-                     "cover.dask.voxelize, up to " +
-                     std::to_string(kMaxVoxelDims) + "), got " + std::to_string(res));
-  check_grid_memory("voxelize", uint64_t(res) * uint64_t(res) * uint64_t(res), max_memory);
+  const int given = int(res.has_value()) + int(voxel_size.has_value()) + int(!dims.is_none());
+  if (given != 1)
+    throw InputError(
+        "res, voxel_size, dims: give exactly one (a cubic grid of res voxels per "
+        "axis, a spacing, or NX, NY, NZ voxel counts), as the CLI's --res, "
+        "--voxel-size, --dims");
+  if (res) {
+    if (*res < 1 || *res > kMaxVoxelResolution)  // before allocating the output
+      throw InputError("res: expected a whole number from 1 to " +
+                       std::to_string(kMaxVoxelResolution) +
+                       " (above, voxelize_brick or "
+                       "cover.dask.voxelize, up to " +
+                       std::to_string(kMaxVoxelDims) + "), got " + std::to_string(*res));
+    o.resolution = *res;
+  } else if (voxel_size) {
+    if (!(*voxel_size > 0) || !std::isfinite(*voxel_size))
+      throw InputError("voxel_size: expected a finite spacing > 0");
+    o.voxel_size = *voxel_size;
+  } else {
+    const std::vector<double> d = numbers_arg(dims, "dims", 3);
+    for (int a = 0; a < 3; ++a) {
+      if (d[a] != std::floor(d[a]) || d[a] < 1 || d[a] > kMaxVoxelDims)
+        throw InputError("dims: expected 3 whole numbers from 1 to " +
+                         std::to_string(kMaxVoxelDims));
+      o.dims[a] = static_cast<int>(d[a]);
+    }
+  }
+  const VoxelLattice lattice = model.voxel_lattice(o);  // InputError for a bad spacing or box
+  check_grid_memory("voxelize", lattice.voxel_count(), max_memory);
   VoxelGrid grid;
   {
     KernelScope scope(threads);
@@ -878,7 +900,8 @@ PYBIND11_MODULE(_cover, m) {
             return py::make_tuple(b.min.x, b.min.y, b.min.z, b.size);
           },
           py::arg("res"), doc::kVoxelBounds)
-      .def("voxelize", &voxel_grid, py::arg("res"), py::arg("bounds") = py::none(), py::kw_only(),
+      .def("voxelize", &voxel_grid, py::arg("res") = py::none(), py::arg("bounds") = py::none(),
+           py::kw_only(), py::arg("voxel_size") = py::none(), py::arg("dims") = py::none(),
            py::arg("max_memory") = 4096, threads, doc::kVoxelize)
       .def("voxelize_brick", &voxel_brick, py::arg("res"), py::arg("box"),
            py::arg("bounds") = py::none(), py::kw_only(), py::arg("max_memory") = 4096, threads,

@@ -116,9 +116,11 @@ class Model:
     def voxel_bounds(self, res: int) -> tuple[float, float, float, float]: ...
     def voxelize(
         self,
-        res: int,
+        res: int | None = None,
         bounds: Sequence[float] | None = None,
         *,
+        voxel_size: float | None = None,
+        dims: Sequence[int] | None = None,
         max_memory: int = 4096,
         threads: int | None = None,
     ) -> npt.NDArray[np.bool_]: ...

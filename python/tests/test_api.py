@@ -4,6 +4,7 @@ Ctrl-C."""
 
 import os
 import signal
+import subprocess
 import threading
 import time
 import tracemalloc
@@ -12,7 +13,8 @@ import numpy as np
 import pytest
 
 import cover
-from conftest import MODELS, canonical_triangles, parity_inside, read_png_rgb, signed_volume
+from conftest import (COVER_BIN, MODELS, canonical_triangles, parity_inside, read_png_rgb,
+                      signed_volume)
 
 
 def box_mesh(lo, hi):
@@ -565,3 +567,26 @@ def test_errors_name_python_parameters_and_memory_is_estimated_first():
         m.voxelize(5000)
     adaptive, none = m.volume(rays=0), m.volume()
     assert adaptive == none and adaptive.method == none.method  # 0: adaptive, as in C++
+
+
+def test_non_cubic_grids_equal_the_clis(tmp_path):
+    """voxelize(voxel_size=h) and voxelize(dims=...) are the CLI's --voxel-size and --dims grids
+    (their .npy, uint8 there), non-cubic; exactly one of res, voxel_size, dims."""
+    path = MODELS / "torus.off"
+    m = cover.load(path)
+    for option, value, kw in (("--dims", "20,12,7", {"dims": (20, 12, 7)}),
+                              ("--voxel-size", "0.25", {"voxel_size": 0.25})):
+        out = tmp_path / "g.npy"
+        r = subprocess.run([str(COVER_BIN), "voxelize", str(path), option, value, "-o", str(out),
+                            "--quiet"], capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        grid = m.voxelize(**kw)
+        assert np.array_equal(np.load(out), grid.astype(np.uint8))
+        assert grid.any() and not grid.all()
+    assert m.voxelize(dims=(20, 12, 7)).shape == (20, 12, 7)
+    with pytest.raises(cover.InputError, match="exactly one"):
+        m.voxelize(16, dims=(4, 4, 4))
+    with pytest.raises(cover.InputError, match="exactly one"):
+        m.voxelize()
+    with pytest.raises(cover.InputError, match="^dims: "):
+        m.voxelize(dims=(4, 0, 4))
