@@ -41,7 +41,7 @@ from ._cover import (
     write_voxels,
 )
 from ._interop import mesh, to_vtk
-from ._results import VolumeResult
+from ._results import MeshResult, VolumeResult
 
 __all__ = [
     "CLASS_NAMES",
@@ -70,6 +70,7 @@ __all__ = [
     "write_voxels",
     "Octree",
     "VolumeResult",
+    "MeshResult",
     "to_vtk",
 ]
 
@@ -90,3 +91,18 @@ def _repr_png_(self):
 
 
 Model._repr_png_ = _repr_png_
+
+
+_evaluate = Model.evaluate
+
+
+def _evaluate_result(self, *, leaf_ids=False, mesh_resolution=128, mesh_tolerance=0.0,
+                     threads=None):
+    return MeshResult(_evaluate(self, leaf_ids=leaf_ids, mesh_resolution=mesh_resolution,
+                                mesh_tolerance=mesh_tolerance, threads=threads))
+
+
+_evaluate_result.__name__ = "evaluate"
+_evaluate_result.__doc__ = _evaluate.__doc__.replace("-> tuple", "-> cover.MeshResult", 1) + (
+    "\n\nThe result is a cover.MeshResult: the tuple as before, with save(path).")
+Model.evaluate = _evaluate_result

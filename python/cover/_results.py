@@ -1,6 +1,6 @@
 """Result classes of cover.Model's methods (numbers with their provenance)."""
 
-__all__ = ["VolumeResult"]
+__all__ = ["MeshResult", "VolumeResult"]
 
 
 class VolumeResult(float):
@@ -41,3 +41,16 @@ class VolumeResult(float):
 
     def __reduce__(self):
         return (VolumeResult, (self.as_dict(),))
+
+
+class MeshResult(tuple):
+    """Model.evaluate()'s result: the tuple (V, F) or (V, F, L) as before (it unpacks the same),
+    with save(path) writing it as `cover evaluate -o path` would (every mesh format the CLI
+    writes; the leaf ids, when present, as PLY face property, OBJ groups or glTF / 3MF
+    materials)."""
+
+    def save(self, path):
+        """Writes the mesh atomically; the format follows the extension (cover.write_mesh)."""
+        from ._cover import write_mesh
+
+        write_mesh(path, self[0], self[1], self[2] if len(self) > 2 else None)

@@ -227,3 +227,25 @@ def test_write_voxels_vdb_reads_back_in_pyopenvdb(tmp_path, monkeypatch):
     h = bounds[3] / 24
     assert read.transform.voxelSize() == pytest.approx((h, h, h))
     assert read.transform.indexToWorld((0, 0, 0)) == pytest.approx(np.array(bounds[:3]) + h / 2)
+
+
+def test_evaluate_result_unpacks_and_saves(tmp_path):
+    part = cover.load(MODELS / "default.json")
+    result = part.evaluate(leaf_ids=True)
+    V, F, L = result  # the tuple as before
+    assert isinstance(result, cover.MeshResult) and isinstance(result, tuple)
+    result.save(tmp_path / "e.ply")
+    cover.write_mesh(tmp_path / "w.ply", V, F, L)
+    assert (tmp_path / "e.ply").read_bytes() == (tmp_path / "w.ply").read_bytes()
+    run_cli("evaluate", MODELS / "default.json", "--leaf-ids", "-o", tmp_path / "c.ply", "--quiet")
+    assert (tmp_path / "c.ply").read_bytes() == (tmp_path / "e.ply").read_bytes()
+    plain = part.evaluate()
+    plain.save(tmp_path / "p.ply")
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOPLY import vtkPLYReader
+    reader = vtkPLYReader()
+    reader.SetFileName(str(tmp_path / "p.ply"))
+    reader.Update()
+    out = reader.GetOutput()
+    assert out.GetNumberOfCells() == len(plain[1])
+    assert np.allclose(vtk_to_numpy(out.GetPoints().GetData()), plain[0], rtol=1e-6, atol=1e-6)
