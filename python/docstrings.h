@@ -186,8 +186,9 @@ infinitesimally towards +x, then +y, then +z). bounds: (xmin, ymin, zmin, size) 
 for voxel_bounds(res). Equal to the .npy of `cover voxelize --res res` (uint8 there).
 res: 1..4096. Instead of res, voxel_size=h (a grid of spacing h over the result's box, or over
 bounds: dims = ceil(extent / h)) or dims=(NX, NY, NZ) give non-cubic grids (NX, NY, NZ), as the
-CLI's --voxel-size and --dims. A grid needing more than max_memory MiB (9/8 byte a voxel: the array and the
-packed grid) raises InputError before anything is allocated, as the CLI's --max-memory.)";
+CLI's --voxel-size and --dims. A grid needing more than max_memory MiB (9/8 byte a voxel: the
+array and the packed grid) raises InputError before anything is allocated, as the CLI's
+--max-memory.)";
 
 inline constexpr const char* kRender =
     R"(Ray-cast preview of the non-evaluated solid: uint8 (height, width, 3) RGB, row 0 at the top.
