@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -273,6 +274,21 @@ ZarrResult write_zarr(const fs::path& path, const VoxelLattice& lattice, const Z
   result.occupied = occupied;
   result.chunks_written = written;
   return result;
+}
+
+ZarrResult write_zarr(const fs::path& path, const VoxelGrid& grid, const ZarrOptions& options) {
+  if (!grid.whole()) throw PreconditionError("write_zarr: the grid must hold its whole lattice");
+  // A brick spans every z, so its columns are the grid's columns, word for word.
+  return write_zarr(path, grid.lattice, options, [&](const IndexBox& box, VoxelGrid& brick) {
+    brick = empty_voxel_grid(grid.lattice, box);
+    const size_t words = brick.words_per_column();
+    for (int i = 0; i < brick.nx(); ++i)
+      for (int j = 0; j < brick.ny(); ++j)
+        std::copy_n(grid.bits.begin() +
+                        static_cast<std::ptrdiff_t>(grid.column_word(box.lo[0] + i, box.lo[1] + j)),
+                    words,
+                    brick.bits.begin() + static_cast<std::ptrdiff_t>(brick.column_word(i, j)));
+  });
 }
 
 }  // namespace cover

@@ -70,4 +70,9 @@ double zarr_brick_bytes(const VoxelLattice& lattice, int chunk);
 ZarrResult write_zarr(const std::filesystem::path& path, const VoxelLattice& lattice,
                       const ZarrOptions& options, const BrickFunction& brick);
 
+/// Writes a whole grid held in memory (grid.whole()) as the same store: each brick copied from
+/// `grid`. \throws PreconditionError when the grid is a region; otherwise as above.
+ZarrResult write_zarr(const std::filesystem::path& path, const VoxelGrid& grid,
+                      const ZarrOptions& options = {});
+
 }  // namespace cover

@@ -348,19 +348,29 @@ inside); depth, bounds (xmin, ymin, zmin, size), leaf_counts; save(path) writes 
 inline constexpr const char* kOctreeSave =
     R"(Writes the octree as the CLI does, by extension: .htg (VTK HyperTreeGrid XML), .bt
 (OctoMap binary; cells with occupancy >= threshold are occupied; the cube must lie on OctoMap's
-grid, as `cover octree -o x.bt` chooses it) or .json; atomically.)";
+grid: build the tree with bounds="octomap") or .json; atomically.)";
 
 inline constexpr const char* kOctreeMethod =
     R"(The direct octree of the result (octree/octree.h, as `cover octree`): cells no
 surface meets become full or empty leaves, the others split down to depth (0..16); partial
-leaves carry the occupancy of samples^3 sub-points. bounds: (xmin, ymin, zmin, size) or None
-for voxel_bounds(2^depth). An estimate over max_memory MiB raises InputError before building.)";
+leaves carry the occupancy of samples^3 sub-points. bounds: (xmin, ymin, zmin, size), None for
+voxel_bounds(2^depth), or "octomap" for the cube on OctoMap's grid that a .bt needs (the one
+`cover octree -o x.bt` picks). An estimate over max_memory MiB raises InputError before
+building.)";
 
 inline constexpr const char* kWriteVoxels =
-    R"(Writes a voxel grid (bool or 0/1, cubic (N, N, N) indexed [x, y, z], as
-Model.voxelize returns) over bounds (xmin, ymin, zmin, size) in the CLI's formats, by
-extension: .binvox, .vti, .npy, .raw (with its .raw.json sidecar holding the bounds) or .vdb;
-atomically, as `cover voxelize` writes them.)";
+    R"(Writes a voxel grid (bool or 0/1, shape (NX, NY, NZ) indexed [x, y, z], as
+Model.voxelize returns) in the CLI's formats, by extension: .binvox (cubic grids), .vti, .npy,
+.raw (with its .raw.json sidecar), .zarr (a Zarr v2 store of chunk³ chunks, as `cover voxelize
+-o OUT.zarr --chunk`) or .vdb; atomically, as `cover voxelize` writes them. The grid's place is
+bounds = (xmin, ymin, zmin, size) for a cubic grid (Model.voxel_bounds(res)) or lattice =
+Model.voxel_lattice(...) (or (origin, spacing)) for any grid; .vti, .raw, .zarr and .vdb record
+it.)";
+
+inline constexpr const char* kVoxelLattice =
+    R"(The grid voxelize(res, bounds, voxel_size=, dims=) covers, with the same arguments:
+cover.VoxelLattice(origin, spacing, dims, cube_size), voxel (i, j, k) centred at origin +
+(i + 1/2, j + 1/2, k + 1/2) * spacing; write_voxels(path, grid, lattice=...) takes it.)";
 
 inline constexpr const char* kScene =
     R"(A Model from a JSON scene given as a dict (or its JSON text): every node kind a scene

@@ -1,15 +1,16 @@
 // Octrees and voxel files for Python (docs/python.md): Model.octree (the direct octree of
 // octree/octree.h, as `cover octree`) returning cover.Octree, whose arrays view its nodes and
 // whose save() writes .htg, .bt or .json as the CLI does; cover.write_voxels writes a bool grid
-// with its bounds in the CLI's voxel formats (.binvox, .vti, .npy, .raw with its sidecar, .vdb),
-// atomically.
+// with its bounds or lattice in the CLI's voxel formats (.binvox, .vti, .npy, .raw with its
+// sidecar, .zarr, .vdb), atomically.
 #include "grids.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include <cctype>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -18,6 +19,7 @@
 #include "cover/io/octree_io.h"
 #include "cover/io/vdb_io.h"
 #include "cover/io/voxel_io.h"
+#include "cover/io/zarr_io.h"
 #include "cover/octree/octree.h"
 #include "cover/solid/errors.h"
 #include "cover/voxel/voxelize.h"
@@ -101,7 +103,17 @@ void bind_grids(py::module_& m, py::class_<Model>& model) {
         o.depth = depth;
         o.samples = samples;
         o.max_bytes = static_cast<uint64_t>(max_memory) << 20;
-        const std::optional<VoxelBounds> given = bounds_arg(bounds);
+        std::optional<VoxelBounds> given;
+        if (py::isinstance<py::str>(bounds)) {  // the cube `cover octree -o x.bt` picks
+          if (bounds.cast<std::string>() != "octomap")
+            throw InputError("bounds: expected (xmin, ymin, zmin, size), \"octomap\" or None");
+          const std::optional<Bbox> box = a.bounds();
+          if (!box)
+            throw NotComputable("bounds: the result is unbounded (a complement at the root)");
+          given = octomap_bounds(*box, std::max(depth, 1));
+        } else {
+          given = bounds_arg(bounds);
+        }
         KernelScope scope(threads);
         return scope.run([&] {
           Interrupt interrupt;
@@ -114,35 +126,70 @@ void bind_grids(py::module_& m, py::class_<Model>& model) {
 
   m.def(
       "write_voxels",
-      [](const std::filesystem::path& path, py::handle grid, py::handle bounds) {
+      [](const std::filesystem::path& path, py::handle grid, const py::object& bounds,
+         const py::object& lattice, int chunk) {
         const auto g =
             py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(grid);
-        if (!g || g.ndim() != 3 || g.shape(0) != g.shape(1) || g.shape(1) != g.shape(2) ||
-            g.shape(0) < 1 || g.shape(0) > kMaxVoxelDims)
+        if (!g || g.ndim() != 3)
           throw InputError(
-              "grid: expected a cubic (N, N, N) array indexed [x, y, z], N from 1 "
-              "to " +
-              std::to_string(kMaxVoxelDims) + ", as Model.voxelize returns");
-        const std::optional<VoxelBounds> b = bounds_arg(py::reinterpret_borrow<py::object>(bounds));
-        if (!b)
-          throw InputError("bounds: expected (xmin, ymin, zmin, size), as Model.voxel_bounds");
-        const int n = static_cast<int>(g.shape(0));
-        const VoxelLattice lattice = cubic_lattice(*b, n);
-        VoxelGrid out = empty_voxel_grid(lattice, whole_box(lattice));
+              "grid: expected a bool or 0/1 array of shape (NX, NY, NZ) indexed "
+              "[x, y, z], as Model.voxelize returns");
+        std::array<int, 3> dims{};
+        for (int a = 0; a < 3; ++a) {
+          if (g.shape(a) < 1 || g.shape(a) > kMaxVoxelDims)
+            throw InputError("grid: expected 1 to " + std::to_string(kMaxVoxelDims) +
+                             " voxels per axis");
+          dims[a] = static_cast<int>(g.shape(a));
+        }
+        if (bounds.is_none() == lattice.is_none())
+          throw InputError(
+              "bounds, lattice: give exactly one (bounds = (xmin, ymin, zmin, size) of a cubic "
+              "grid, as Model.voxel_bounds; lattice = Model.voxel_lattice(...) or (origin, "
+              "spacing))");
+        VoxelLattice l;
+        if (!bounds.is_none()) {
+          const std::optional<VoxelBounds> b = bounds_arg(bounds);
+          if (!b)
+            throw InputError("bounds: expected (xmin, ymin, zmin, size), as Model.voxel_bounds");
+          if (dims[0] != dims[1] || dims[1] != dims[2])
+            throw InputError(
+                "grid: bounds describe a cubic (N, N, N) grid; give lattice= for "
+                "a non-cubic one");
+          l = cubic_lattice(*b, dims[0]);
+        } else {
+          const py::tuple t = py::tuple(lattice);  // VoxelLattice or (origin, spacing)
+          if (t.size() < 2)
+            throw InputError("lattice: expected (origin, spacing), as Model.voxel_lattice");
+          l.origin = vec3_arg(t[0], "lattice origin");
+          l.spacing = py::cast<double>(t[1]);
+          if (!(l.spacing > 0) || !std::isfinite(l.spacing))
+            throw InputError("lattice: expected a finite spacing > 0");
+          if (t.size() > 2 && !t[2].is_none() &&
+              numbers_arg(t[2], "lattice dims", 3) !=
+                  std::vector<double>{double(dims[0]), double(dims[1]), double(dims[2])})
+            throw InputError("lattice: its dims differ from the grid's shape");
+          if (t.size() > 3 && !t[3].is_none()) l.cube_size = py::cast<double>(t[3]);
+          l.dims = dims;
+        }
+        VoxelGrid out = empty_voxel_grid(l, whole_box(l));
         const uint8_t* src = g.data();
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j)
-            for (int k = 0; k < n; ++k)
-              if (src[(static_cast<size_t>(i) * n + j) * n + k]) out.set(i, j, k);
+        for (int i = 0; i < dims[0]; ++i)
+          for (int j = 0; j < dims[1]; ++j)
+            for (int k = 0; k < dims[2]; ++k)
+              if (src[(static_cast<size_t>(i) * dims[1] + j) * dims[2] + k]) out.set(i, j, k);
         py::gil_scoped_release release;
-        std::string ext = path.extension().string();
-        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        if (ext == ".vdb")
+        if (is_zarr_extension(path)) {
+          ZarrOptions o;
+          o.chunk = chunk;
+          write_zarr(path, out, o);
+        } else if (is_vdb_extension(path)) {
           write_vdb(path, out);
-        else
+        } else {
           write_voxels(path, out);
+        }
       },
-      py::arg("path"), py::arg("grid"), py::arg("bounds"), doc::kWriteVoxels);
+      py::arg("path"), py::arg("grid"), py::arg("bounds") = py::none(), py::kw_only(),
+      py::arg("lattice") = py::none(), py::arg("chunk") = 128, doc::kWriteVoxels);
 }
 
 }  // namespace cover::python

@@ -429,9 +429,10 @@ py::array_t<bool> voxel_brick(const Model& model, int res, const py::object& box
   return unpack_grid(grid);
 }
 
-py::array_t<bool> voxel_grid(const Model& model, std::optional<int> res, const py::object& bounds,
-                             std::optional<double> voxel_size, const py::object& dims,
-                             uint64_t max_memory, Threads threads) {
+/// The VoxelizeOptions of voxelize(res, bounds, voxel_size=, dims=): exactly one of the three
+/// grid arguments, checked with messages naming the Python parameters.
+VoxelizeOptions voxelize_options(std::optional<int> res, const py::object& bounds,
+                                 std::optional<double> voxel_size, const py::object& dims) {
   VoxelizeOptions o;
   o.bounds = bounds_arg(bounds);
   const int given = int(res.has_value()) + int(voxel_size.has_value()) + int(!dims.is_none());
@@ -461,6 +462,21 @@ py::array_t<bool> voxel_grid(const Model& model, std::optional<int> res, const p
       o.dims[a] = static_cast<int>(d[a]);
     }
   }
+  return o;
+}
+
+/// cover.VoxelLattice(origin, spacing, dims, cube_size) of a lattice.
+py::object lattice_object(const VoxelLattice& l) {
+  return py::module_::import("cover._results")
+      .attr("VoxelLattice")(py::make_tuple(l.origin.x, l.origin.y, l.origin.z), l.spacing,
+                            py::make_tuple(l.dims[0], l.dims[1], l.dims[2]),
+                            l.cube_size ? py::cast(*l.cube_size) : py::none());
+}
+
+py::array_t<bool> voxel_grid(const Model& model, std::optional<int> res, const py::object& bounds,
+                             std::optional<double> voxel_size, const py::object& dims,
+                             uint64_t max_memory, Threads threads) {
+  VoxelizeOptions o = voxelize_options(res, bounds, voxel_size, dims);
   const VoxelLattice lattice = model.voxel_lattice(o);  // InputError for a bad spacing or box
   check_grid_memory("voxelize", lattice.voxel_count(), max_memory);
   VoxelGrid grid;
@@ -900,6 +916,14 @@ PYBIND11_MODULE(_cover, m) {
             return py::make_tuple(b.min.x, b.min.y, b.min.z, b.size);
           },
           py::arg("res"), doc::kVoxelBounds)
+      .def(
+          "voxel_lattice",
+          [](const Model& a, std::optional<int> res, const py::object& bounds,
+             std::optional<double> voxel_size, const py::object& dims) {
+            return lattice_object(a.voxel_lattice(voxelize_options(res, bounds, voxel_size, dims)));
+          },
+          py::arg("res") = py::none(), py::arg("bounds") = py::none(), py::kw_only(),
+          py::arg("voxel_size") = py::none(), py::arg("dims") = py::none(), doc::kVoxelLattice)
       .def("voxelize", &voxel_grid, py::arg("res") = py::none(), py::arg("bounds") = py::none(),
            py::kw_only(), py::arg("voxel_size") = py::none(), py::arg("dims") = py::none(),
            py::arg("max_memory") = 4096, threads, doc::kVoxelize)

@@ -41,7 +41,7 @@ from ._cover import (
     write_voxels,
 )
 from ._interop import mesh, to_vtk
-from ._results import MeshResult, VolumeResult
+from ._results import MeshResult, VolumeResult, VoxelLattice
 
 __all__ = [
     "CLASS_NAMES",
@@ -71,6 +71,7 @@ __all__ = [
     "Octree",
     "VolumeResult",
     "MeshResult",
+    "VoxelLattice",
     "to_vtk",
 ]
 

@@ -66,6 +66,12 @@ class Octree:
 class MeshResult(tuple[Any, ...]):
     def save(self, path: str | os.PathLike[str]) -> None: ...
 
+class VoxelLattice(NamedTuple):
+    origin: tuple[float, float, float]
+    spacing: float
+    dims: tuple[int, int, int]
+    cube_size: float | None
+
 class Model:
     def __init__(self) -> None: ...
     @property
@@ -117,6 +123,14 @@ class Model:
     ) -> dict[str, Any]: ...
     def bounds(self) -> npt.NDArray[np.float64]: ...
     def voxel_bounds(self, res: int) -> tuple[float, float, float, float]: ...
+    def voxel_lattice(
+        self,
+        res: int | None = None,
+        bounds: Sequence[float] | None = None,
+        *,
+        voxel_size: float | None = None,
+        dims: Sequence[int] | None = None,
+    ) -> VoxelLattice: ...
     def voxelize(
         self,
         res: int | None = None,
@@ -139,7 +153,7 @@ class Model:
     def octree(
         self,
         depth: int = 6,
-        bounds: Sequence[float] | None = None,
+        bounds: Sequence[float] | str | None = None,
         *,
         samples: int = 4,
         max_memory: int = 4096,
@@ -263,4 +277,11 @@ def write_mesh(
     leaf_ids: _ArrayLike | None = None,
 ) -> None: ...
 def write_png(path: str | os.PathLike[str], image: _ArrayLike) -> None: ...
-def write_voxels(path: str | os.PathLike[str], grid: _ArrayLike, bounds: Sequence[float]) -> None: ...
+def write_voxels(
+    path: str | os.PathLike[str],
+    grid: _ArrayLike,
+    bounds: Sequence[float] | None = None,
+    *,
+    lattice: VoxelLattice | Sequence[Any] | None = None,
+    chunk: int = 128,
+) -> None: ...

@@ -1,6 +1,8 @@
 """Result classes of cover.Model's methods (numbers with their provenance)."""
 
-__all__ = ["MeshResult", "VolumeResult"]
+from collections import namedtuple
+
+__all__ = ["MeshResult", "VolumeResult", "VoxelLattice"]
 
 
 class VolumeResult(float):
@@ -54,3 +56,14 @@ class MeshResult(tuple):
         from ._cover import write_mesh
 
         write_mesh(path, self[0], self[1], self[2] if len(self) > 2 else None)
+
+
+class VoxelLattice(namedtuple("VoxelLattice", "origin spacing dims cube_size")):
+    """The global grid of Model.voxelize (Model.voxel_lattice's result), as the C++
+    VoxelLattice: origin (the min corner of voxel (0, 0, 0)), spacing (the same on every axis),
+    dims (NX, NY, NZ) and cube_size (the exact cube of a cubic grid made from bounds, which
+    .binvox and the .raw sidecar record; None for grids made from voxel_size or dims). Voxel
+    (i, j, k) is centred at origin + (i + 1/2, j + 1/2, k + 1/2) * spacing. Pass it to
+    cover.write_voxels as lattice=."""
+
+    __slots__ = ()

@@ -177,6 +177,12 @@ def test_octree_equals_the_cli_and_saves_every_format(tmp_path):
     reader.SetFileName(str(htg))
     reader.Update()
     assert reader.GetOutput().GetNumberOfVertices() == len(tree)
+    # .bt: byte-equal to the CLI's, which liboctomap reads back in the C++ tests.
+    with pytest.raises(cover.InputError, match="OctoMap"):
+        tree.save(tmp_path / "ours.bt")
+    part.octree(5, "octomap").save(tmp_path / "ours.bt")
+    run_cli("octree", MODELS / "default.json", "--depth", 5, "-o", tmp_path / "cli.bt", "--quiet")
+    assert (tmp_path / "ours.bt").read_bytes() == (tmp_path / "cli.bt").read_bytes()
     with pytest.raises(cover.InputError, match="depth"):
         part.octree(17)
 
@@ -210,6 +216,47 @@ def test_write_voxels_reads_back_in_numpy_vtk_and_the_sidecar(tmp_path):
     with pytest.raises(cover.InputError, match="bounds"):
         cover.write_voxels(tmp_path / "bad.npy", grid, (0, 0, 0, -1))
     assert not (tmp_path / "bad.npy").exists()
+
+
+def test_write_voxels_non_cubic_and_zarr_equal_the_cli(tmp_path):
+    """A non-cubic grid (dims=) with its Model.voxel_lattice: the .zarr store (read by the zarr
+    package) and the .raw with its sidecar equal `cover voxelize --dims` file for file; the
+    lattice's centres are the ones voxelize classified."""
+    zarr = pytest.importorskip("zarr")
+    part = cover.load(MODELS / "default.json")
+    grid = part.voxelize(dims=(20, 31, 9))
+    lattice = part.voxel_lattice(dims=(20, 31, 9))
+    assert isinstance(lattice, cover.VoxelLattice) and lattice.dims == (20, 31, 9)
+    assert lattice.cube_size is None and part.voxel_lattice(16).cube_size is not None
+    for ext in (".zarr", ".raw", ".vti", ".npy"):
+        cover.write_voxels(tmp_path / ("py" + ext), grid, lattice=lattice, chunk=8)
+        run_cli("voxelize", MODELS / "default.json", "--dims", "20,31,9", "-o",
+                tmp_path / ("cli" + ext), "--chunk", 8, "--quiet")
+    stored = zarr.open(str(tmp_path / "py.zarr"), mode="r")
+    assert np.array_equal(stored[:], grid.astype(np.uint8))
+    for name in sorted(p.name for p in (tmp_path / "cli.zarr").iterdir()):
+        assert (tmp_path / "py.zarr" / name).read_bytes() == \
+            (tmp_path / "cli.zarr" / name).read_bytes(), name
+    for name in ("py.raw", "py.raw.json", "py.vti", "py.npy"):
+        cli = tmp_path / name.replace("py", "cli", 1)
+        assert (tmp_path / name).read_bytes() == cli.read_bytes(), name
+    # (origin, spacing) alone does as well; a cubic grid may give bounds or its lattice.
+    cover.write_voxels(tmp_path / "pair.raw", grid, lattice=(lattice.origin, lattice.spacing))
+    assert (tmp_path / "pair.raw.json").read_bytes() == (tmp_path / "cli.raw.json").read_bytes()
+    cube = part.voxelize(12)
+    cover.write_voxels(tmp_path / "a.binvox", cube, part.voxel_bounds(12))
+    cover.write_voxels(tmp_path / "b.binvox", cube, lattice=part.voxel_lattice(12))
+    assert (tmp_path / "a.binvox").read_bytes() == (tmp_path / "b.binvox").read_bytes()
+    for kwargs, word in [({}, "exactly one"),
+                         ({"bounds": part.voxel_bounds(12)}, "non-cubic"),
+                         ({"lattice": (lattice.origin, 0.0)}, "spacing"),
+                         ({"lattice": (lattice.origin, 1.0, (3, 4, 5))}, "dims"),
+                         ({"lattice": lattice, "chunk": 0}, "chunk")]:
+        with pytest.raises(cover.InputError, match=word):
+            cover.write_voxels(tmp_path / "bad.zarr", grid, **kwargs)
+    with pytest.raises(cover.InputError, match="cubic"):
+        cover.write_voxels(tmp_path / "bad.binvox", grid, lattice=lattice)
+    assert not (tmp_path / "bad.zarr").exists() and not (tmp_path / "bad.binvox").exists()
 
 
 def test_write_voxels_vdb_reads_back_in_pyopenvdb(tmp_path, monkeypatch):

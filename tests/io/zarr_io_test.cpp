@@ -77,12 +77,22 @@ TEST(Zarr, StoreAndVdbEqualTheNpyOfTheSameGrid) {
       EXPECT_EQ(got["origin"][0].get<double>(), lattice.origin.x);
       EXPECT_EQ(got["spacing"].get<double>(), lattice.spacing);
       EXPECT_TRUE(bytes == npy) << "chunk " << chunk;
+      // The grid held in memory writes the same store, chunk file for chunk file.
+      const fs::path copy = dir / ("m" + std::to_string(chunk) + ".zarr");
+      EXPECT_EQ(write_zarr(copy, whole, o).chunks_written, r.chunks_written);
+      for (const auto& entry : fs::directory_iterator(store))
+        EXPECT_TRUE(test::read_file(entry.path()) ==
+                    test::read_file(copy / entry.path().filename()))
+            << entry.path();
     }
     write_vdb(dir / "grid.vdb", whole);
     std::string bytes;
     const nlohmann::json got = test::python_read(dir / "grid.vdb", bytes);
     EXPECT_EQ(got["shape"], nlohmann::json(dims));
     EXPECT_TRUE(bytes == npy);
+    VoxelGrid region;
+    voxelize_brick(s, lattice, {{0, 0, 0}, {2, 2, 2}}, nullptr, region);
+    EXPECT_THROW(write_zarr(dir / "region.zarr", region), PreconditionError);
   }
   fs::remove_all(dir);
 }
