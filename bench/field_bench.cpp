@@ -315,7 +315,9 @@ int main(int argc, char** argv) {
     size_t covered = 0;
     for (int round = 0; round < 3; ++round) {
       auto t0 = Clock::now();
-      const cover::Image img = model.render(cam);
+      cover::RenderOptions one_ray;  // one ray per pixel, as the peers' images
+      one_ray.samples = 1;
+      const cover::Image img = model.render(cam, one_ray);
       cover_runs.push_back(since(t0));
       covered = covered_pixels(img);
       vdb_runs.push_back(openvdb_route());

@@ -234,12 +234,14 @@ int main(int argc, char** argv) {
     // The BVH only where the render walks one (not for closed leaves:
     // the object-order path, render/object_order.h).
     const cover::Prepared prepared(solid);
-    if (!cover::renders_in_object_order(solid, camera, {})) prepared.bvh();
+    cover::RenderOptions one_ray;  // one ray per pixel (no anti-aliasing), the figures' setting
+    one_ray.samples = 1;
+    if (!cover::renders_in_object_order(solid, camera, one_ray)) prepared.bvh();
     bvh_s = since(t0) - csg_s;
-    image = cover::render(prepared, camera);
+    image = cover::render(prepared, camera, one_ray);
     first_s = since(t0);
     const auto t1 = Clock::now();
-    const cover::Image again = cover::render(prepared, camera);
+    const cover::Image again = cover::render(prepared, camera, one_ray);
     refresh_s = since(t1);
     refresh_identical = again.rgb == image.rgb;
   }

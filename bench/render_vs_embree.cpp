@@ -343,6 +343,9 @@ int main(int argc, char** argv) {
   bool later_identical = true;
   std::vector<uint8_t> e_image;
   const std::string config = "threads=" + std::to_string(threads);
+  // One ray per pixel, as Embree's frames: no anti-aliasing (RenderOptions::samples).
+  cover::RenderOptions one_ray;
+  one_ray.samples = 1;
   for (int run = 0; run < runs; ++run) {
     {  // Cover
       CoverRun c;
@@ -352,15 +355,15 @@ int main(int argc, char** argv) {
       c.load_s = since(t0);
       // The BVH, when the render walks one (open leaves): built once per Model, timed apart.
       // The object-order path (closed leaves) needs none.
-      if (!cover::renders_in_object_order(model.solid(), cam, {})) model.bvh();
+      if (!cover::renders_in_object_order(model.solid(), cam, one_ray)) model.bvh();
       c.bvh_s = since(t0) - c.load_s;
-      const cover::Image first = model.render(cam);
+      const cover::Image first = model.render(cam, one_ray);
       c.first_frame_s = since(t0);
       c.frame_s = c.first_frame_s - c.load_s - c.bvh_s;
       c.first_cpu_s = cpu_seconds() - cpu0;
       const auto t1 = Clock::now();
       const double cpu1 = cpu_seconds();
-      const cover::Image later = model.render(cam);
+      const cover::Image later = model.render(cam, one_ray);
       c.later_frame_s = since(t1);
       c.later_cpu_s = cpu_seconds() - cpu1;
       later_identical &=
@@ -404,12 +407,12 @@ int main(int argc, char** argv) {
   bool threads_identical, methods_identical;
   {
     cover::ThreadLimit one(1);
-    const cover::Image single = cover::load(input).render(cam);
+    const cover::Image single = cover::load(input).render(cam, one_ray);
     threads_identical = single.rgb == reference.rgb && single.depth == reference.depth &&
                         single.ids == reference.ids;
   }
   {
-    cover::RenderOptions rays;
+    cover::RenderOptions rays = one_ray;
     rays.method = cover::RenderMethod::kRays;
     const cover::Image walked = cover::load(input).render(cam, rays);
     methods_identical = walked.rgb == reference.rgb && walked.depth == reference.depth &&

@@ -531,10 +531,17 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   co.width = static_cast<int>(size[0]);
   co.height = static_cast<int>(size[1]);
   // Frames are rendered one after the other: one frame's buffers at a time.
-  check_memory(render_bytes(co.width, co.height), common.max_memory_bytes(),
-               "--size " + o.size + ": the image");
+  if (o.samples < 1 || o.samples > kMaxRenderSamples)
+    throw InputError("--samples: expected a whole number from 1 to " +
+                     std::to_string(kMaxRenderSamples) + ", got " + std::to_string(o.samples));
+  check_memory(
+      render_bytes(co.width, co.height, o.samples), common.max_memory_bytes(),
+      "--size " + o.size +
+          (o.samples > 1 ? " with --samples " + std::to_string(o.samples) : std::string()) +
+          ": the image");
   RenderOptions ro;
   ro.outline = o.outline;
+  ro.samples = o.samples;
   const std::vector<double> bg = parse_numbers(o.background, "--background", 3, ",");
   for (int c = 0; c < 3; ++c) {
     if (bg[c] < 0 || bg[c] > 255)
@@ -583,7 +590,10 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   json j;
   j["width"] = co.width;
   j["height"] = co.height;
-  j["rays"] = static_cast<size_t>(co.width) * co.height * frames.size();
+  // Rays cast: the sub-pixel image's and the pixel-centre rays with samples > 1 (render.h).
+  const size_t rays_per_pixel = o.samples > 1 ? size_t(o.samples) * o.samples + 1 : 1;
+  j["samples"] = o.samples;
+  j["rays"] = static_cast<size_t>(co.width) * co.height * rays_per_pixel * frames.size();
   timing.put(j);
   j["camera"] = frames_json[0]["camera"];
   if (frames.size() > 1) j["frames"] = std::move(frames_json);
@@ -593,7 +603,8 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
     std::cout << j.dump() << "\n";
   } else if (frames.size() == 1) {
     std::printf("%s: %dx%d, %zu rays, %.3f s\n", o.output.c_str(), co.width, co.height,
-                static_cast<size_t>(co.width) * co.height, j["seconds"].get<double>());
+                static_cast<size_t>(co.width) * co.height * rays_per_pixel,
+                j["seconds"].get<double>());
   } else {
     std::printf("%zu frames %s ... %s: %dx%d, %zu rays, %.3f s\n", frames.size(),
                 with_suffix(o.output, frames.front().suffix).c_str(),

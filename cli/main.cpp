@@ -216,6 +216,8 @@ int main(int argc, char** argv) {
   ren_cmd->add_option("--background", ren.background, "Background colour r,g,b (0-255)")
       ->capture_default_str();
   ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
+  ren_cmd->add_option("--samples", ren.samples,
+                      "Anti-aliasing: SxS rays per pixel, S from 1 to 4 (default 2; 1: none)");
   ren_cmd->add_option("--up", ren.up, "The axis shown upright: x, y or z (Y-up scans: y)")
       ->capture_default_str();
   ren_cmd

@@ -76,6 +76,18 @@ bool contains(const Bbox& box, const Vec3& p) {
          box.min.z <= p.z && p.z <= box.max.z;
 }
 
+/// A lower bound of the squared distance between the boxes [lo, hi] and [b0, b1] (interval
+/// arithmetic: the caller protects the rounding mode; lo = hi = p for a point).
+double box_gap2(const Vec3& lo, const Vec3& hi, const Vec3& b0, const Vec3& b1) {
+  auto gap = [](double a0, double a1, double c0, double c1) {
+    return std::max({0.0, (I(a0) - I(c1)).inf(), (I(c0) - I(a1)).inf()});
+  };
+  return (CGAL::square(I(gap(lo.x, hi.x, b0.x, b1.x))) +
+          CGAL::square(I(gap(lo.y, hi.y, b0.y, b1.y))) +
+          CGAL::square(I(gap(lo.z, hi.z, b0.z, b1.z))))
+      .inf();
+}
+
 }  // namespace
 
 I mesh_d2(const FieldPrimitive& prim, const Vec3& lo, const Vec3& hi, double cap2) {
@@ -83,15 +95,7 @@ I mesh_d2(const FieldPrimitive& prim, const Vec3& lo, const Vec3& hi, double cap
   const Vec3* q = prim.points.data();
   const SkeletonMeshIndex& index = *prim.mesh;
   // A lower bound of the squared gap between a box [b0, b1] and the probe box.
-  auto gap2 = [&](const Vec3& b0, const Vec3& b1) {
-    auto gap = [](double a0, double a1, double c0, double c1) {
-      return std::max({0.0, (I(a0) - I(c1)).inf(), (I(c0) - I(a1)).inf()});
-    };
-    return (CGAL::square(I(gap(lo.x, hi.x, b0.x, b1.x))) +
-            CGAL::square(I(gap(lo.y, hi.y, b0.y, b1.y))) +
-            CGAL::square(I(gap(lo.z, hi.z, b0.z, b1.z))))
-        .inf();
-  };
+  auto gap2 = [&](const Vec3& b0, const Vec3& b1) { return box_gap2(lo, hi, b0, b1); };
   double best_lo = cap2, best_hi = cap2;
   // Nearest child first, so that best_hi falls early and prunes the rest; a node (or a
   // triangle's own box) whose gap exceeds best_hi cannot hold the least d² (module notes).
@@ -183,15 +187,7 @@ CGAL::Gmpq mesh_exact_d2(const FieldPrimitive& prim, const Vec3& p) {
   const IV box = iv(p);
   walk(
       *prim.mesh,
-      [&](const Node& node) {
-        auto gap = [](double a, double b0, double b1) {
-          return std::max({0.0, (I(b0) - I(a)).inf(), (I(a) - I(b1)).inf()});
-        };
-        const I g = CGAL::square(I(gap(p.x, node.box.min.x, node.box.max.x))) +
-                    CGAL::square(I(gap(p.y, node.box.min.y, node.box.max.y))) +
-                    CGAL::square(I(gap(p.z, node.box.min.z, node.box.max.z)));
-        return g.inf() <= bound;
-      },
+      [&](const Node& node) { return box_gap2(p, p, node.box.min, node.box.max) <= bound; },
       [&](uint32_t t) {
         const Vec3 &a = q[3 * size_t{t}], &b = q[3 * size_t{t} + 1], &c = q[3 * size_t{t} + 2];
         if (triangle_d2(box, a, b, c).inf() > bound) return;

@@ -615,6 +615,15 @@ Image Model::render(const Camera& camera, const RenderOptions& options) const {
     throw InputError(parameter("width, height") +
                      ": expected WxH with whole numbers from 1 to 16384, got " +
                      std::to_string(camera.width) + "x" + std::to_string(camera.height));
+  if (options.samples < 1 || options.samples > kMaxRenderSamples)
+    throw InputError(parameter("samples") + ": expected a whole number from 1 to " +
+                     std::to_string(kMaxRenderSamples) + ", got " +
+                     std::to_string(options.samples));
+  if (options.samples > 1 && std::max(camera.width, camera.height) * options.samples > 16384)
+    throw InputError(parameter("samples") + ": the sub-pixel image (" +
+                     std::to_string(options.samples) + " times " + std::to_string(camera.width) +
+                     "x" + std::to_string(camera.height) +
+                     ") must be at most 16384 per side; give fewer samples");
   if (options.section) {
     const Plane& s = *options.section;
     if (!finite(s.normal) || !std::isfinite(s.offset))

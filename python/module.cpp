@@ -226,6 +226,20 @@ std::vector<Ray> rays_arg(py::handle origins, py::handle directions, const char*
   return rays;
 }
 
+/// Runs `batch(begin, count)` over [0, n) in batches of kBatch / 4 rays inside one kernel scope
+/// (threads, the GIL released), polling for Ctrl-C between batches: cast() and first_hits().
+template <class Batch>
+void in_ray_batches(size_t n, Threads threads, Batch&& batch) {
+  KernelScope scope(threads);
+  scope.run([&] {
+    Interrupt interrupt;
+    for (size_t begin = 0; begin < n; begin += kBatch / 4) {
+      batch(begin, std::min(kBatch / 4, n - begin));
+      interrupt.poll();
+    }
+  });
+}
+
 /// Model::cast: every crossing of every ray, flattened (ray i's hits are
 /// [offsets[i], offsets[i + 1]), its spans [span_offsets[i], span_offsets[i + 1])).
 py::object all_hits(const Model& model, py::handle origins, py::handle directions,
@@ -241,30 +255,22 @@ py::object all_hits(const Model& model, py::handle origins, py::handle direction
   int64_t* soff = span_offsets.mutable_data();
   uint32_t* unc = uncertain.mutable_data();
   off[0] = soff[0] = 0;
-  {
-    KernelScope scope(threads);
-    scope.run([&] {
-      Interrupt interrupt;
-      for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
-        const size_t count = std::min(kBatch / 4, rays.size() - begin);
-        const auto r = model.cast(std::span<const Ray>(rays).subspan(begin, count));
-        for (size_t k = 0; k < count; ++k) {
-          const size_t i = begin + k;
-          for (const RayHit& h : r[k].hits) {
-            t.push_back(h.t);
-            leaf.push_back(static_cast<int32_t>(h.leaf));
-            face.push_back(static_cast<int64_t>(h.face));
-            sign.push_back(h.sign);
-          }
-          for (const Span& sp : r[k].spans) spans.insert(spans.end(), {sp.t0, sp.t1});
-          off[i + 1] = static_cast<int64_t>(t.size());
-          soff[i + 1] = static_cast<int64_t>(spans.size() / 2);
-          unc[i] = r[k].uncertain;
-        }
-        interrupt.poll();
+  in_ray_batches(rays.size(), threads, [&](size_t begin, size_t count) {
+    const auto r = model.cast(std::span<const Ray>(rays).subspan(begin, count));
+    for (size_t k = 0; k < count; ++k) {
+      const size_t i = begin + k;
+      for (const RayHit& h : r[k].hits) {
+        t.push_back(h.t);
+        leaf.push_back(static_cast<int32_t>(h.leaf));
+        face.push_back(static_cast<int64_t>(h.face));
+        sign.push_back(h.sign);
       }
-    });
-  }
+      for (const Span& sp : r[k].spans) spans.insert(spans.end(), {sp.t0, sp.t1});
+      off[i + 1] = static_cast<int64_t>(t.size());
+      soff[i + 1] = static_cast<int64_t>(spans.size() / 2);
+      unc[i] = r[k].uncertain;
+    }
+  });
   const auto k = static_cast<py::ssize_t>(t.size());
   return py::module_::import("cover._cover")
       .attr("Casts")(offsets, copy_array<double>(t, {k}), copy_array<int32_t>(leaf, {k}),
@@ -286,28 +292,20 @@ py::object first_hit_rays(const Model& model, py::handle origins, py::handle dir
   double* normal_p = normal.mutable_data();
   int32_t* leaf_p = leaf.mutable_data();
   int64_t* face_p = face.mutable_data();
-  {
-    KernelScope scope(threads);
-    scope.run([&] {
-      Interrupt interrupt;
-      for (size_t begin = 0; begin < rays.size(); begin += kBatch / 4) {
-        const size_t count = std::min(kBatch / 4, rays.size() - begin);
-        const auto hits = model.first_hits(std::span<const Ray>(rays).subspan(begin, count));
-        for (size_t k = 0; k < count; ++k) {
-          const FirstHit& h = hits[k];
-          const size_t i = begin + k;
-          hit_p[i] = h.hit;
-          t_p[i] = h.hit ? h.t : std::numeric_limits<double>::infinity();
-          leaf_p[i] = h.hit ? static_cast<int32_t>(h.leaf) : -1;
-          face_p[i] = h.hit ? static_cast<int64_t>(h.face) : -1;
-          const double len = std::sqrt(dot(h.normal, h.normal));
-          const Vec3 u = h.hit && len > 0 ? (1 / len) * h.normal : Vec3{};
-          normal_p[3 * i] = u.x, normal_p[3 * i + 1] = u.y, normal_p[3 * i + 2] = u.z;
-        }
-        interrupt.poll();
-      }
-    });
-  }
+  in_ray_batches(rays.size(), threads, [&](size_t begin, size_t count) {
+    const auto hits = model.first_hits(std::span<const Ray>(rays).subspan(begin, count));
+    for (size_t k = 0; k < count; ++k) {
+      const FirstHit& h = hits[k];
+      const size_t i = begin + k;
+      hit_p[i] = h.hit;
+      t_p[i] = h.hit ? h.t : std::numeric_limits<double>::infinity();
+      leaf_p[i] = h.hit ? static_cast<int32_t>(h.leaf) : -1;
+      face_p[i] = h.hit ? static_cast<int64_t>(h.face) : -1;
+      const double len = std::sqrt(dot(h.normal, h.normal));
+      const Vec3 u = h.hit && len > 0 ? (1 / len) * h.normal : Vec3{};
+      normal_p[3 * i] = u.x, normal_p[3 * i + 1] = u.y, normal_p[3 * i + 2] = u.z;
+    }
+  });
   return py::module_::import("cover._cover").attr("Hits")(hit, t, leaf, face, normal);
 }
 
@@ -495,7 +493,7 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height,
                                   const std::string& view, const py::object& section,
                                   bool perspective, const std::string& up,
                                   std::optional<double> elevation, double azimuth, double zoom,
-                                  bool fit, Threads threads) {
+                                  bool fit, int samples, Threads threads) {
   CameraOptions co;
   co.view = parse_view(view);
   co.width = width;
@@ -507,6 +505,7 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height,
   co.zoom = zoom;
   co.fit = fit;
   RenderOptions ro;
+  ro.samples = samples;  // range checked by Model::render, naming `samples`
   if (!section.is_none()) {
     const std::vector<double> s = numbers_arg(section, "section", 4);
     ro.section = Plane{{s[0], s[1], s[2]}, s[3]};
@@ -958,7 +957,8 @@ PYBIND11_MODULE(_cover, m) {
       .def("render", &render_image, py::arg("width"), py::arg("height"), py::arg("view") = "iso",
            py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false,
            py::arg("up") = "z", py::arg("elevation") = py::none(), py::arg("azimuth") = 0.0,
-           py::arg("zoom") = 1.0, py::arg("fit") = false, threads, doc::kRender)
+           py::arg("zoom") = 1.0, py::arg("fit") = false, py::arg("samples") = 2, threads,
+           doc::kRender)
       .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false,
            py::arg("mesh_resolution") = 128, py::arg("mesh_tolerance") = 0.0, threads,
            doc::kEvaluate)

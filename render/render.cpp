@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <string>
 #include <thread>
 
 #include "cover/covering/ray.h"
@@ -138,9 +139,10 @@ std::array<uint8_t, 3> leaf_colour(uint32_t leaf) {
 
 std::array<uint8_t, 3> cap_colour() { return {214, 48, 49}; }
 
-double render_bytes(int width, int height) {
+double render_bytes(int width, int height, int samples) {
   constexpr size_t kPerPixel = 3 * sizeof(uint8_t) + 2 * sizeof(uint16_t) + sizeof(Vec3);
-  return static_cast<double>(width) * height * kPerPixel;
+  const double pixels = static_cast<double>(width) * height;
+  return pixels * kPerPixel * (samples > 1 ? 1.0 + double(samples) * samples : 1.0);
 }
 
 bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/, const RenderOptions& o) {
@@ -150,7 +152,11 @@ bool renders_in_object_order(const Solid& solid, const Camera& /*camera*/, const
   return o.method == RenderMethod::kObjectOrder || (o.method == RenderMethod::kAuto && applies);
 }
 
-Image render(const Prepared& prepared, const Camera& cam, const RenderOptions& o) {
+namespace {
+
+/// One ray per pixel of `cam`; outlines `band` pixels wide (the sub-pixel image of render()
+/// draws them S wide, one pixel once averaged).
+Image render_pass(const Prepared& prepared, const Camera& cam, const RenderOptions& o, int band) {
   const Solid& solid = prepared.solid();
   const bool object_order = renders_in_object_order(solid, cam, o);
   Image img;
@@ -234,23 +240,71 @@ Image render(const Prepared& prepared, const Camera& cam, const RenderOptions& o
   // of the two is background, the surface pixel is. As a pull per pixel (so rows run in
   // parallel, each writing only its own pixels): surface pixel p is darkened iff it differs from
   // its right or lower neighbour, or its left or upper neighbour is background.
+  // With band k the neighbours are k pixels away, so the darkened strip is k pixels wide.
   auto differ = [&](size_t i, size_t j) {
     return img.ids[i] != img.ids[j] || dot(normal(i), normal(j)) < 0.82;
   };
+  const int k = band;
+  const size_t row = static_cast<size_t>(cam.width), down = static_cast<size_t>(k) * row;
   parallel_for(static_cast<size_t>(cam.height), 16, [&](size_t begin, size_t end) {
     if (o.progress && std::this_thread::get_id() == caller) o.progress(tiles, tiles);
     for (size_t py = begin; py < end; ++py)
       for (int px = 0; px < cam.width; ++px) {
-        const size_t i = py * cam.width + px;
+        const size_t i = py * row + px;
         if (img.ids[i] == Image::kBackgroundId) continue;
-        const bool edge = (px + 1 < cam.width && differ(i, i + 1)) ||
-                          (py + 1 < static_cast<size_t>(cam.height) && differ(i, i + cam.width)) ||
-                          (px > 0 && img.ids[i - 1] == Image::kBackgroundId) ||
-                          (py > 0 && img.ids[i - cam.width] == Image::kBackgroundId);
+        const bool edge =
+            (px + k < cam.width && differ(i, i + k)) ||
+            (py + k < static_cast<size_t>(cam.height) && differ(i, i + down)) ||
+            (px >= k && img.ids[i - k] == Image::kBackgroundId) ||
+            (py >= static_cast<size_t>(k) && img.ids[i - down] == Image::kBackgroundId);
         if (edge)
           for (int ch = 0; ch < 3; ++ch)
             img.rgb[3 * i + ch] = static_cast<uint8_t>(img.rgb[3 * i + ch] * 0.35);
       }
+  });
+  return img;
+}
+
+}  // namespace
+
+Image render(const Prepared& prepared, const Camera& cam, const RenderOptions& o) {
+  const int s = o.samples;
+  if (s < 1 || s > kMaxRenderSamples)
+    throw PreconditionError("render: samples " + std::to_string(s) + " is not 1 to " +
+                            std::to_string(kMaxRenderSamples));
+  if (s == 1) return render_pass(prepared, cam, o, 1);
+  // The sub-pixel image: the same view with S times the pixels per side (orthographic: S times
+  // smaller pixels; perspective: the field of view spans S times the pixels), so sub-pixel
+  // (S·px + a, S·py + b) is centred at (px + (a + ½)/S, py + (b + ½)/S) of pixel (px, py).
+  Camera fine = cam;
+  fine.width = s * cam.width;
+  fine.height = s * cam.height;
+  fine.pixel_size = cam.pixel_size / s;
+  const int tile = std::max(1, o.tile);
+  const size_t fine_tiles = static_cast<size_t>((fine.width + tile - 1) / tile) *
+                            static_cast<size_t>((fine.height + tile - 1) / tile);
+  Image sub = render_pass(prepared, fine, o, s);
+  // Depth and ids from the pixel-centre rays (no outline: its colour is replaced below).
+  RenderOptions centre = o;
+  centre.outline = false;
+  centre.progress = [&](size_t, size_t) {
+    if (o.progress) o.progress(fine_tiles, fine_tiles);
+  };
+  Image img = render_pass(prepared, cam, centre, 1);
+  // Box filter: each channel the rounded mean of the S² sub-pixels (integers: exact, so the
+  // image does not depend on the thread count).
+  const int s2 = s * s;
+  parallel_for(static_cast<size_t>(cam.height), 16, [&](size_t begin, size_t end) {
+    for (size_t py = begin; py < end; ++py)
+      for (int px = 0; px < cam.width; ++px)
+        for (int ch = 0; ch < 3; ++ch) {
+          int sum = 0;
+          for (int b = 0; b < s; ++b) {
+            const size_t r = (py * s + b) * static_cast<size_t>(fine.width) + px * s;
+            for (int a = 0; a < s; ++a) sum += sub.rgb[3 * (r + a) + ch];
+          }
+          img.rgb[3 * (py * cam.width + px) + ch] = static_cast<uint8_t>((sum + s2 / 2) / s2);
+        }
   });
   return img;
 }

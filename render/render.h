@@ -31,13 +31,21 @@ struct RenderOptions {
   std::optional<Plane> section;
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
   bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
-  int tile = 32;        ///< tile side for the parallel loop (results never depend on it)
+  /// Anti-aliasing: S×S rays per pixel on a regular sub-pixel grid, S from 1 to
+  /// kMaxRenderSamples; the pixel's colour is their mean (outlines drawn on the sub-pixel
+  /// image, one pixel wide). Image::depth and Image::ids stay those of the pixel-centre ray,
+  /// from one more ray per pixel. 1: one ray per pixel, colour included.
+  int samples = 2;
+  int tile = 32;  ///< tile side for the parallel loop (results never depend on it)
   /// Called on the calling thread with the tiles done so far and the total (non-decreasing):
   /// with 0 after each 16 MiB of the image buffers set up, after each tile it finishes, once
   /// at the end of the tiles and again during the outline pass; default: none. The image does
   /// not depend on it; an exception thrown from it stops the render (how a caller cancels).
   std::function<void(size_t done, size_t total)> progress;
 };
+
+/// The largest RenderOptions::samples (16 rays per pixel).
+inline constexpr int kMaxRenderSamples = 4;
 
 /// Per-pixel buffers, row-major from the top row, all width × height.
 struct Image {
@@ -56,9 +64,10 @@ std::array<uint8_t, 3> leaf_colour(uint32_t leaf);
 std::array<uint8_t, 3> cap_colour();
 
 /// The bytes render() holds at its peak for a width × height image: per pixel the Image's rgb (3),
-/// depth (2) and ids (2), and the unit normals the outline compares (sizeof(Vec3)). The PNG
-/// writers' row copies (at most 3 bytes per pixel) come after the normals are freed.
-double render_bytes(int width, int height);
+/// depth (2) and ids (2), and the unit normals the outline compares (sizeof(Vec3)); with
+/// samples S > 1 the same again for the S²-times larger sub-pixel image. The PNG writers' row
+/// copies (at most 3 bytes per pixel) come after the normals are freed.
+double render_bytes(int width, int height, int samples = 1);
 
 /// Whether render() takes the object-order path for this solid, camera and options (then it
 /// builds no BVH). \throws InputError for kObjectOrder where it does not apply.
@@ -68,8 +77,8 @@ bool renders_in_object_order(const Solid& solid, const Camera& camera,
 /// Renders the prepared solid through `camera`: the object-order path where
 /// renders_in_object_order() holds (no BVH built), else rays through the prepared BVH. An open
 /// leaf is drawn where its winding-number membership changes at a surface hit (covering/ray.h
-/// open_spans). \pre a camera from frame_camera() with a size of 1..16384 per side; a section
-/// normal that is finite and non-zero (Model::render checks).
+/// open_spans). \pre a camera from frame_camera() with a size of 1..16384 per side, samples
+/// 1..kMaxRenderSamples; a section normal that is finite and non-zero (Model::render checks).
 Image render(const Prepared& prepared, const Camera& camera, const RenderOptions& options = {});
 
 }  // namespace cover

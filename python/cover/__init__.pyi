@@ -175,6 +175,7 @@ class Model:
         azimuth: float = 0.0,
         zoom: float = 1.0,
         fit: bool = False,
+        samples: int = 2,
         threads: int | None = None,
     ) -> npt.NDArray[np.uint8]: ...
     @overload

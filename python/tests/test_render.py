@@ -69,6 +69,21 @@ def test_camera_keywords_equal_the_cli_flags(perspective, tmp_path):
         azimuth=33, zoom=1.5, fit=True, threads=1))
 
 
+@pytest.mark.parametrize("samples", [1, 3])
+def test_samples_equal_the_cli_flag(samples, tmp_path):
+    """samples= is the CLI's --samples: the same pixels; 1 differs from the default 2 only near
+    edges (anti-aliasing), and larger values than 4 are refused naming the keyword."""
+    path = MODELS / "default.json"
+    out = tmp_path / "r.png"
+    run_cli("render", path, "-o", out, "--size", "64x48", "--samples", samples)
+    image = cover.load(path).render(64, 48, samples=samples)
+    assert np.array_equal(image, read_png_rgb(out))
+    default = cover.load(path).render(64, 48)
+    assert not np.array_equal(image, default)
+    same = (image == default).all(axis=2).mean()
+    assert 0.5 < same < 1.0  # small image: edges are a large share of it
+
+
 def test_bad_camera_keywords_name_the_keyword():
     with pytest.raises(cover.InputError, match=r"^up: expected x, y or z, got 'w'$"):
         TALL_Y.render(8, 8, up="w")
@@ -78,3 +93,5 @@ def test_bad_camera_keywords_name_the_keyword():
         TALL_Y.render(8, 8, elevation=100)
     with pytest.raises(cover.InputError, match=r"^fit: needs a section$"):
         TALL_Y.render(8, 8, fit=True)
+    with pytest.raises(cover.InputError, match=r"^samples: expected a whole number from 1 to 4"):
+        TALL_Y.render(8, 8, samples=5)

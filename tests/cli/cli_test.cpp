@@ -311,7 +311,8 @@ TEST_F(Cli, RenderWritesImagesAndCamera) {
   const json j = json::parse(r.out);
   EXPECT_EQ(j["width"], 120);
   EXPECT_EQ(j["height"], 90);
-  EXPECT_EQ(j["rays"], 120 * 90);
+  EXPECT_EQ(j["samples"], 2);
+  EXPECT_EQ(j["rays"], 120 * 90 * 5);  // 2×2 sub-pixel rays and the pixel-centre ray
   EXPECT_TRUE(j["seconds"].is_number());
   EXPECT_EQ(j["camera"]["type"], "orthographic");
   EXPECT_TRUE(j["camera"]["pixel_size"].is_number());
@@ -326,8 +327,21 @@ TEST_F(Cli, RenderWritesImagesAndCamera) {
                 " --perspective --view top --json");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(json::parse(r.out)["camera"]["type"], "perspective");
-  for (const std::string bad : {"--size 0x10", "--size 12", "--view sideways", "--section 0,0,0,1",
-                                "--section 1,2", "--background 300,0,0"}) {
+  // --samples 1: the same ids and depth (pixel-centre rays), other colours (no anti-aliasing).
+  for (const char* samples : {"1", "2"}) {
+    const std::string tag = samples;
+    r = run_cover("render " + q(scene) + " -o " + q(dir_ / ("s" + tag + ".png")) +
+                  " --size 120x90 --depth " + q(dir_ / ("d" + tag + ".png")) + " --ids " +
+                  q(dir_ / ("i" + tag + ".png")) + " --samples " + samples + " --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(json::parse(r.out)["rays"], tag == "1" ? 120 * 90 : 120 * 90 * 5);
+  }
+  EXPECT_EQ(test::read_file(dir_ / "i1.png"), test::read_file(dir_ / "i2.png"));
+  EXPECT_EQ(test::read_file(dir_ / "d1.png"), test::read_file(dir_ / "d2.png"));
+  EXPECT_NE(test::read_file(dir_ / "s1.png"), test::read_file(dir_ / "s2.png"));
+  for (const std::string bad :
+       {"--size 0x10", "--size 12", "--view sideways", "--section 0,0,0,1", "--section 1,2",
+        "--background 300,0,0", "--samples 0", "--samples 5", "--size 8000x10 --samples 3"}) {
     r = run_cover("render " + q(scene) + " -o " + q(dir_ / "bad.png") + " " + bad);
     EXPECT_EQ(r.status, 2) << bad;
     EXPECT_EQ(lines(r.err).size(), 1u) << r.err;

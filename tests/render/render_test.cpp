@@ -370,22 +370,27 @@ TEST(Render, ReportsProgressWithoutChangingTheImage) {
   const Solid s =
       subtract({box_solid({-1, -1, -1}, {1, 1, 1}), make_leaf(make_sphere({1, 1, 1}, 1, 16), "s")});
   const Camera cam = front(unit_frame(), 100, 70);
-  RenderOptions o;
-  o.tile = 16;  // 7 × 5 tiles
-  std::vector<std::pair<size_t, size_t>> calls;
-  Image with, without;
-  {
-    ThreadLimit limit(2);
-    without = draw(s, cam, o);
-    o.progress = [&calls](size_t done, size_t total) { calls.emplace_back(done, total); };
-    with = draw(s, cam, o);
+  // Tiles of 16: 7 × 5 for one ray per pixel; with samples 2, those of the 200 × 140 sub-pixel
+  // image (13 × 9), which the pixel-centre pass reports as done.
+  for (const auto& [samples, tiles] : {std::pair{1, size_t{35}}, std::pair{2, size_t{117}}}) {
+    RenderOptions o;
+    o.tile = 16;
+    o.samples = samples;
+    std::vector<std::pair<size_t, size_t>> calls;
+    Image with, without;
+    {
+      ThreadLimit limit(2);
+      without = draw(s, cam, o);
+      o.progress = [&calls](size_t done, size_t total) { calls.emplace_back(done, total); };
+      with = draw(s, cam, o);
+    }
+    ASSERT_FALSE(calls.empty());
+    EXPECT_EQ(calls.back(), (std::pair<size_t, size_t>{tiles, tiles}));
+    for (size_t i = 0; i < calls.size(); ++i) EXPECT_EQ(calls[i].second, tiles);
+    for (size_t i = 1; i < calls.size(); ++i) EXPECT_LE(calls[i - 1].first, calls[i].first);
+    EXPECT_EQ(with.rgb, without.rgb);
+    EXPECT_EQ(with.ids, without.ids);
   }
-  ASSERT_FALSE(calls.empty());
-  EXPECT_EQ(calls.back(), (std::pair<size_t, size_t>{35, 35}));
-  for (size_t i = 0; i < calls.size(); ++i) EXPECT_EQ(calls[i].second, 35u);
-  for (size_t i = 1; i < calls.size(); ++i) EXPECT_LE(calls[i - 1].first, calls[i].first);
-  EXPECT_EQ(with.rgb, without.rgb);
-  EXPECT_EQ(with.ids, without.ids);
 }
 
 // Issue 46 (camera): up axis, elevation, zoom, tight box framing, turntable framing, section box.
@@ -740,6 +745,72 @@ TEST(Camera, SameImageWithOneAndTwoThreadsForEveryOption) {
     EXPECT_EQ(one.depth, two.depth);
     EXPECT_GT(silhouette(one).rows, 0);
   }
+}
+
+TEST(Render, AntiAliasingIsTheMeanOfTheSubPixelImage) {
+  // samples S: the colour of each pixel is the rounded mean of an S-times-finer render's S×S
+  // pixels (computed here from that render, one ray per pixel, outlines off); depth and ids are
+  // the one-ray render's; any thread count gives the same bytes; silhouettes get in-between
+  // colours a one-ray image does not have.
+  const Solid s = subtract({make_leaf(make_box({-0.8, -0.7, -0.6}, {0.7, 0.8, 0.5}), "box"),
+                            make_leaf(make_sphere({0.3, -0.2, 0.4}, 0.55, 24), "ball")});
+  for (const bool perspective : {false, true})
+    for (const int samples : {2, 3}) {
+      CameraOptions co;
+      co.perspective = perspective;
+      co.width = 61;
+      co.height = 47;
+      const Camera cam = frame_camera(unit_frame(), co);
+      RenderOptions plain;
+      plain.outline = false;
+      plain.samples = 1;
+      RenderOptions aa = plain;
+      aa.samples = samples;
+      const Image one = draw(s, cam, plain), img = draw(s, cam, aa);
+      Camera fine = cam;
+      fine.width *= samples;
+      fine.height *= samples;
+      fine.pixel_size /= samples;
+      const Image sub = draw(s, fine, plain);
+      EXPECT_EQ(img.ids, one.ids);
+      EXPECT_EQ(img.depth, one.depth);
+      int mismatches = 0;
+      for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x)
+          for (int ch = 0; ch < 3; ++ch) {
+            int sum = 0;
+            for (int b = 0; b < samples; ++b)
+              for (int a = 0; a < samples; ++a)
+                sum += sub.rgb[3 * at(sub, samples * x + a, samples * y + b) + ch];
+            const int n = samples * samples;
+            mismatches += img.rgb[3 * at(img, x, y) + ch] != (sum + n / 2) / n;
+          }
+      EXPECT_EQ(mismatches, 0) << perspective << " " << samples;
+      auto colours = [](const Image& i) {
+        std::vector<uint32_t> c;
+        for (size_t p = 0; p < i.rgb.size(); p += 3)
+          c.push_back(i.rgb[p] << 16 | i.rgb[p + 1] << 8 | i.rgb[p + 2]);
+        std::sort(c.begin(), c.end());
+        return std::unique(c.begin(), c.end()) - c.begin();
+      };
+      EXPECT_GT(colours(img), colours(one) + 20) << perspective << " " << samples;
+      RenderOptions outlined;
+      outlined.samples = samples;
+      Image a, b;
+      {
+        ThreadLimit limit(1);
+        a = draw(s, cam, outlined);
+      }
+      {
+        ThreadLimit limit(2);
+        b = draw(s, cam, outlined);
+      }
+      EXPECT_TRUE(a.rgb == b.rgb && a.ids == b.ids && a.depth == b.depth);
+      EXPECT_EQ(a.ids, one.ids);
+    }
+  RenderOptions bad;
+  bad.samples = kMaxRenderSamples + 1;
+  EXPECT_THROW(draw(s, front(unit_frame(), 8, 8), bad), PreconditionError);
 }
 
 }  // namespace
