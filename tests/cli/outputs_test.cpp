@@ -379,11 +379,17 @@ TEST_F(Limits, OctreeDepth16Refused) {
 }
 
 TEST_F(Limits, RenderHugeSizeRefused) {
+  // 31 bytes a pixel (render_bytes), and with --samples S > 1 the S²-times larger sub-pixel
+  // image besides.
+  expect_refused(
+      run_capped("render " + q(box_) + " --size 16384x16384 --samples 1 -o " + q(dir_ / "r.png")),
+      "--size 16384x16384: the image needs 7936 MiB, over --max-memory 4096 MiB");
   expect_refused(run_capped("render " + q(box_) + " --size 16384x16384 -o " + q(dir_ / "r.png")),
-                 "--size 16384x16384: the image needs 7936 MiB, over --max-memory 4096 MiB");
+                 "--size 16384x16384 with --samples 2: the image needs 39680 MiB, over "
+                 "--max-memory 4096 MiB");
   expect_refused(
       run_cover("render " + q(box_) + " --size 256x256 --max-memory 1 -o " + q(dir_ / "r.png")),
-      "the image needs 2 MiB, over --max-memory 1 MiB");
+      "the image needs 10 MiB, over --max-memory 1 MiB");
   EXPECT_FALSE(fs::exists(dir_ / "r.png"));
 }
 
