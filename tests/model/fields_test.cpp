@@ -17,6 +17,7 @@
 #include "cover/solid/errors.h"
 #include "cover/solid/parallel.h"
 #include "cover/solid/transform.h"
+#include "helpers.h"
 #include "model/octree_check.h"
 
 namespace cover {
@@ -176,7 +177,8 @@ TEST(Fields, PointPrimitiveIsTheExactBallAndItsSurfacePointsAreFaces) {
 
 TEST(Fields, SameResultsWithOneAndTwoThreads) {
   const Model m = scene(mixed_scene());
-  const std::vector<Vec3> pts = random_points(60000, {-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}, 5);
+  const std::vector<Vec3> pts =
+      random_points(60000 / test::kCheckedStride, {-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}, 5);
   std::vector<PointClass> one, two;
   VoxelizeOptions vo;
   vo.resolution = 40;
@@ -310,7 +312,8 @@ TEST(Fields, ExactVolumeOfACurvedTreeIsItsBracket) {
   const Model m = scene(mixed_scene());
   VolumeOptions exact, plain;
   exact.exact = true;
-  exact.bracket_relative_error = plain.bracket_relative_error = 0.05;
+  // The checked build asks a looser bracket (same comparison, a quarter of the samples).
+  exact.bracket_relative_error = plain.bracket_relative_error = 0.05 * test::kCheckedStride;
   const VolumeResult e = m.volume(exact), p = m.volume(plain);
   EXPECT_EQ(e.method, "bracket");
   EXPECT_EQ(e.volume, p.volume);
