@@ -521,6 +521,10 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   co.elevation_degrees = o.elevation;
   co.azimuth_degrees = o.azimuth;
   co.zoom = o.zoom;
+  if (!o.pan.empty()) {
+    const std::vector<double> pan = parse_numbers(o.pan, "--pan", 2, ",");
+    co.pan = {pan[0], pan[1]};
+  }
   co.fit = o.fit;
   if (o.fit && o.section.empty()) throw InputError("--fit: needs a --section");
   const std::vector<double> size = parse_numbers(o.size, "--size", 2, "xX");

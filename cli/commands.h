@@ -92,9 +92,17 @@ struct RenderCommandOptions {
   std::optional<double> elevation;  ///< --elevation DEG (default: the view's)
   double azimuth = 0;               ///< --azimuth DEG: the view turned about the up axis
   double zoom = 1;                  ///< --zoom F (> 1 magnifies)
+  std::string pan;                  ///< --pan X,Y: the view moved by image widths, heights
   bool fit = false;                 ///< --fit: frame what --section keeps
   int turntable = 0;                ///< --turntable N: N frames OUT_000.png ... around the up axis
   std::string views;                ///< --views iso,front,...: one frame per view, OUT_iso.png ...
+};
+
+struct ViewCommandOptions {
+  std::string input;
+  std::string host = "127.0.0.1";  ///< --host
+  int port = 0;                    ///< --port (0: any free port)
+  double poll = 0.5;               ///< --poll SECONDS between checks of the files
 };
 
 struct VoxelizeCommandOptions {
@@ -187,6 +195,7 @@ int run_volume(const VolumeCommandOptions& o, const CommonOptions& common);
 int run_classify(const ClassifyCommandOptions& o, const CommonOptions& common);
 int run_field(const FieldCommandOptions& o, const CommonOptions& common);
 int run_render(const RenderCommandOptions& o, const CommonOptions& common);
+int run_view(const ViewCommandOptions& o, const CommonOptions& common);
 int run_voxelize(const VoxelizeCommandOptions& o, const CommonOptions& common);
 /// `cover clip`: ABOVE = solid ∩ {n·x ≥ d}, BELOW = solid ∩ {n·x ≤ d}, capped.
 int run_clip(const ClipCommandOptions& o, const CommonOptions& common);

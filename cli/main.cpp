@@ -232,6 +232,8 @@ int main(int argc, char** argv) {
   ren_cmd->add_option("--zoom", ren.zoom, "Magnify by F about the image centre (F > 1: larger)")
       ->capture_default_str()
       ->check(positive_number());
+  ren_cmd->add_option("--pan", ren.pan,
+                      "Move the view by X image widths right and Y heights up: X,Y");
   ren_cmd->add_flag("--fit", ren.fit, "Frame the part --section keeps instead of the whole model");
   auto* turntable = ren_cmd
                         ->add_option("--turntable", ren.turntable,
@@ -245,6 +247,21 @@ int main(int argc, char** argv) {
       ->check(non_empty("views, e.g. iso,front,top"))
       ->excludes(turntable);
   add_common(ren_cmd, common);
+
+  cover::cli::ViewCommandOptions viw;
+  CLI::App* viw_cmd = app.add_subcommand(
+      "view", "Browser viewer of exact frames: orbit, section, leaves, picks, auto-reload");
+  viw_cmd->add_option("INPUT", viw.input, "Mesh or scene")->required();
+  viw_cmd->add_option("--host", viw.host, "Interface to listen on")
+      ->capture_default_str()
+      ->check(non_empty("an address"));
+  viw_cmd->add_option("--port", viw.port, "Port (0: any free port)")
+      ->capture_default_str()
+      ->transform(whole_number(0, 65535));
+  viw_cmd->add_option("--poll", viw.poll, "Seconds between checks of the files for changes")
+      ->capture_default_str()
+      ->check(real_number(0.05, 3600));
+  add_common(viw_cmd, common);
 
   cover::cli::VoxelizeCommandOptions vox;
   CLI::App* vox_cmd = app.add_subcommand("voxelize", "Voxelize the solid (presence buffer)");
@@ -458,6 +475,7 @@ int main(int argc, char** argv) {
     if (dst_cmd->parsed()) return cover::cli::run_distance(dst, common);
     if (fld_cmd->parsed()) return cover::cli::run_field(fld, common);
     if (ren_cmd->parsed()) return cover::cli::run_render(ren, common);
+    if (viw_cmd->parsed()) return cover::cli::run_view(viw, common);
     if (vox_cmd->parsed()) return cover::cli::run_voxelize(vox, common);
     if (oct_cmd->parsed()) return cover::cli::run_octree(oct, common);
     if (eva_cmd->parsed()) return cover::cli::run_evaluate(eva, common);

@@ -105,16 +105,10 @@ bool encode_band(const RowSource& row, size_t row_bytes, int bpp, int y0, int y1
   return done;
 }
 
-/// Writes the encoded bands through libpng into `tmp`; returns false on any libpng or I/O error,
+/// Writes the encoded bands through libpng into `file`; returns false on any libpng or I/O error,
 /// with the I/O error's errno in `os_error` (0 when none).
-bool write_file(const std::filesystem::path& tmp, int width, int height, int bit_depth, int color,
-                const std::vector<Band>& bands, int& os_error) {
-  errno = 0;
-  std::unique_ptr<FILE, FileCloser> file(std::fopen(tmp.c_str(), "wb"));
-  if (!file) {
-    os_error = errno;
-    return false;
-  }
+bool write_stream(FILE* file, int width, int height, int bit_depth, int color,
+                  const std::vector<Band>& bands, int& os_error) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
@@ -122,11 +116,11 @@ bool write_file(const std::filesystem::path& tmp, int width, int height, int bit
     return false;
   }
   if (setjmp(png_jmpbuf(png))) {  // libpng reports errors by longjmp
-    os_error = std::ferror(file.get()) ? errno : 0;
+    os_error = std::ferror(file) ? errno : 0;
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_init_io(png, file.get());
+  png_init_io(png, file);
   png_set_IHDR(png, info, width, height, bit_depth, color, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
@@ -153,17 +147,29 @@ bool write_file(const std::filesystem::path& tmp, int width, int height, int bit
   const png_byte iend[5] = "IEND";
   png_write_chunk(png, iend, nullptr, 0);
   png_destroy_write_struct(&png, &info);
-  if (std::fflush(file.get()) == 0 && !std::ferror(file.get())) return true;
+  if (std::fflush(file) == 0 && !std::ferror(file)) return true;
   os_error = errno;
   return false;
 }
 
-void write_atomic(const std::filesystem::path& path, int width, int height, int bit_depth,
-                  int color, int bpp, size_t have, size_t need, const RowSource& row) {
-  check_png_path(path);
-  if (width <= 0 || height <= 0) throw InputError(path.string() + ": empty image");
+/// write_stream() into a new file `tmp`.
+bool write_file(const std::filesystem::path& tmp, int width, int height, int bit_depth, int color,
+                const std::vector<Band>& bands, int& os_error) {
+  errno = 0;
+  std::unique_ptr<FILE, FileCloser> file(std::fopen(tmp.c_str(), "wb"));
+  if (!file) {
+    os_error = errno;
+    return false;
+  }
+  return write_stream(file.get(), width, height, bit_depth, color, bands, os_error);
+}
+
+/// The image's filtered rows deflated in bands (the header comment); `name` names it in errors.
+std::vector<Band> encode_bands(const std::string& name, int width, int height, int bpp, size_t have,
+                               size_t need, const RowSource& row) {
+  if (width <= 0 || height <= 0) throw InputError(name + ": empty image");
   if (have < need)
-    throw InputError(path.string() + ": " + std::to_string(have) + " samples for a " +
+    throw InputError(name + ": " + std::to_string(have) + " samples for a " +
                      std::to_string(width) + "x" + std::to_string(height) + " image (" +
                      std::to_string(need) + " needed)");
   const size_t row_bytes = static_cast<size_t>(width) * bpp;
@@ -179,7 +185,14 @@ void write_atomic(const std::filesystem::path& path, int width, int height, int 
         compressed = false;
     }
   });
-  if (!compressed) throw InputError(path.string() + ": cannot write PNG (out of memory)");
+  if (!compressed) throw InputError(name + ": cannot write PNG (out of memory)");
+  return bands;
+}
+
+void write_atomic(const std::filesystem::path& path, int width, int height, int bit_depth,
+                  int color, int bpp, size_t have, size_t need, const RowSource& row) {
+  check_png_path(path);
+  const std::vector<Band> bands = encode_bands(path.string(), width, height, bpp, have, need, row);
   int os_error = 0;
   try {
     write_atomically(
@@ -211,6 +224,26 @@ void write_png_rgb(const std::filesystem::path& path, int width, int height,
   write_atomic(path, width, height, 8, PNG_COLOR_TYPE_RGB, 3, rgb.size(),
                row_bytes * static_cast<size_t>(std::max(0, height)),
                [&](int y, std::vector<uint8_t>&) { return rgb.data() + row_bytes * y; });
+}
+
+std::vector<uint8_t> encode_png_rgb(int width, int height, std::span<const uint8_t> rgb) {
+  const size_t row_bytes = 3 * static_cast<size_t>(std::max(0, width));
+  const std::vector<Band> bands =
+      encode_bands("PNG", width, height, 3, rgb.size(), row_bytes * std::max(0, height),
+                   [&](int y, std::vector<uint8_t>&) { return rgb.data() + row_bytes * y; });
+  // The same bytes as write_png_rgb's file, through a memory stream (POSIX open_memstream).
+  char* data = nullptr;
+  size_t size = 0;
+  FILE* stream = open_memstream(&data, &size);
+  if (!stream) throw InputError("PNG: cannot encode (out of memory)");
+  int os_error = 0;
+  const bool ok = write_stream(stream, width, height, 8, PNG_COLOR_TYPE_RGB, bands, os_error);
+  std::fclose(stream);  // sets data and size
+  std::vector<uint8_t> out;
+  if (ok) out.assign(data, data + size);
+  std::free(data);
+  if (!ok) throw InputError("PNG: cannot encode (out of memory)");
+  return out;
 }
 
 void write_png_gray16(const std::filesystem::path& path, int width, int height,

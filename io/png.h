@@ -19,6 +19,9 @@ void check_png_path(const std::filesystem::path& path);
 void write_png_rgb(const std::filesystem::path& path, int width, int height,
                    std::span<const uint8_t> rgb);
 
+/// The bytes write_png_rgb() writes for the same image, in memory (a viewer's frame).
+std::vector<uint8_t> encode_png_rgb(int width, int height, std::span<const uint8_t> rgb);
+
 /// 16-bit grey, width·height values, rows from the top.
 void write_png_gray16(const std::filesystem::path& path, int width, int height,
                       std::span<const uint16_t> values);

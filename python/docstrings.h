@@ -198,6 +198,7 @@ removes the half-space n.x > d and shows the exact cut faces; perspective: a per
 camera (default orthographic). up: "x", "y" or "z", the axis shown upright (Y-up scans: "y");
 elevation: the eye's angle above the horizontal plane in degrees, -90..90 (None: the view's,
 iso 35.26); azimuth: the view turned about the up axis in degrees; zoom: magnification (> 0);
+pan: (x, y) the view moved by x image widths right and y heights up after framing;
 fit: frame the part the section keeps; samples: anti-aliasing, samples x samples rays per pixel
 (1 to 4; 1: none). The camera frames the result tightly (docs/cli.md). The same pixels as
 `cover render --size WxH` with the same flags.)";

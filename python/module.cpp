@@ -23,6 +23,7 @@
 #include "files.h"
 #include "grids.h"
 #include "modeling.h"
+#include "viewer.h"
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -493,7 +494,7 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height,
                                   const std::string& view, const py::object& section,
                                   bool perspective, const std::string& up,
                                   std::optional<double> elevation, double azimuth, double zoom,
-                                  bool fit, int samples, Threads threads) {
+                                  const py::object& pan, bool fit, int samples, Threads threads) {
   CameraOptions co;
   co.view = parse_view(view);
   co.width = width;
@@ -503,6 +504,10 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height,
   co.elevation_degrees = elevation;
   co.azimuth_degrees = azimuth;
   co.zoom = zoom;
+  if (!pan.is_none()) {
+    const std::vector<double> p = numbers_arg(pan, "pan", 2);
+    co.pan = {p[0], p[1]};
+  }
   co.fit = fit;
   RenderOptions ro;
   ro.samples = samples;  // range checked by Model::render, naming `samples`
@@ -957,8 +962,8 @@ PYBIND11_MODULE(_cover, m) {
       .def("render", &render_image, py::arg("width"), py::arg("height"), py::arg("view") = "iso",
            py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false,
            py::arg("up") = "z", py::arg("elevation") = py::none(), py::arg("azimuth") = 0.0,
-           py::arg("zoom") = 1.0, py::arg("fit") = false, py::arg("samples") = 2, threads,
-           doc::kRender)
+           py::arg("zoom") = 1.0, py::arg("pan") = py::none(), py::arg("fit") = false,
+           py::arg("samples") = 2, threads, doc::kRender)
       .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false,
            py::arg("mesh_resolution") = 128, py::arg("mesh_tolerance") = 0.0, threads,
            doc::kEvaluate)
@@ -1067,4 +1072,5 @@ PYBIND11_MODULE(_cover, m) {
   bind_modeling(m);
   bind_files(m);
   bind_grids(m, model);
+  bind_viewer(m);
 }

@@ -252,6 +252,9 @@ Camera frame_camera(const Bbox& box, const CameraOptions& o, const Support& supp
   if (o.elevation_degrees && !(*o.elevation_degrees >= -90 && *o.elevation_degrees <= 90))
     throw InputError(parameter("elevation") + ": expected a number from -90 to 90, got " +
                      shown(*o.elevation_degrees));
+  if (!std::isfinite(o.pan[0]) || !std::isfinite(o.pan[1]))
+    throw InputError(parameter("pan") + ": expected finite numbers, got " + shown(o.pan[0]) + "," +
+                     shown(o.pan[1]));
   if (!std::isfinite(o.azimuth_degrees))
     throw InputError(parameter("azimuth") + ": expected a finite number, got " +
                      shown(o.azimuth_degrees));
@@ -389,6 +392,21 @@ Camera frame_camera(const Bbox& box, const CameraOptions& o, const Support& supp
     c.eye = c.target - (2 * radius) * c.forward;
     c.near = 2 * radius - box_depth - pad;
     c.far = 2 * radius + box_depth + pad;
+  }
+  if (o.pan[0] != 0 || o.pan[1] != 0) {
+    // The image's extent in world units at the target's depth; eye and target move together.
+    const double unit =
+        o.perspective
+            ? 2 * c.tan_half_fov * std::sqrt(dot(c.target - c.eye, c.target - c.eye)) / shorter
+            : c.pixel_size;
+    const Vec3 move = (o.pan[0] * o.width * unit) * c.right + (o.pan[1] * o.height * unit) * c.up;
+    c.target = c.target + move;
+    c.eye = c.eye + move;
+    if (o.perspective) {  // the framed part's distances from the moved eye change by ≤ |move|
+      const double m = std::sqrt(dot(move, move));
+      c.near = std::max(c.near - m, 0.1 * c.near);
+      c.far += m;
+    }
   }
   return c;
 }

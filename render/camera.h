@@ -11,6 +11,7 @@
 // the eye counter-clockwise about the up axis, seen from above.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -53,6 +54,10 @@ struct CameraOptions {
   /// azimuth_degrees, so that a turntable's frames keep one scale.
   bool turntable = false;
   double zoom = 1;  ///< magnification about the image centre, > 0 (2: the scene twice as large)
+  /// The view moved across the image plane after framing and zoom, in image widths (right) and
+  /// heights (up): {0.25, 0} shows what was a quarter of the width right of the centre there
+  /// (the scene moves left). Finite; {0, 0}: the framing as computed.
+  std::array<double, 2> pan{0, 0};
   /// Model::camera: frame the part a section keeps (section_box) instead of the whole box.
   bool fit = false;
 };

@@ -184,7 +184,9 @@ Image render_pass(const Prepared& prepared, const Camera& cam, const RenderOptio
   auto shade = [&](size_t i, const Ray& ray, const Sample& s) {
     std::array<uint8_t, 3> c = o.background;
     if (s.hit) {
-      const std::array<uint8_t, 3> base = s.cap ? cap_colour() : leaf_colour(s.leaf);
+      const std::array<uint8_t, 3> base = s.cap                            ? cap_colour()
+                                          : s.leaf < o.leaf_colours.size() ? o.leaf_colours[s.leaf]
+                                                                           : leaf_colour(s.leaf);
       const double head = std::max(0.0, -dot(s.normal, ray.dir));
       const double lit = std::max(0.0, -dot(s.normal, key));
       const double k = 0.28 + 0.47 * head + 0.25 * lit;

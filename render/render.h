@@ -31,6 +31,9 @@ struct RenderOptions {
   std::optional<Plane> section;
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
   bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
+  /// Leaf l's colour where l < leaf_colours.size(), else leaf_colour(l) (a viewer that hides
+  /// leaves keeps each leaf's colour this way).
+  std::vector<std::array<uint8_t, 3>> leaf_colours;
   /// Anti-aliasing: S×S rays per pixel on a regular sub-pixel grid, S from 1 to
   /// kMaxRenderSamples; the pixel's colour is their mean (outlines drawn on the sub-pixel
   /// image, one pixel wide). Image::depth and Image::ids stay those of the pixel-centre ray,

@@ -14,6 +14,7 @@ packages=(
   libcgal-demo assimp-testmodels
   zlib1g-dev libopenvdb-dev libboost-iostreams-dev python3-openvdb python3-zarr
   python3-dask python3-distributed python3-nbconvert python3-ipykernel
+  libcpp-httplib-dev chromium chromium-driver python3-selenium
 )
 
 missing=()

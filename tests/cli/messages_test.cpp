@@ -202,7 +202,7 @@ TEST_F(CliMessages, OptionMessages) {
   expect_error(run_cover("info --threads 0 " + box()),
                "--threads: expected a whole number from 1 to 4096, got '0'");
   const std::string commands =
-      "info, volume, classify, distance, field, render, voxelize, octree, clip, evaluate, "
+      "info, volume, classify, distance, field, render, view, voxelize, octree, clip, evaluate, "
       "polygonize, decompose, subdivide, modify, pipe, extrude";
   expect_error(run_cover("bogus"), "unknown command 'bogus' (expected " + commands + ")");
   expect_error(run_cover(""), "no command given (expected " + commands + "; try --help)");

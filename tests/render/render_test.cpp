@@ -815,3 +815,56 @@ TEST(Render, AntiAliasingIsTheMeanOfTheSubPixelImage) {
 
 }  // namespace
 }  // namespace cover
+
+namespace cover {
+namespace {
+
+TEST(Camera, PanMovesTheViewAcrossTheImagePlane) {
+  const Bbox box{{-1, -2, 0}, {3, 1, 2}};
+  for (bool perspective : {false, true}) {
+    CameraOptions co;
+    co.width = 128;
+    co.height = 96;
+    co.perspective = perspective;
+    co.zoom = 1.5;
+    const Camera c = frame_camera(box, co);
+    co.pan = {16.0 / 128, -12.0 / 96};  // 16 pixels right, 12 down
+    const Camera p = frame_camera(box, co);
+    EXPECT_EQ(p.forward.x, c.forward.x);
+    EXPECT_EQ(p.pixel_size, c.pixel_size);
+    EXPECT_EQ(p.tan_half_fov, c.tan_half_fov);
+    const double scale = perspective ? 1e-12 * std::sqrt(dot(c.eye - c.target, c.eye - c.target))
+                                     : 1e-12 * c.pixel_size * 128;
+    if (!perspective) {
+      // Pixel (x, y) of the panned view is pixel (x + 16, y + 12) of the plain one.
+      for (int y = 0; y + 12 < 96; y += 7)
+        for (int x = 0; x + 16 < 128; x += 9) {
+          const Ray a = p.ray(x, y), b = c.ray(x + 16, y + 12);
+          EXPECT_LT(std::sqrt(dot(a.origin - b.origin, a.origin - b.origin)), scale);
+        }
+    } else {
+      // Eye and target move together across the image plane by 16 and 12 pixels' worth of the
+      // image at the target's depth (a pixel there: 2·tan(fov/2)·distance / 96).
+      const double distance = std::sqrt(dot(c.target - c.eye, c.target - c.eye));
+      const double unit = 2 * c.tan_half_fov * distance / 96;
+      const Vec3 move = p.target - c.target, eye_move = p.eye - c.eye;
+      EXPECT_NEAR(dot(move, c.right), 16 * unit, scale);
+      EXPECT_NEAR(dot(move, c.up), -12 * unit, scale);
+      EXPECT_NEAR(dot(move, c.forward), 0, scale);
+      EXPECT_LT(std::sqrt(dot(eye_move - move, eye_move - move)), scale);
+      EXPECT_GT(p.near, 0);
+      EXPECT_GE(p.far, c.far);
+    }
+  }
+  CameraOptions bad;
+  bad.pan = {std::nan(""), 0};
+  try {
+    frame_camera(box, bad);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pan"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace cover
