@@ -47,13 +47,13 @@ int run_evaluate(const EvaluateCommandOptions& o, const CommonOptions& common) {
   if (r.mesh.face_count() == 0)
     std::fprintf(stderr, "cover: warning: the result is empty; writing an empty mesh\n");
   OutputBatch outputs;
-  if (o.leaf_ids || gltf) {  // glTF, 3MF: a material per leaf, in the leaf's render colour
+  if (o.leaf_ids || gltf) {  // glTF, 3MF: a material per leaf, in its display colour
     FaceLabels labels;
     labels.ply_property = "leaf";
     labels.labels = r.face_leaf;
     for (size_t l = 0; l < model.leaf_count(); ++l) {
       labels.obj_groups.push_back("leaf_" + std::to_string(l));
-      labels.colours.push_back(leaf_colour(static_cast<uint32_t>(l)));
+      labels.colours.push_back(display_colour(model.solid(), static_cast<uint32_t>(l)));
     }
     write_mesh(o.output, r.mesh, labels);
   } else {

@@ -66,7 +66,29 @@ class SceneReader {
       if (errors[t]) std::rethrow_exception(errors[t]);
       warnings_.insert(warnings_.end(), warnings[t].begin(), warnings[t].end());
     }
-    return assemble(plan, solids);
+    Solid out = assemble(plan, solids);
+    // Colours: each leaf takes the "color" of the deepest node on its JSON path that has one.
+    for (Leaf& leaf : out.leaves) {
+      const json* node = &j;
+      const json::json_pointer pointer(leaf.origin);
+      std::vector<std::string> steps;
+      for (json::json_pointer p = pointer; !p.empty(); p = p.parent_pointer())
+        steps.push_back(p.back());
+      for (auto s = steps.rbegin(); node; ++s) {
+        if (node->is_object() && node->contains("color"))
+          leaf.colour = colour(node->at("color"), "");
+        if (s == steps.rend()) break;
+        if (node->is_object() && node->contains(*s))
+          node = &node->at(*s);
+        else if (node->is_array() && !s->empty() &&
+                 s->find_first_not_of("0123456789") == std::string::npos &&
+                 std::stoul(*s) < node->size())
+          node = &node->at(std::stoul(*s));
+        else
+          node = nullptr;
+      }
+    }
+    return out;
   }
 
  private:
@@ -141,6 +163,8 @@ class SceneReader {
     for (auto it = j.begin(); it != j.end(); ++it) {
       if (it.key() == "transform") {
         world = parent * transform(it.value(), path + "/transform");
+      } else if (it.key() == "color") {
+        colour(it.value(), path + "/color");  // checked here, given to the leaves by read()
       } else if (kind.empty()) {
         kind = it.key();
       } else {
@@ -377,6 +401,29 @@ class SceneReader {
   }
 
   /// Checks that `j` is an object whose keys are all in `allowed`.
+  /// A node's "color": [r, g, b] with each number from 0 to 1 (as glTF's and OpenSCAD's), or a
+  /// "#rrggbb" string; to 8-bit RGB (rounded).
+  std::array<uint8_t, 3> colour(const json& c, const std::string& path) const {
+    std::array<uint8_t, 3> rgb{};
+    if (c.is_string()) {
+      const std::string& t = c.get_ref<const std::string&>();
+      if (t.size() != 7 || t[0] != '#' ||
+          t.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos)
+        fail(path,
+             "expected [r, g, b] from 0 to 1 or \"#rrggbb\", got \"" + t.substr(0, 20) + "\"");
+      for (int k = 0; k < 3; ++k)
+        rgb[k] = static_cast<uint8_t>(std::stoul(t.substr(1 + 2 * k, 2), nullptr, 16));
+      return rgb;
+    }
+    if (!c.is_array() || c.size() != 3) fail(path, "expected [r, g, b] from 0 to 1 or \"#rrggbb\"");
+    for (int k = 0; k < 3; ++k) {
+      if (!c[k].is_number() || !(c[k].get<double>() >= 0 && c[k].get<double>() <= 1))
+        fail(path + "/" + std::to_string(k), "expected a number from 0 to 1");
+      rgb[k] = static_cast<uint8_t>(std::lround(c[k].get<double>() * 255));
+    }
+    return rgb;
+  }
+
   void keys(const json& j, const std::string& path,
             std::initializer_list<const char*> allowed) const {
     if (!j.is_object()) fail(path, "expected an object");

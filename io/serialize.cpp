@@ -22,6 +22,7 @@ static_assert(std::endian::native == std::endian::little, "the format is little-
 constexpr char kMagic[8] = {'C', 'O', 'V', 'E', 'R', 'S', 'O', 'L'};
 constexpr uint32_t kVersion = 1;
 constexpr uint32_t kFieldVersion = 2;  ///< solids with field leaves (format in serialize.h)
+constexpr uint8_t kColourFlag = 16;    ///< a leaf's flag: its colour's 3 bytes follow
 
 class Writer {
  public:
@@ -118,7 +119,9 @@ std::string solid_to_bytes(const Solid& s) {
     w.put(leaf.first_vertex);
     w.put(leaf.vertex_count);
     w.put(static_cast<uint8_t>((leaf.flipped ? 1 : 0) | (leaf.open() ? 2 : 0) |
-                               (leaf.is_field() ? 4 : 0) | (leaf.is_warp() ? 8 : 0)));
+                               (leaf.is_field() ? 4 : 0) | (leaf.is_warp() ? 8 : 0) |
+                               (leaf.colour ? kColourFlag : 0)));
+    if (leaf.colour) w.put_array(leaf.colour->data(), 3);
   }
   for (const CsgNode& node : s.tree.nodes) {
     w.put(static_cast<uint8_t>(node.op));
@@ -364,7 +367,13 @@ Solid read_solid(std::string_view bytes, const std::string& what, int depth) {
     leaf.face_count = r.get<uint32_t>();
     leaf.first_vertex = r.get<uint32_t>();
     leaf.vertex_count = r.get<uint32_t>();
-    const uint8_t flags = r.get<uint8_t>();
+    const uint8_t all_flags = r.get<uint8_t>();
+    const uint8_t flags = all_flags & ~kColourFlag;
+    if (all_flags & kColourFlag) {
+      std::array<uint8_t, 3> rgb{};
+      for (uint8_t& c : rgb) c = r.get<uint8_t>();
+      leaf.colour = rgb;
+    }
     const std::string label = "leaf " + num(l) + " (at byte " + num(at) + ")";
     if (version == kFieldVersion ? (flags > 3 && flags != 4 && flags != 8) : flags > 3)
       r.fail(label + ": flags other than 0..3" + (version == kFieldVersion ? ", 4 or 8" : ""));

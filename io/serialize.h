@@ -10,7 +10,7 @@
 //   i8[faces] face_sign
 //   per leaf: u32 name bytes, name, u32 origin bytes, origin, u32 first_face, face_count,
 //             first_vertex, vertex_count, u8 flags (1: flipped, 2: open; boxes are recomputed
-//             on reading)
+//             on reading; 16: a colour, u8[3] RGB, follows)
 //   per node: u8 op, u32 leaf, u32 children, u32[children]
 // Version 2, written only for solids with field leaves (solid/field_leaf.h), adds leaf flag 4 (a
 // field leaf: no faces, no vertices) and, after the nodes, per field leaf in leaf order:

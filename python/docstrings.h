@@ -385,13 +385,19 @@ inline constexpr const char* kWritePng =
     R"(Writes an RGB image (uint8 (height, width, 3), as Model.render() returns) as a PNG file,
 atomically (a temporary beside it, then renamed), as `cover render` writes its frames.)";
 
+inline constexpr const char* kLeafColours =
+    R"(uint8 (leaves, 3): each leaf's display colour, RGB: the scene's "color" of the leaf's node or
+its nearest ancestor with one, else the render palette's colour of its index. What render() draws
+and `cover evaluate` writes into glTF and 3MF materials.)";
+
 inline constexpr const char* kWriteMesh =
     R"(Writes a mesh file, atomically (a temporary beside the target, then renamed).
 
 The format follows the extension: .off, .obj, .stl, .ply, .gltf, .glb or .3mf (docs/cli.md
 "Mesh formats written"). V, F as for subdivide(). leaf_ids (optional, an integer per face, e.g.
 the third result of Model.evaluate(leaf_ids=True)): .ply gets a face property `int leaf`, .obj
-a group per leaf, .gltf / .glb / .3mf a material per leaf in its render colour; .off and .stl
+a group per leaf, .gltf / .glb / .3mf a material per leaf in its colour: colours[leaf] when given
+(a (leaves, 3) uint8 array such as Model.leaf_colours), else the render palette's; .off and .stl
 cannot hold them (InputError). Raises InputError for an unsupported extension, an index out of
 range, a non-finite coordinate or a file that cannot be written.)";
 

@@ -24,7 +24,8 @@ namespace cover::python {
 void bind_files(py::module_& m) {
   m.def(
       "write_mesh",
-      [](const std::filesystem::path& path, py::handle v, py::handle f, py::handle leaf_ids) {
+      [](const std::filesystem::path& path, py::handle v, py::handle f, py::handle leaf_ids,
+         py::handle colours) {
         PolygonMesh mesh;
         const Points vertices = points_arg(v, "V");
         mesh.vertices.assign(vertices.span().begin(), vertices.span().end());
@@ -50,15 +51,27 @@ void bind_files(py::module_& m) {
           labels.labels.push_back(static_cast<uint32_t>(id));
           largest = std::max(largest, id);
         }
+        // colours: (k, 3) uint8 per leaf id (Model.leaf_colours), else the render palette.
+        std::vector<std::array<uint8_t, 3>> given;
+        if (!colours.is_none()) {
+          const auto c =
+              py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(colours);
+          if (!c || c.ndim() != 2 || c.shape(1) != 3)
+            throw InputError("colours: expected a (leaves, 3) uint8 array, as Model.leaf_colours");
+          for (py::ssize_t i = 0; i < c.shape(0); ++i)
+            given.push_back({c.at(i, 0), c.at(i, 1), c.at(i, 2)});
+        }
         for (int64_t l = 0; l <= largest; ++l) {
           labels.obj_groups.push_back("leaf_" + std::to_string(l));
-          labels.colours.push_back(leaf_colour(static_cast<uint32_t>(l)));
+          labels.colours.push_back(static_cast<size_t>(l) < given.size()
+                                       ? given[l]
+                                       : leaf_colour(static_cast<uint32_t>(l)));
         }
         py::gil_scoped_release release;
         write_mesh(path, mesh, labels);
       },
-      py::arg("path"), py::arg("V"), py::arg("F"), py::arg("leaf_ids") = py::none(),
-      doc::kWriteMesh);
+      py::arg("path"), py::arg("V"), py::arg("F"), py::arg("leaf_ids") = py::none(), py::kw_only(),
+      py::arg("colours") = py::none(), doc::kWriteMesh);
   m.def(
       "write_png",
       [](const std::filesystem::path& path, py::handle image) {

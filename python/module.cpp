@@ -808,6 +808,18 @@ PYBIND11_MODULE(_cover, m) {
   py::class_<Model> model(m, "Model", doc::kModel);
   model.def(py::init<>(), doc::kModelInit)
       .def_property_readonly("leaves", &Model::leaf_count, doc::kLeaves)
+      .def_property_readonly(
+          "leaf_colours",
+          [](const Model& a) {
+            const size_t n = a.leaf_count();
+            py::array_t<uint8_t> out({py::ssize_t(n), py::ssize_t{3}});
+            for (size_t l = 0; l < n; ++l) {
+              const std::array<uint8_t, 3> c = display_colour(a.solid(), static_cast<uint32_t>(l));
+              for (int k = 0; k < 3; ++k) out.mutable_at(l, k) = c[k];
+            }
+            return out;
+          },
+          doc::kLeafColours)
       .def_property_readonly("empty", &Model::empty, doc::kEmpty)
       .def_property_readonly("bounded", &Model::bounded, doc::kBounded)
       .def_property_readonly(

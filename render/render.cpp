@@ -139,6 +139,11 @@ std::array<uint8_t, 3> leaf_colour(uint32_t leaf) {
 
 std::array<uint8_t, 3> cap_colour() { return {214, 48, 49}; }
 
+std::array<uint8_t, 3> display_colour(const Solid& solid, uint32_t l) {
+  if (l < solid.leaves.size() && solid.leaves[l].colour) return *solid.leaves[l].colour;
+  return leaf_colour(l);
+}
+
 double render_bytes(int width, int height, int samples) {
   constexpr size_t kPerPixel = 3 * sizeof(uint8_t) + 2 * sizeof(uint16_t) + sizeof(Vec3);
   const double pixels = static_cast<double>(width) * height;
@@ -184,9 +189,10 @@ Image render_pass(const Prepared& prepared, const Camera& cam, const RenderOptio
   auto shade = [&](size_t i, const Ray& ray, const Sample& s) {
     std::array<uint8_t, 3> c = o.background;
     if (s.hit) {
-      const std::array<uint8_t, 3> base = s.cap                            ? cap_colour()
-                                          : s.leaf < o.leaf_colours.size() ? o.leaf_colours[s.leaf]
-                                                                           : leaf_colour(s.leaf);
+      const std::array<uint8_t, 3> base = s.cap ? cap_colour()
+                                          : s.leaf < o.leaf_colours.size()
+                                              ? o.leaf_colours[s.leaf]
+                                              : display_colour(solid, s.leaf);
       const double head = std::max(0.0, -dot(s.normal, ray.dir));
       const double lit = std::max(0.0, -dot(s.normal, key));
       const double k = 0.28 + 0.47 * head + 0.25 * lit;

@@ -31,8 +31,8 @@ struct RenderOptions {
   std::optional<Plane> section;
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
   bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
-  /// Leaf l's colour where l < leaf_colours.size(), else leaf_colour(l) (a viewer that hides
-  /// leaves keeps each leaf's colour this way).
+  /// Leaf l's colour where l < leaf_colours.size(), else display_colour(solid, l) (a viewer
+  /// that hides leaves keeps each leaf's colour this way).
   std::vector<std::array<uint8_t, 3>> leaf_colours;
   /// Anti-aliasing: S×S rays per pixel on a regular sub-pixel grid, S from 1 to
   /// kMaxRenderSamples; the pixel's colour is their mean (outlines drawn on the sub-pixel
@@ -64,6 +64,9 @@ struct Image {
 
 /// The RGB colour of leaf `leaf` (distinct hues) and of section caps.
 std::array<uint8_t, 3> leaf_colour(uint32_t leaf);
+/// What leaf `l` of `solid` is drawn and exported in: its scene colour (Leaf::colour), else
+/// leaf_colour(l).
+std::array<uint8_t, 3> display_colour(const Solid& solid, uint32_t l);
 std::array<uint8_t, 3> cap_colour();
 
 /// The bytes render() holds at its peak for a width × height image: per pixel the Image's rgb (3),

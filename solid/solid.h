@@ -15,7 +15,9 @@
 //
 // Union / difference / intersection / complement only concatenate faces and flip signs (§4).
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -61,6 +63,9 @@ struct Leaf {
   uint32_t first_vertex = 0, vertex_count = 0;
   Bbox bbox;
   bool flipped = false;  ///< the input was inside-out and its faces were reversed on load
+  /// RGB from the scene's "color" on this leaf's node or its nearest ancestor that has one;
+  /// none: the renderer's leaf_colour (render/render.h display_colour).
+  std::optional<std::array<uint8_t, 3>> colour;
   /// Boundary edges of the leaf as loaded (mesh/validate.h). 0: a closed leaf, inside by the
   /// exact nonzero rule; > 0: an open leaf, inside where its generalized winding number has
   /// |w| > 1/2 (covering/gwn.h). Only what the loader found: serialize keeps 0 / nonzero.

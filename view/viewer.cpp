@@ -325,7 +325,7 @@ struct Viewer::Impl {
     j["leaves"] = json::array();
     const Solid& s = model->solid();
     for (size_t l = 0; l < s.leaves.size(); ++l) {
-      const std::array<uint8_t, 3> c = leaf_colour(static_cast<uint32_t>(l));
+      const std::array<uint8_t, 3> c = display_colour(s, static_cast<uint32_t>(l));
       j["leaves"].push_back({{"index", l},
                              {"name", s.leaves[l].name},
                              {"origin", s.leaves[l].origin},
@@ -342,7 +342,7 @@ struct Viewer::Impl {
     const std::shared_ptr<const Model> m = shown(f.hidden, leaves);
     RenderOptions ro = f.render;
     if (!f.hidden.empty())
-      for (uint32_t l : leaves) ro.leaf_colours.push_back(leaf_colour(l));
+      for (uint32_t l : leaves) ro.leaf_colours.push_back(display_colour(model->solid(), l));
     const Image image = m->render(m->camera(f.camera, ro.section), ro);
     return encode_png_rgb(image.width, image.height, image.rgb);
   }

@@ -296,3 +296,49 @@ def test_evaluate_result_unpacks_and_saves(tmp_path):
     out = reader.GetOutput()
     assert out.GetNumberOfCells() == len(plain[1])
     assert np.allclose(vtk_to_numpy(out.GetPoints().GetData()), plain[0], rtol=1e-6, atol=1e-6)
+
+
+def test_scene_colours_reach_renders_gltf_3mf_and_pickles(tmp_path):
+    """A node's "color" colours every leaf below it unless a nearer node has its own: render,
+    glTF, 3MF, Model.leaf_colours and the pickled Model agree."""
+    import json
+    import pickle
+    scene = {"union": [
+        {"difference": [{"box": {"min": [0, 0, 0], "max": [2, 2, 2]}, "color": "#ff8000"},
+                        {"sphere": {"center": [2, 2, 2], "radius": 1.2}}],
+         "color": [0, 0.5, 1]},
+        {"cylinder": {"base": [0, 0, 0], "top": [0, 0, 3], "radius": 0.5}}]}
+    path = tmp_path / "coloured.json"
+    path.write_text(json.dumps(scene))
+    m = cover.load(path)
+    palette = cover.load(MODELS / "default.json").leaf_colours
+    np.testing.assert_array_equal(m.leaf_colours, [[255, 128, 0], [0, 128, 255], palette[2]])
+    np.testing.assert_array_equal(pickle.loads(pickle.dumps(m)).leaf_colours, m.leaf_colours)
+    # Render: the box's faces are shades of its colour (r = 2g, b = 0).
+    img = m.render(96, 96, samples=1).astype(int)
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    assert ((b == 0) & (g > 20) & (np.abs(r - 2 * g) <= 2)).sum() > 100
+    # 3MF: base materials in those colours, opaque.
+    cli_json("evaluate", path, "-o", tmp_path / "c.3mf")
+    with zipfile.ZipFile(tmp_path / "c.3mf") as z:
+        root = ET.fromstring(z.read("3D/3dmodel.model"))
+    materials = root.find(CORE + "resources").find(CORE + "basematerials")
+    want = ["#%02X%02X%02XFF" % tuple(c) for c in m.leaf_colours]
+    assert [x.get("displaycolor") for x in materials] == want
+    # glTF: the same materials as write_mesh with colours=m.leaf_colours (and not the palette).
+    cli_json("evaluate", path, "-o", tmp_path / "c.gltf")
+    V, F, leaf = m.evaluate(leaf_ids=True)
+    cover.write_mesh(tmp_path / "w.gltf", V, F, leaf, colours=m.leaf_colours)
+    cover.write_mesh(tmp_path / "p.gltf", V, F, leaf)
+    mats = json.loads((tmp_path / "c.gltf").read_text())["materials"]
+    assert mats == json.loads((tmp_path / "w.gltf").read_text())["materials"]
+    assert mats != json.loads((tmp_path / "p.gltf").read_text())["materials"]
+    # Bad colours: one line naming the JSON path.
+    scene["union"][1]["color"] = [2, 0, 0]
+    path.write_text(json.dumps(scene))
+    with pytest.raises(cover.InputError, match=r"/union/1/color/0: expected a number from 0 to 1"):
+        cover.load(path)
+    scene["union"][1]["color"] = "red"
+    path.write_text(json.dumps(scene))
+    with pytest.raises(cover.InputError, match=r"/union/1/color: expected \[r, g, b\]"):
+        cover.load(path)

@@ -40,6 +40,26 @@ TEST(Scene, AllNodeKinds) {
   EXPECT_TRUE(in.warnings.empty());
 }
 
+TEST(Scene, ColoursAreInheritedFromTheNearestNodeThatHasOne) {
+  const LoadedInput in = parse(R"({"difference": [
+      {"union": [{"box": {"min": [0,0,0], "max": [2,2,2]}, "color": "#FF8000"},
+                 {"sphere": {"center": [3,3,3], "radius": 1, "segments": 8}}],
+       "color": [0, 0.5, 1]},
+      {"cylinder": {"base": [1,1,-1], "top": [1,1,3], "radius": 0.5}}], "color": [1, 1, 1]})");
+  const Solid& s = in.solid;
+  ASSERT_EQ(s.leaves.size(), 3u);
+  EXPECT_EQ(s.leaves[0].colour, (std::array<uint8_t, 3>{255, 128, 0}));
+  EXPECT_EQ(s.leaves[1].colour, (std::array<uint8_t, 3>{0, 128, 255}));
+  EXPECT_EQ(s.leaves[2].colour, (std::array<uint8_t, 3>{255, 255, 255}));
+  EXPECT_FALSE(parse(R"({"box": {"min": [0,0,0], "max": [1,1,1]}})").solid.leaves[0].colour);
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1]}, "color": [1, 0]})"),
+            "scene.json: /color: expected [r, g, b] from 0 to 1 or \"#rrggbb\"");
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1]}, "color": [1, 0, -0.5]})"),
+            "scene.json: /color/2: expected a number from 0 to 1");
+  EXPECT_EQ(error_of(R"({"box": {"min": [0,0,0], "max": [1,1,1]}, "color": "#12345g"})"),
+            "scene.json: /color: expected [r, g, b] from 0 to 1 or \"#rrggbb\", got \"#12345g\"");
+}
+
 TEST(Scene, TransformsComposeParentAfterChild) {
   // Child: scale 2 then translate x by 1 → [1,3]; parent: translate y by 10.
   const Solid s = parse(R"({"union": [{"box": {"min": [0,0,0], "max": [1,1,1]},

@@ -31,6 +31,7 @@ void expect_same(const Solid& a, const Solid& b) {
     EXPECT_EQ(a.leaves[l].name, b.leaves[l].name);
     EXPECT_EQ(a.leaves[l].origin, b.leaves[l].origin);
     EXPECT_EQ(a.leaves[l].flipped, b.leaves[l].flipped);
+    EXPECT_EQ(a.leaves[l].colour, b.leaves[l].colour);
     EXPECT_EQ(a.leaves[l].bbox.min, b.leaves[l].bbox.min);
     EXPECT_EQ(a.leaves[l].bbox.max, b.leaves[l].bbox.max);
   }
@@ -51,7 +52,9 @@ Solid small_scene() {
 
 TEST(Serialize, RoundTripIsExact) {
   const Solid scene = load_input(test::source_dir() / "models" / "default.json").solid;
-  for (const Solid& s : {scene, small_scene(), Solid{}}) {
+  Solid coloured = small_scene();
+  coloured.leaves[0].colour = std::array<uint8_t, 3>{255, 0, 16};
+  for (const Solid& s : {scene, small_scene(), Solid{}, coloured}) {
     const std::string bytes = solid_to_bytes(s);
     const Solid back = solid_from_bytes(bytes);
     expect_same(s, back);

@@ -91,12 +91,11 @@ TEST(Viewer, RefusesRequestsWithoutTheTokenOrFromOtherHosts) {
 
 TEST(Viewer, BadParametersGetOneLineMessages) {
   Served s(scene_copy());
-  for (const std::string& q :
-       {"w=0&h=10", "w=10&h=99999", "w=10&h=10&samples=9", "w=10&h=10&zoom=-1",
-        "w=10&h=10&view=sideways", "w=10&h=10&section=0,0,0,1", "w=10&h=10&section=1,2",
-        "w=10&h=10&pan=nan,0", "w=10&h=10&hidden=a", "w=10&h=10&fit=1", "w=10&h=10&up=w",
-        "w=10&h=10&elevation=91"}) {
-    auto r = s.get("/frame?" + q);
+  for (const char* q : {"w=0&h=10", "w=10&h=99999", "w=10&h=10&samples=9", "w=10&h=10&zoom=-1",
+                        "w=10&h=10&view=sideways", "w=10&h=10&section=0,0,0,1",
+                        "w=10&h=10&section=1,2", "w=10&h=10&pan=nan,0", "w=10&h=10&hidden=a",
+                        "w=10&h=10&fit=1", "w=10&h=10&up=w", "w=10&h=10&elevation=91"}) {
+    auto r = s.get(std::string("/frame?") + q);
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 400) << q;
     EXPECT_EQ(r->body.find('\n'), r->body.size() - 1) << q << ": " << r->body;
