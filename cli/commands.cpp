@@ -154,6 +154,7 @@ std::string flag_of(std::string_view name) {
   if (name == "resolution") return "--res";
   if (name == "width, height") return "--size";
   if (name == "require_closed") return "--closed-only";
+  if (name == "crease_degrees") return "--crease";
   std::string out = "--" + std::string(name);
   std::replace(out.begin(), out.end(), '_', '-');
   return out;
@@ -546,6 +547,7 @@ int run_render(const RenderCommandOptions& o, const CommonOptions& common) {
   RenderOptions ro;
   ro.outline = o.outline;
   ro.samples = o.samples;
+  ro.crease_degrees = o.crease;
   const std::vector<double> bg = parse_numbers(o.background, "--background", 3, ",");
   for (int c = 0; c < 3; ++c) {
     if (bg[c] < 0 || bg[c] > 255)

@@ -88,6 +88,7 @@ struct RenderCommandOptions {
   std::string background = "255,255,255";
   bool outline = true;
   int samples = 2;                  ///< --samples S: S×S rays per pixel (anti-aliasing), 1 to 4
+  double crease = 30;               ///< --crease DEG: smooth shading below it (0: flat)
   std::string up = "z";             ///< --up x|y|z: the axis shown upright
   std::optional<double> elevation;  ///< --elevation DEG (default: the view's)
   double azimuth = 0;               ///< --azimuth DEG: the view turned about the up axis

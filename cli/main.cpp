@@ -218,6 +218,11 @@ int main(int argc, char** argv) {
   ren_cmd->add_flag("!--no-outline", ren.outline, "Do not outline silhouettes and creases");
   ren_cmd->add_option("--samples", ren.samples,
                       "Anti-aliasing: SxS rays per pixel, S from 1 to 4 (default 2; 1: none)");
+  ren_cmd
+      ->add_option("--crease", ren.crease,
+                   "Smooth shading where faces meet at less than DEG (0: flat shading)")
+      ->capture_default_str()
+      ->check(real_number(0, 180));
   ren_cmd->add_option("--up", ren.up, "The axis shown upright: x, y or z (Y-up scans: y)")
       ->capture_default_str();
   ren_cmd

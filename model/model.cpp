@@ -619,6 +619,8 @@ Image Model::render(const Camera& camera, const RenderOptions& options) const {
     throw InputError(parameter("samples") + ": expected a whole number from 1 to " +
                      std::to_string(kMaxRenderSamples) + ", got " +
                      std::to_string(options.samples));
+  if (!(options.crease_degrees >= 0 && options.crease_degrees <= 180))
+    throw InputError(parameter("crease_degrees") + ": expected a number from 0 to 180");
   if (options.samples > 1 && std::max(camera.width, camera.height) * options.samples > 16384)
     throw InputError(parameter("samples") + ": the sub-pixel image (" +
                      std::to_string(options.samples) + " times " + std::to_string(camera.width) +

@@ -200,7 +200,8 @@ elevation: the eye's angle above the horizontal plane in degrees, -90..90 (None:
 iso 35.26); azimuth: the view turned about the up axis in degrees; zoom: magnification (> 0);
 pan: (x, y) the view moved by x image widths right and y heights up after framing;
 fit: frame the part the section keeps; samples: anti-aliasing, samples x samples rays per pixel
-(1 to 4; 1: none). The camera frames the result tightly (docs/cli.md). The same pixels as
+(1 to 4; 1: none); crease: smooth shading where faces meet at less than this angle in degrees
+(0: flat shading, up to 180). The camera frames the result tightly (docs/cli.md). The same pixels as
 `cover render --size WxH` with the same flags.)";
 
 inline constexpr const char* kDistance =

@@ -51,6 +51,7 @@ void check_finite(std::span<const Vec3> points, const char* what) {
 std::string keyword(std::string_view name) {
   if (name == "resolution") return "res";
   if (name == "require_closed") return "closed_only";
+  if (name == "crease_degrees") return "crease";
   return std::string(name);
 }
 
@@ -494,7 +495,8 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height,
                                   const std::string& view, const py::object& section,
                                   bool perspective, const std::string& up,
                                   std::optional<double> elevation, double azimuth, double zoom,
-                                  const py::object& pan, bool fit, int samples, Threads threads) {
+                                  const py::object& pan, bool fit, int samples, double crease,
+                                  Threads threads) {
   CameraOptions co;
   co.view = parse_view(view);
   co.width = width;
@@ -511,6 +513,7 @@ py::array_t<uint8_t> render_image(const Model& model, int width, int height,
   co.fit = fit;
   RenderOptions ro;
   ro.samples = samples;  // range checked by Model::render, naming `samples`
+  ro.crease_degrees = crease;
   if (!section.is_none()) {
     const std::vector<double> s = numbers_arg(section, "section", 4);
     ro.section = Plane{{s[0], s[1], s[2]}, s[3]};
@@ -975,7 +978,7 @@ PYBIND11_MODULE(_cover, m) {
            py::arg("section") = py::none(), py::kw_only(), py::arg("perspective") = false,
            py::arg("up") = "z", py::arg("elevation") = py::none(), py::arg("azimuth") = 0.0,
            py::arg("zoom") = 1.0, py::arg("pan") = py::none(), py::arg("fit") = false,
-           py::arg("samples") = 2, threads, doc::kRender)
+           py::arg("samples") = 2, py::arg("crease") = 30.0, threads, doc::kRender)
       .def("evaluate", &evaluate_mesh, py::kw_only(), py::arg("leaf_ids") = false,
            py::arg("mesh_resolution") = 128, py::arg("mesh_tolerance") = 0.0, threads,
            doc::kEvaluate)

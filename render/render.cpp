@@ -10,6 +10,7 @@
 
 #include "cover/covering/ray.h"
 #include "cover/render/object_order.h"
+#include "cover/render/shading.h"
 #include "cover/solid/errors.h"
 #include "cover/solid/large_vector.h"
 #include "cover/solid/parallel.h"
@@ -32,14 +33,16 @@ Vec3 unit(Vec3 v) {
 }
 
 /// What a pixel shows, from its visible hit (`tri`: the triangle of v.enter when v.hit && !v.cap).
+/// The normal: `shading`'s smooth one on the triangle (shading.h), flat where it is empty.
 Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
-                 const std::optional<Plane>& section) {
+                 const std::optional<Plane>& section, const Solid& solid,
+                 const ShadingNormals& shading) {
   Sample out;
   if (!v.hit) return out;
   out.hit = true;
   out.t = v.t;
   if (!v.cap) {
-    const Vec3 n = unit(cross(tri->b - tri->a, tri->c - tri->a));
+    const Vec3 n = smooth_normal(solid, shading, *tri, ray.origin + v.t * ray.dir);
     // Entering a leaf shows its outward normal; leaving one (a subtrahend) the reverse.
     out.normal = v.enter.sign < 0 ? n : -1.0 * n;
     out.leaf = v.enter.leaf;
@@ -56,7 +59,8 @@ Sample to_sample(const VisibleHit& v, const Bvh::Tri* tri, const Ray& ray,
 /// come from cast() and open_spans() (membership changes only at surface hits). Field and warp
 /// leaves: from cast() and field_spans() (their normals from field_normal).
 Sample sample(const Prepared& prepared, const Bvh& bvh, const Ray& ray,
-              const std::optional<Plane>& section, bool outside_in_result, const GwnForest* open) {
+              const std::optional<Plane>& section, bool outside_in_result, const GwnForest* open,
+              const ShadingNormals& shading) {
   const Solid& solid = prepared.solid();
   const auto [lo, hi] = section_window(ray, section);
   if (lo > hi) return {};
@@ -81,9 +85,9 @@ Sample sample(const Prepared& prepared, const Bvh& bvh, const Ray& ray,
     open_spans(r, solid, *open, ray);
     v = first_visible(r, lo, hi);
   }
-  if (!v.hit || v.cap) return to_sample(v, nullptr, ray, section);
+  if (!v.hit || v.cap) return to_sample(v, nullptr, ray, section, solid, shading);
   const Bvh::Tri t = bvh.triangle(v.enter.tri);
-  return to_sample(v, &t, ray, section);
+  return to_sample(v, &t, ray, section, solid, shading);
 }
 
 /// `v` as n copies of `value`, written 16 MiB at a time with step() after each.
@@ -161,7 +165,8 @@ namespace {
 
 /// One ray per pixel of `cam`; outlines `band` pixels wide (the sub-pixel image of render()
 /// draws them S wide, one pixel once averaged).
-Image render_pass(const Prepared& prepared, const Camera& cam, const RenderOptions& o, int band) {
+Image render_pass(const Prepared& prepared, const Camera& cam, const RenderOptions& o, int band,
+                  const ShadingNormals& shading) {
   const Solid& solid = prepared.solid();
   const bool object_order = renders_in_object_order(solid, cam, o);
   Image img;
@@ -218,7 +223,7 @@ Image render_pass(const Prepared& prepared, const Camera& cam, const RenderOptio
     object_order_visible(
         solid, cam, o.section, tile,
         [&](size_t i, const Ray& ray, const VisibleHit& v, const Bvh::Tri* t) {
-          shade(i, ray, to_sample(v, t, ray, o.section));
+          shade(i, ray, to_sample(v, t, ray, o.section, solid, shading));
         },
         tile_done);
   } else {
@@ -235,7 +240,7 @@ Image render_pass(const Prepared& prepared, const Camera& cam, const RenderOptio
           for (int px = x0; px < std::min(cam.width, x0 + tile); ++px) {
             const Ray ray = cam.ray(px, py);
             shade(static_cast<size_t>(py) * cam.width + px, ray,
-                  sample(prepared, bvh, ray, o.section, outside_in_result, open));
+                  sample(prepared, bvh, ray, o.section, outside_in_result, open, shading));
           }
       }
       tile_done(end - begin);
@@ -280,7 +285,10 @@ Image render(const Prepared& prepared, const Camera& cam, const RenderOptions& o
   if (s < 1 || s > kMaxRenderSamples)
     throw PreconditionError("render: samples " + std::to_string(s) + " is not 1 to " +
                             std::to_string(kMaxRenderSamples));
-  if (s == 1) return render_pass(prepared, cam, o, 1);
+  if (!(o.crease_degrees >= 0 && o.crease_degrees <= 180))
+    throw PreconditionError("render: crease_degrees is not 0 to 180");
+  const ShadingNormals shading = shading_normals(prepared.solid(), o.crease_degrees);
+  if (s == 1) return render_pass(prepared, cam, o, 1, shading);
   // The sub-pixel image: the same view with S times the pixels per side (orthographic: S times
   // smaller pixels; perspective: the field of view spans S times the pixels), so sub-pixel
   // (S·px + a, S·py + b) is centred at (px + (a + ½)/S, py + (b + ½)/S) of pixel (px, py).
@@ -291,14 +299,14 @@ Image render(const Prepared& prepared, const Camera& cam, const RenderOptions& o
   const int tile = std::max(1, o.tile);
   const size_t fine_tiles = static_cast<size_t>((fine.width + tile - 1) / tile) *
                             static_cast<size_t>((fine.height + tile - 1) / tile);
-  Image sub = render_pass(prepared, fine, o, s);
+  Image sub = render_pass(prepared, fine, o, s, shading);
   // Depth and ids from the pixel-centre rays (no outline: its colour is replaced below).
   RenderOptions centre = o;
   centre.outline = false;
   centre.progress = [&](size_t, size_t) {
     if (o.progress) o.progress(fine_tiles, fine_tiles);
   };
-  Image img = render_pass(prepared, cam, centre, 1);
+  Image img = render_pass(prepared, cam, centre, 1, shading);
   // Box filter: each channel the rounded mean of the S² sub-pixels (integers: exact, so the
   // image does not depend on the thread count).
   const int s2 = s * s;

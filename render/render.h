@@ -31,6 +31,10 @@ struct RenderOptions {
   std::optional<Plane> section;
   std::array<uint8_t, 3> background{255, 255, 255};  ///< RGB
   bool outline = true;  ///< darken silhouette, leaf-boundary and crease pixels
+  /// Smooth shading (render/shading.h): faces meeting at less than this angle in degrees shade
+  /// as one surface (vertex normals interpolated), sharper edges stay creases; 0: flat shading
+  /// (every face its own normal). 0 to 180.
+  double crease_degrees = 30;
   /// Leaf l's colour where l < leaf_colours.size(), else display_colour(solid, l) (a viewer
   /// that hides leaves keeps each leaf's colour this way).
   std::vector<std::array<uint8_t, 3>> leaf_colours;

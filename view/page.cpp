@@ -46,6 +46,9 @@ label{display:block;margin:3px 0} select,input[type=range]{width:100%}
 <h2>Image</h2>
 <label>Samples <select id="samples"><option>1</option><option selected>2</option>
 <option>3</option><option>4</option></select></label>
+<label>Smooth below <select id="crease"><option value="0">0° (flat)</option>
+<option value="30" selected>30°</option><option value="45">45°</option>
+<option value="60">60°</option></select></label>
 <label><input type="checkbox" id="outline" checked> outlines</label>
 <label><a id="download" download="cover.png" href="#">Download this frame</a></label>
 <h2>Pick</h2>
@@ -84,7 +87,7 @@ function sectionParam() {
 function view(w, h, samples) {
   const p = {w: w, h: h, view: $("view").value, up: $("up").value,
              azimuth: state.azimuth, zoom: state.zoom, samples: samples,
-             outline: $("outline").checked ? 1 : 0};
+             outline: $("outline").checked ? 1 : 0, crease: $("crease").value};
   if (state.elevation !== null) p.elevation = state.elevation;
   if (state.pan[0] || state.pan[1]) p.pan = state.pan.join(",");
   if ($("perspective").checked) p.perspective = 1;
@@ -250,8 +253,8 @@ function pick(e) {
         "\nclass " + j.class + "\nleaf " + j.leaf + (j.origin ? "\n" + j.origin : "");
   });
 }
-for (const id of ["view", "up", "perspective", "samples", "outline", "section-axis", "flip",
-                  "fit"]) {
+for (const id of ["view", "up", "perspective", "samples", "crease", "outline", "section-axis",
+                  "flip", "fit"]) {
   $(id).addEventListener("change", () => {
     if (id === "view") state.elevation = null;
     redraw(false);

@@ -186,6 +186,9 @@ FrameRequest parse_frame(const httplib::Request& req, const ViewerOptions& vo) {
                      std::to_string(kMaxRenderSamples));
   r.samples = static_cast<int>(samples);
   r.outline = param(req, "outline", "1") == "1";
+  r.crease_degrees = number(req, "crease", 30);
+  if (!(r.crease_degrees >= 0 && r.crease_degrees <= 180))
+    throw InputError("crease: expected a number from 0 to 180");
   if (req.has_param("section") && !req.get_param_value("section").empty()) {
     const std::vector<double> p = numbers("section", req.get_param_value("section"), 4);
     if (p[0] == 0 && p[1] == 0 && p[2] == 0)

@@ -179,6 +179,7 @@ class Model:
         pan: Sequence[float] | None = None,
         fit: bool = False,
         samples: int = 2,
+        crease: float = 30.0,
         threads: int | None = None,
     ) -> npt.NDArray[np.uint8]: ...
     @overload

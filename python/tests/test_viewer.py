@@ -93,7 +93,7 @@ def cli_render(scene, p, out):
     """`cover render` with the flags named as the frame's parameters."""
     args = ["render", scene, "-o", out, "--size", f"{p['w']}x{p['h']}", "--view", p["view"],
             "--up", p["up"], "--azimuth", p["azimuth"], "--zoom", p["zoom"],
-            "--samples", p["samples"], "--quiet"]
+            "--samples", p["samples"], "--crease", p.get("crease", "30"), "--quiet"]
     if "elevation" in p:
         args += ["--elevation", p["elevation"]]
     if "pan" in p:
