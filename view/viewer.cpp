@@ -20,6 +20,7 @@
 #include "cover/covering/classify.h"
 #include "cover/io/png.h"
 #include "cover/model/model.h"
+#include "cover/render/object_order.h"
 #include "cover/render/render.h"
 #include "cover/solid/errors.h"
 
@@ -362,37 +363,23 @@ struct Viewer::Impl {
     j["y"] = y;
     j["hit"] = false;
     if (x < 0 || y < 0 || x >= cam.width || y >= cam.height || m->empty()) return j;
+    // What the renderer shows at the pixel centre: the first span within the section's window.
     const Ray ray = cam.ray(x, y);
-    const std::vector<RayResult> r = m->cast(std::vector<Ray>{ray});
-    for (const Span& s : r[0].spans) {
-      double t0 = std::max(s.t0, 0.0), t1 = s.t1;
-      bool cap = false;
-      if (f.render.section) {  // keep n·(o + t·d) ≤ offset
-        const Plane& p = *f.render.section;
-        const double a = dot(p.normal, ray.origin) - p.offset, b = dot(p.normal, ray.dir);
-        if (b == 0) {
-          if (a > 0) continue;
-        } else if (b > 0) {
-          t1 = std::min(t1, -a / b);
-        } else if (-a / b > t0) {
-          t0 = -a / b;
-          cap = true;
-        }
-      }
-      if (!(t0 < t1) && !(t0 == t1 && !cap)) continue;
-      const Vec3 p = ray.origin + t0 * ray.dir;
-      j["hit"] = true;
-      j["point"] = {p.x, p.y, p.z};
-      j["class"] = std::string(to_string(m->classify(std::vector<Vec3>{p})[0]));
-      if (cap) {
-        j["leaf"] = "section cap";
-      } else if (s.enter != Span::kNone) {
-        const uint32_t l = leaves.at(r[0].hits[s.enter].leaf);
-        j["leaf"] = model->solid().leaves[l].name;
-        j["leaf_index"] = l;
-        j["origin"] = model->solid().leaves[l].origin;
-      }
-      break;
+    const auto [lo, hi] = section_window(ray, f.render.section);
+    if (lo > hi) return j;
+    const VisibleHit v = first_visible(m->cast(std::vector<Ray>{ray})[0], lo, hi);
+    if (!v.hit) return j;
+    const Vec3 p = ray.origin + v.t * ray.dir;
+    j["hit"] = true;
+    j["point"] = {p.x, p.y, p.z};
+    j["class"] = std::string(to_string(m->classify(std::vector<Vec3>{p})[0]));
+    if (v.cap) {
+      j["leaf"] = "section cap";
+    } else {
+      const uint32_t l = leaves.at(v.enter.leaf);
+      j["leaf"] = model->solid().leaves[l].name;
+      j["leaf_index"] = l;
+      j["origin"] = model->solid().leaves[l].origin;
     }
     return j;
   }
