@@ -9,7 +9,6 @@ import os
 import pathlib
 import shutil
 import subprocess
-import time
 import urllib.parse
 import urllib.request
 
@@ -67,12 +66,14 @@ def frame(driver):
     return driver.find_element(By.ID, "frame")
 
 
-def wait_idle(driver, other_than=None, timeout=60):
-    """Waits for the full-size frame of a view other than `other_than`; returns its URL."""
+def wait_idle(driver, other_than=None, timeout=60, showing=""):
+    """Waits for the full-size frame of a view other than `other_than` whose URL contains
+    `showing` (an event's frame, not the one still on screen when it fired); returns its URL."""
     def ready(d):
         f = frame(d)
         url = f.get_attribute("data-url")
-        return f.get_attribute("data-state") == "idle" and url and url != other_than and url
+        return (f.get_attribute("data-state") == "idle" and url and url != other_than and
+                showing in url and url)
     return WebDriverWait(driver, timeout, poll_frequency=0.05).until(ready)
 
 
@@ -135,7 +136,7 @@ def test_drag_orbits_and_the_frame_follows(server, browser, scene, tmp_path):
 def test_section_slider_moves_the_cut(server, browser, scene, tmp_path):
     open_page(browser, server)
     Select(browser.find_element(By.ID, "section-axis")).select_by_visible_text("z")
-    first = wait_idle(browser)
+    first = wait_idle(browser, showing="section=")
     cut = params(first)["section"].split(",")
     assert cut[:3] == ["0", "0", "1"]
     slider = browser.find_element(By.ID, "section-offset")
@@ -174,7 +175,7 @@ def test_hiding_a_leaf_leaves_it_out_of_the_scene(server, browser, scene, tmp_pa
     before = open_page(browser, server)
     box = browser.find_element(By.CSS_SELECTOR, "#leaves input[data-leaf='5']")  # the torus
     box.click()
-    after = wait_idle(browser, other_than=before)
+    after = wait_idle(browser, other_than=before, showing="hidden=")
     assert params(after)["hidden"] == "5"
     # The same scene without the torus node, rendered by the CLI: the same bytes.
     s = json.loads(scene.read_text())
@@ -187,12 +188,10 @@ def test_hiding_a_leaf_leaves_it_out_of_the_scene(server, browser, scene, tmp_pa
 
 
 def test_editing_the_scene_reloads_it_and_keeps_the_view(server, browser, scene, tmp_path):
-    open_page(browser, server)
+    opened = open_page(browser, server)
     ActionChains(browser).move_to_element(frame(browser)).click_and_hold() \
         .move_by_offset(-80, 10).release().perform()
-    turned = wait_idle(browser, other_than=None)
-    time.sleep(0.3)
-    turned = wait_idle(browser)
+    turned = wait_idle(browser, other_than=opened)
     version = browser.find_element(By.TAG_NAME, "body").get_attribute("data-version")
     original = scene.read_text()
     try:
@@ -223,9 +222,9 @@ def test_screenshot_for_the_readme(server, browser):
         pytest.skip("COVER_VIEWER_SCREENSHOT not set")
     open_page(browser, server)
     Select(browser.find_element(By.ID, "section-axis")).select_by_visible_text("y")
-    shown = wait_idle(browser)
+    wait_idle(browser, showing="section=")
     browser.find_element(By.ID, "flip").click()  # keep y > 0: the cut faces the camera
-    shown = wait_idle(browser, other_than=shown)
+    wait_idle(browser, showing="section=0%2C-1")
     ActionChains(browser).move_to_element_with_offset(frame(browser), -90, 10).click().perform()
     WebDriverWait(browser, 30).until(
         lambda d: d.find_element(By.ID, "pick").get_attribute("data-result"))
